@@ -1,0 +1,40 @@
+#include "core/quantity.h"
+
+#include <stdexcept>
+
+namespace chutelab {
+namespace {
+constexpr std::array<QuantityInfo, kQuantityCount> kInfo = {{
+    {Quantity::normal_force, "normal_force_N", "R_n", "plate normal force", "N", 1.0},
+    {Quantity::shear_force, "shear_force_N", "R_s", "plate shear force", "N", 1.0},
+    {Quantity::resultant_force, "resultant_force_N", "R", "plate resultant force", "N", 1.0},
+    {Quantity::impact_velocity, "impact_velocity_mps", "V_p", "impact velocity", "m/s", 1.0},
+    {Quantity::exit_velocity, "exit_velocity_mps", "V_a", "exit velocity", "m/s", 1.0},
+    {Quantity::impact_point_y, "impact_point_y_mm", "y_R", "impact point height", "mm", 1e3},
+}};
+}  // namespace
+
+const QuantityInfo& info(Quantity q) { return kInfo.at(static_cast<std::size_t>(q)); }
+
+std::optional<Quantity> parse_quantity(std::string_view name) {
+  for (const auto& i : kInfo)
+    if (i.name == name) return i.quantity;
+  return std::nullopt;
+}
+
+std::string_view name(Boundary b) {
+  switch (b) {
+    case Boundary::upper: return "upper";
+    case Boundary::lower: return "lower";
+    case Boundary::centre: return "centre";
+  }
+  throw std::logic_error("unknown boundary");
+}
+
+std::optional<Boundary> parse_boundary(std::string_view n) {
+  for (Boundary b : kAllBoundaries)
+    if (name(b) == n) return b;
+  return std::nullopt;
+}
+
+}  // namespace chutelab
