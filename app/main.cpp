@@ -1,1 +1,43 @@
-int main() { return 0; }
+// chutelab: how far are transfer-station models from the measurements, and why.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <iostream>
+
+#include "app/commands.h"
+#include "core/input_error.h"
+
+namespace chutelab::app {
+std::filesystem::path default_dataset() {
+  return std::filesystem::path(CHUTELAB_DATASETS_DIR) / "grima2010";
+}
+}  // namespace chutelab::app
+
+int main(int argc, char** argv) {
+  using namespace chutelab;
+  CLI::App app{"chutelab: conveyor transfer-station models against measurements"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "chutelab 0.1.0");
+  app::Action action;
+  app::add_estimate(app, action);
+  app::add_validate(app, action);
+  app::add_diagnose(app, action);
+  app::add_synthesize(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "chutelab: " << e.what() << " (see --help)\n";
+    return kExitBadInput;
+  }
+  try {
+    return action ? action() : kExitBadInput;
+  } catch (const InputError& e) {
+    std::cerr << "chutelab: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+}

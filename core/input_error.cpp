@@ -17,6 +17,12 @@ InputError::InputError(std::string file, long line, std::string field, const std
     : std::runtime_error(compose(file, line, field, problem)),
       file_(std::move(file)),
       line_(line),
-      field_(std::move(field)) {}
+      field_(std::move(field)),
+      problem_(problem) {}
+
+InputError InputError::located(const std::string& file, long line) const {
+  if (!file_.empty()) return *this;
+  return InputError(file, line, field_, problem_);
+}
 
 }  // namespace chutelab

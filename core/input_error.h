@@ -12,11 +12,16 @@ class InputError : public std::runtime_error {
   const std::string& file() const { return file_; }
   long line() const { return line_; }
   const std::string& field() const { return field_; }
+  const std::string& problem() const { return problem_; }
+  // The same problem placed in a file and line (for errors found after parsing, e.g. a condition
+  // whose stream misses the plate); keeps a location that is already set.
+  InputError located(const std::string& file, long line) const;
 
  private:
   std::string file_;
   long line_;
   std::string field_;
+  std::string problem_;
 };
 
 inline constexpr int kExitOk = 0;

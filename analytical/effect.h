@@ -1,0 +1,66 @@
+#pragma once
+// What an added physical effect may change, stage by stage, in the analytical chain
+// (discharge -> flight -> plate -> measurement). Each effect overrides only the stages it touches;
+// the chain calls every stage of every enabled effect in the order the effects were given.
+// The effects themselves live in effects/, one file each.
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/quantity.h"
+#include "core/rig.h"
+
+namespace chutelab::analytical {
+
+// Operating inputs of the condition as the physics sees them (before the load shape is derived).
+struct OperatingPoint {
+  double belt_speed = 0.0;  // m/s
+  double mass_flow = 0.0;   // kg/s actually delivered
+};
+
+// How one streamline leaves the pulley (Booth).
+struct DischargeInput {
+  double radius = 0.0;          // m, R_b + e
+  double speed = 0.0;           // m/s, speed of the material on the belt (V_b without slip)
+  double incline = 0.0;         // rad
+  double gravity = 0.0;         // m/s^2
+  double holding_accel = 0.0;   // m/s^2 pulling the material towards the pulley axis (adhesion)
+};
+
+// The stream striking the plate: everything Korzen's control volume needs, adjustable by effects.
+struct PlateInteraction {
+  double friction = 0.0;         // mu_pw
+  double rebound = 0.0;          // fraction of the normal momentum returned by rebounding particles
+};
+
+struct FlightContext {
+  double particle_diameter = 0.0;
+  double solid_density = 0.0;
+};
+
+class Effect {
+ public:
+  virtual ~Effect() = default;
+  virtual std::string name() const = 0;
+
+  virtual void adjust_operating_point(OperatingPoint&) const {}
+  virtual void adjust_discharge(DischargeInput&, const Station&) const {}
+  // Extra acceleration in flight (beyond gravity); has_flight_force() lets the chain keep the
+  // closed-form trajectory when no effect adds a force.
+  virtual bool has_flight_force() const { return false; }
+  virtual Eigen::Vector2d flight_acceleration(const Eigen::Vector2d& velocity,
+                                              const FlightContext&) const {
+    (void)velocity;
+    return Eigen::Vector2d::Zero();
+  }
+  // Turn the release velocity of an outer streamline (spread of the stream); centre untouched.
+  virtual void adjust_release(Boundary, Eigen::Vector2d& velocity) const { (void)velocity; }
+  virtual void adjust_plate(PlateInteraction&) const {}
+  // The measurement itself (instrument bias): applied to any model's predictions, DEM included.
+  virtual void adjust_measurement(QuantityValues&) const {}
+};
+
+using EffectList = std::vector<std::shared_ptr<const Effect>>;
+
+}  // namespace chutelab::analytical

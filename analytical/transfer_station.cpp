@@ -1,0 +1,125 @@
+#include "analytical/transfer_station.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "core/input_error.h"
+
+namespace chutelab::analytical {
+
+std::string_view name(Streamline s) {
+  switch (s) {
+    case Streamline::lower: return "lower";
+    case Streamline::upper: return "upper";
+    case Streamline::cema_centroid: return "cema_centroid";
+    case Streamline::korzen_centroid: return "korzen_centroid";
+  }
+  throw std::logic_error("unknown streamline");
+}
+
+double TransferAnalysis::drop_height() const {
+  const auto& l = line(Streamline::cema_centroid);
+  return l.release.position.y() - l.hit->point.position.y();
+}
+
+double TransferAnalysis::flight_time() const { return line(Streamline::cema_centroid).hit->point.t; }
+
+namespace {
+
+void check_station(const Station& s) {
+  auto bad = [](std::string_view field, const std::string& problem) {
+    throw InputError("", 0, std::string(field), problem);
+  };
+  if (!(s.belt_speed > 0.0) || !std::isfinite(s.belt_speed))
+    bad("belt_speed_mps", fmt::format("must be a positive number, got {}", s.belt_speed));
+  if (!(s.mass_flow > 0.0) || !std::isfinite(s.mass_flow))
+    bad("mass_flow_tph", fmt::format("must be a positive number, got {}", s.mass_flow * 3.6));
+  if (!std::isfinite(s.plate_distance) || !std::isfinite(s.plate_top))
+    bad("plate_distance_mm", "plate position must be finite");
+  if (s.stream_thickness && !(*s.stream_thickness > 0.0))
+    bad("stream_thickness_mm", "must be positive when given");
+}
+
+}  // namespace
+
+TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects) {
+  check_station(st);
+  TransferAnalysis a;
+  a.station = st;
+  a.operating = {st.belt_speed, st.mass_flow};
+  for (const auto& e : effects) e->adjust_operating_point(a.operating);
+
+  // The stream's thickness is a property of the belt load, so it follows from the mass flow that
+  // is really on the belt, at belt speed (the layer rides the belt before the pulley).
+  if (st.stream_thickness) {
+    a.load = load_shape_for_thickness(st.belt, *st.stream_thickness);
+  } else {
+    a.thickness_from_continuity = true;
+    a.load = load_shape_for_flow(st.belt, a.operating.mass_flow, st.material.bulk_density,
+                                 a.operating.belt_speed);
+  }
+
+  a.plate.top = {st.plate_distance, st.plate_top};
+  a.plate.angle = st.plate.angle;
+  a.plate.height = st.plate.height;
+
+  const FlightContext ctx{st.material.particle_diameter, st.material.solid_density};
+  bool has_force = false;
+  for (const auto& e : effects) has_force = has_force || e->has_flight_force();
+  AccelerationFn extra;
+  if (has_force)
+    extra = [&effects, ctx](const Eigen::Vector2d& v) {
+      Eigen::Vector2d acc = Eigen::Vector2d::Zero();
+      for (const auto& e : effects) acc += e->flight_acceleration(v, ctx);
+      return acc;
+    };
+
+  const double rb = st.belt.belt_radius();
+  const std::array<double, 4> heights = {0.0, a.load.height, a.load.centroid_height,
+                                         0.5 * a.load.height};
+  for (Streamline which : kAllStreamlines) {
+    auto& f = a.streamlines[static_cast<std::size_t>(which)];
+    f.which = which;
+    f.height_above_belt = heights[static_cast<std::size_t>(which)];
+    DischargeInput din{rb + f.height_above_belt, a.operating.belt_speed, st.belt.incline,
+                       st.gravity, 0.0};
+    for (const auto& e : effects) e->adjust_discharge(din, st);
+    f.release = booth_release(din);
+    if (a.plate.signed_distance(f.release.position) >= 0.0)
+      throw InputError("", 0, "plate_distance_mm",
+                       fmt::format("the plate face (x = {:.0f} mm at its top) is behind the point "
+                                   "where the stream leaves the pulley (x = {:.0f} mm)",
+                                   st.plate_distance * 1e3, f.release.position.x() * 1e3));
+    Eigen::Vector2d v0 = f.release.velocity;
+    if (which == Streamline::upper || which == Streamline::lower)
+      for (const auto& e : effects)
+        e->adjust_release(which == Streamline::upper ? Boundary::upper : Boundary::lower, v0);
+    f.trajectory = Trajectory(FlightPoint{0.0, f.release.position, v0}, st.gravity, extra);
+    f.hit = f.trajectory.hit(a.plate);
+  }
+
+  for (Streamline centre : {Streamline::cema_centroid, Streamline::korzen_centroid}) {
+    const auto& hit = a.line(centre).hit;
+    if (!hit || !hit->on_plate) {
+      const std::string where =
+          hit ? fmt::format("passes the plate line at y = {:.0f} mm, outside the plate "
+                            "(top {:.0f} mm, {:.0f} mm high)",
+                            hit->point.position.y() * 1e3, st.plate_top * 1e3, st.plate.height * 1e3)
+              : std::string("never reaches the plate");
+      throw InputError("", 0, "plate_top_mm",
+                       fmt::format("the stream misses the plate: its centre line ({}) {}",
+                                   name(centre), where));
+    }
+  }
+
+  a.plate_interaction = {st.material.friction_plate, 0.0};
+  for (const auto& e : effects) e->adjust_plate(a.plate_interaction);
+  const auto& hit = *a.line(Streamline::korzen_centroid).hit;
+  a.korzen = korzen_impact({a.operating.mass_flow, st.material.bulk_density, hit.speed, hit.alpha,
+                            st.plate.angle, a.plate_interaction.friction,
+                            a.plate_interaction.rebound});
+  return a;
+}
+
+}  // namespace chutelab::analytical

@@ -1,0 +1,19 @@
+#pragma once
+// Each subcommand adds itself to the CLI and sets the action run after parsing.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <functional>
+
+namespace chutelab::app {
+
+using Action = std::function<int()>;
+
+void add_estimate(CLI::App& app, Action& action);
+void add_validate(CLI::App& app, Action& action);
+void add_diagnose(CLI::App& app, Action& action);
+void add_synthesize(CLI::App& app, Action& action);
+
+// The bundled default rig, found next to the source tree this binary was built from.
+std::filesystem::path default_dataset();
+
+}  // namespace chutelab::app

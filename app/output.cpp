@@ -1,0 +1,221 @@
+#include "app/output.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/units.h"
+
+namespace chutelab::app {
+namespace {
+using analytical::Streamline;
+constexpr double kDeg = 180.0 / 3.14159265358979323846;
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", c);
+        else out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
+
+std::string streamline_label(Streamline s) {
+  switch (s) {
+    case Streamline::lower: return "lower limit (e = 0)";
+    case Streamline::upper: return "upper limit (e = h_b)";
+    case Streamline::cema_centroid: return "CEMA centroid (e = a1)";
+    case Streamline::korzen_centroid: return "Korzen centroid (e = h_b/2)";
+  }
+  return "";
+}
+
+// One flat list of named values in boundary units: the CSV and JSON views share it.
+std::vector<std::pair<std::string, double>> scalars(const analytical::TransferAnalysis& a) {
+  const auto& k = a.korzen;
+  const auto& kc = *a.line(Streamline::korzen_centroid).hit;
+  std::vector<std::pair<std::string, double>> v = {
+      {"belt_speed_mps", a.station.belt_speed},
+      {"mass_flow_tph", a.station.mass_flow / units::tph},
+      {"plate_distance_mm", a.station.plate_distance * 1e3},
+      {"plate_top_mm", a.station.plate_top * 1e3},
+      {"plate_angle_deg", a.station.plate.angle * kDeg},
+      {"stream_thickness_mm", a.load.height * 1e3},
+      {"cema_centroid_mm", a.load.centroid_height * 1e3},
+      {"load_area_mm2", a.load.area * 1e6},
+      {"discharge_ratio_K", a.line(Streamline::cema_centroid).release.ratio},
+      {"release_angle_deg", a.line(Streamline::cema_centroid).release.theta * kDeg},
+      {"impact_angle_deg", kc.alpha * kDeg},
+      {"impact_velocity_mps", kc.speed},
+      {"normal_impact_velocity_mps", k.normal_speed},
+      {"tangential_impact_velocity_mps", k.tangential_speed},
+      {"normal_force_N", k.normal_force},
+      {"shear_force_N", k.shear_force},
+      {"resultant_force_N", k.resultant_force},
+  };
+  if (k.exit_speed) v.emplace_back("exit_velocity_mps", *k.exit_speed);
+  for (Streamline s : analytical::kAllStreamlines) {
+    const auto& l = a.line(s);
+    if (!l.hit) continue;
+    const std::string n(name(s));
+    v.emplace_back(n + "_impact_y_mm", l.hit->point.position.y() * 1e3);
+    v.emplace_back(n + "_impact_velocity_mps", l.hit->speed);
+    v.emplace_back(n + "_impact_angle_deg", l.hit->alpha * kDeg);
+    v.emplace_back(n + "_flight_time_s", l.hit->point.t);
+  }
+  return v;
+}
+
+std::string fmt_opt(const std::optional<double>& v, double scale, const char* spec) {
+  return v ? fmt::format(fmt::runtime(spec), *v * scale) : std::string("-");
+}
+
+}  // namespace
+
+std::string estimate_table(const analytical::TransferAnalysis& a, const ModelValues& models,
+                           const std::vector<effects::EffectSetting>& fx) {
+  const auto& st = a.station;
+  const auto& k = a.korzen;
+  const auto& rel = a.line(Streamline::cema_centroid).release;
+  std::string o;
+  o += fmt::format("chutelab estimate: condition {} (analytical models)\n\n", st.condition);
+  o += fmt::format("  belt speed {:.2f} m/s, mass flow {:.1f} t/h, plate face x = {:.0f} mm, top y = "
+                   "{:.0f} mm, plate angle {:.1f} deg, belt incline {:.1f} deg\n",
+                   st.belt_speed, st.mass_flow / units::tph, st.plate_distance * 1e3,
+                   st.plate_top * 1e3, st.plate.angle * kDeg, st.belt.incline * kDeg);
+  for (const auto& s : fx)
+    if (s.value) o += fmt::format("  effect {} = {} {}\n", s.info->name, *s.value, s.info->unit);
+  o += fmt::format("  load: h_b = {:.1f} mm ({}), CEMA centroid a1 = {:.1f} mm, area {:.0f} mm^2, {} belt\n",
+                   a.load.height * 1e3,
+                   a.thickness_from_continuity ? "from continuity" : "given",
+                   a.load.centroid_height * 1e3, a.load.area * 1e6,
+                   st.belt.trough.troughed() ? "troughed" : "flat");
+  o += fmt::format("  discharge: {} (K = V^2/(g R) = {:.2f} on the CEMA centroid), release {:.1f} deg "
+                   "from the upward vertical\n\n",
+                   rel.high_speed ? "high-speed, at the tangent point" : "low-speed (Booth), on the pulley",
+                   rel.ratio, rel.theta * kDeg);
+  o += fmt::format("  {:<28} {:>9} {:>10} {:>10} {:>11} {:>8} {:>9} {:>8}\n", "streamline", "e_mm",
+                   "release_x", "release_y", "impact_y_mm", "V_p_mps", "alpha_deg", "flight_s");
+  for (Streamline s : analytical::kAllStreamlines) {
+    const auto& l = a.line(s);
+    o += fmt::format("  {:<28} {:>9.1f} {:>10.1f} {:>10.1f} ", streamline_label(s),
+                     l.height_above_belt * 1e3, l.release.position.x() * 1e3,
+                     l.release.position.y() * 1e3);
+    if (l.hit)
+      o += fmt::format("{:>11.1f} {:>8.3f} {:>9.2f} {:>8.4f}{}\n", l.hit->point.position.y() * 1e3,
+                       l.hit->speed, l.hit->alpha * kDeg, l.hit->point.t,
+                       l.hit->on_plate ? "" : "  (off the plate)");
+    else
+      o += "  never reaches the plate line\n";
+  }
+  const double incidence = a.line(Streamline::korzen_centroid).hit->alpha + st.plate.angle;
+  o += fmt::format("\n  Korzen: alpha_p + beta = {:.2f} deg {} atan(mu_pw) = {:.2f} deg: {}\n",
+                   incidence * kDeg, k.stationary_flow ? ">" : "<=",
+                   std::atan(a.plate_interaction.friction) * kDeg,
+                   k.stationary_flow ? "stationary (build-up) flow (Eq 3)" : "no stationary flow (Eq 3)");
+  o += fmt::format("  V_pn = {:.3f} m/s, V_pt = {:.3f} m/s, V_a = {}\n", k.normal_speed,
+                   k.tangential_speed,
+                   k.exit_speed ? fmt::format("{:.3f} m/s (Eq 4, {} iterations)", *k.exit_speed, k.iterations)
+                                : std::string("none (Eq 4 has a negative root)"));
+  o += fmt::format("  R_n = {:.2f} N (Eq 5), R_s = {:.2f} N ({}), R = {:.2f} N\n\n", k.normal_force,
+                   k.shear_force, name(k.shear_equation), k.resultant_force);
+  o += fmt::format("  {:<12}", "model");
+  for (Quantity q : kAllQuantities) o += fmt::format(" {:>20}", name(q));
+  o += "\n";
+  for (const auto& [m, vals] : models) {
+    o += fmt::format("  {:<12}", m);
+    for (Quantity q : kAllQuantities)
+      o += fmt::format(" {:>20}", fmt_opt(vals[q], info(q).to_boundary, "{:.3f}"));
+    o += "\n";
+  }
+  return o;
+}
+
+std::string estimate_csv(const analytical::TransferAnalysis& a, const ModelValues& models) {
+  std::string o = "condition,model,quantity,value\n";
+  for (const auto& [n, v] : scalars(a))
+    o += fmt::format("{},analysis,{},{:.10g}\n", a.station.condition, n, v);
+  o += fmt::format("{},analysis,stationary_flow,{}\n", a.station.condition,
+                   a.korzen.stationary_flow ? 1 : 0);
+  o += fmt::format("{},analysis,discharge_high_speed,{}\n", a.station.condition,
+                   a.line(Streamline::cema_centroid).release.high_speed ? 1 : 0);
+  for (const auto& [m, vals] : models)
+    for (Quantity q : kAllQuantities)
+      if (vals[q])
+        o += fmt::format("{},{},{},{:.10g}\n", a.station.condition, m, name(q),
+                         *vals[q] * info(q).to_boundary);
+  return o;
+}
+
+std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValues& models,
+                          const std::vector<effects::EffectSetting>& fx) {
+  const auto& st = a.station;
+  const auto& k = a.korzen;
+  const auto& rel = a.line(Streamline::cema_centroid).release;
+  std::string o = "{\n";
+  o += fmt::format(
+      "  \"condition\": {{\"name\": {}, \"belt_speed_mps\": {}, \"mass_flow_tph\": {}, "
+      "\"plate_distance_mm\": {}, \"plate_top_mm\": {}, \"plate_angle_deg\": {}, "
+      "\"stream_thickness_mm\": {}, \"stream_thickness_from_continuity\": {}}},\n",
+      json_string(st.condition), json_number(st.belt_speed), json_number(st.mass_flow / units::tph),
+      json_number(st.plate_distance * 1e3), json_number(st.plate_top * 1e3),
+      json_number(st.plate.angle * kDeg), json_number(a.load.height * 1e3),
+      a.thickness_from_continuity ? "true" : "false");
+  o += "  \"effects\": {";
+  bool first = true;
+  for (const auto& s : fx)
+    if (s.value) {
+      o += fmt::format("{}{}: {}", first ? "" : ", ", json_string(s.info->name), json_number(*s.value));
+      first = false;
+    }
+  o += "},\n";
+  o += fmt::format("  \"discharge\": {{\"type\": {}, \"ratio_K\": {}, \"release_angle_deg\": {}}},\n",
+                   json_string(rel.high_speed ? "high-speed" : "low-speed"), json_number(rel.ratio),
+                   json_number(rel.theta * kDeg));
+  o += fmt::format("  \"stationary_flow\": {},\n", k.stationary_flow ? "true" : "false");
+  o += fmt::format("  \"impact_angle_deg\": {},\n",
+                   json_number(a.line(Streamline::korzen_centroid).hit->alpha * kDeg));
+  o += fmt::format("  \"shear_equation\": {},\n", json_string(std::string(name(k.shear_equation))));
+  o += "  \"streamlines\": {";
+  first = true;
+  for (Streamline s : analytical::kAllStreamlines) {
+    const auto& l = a.line(s);
+    o += fmt::format("{}\n    {}: {{\"height_above_belt_mm\": {}, \"release_x_mm\": {}, \"release_y_mm\": {}",
+                     first ? "" : ",", json_string(std::string(name(s))),
+                     json_number(l.height_above_belt * 1e3), json_number(l.release.position.x() * 1e3),
+                     json_number(l.release.position.y() * 1e3));
+    if (l.hit)
+      o += fmt::format(", \"impact_y_mm\": {}, \"impact_velocity_mps\": {}, \"impact_angle_deg\": {}, "
+                       "\"flight_time_s\": {}, \"on_plate\": {}",
+                       json_number(l.hit->point.position.y() * 1e3), json_number(l.hit->speed),
+                       json_number(l.hit->alpha * kDeg), json_number(l.hit->point.t),
+                       l.hit->on_plate ? "true" : "false");
+    o += "}";
+    first = false;
+  }
+  o += "\n  },\n  \"models\": {";
+  first = true;
+  for (const auto& [m, vals] : models) {
+    o += fmt::format("{}\n    {}: {{", first ? "" : ",", json_string(m));
+    bool inner = true;
+    for (Quantity q : kAllQuantities)
+      if (vals[q]) {
+        o += fmt::format("{}{}: {}", inner ? "" : ", ", json_string(std::string(name(q))),
+                         json_number(*vals[q] * info(q).to_boundary));
+        inner = false;
+      }
+    o += "}";
+    first = false;
+  }
+  o += "\n  }\n}\n";
+  return o;
+}
+
+}  // namespace chutelab::app

@@ -1,0 +1,71 @@
+#include "effects/registry.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/input_error.h"
+
+namespace chutelab::effects {
+namespace {
+std::vector<EffectInfo>& mutable_library() {
+  static std::vector<EffectInfo> all;  // constructed on first use: safe from any static initialiser
+  return all;
+}
+}  // namespace
+
+Registration::Registration(EffectInfo info) {
+  auto& all = mutable_library();
+  all.push_back(std::move(info));
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+}
+
+const std::vector<EffectInfo>& library() { return mutable_library(); }
+
+const EffectInfo* find(const std::string& name) {
+  for (const auto& e : library())
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
+EffectSetting parse_setting(const std::string& text, bool allow_fit) {
+  const auto eq = text.find('=');
+  const std::string name = text.substr(0, eq);
+  const EffectInfo* info = find(name);
+  if (!info) {
+    std::vector<std::string> names;
+    for (const auto& e : library()) names.push_back(e.name);
+    throw InputError("", 0, "--effect",
+                     fmt::format("unknown effect '{}' (known: {})", name, fmt::join(names, ", ")));
+  }
+  if (eq == std::string::npos)
+    throw InputError("", 0, "--effect",
+                     fmt::format("'{}' needs a value: {}=VALUE{}", text, name,
+                                 allow_fit ? " or " + name + "=fit" : ""));
+  const std::string value = text.substr(eq + 1);
+  if (value == "fit") {
+    if (!allow_fit)
+      throw InputError("", 0, "--effect",
+                       fmt::format("'{}': fitting needs measurements; give a value here", text));
+    return {info, std::nullopt};
+  }
+  double v = 0.0;
+  auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+  if (ec != std::errc() || ptr != value.data() + value.size() || !std::isfinite(v))
+    throw InputError("", 0, "--effect", fmt::format("'{}': '{}' is not a number", text, value));
+  if (v < info->lower || v > info->upper)
+    throw InputError("", 0, "--effect",
+                     fmt::format("'{}': {} must lie in its physical range [{}, {}] {}", text,
+                                 info->parameter, info->lower, info->upper, info->unit));
+  return {info, v};
+}
+
+analytical::EffectList instantiate(const std::vector<EffectSetting>& fixed) {
+  analytical::EffectList out;
+  for (const auto& s : fixed)
+    if (s.value) out.push_back(s.info->make(*s.value));
+  return out;
+}
+
+}  // namespace chutelab::effects

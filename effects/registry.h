@@ -1,0 +1,45 @@
+#pragma once
+// The library of candidate physical effects (DESIGN.md §4). Each effect is one file in effects/
+// that describes its physics and registers itself with one line; nothing else needs to change.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analytical/effect.h"
+
+namespace chutelab::effects {
+
+struct EffectInfo {
+  std::string name;          // DESIGN.md §4 name, e.g. "air_drag"
+  std::string parameter;     // name of the strength parameter with unit, e.g. "drag_coefficient"
+  std::string unit;          // unit of the parameter at the boundary ("" = dimensionless)
+  std::string stage;         // where it hooks in: discharge, flight, plate, measurement, ...
+  std::string physics;       // the equation and its meaning, one paragraph
+  std::string source;        // where the physics comes from
+  double neutral = 0.0;      // the value that switches the effect off
+  double lower = 0.0;        // physical range; a fit stays inside it
+  double upper = 0.0;
+  double typical = 0.0;      // a realistic non-neutral strength (for synthetic tests and docs)
+  std::function<std::shared_ptr<const analytical::Effect>(double)> make;
+};
+
+// All registered effects, sorted by name.
+const std::vector<EffectInfo>& library();
+const EffectInfo* find(const std::string& name);
+
+// Called once per effect file through a static Registration object.
+struct Registration {
+  explicit Registration(EffectInfo info);
+};
+
+// "NAME=VALUE" or "NAME=fit" (fit only where allow_fit); throws InputError naming the flag.
+struct EffectSetting {
+  const EffectInfo* info = nullptr;
+  std::optional<double> value;  // absent: fit to the data
+};
+EffectSetting parse_setting(const std::string& text, bool allow_fit);
+analytical::EffectList instantiate(const std::vector<EffectSetting>& fixed);
+
+}  // namespace chutelab::effects

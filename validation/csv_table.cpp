@@ -1,0 +1,126 @@
+#include "validation/csv_table.h"
+
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+#include <libfccp/csv.h>
+
+#include "core/input_error.h"
+
+namespace chutelab::validation {
+namespace {
+
+std::string trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+// RFC 4180 fields: commas separate, double quotes protect commas, "" is a literal quote.
+std::vector<std::string> split(std::string_view line, const std::string& file, long line_no) {
+  std::vector<std::string> out;
+  std::string cell;
+  bool quoted = false, was_quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"') {
+        if (i + 1 < line.size() && line[i + 1] == '"') {
+          cell += '"';
+          ++i;
+        } else {
+          quoted = false;
+        }
+      } else {
+        cell += c;
+      }
+    } else if (c == '"') {
+      quoted = was_quoted = true;
+    } else if (c == ',') {
+      out.push_back(was_quoted ? cell : trim(cell));
+      cell.clear();
+      was_quoted = false;
+    } else {
+      cell += c;
+    }
+  }
+  if (quoted) throw InputError(file, line_no, "", "unterminated quoted field");
+  out.push_back(was_quoted ? cell : trim(cell));
+  return out;
+}
+
+}  // namespace
+
+CsvTable CsvTable::read(const std::filesystem::path& path) {
+  CsvTable t;
+  t.file_ = path.string();
+  if (!std::filesystem::exists(path)) throw InputError(t.file_, 0, "", "file not found");
+  try {
+    io::LineReader reader(t.file_);
+    bool have_header = false;
+    while (char* raw = reader.next_line()) {
+      const long line_no = static_cast<long>(reader.get_file_line());
+      std::string_view line(raw);
+      if (!have_header && line.size() >= 3 && line.substr(0, 3) == "\xEF\xBB\xBF")
+        line.remove_prefix(3);  // UTF-8 byte-order mark from spreadsheet exports
+      if (trim(line).empty() || trim(line)[0] == '#') continue;  // blank lines and comments
+      auto cells = split(line, t.file_, line_no);
+      if (!have_header) {
+        t.header_ = std::move(cells);
+        for (std::size_t i = 0; i < t.header_.size(); ++i)
+          for (std::size_t j = 0; j < i; ++j)
+            if (t.header_[i] == t.header_[j])
+              throw InputError(t.file_, line_no, t.header_[i], "column appears twice in the header");
+        have_header = true;
+        continue;
+      }
+      if (cells.size() != t.header_.size())
+        throw InputError(t.file_, line_no, "",
+                         fmt::format("row has {} fields, the header has {}", cells.size(),
+                                     t.header_.size()));
+      t.rows_.push_back({line_no, std::move(cells)});
+    }
+    if (!have_header) throw InputError(t.file_, 0, "", "file is empty (no header line)");
+  } catch (const io::error::base& e) {
+    throw InputError(t.file_, 0, "", e.what());
+  }
+  return t;
+}
+
+std::optional<std::size_t> CsvTable::column(std::string_view name) const {
+  for (std::size_t i = 0; i < header_.size(); ++i)
+    if (header_[i] == name) return i;
+  return std::nullopt;
+}
+
+std::size_t CsvTable::require(std::string_view name) const {
+  if (auto c = column(name)) return *c;
+  throw InputError(file_, 1, std::string(name), "required column is missing from the header");
+}
+
+const std::string& CsvTable::text(const CsvRow& row, std::size_t col) const {
+  return row.cells.at(col);
+}
+
+double CsvTable::number(const CsvRow& row, std::size_t col) const {
+  const std::string& s = row.cells.at(col);
+  const std::string& field = header_.at(col);
+  if (s.empty()) throw InputError(file_, row.line, field, "value is missing");
+  double v = 0.0;
+  const char* begin = s.data() + (s[0] == '+' ? 1 : 0);  // from_chars takes no leading '+'
+  const char* end = s.data() + s.size();
+  auto [ptr, ec] = std::from_chars(begin, end, v);
+  if (ec != std::errc() || ptr != end)
+    throw InputError(file_, row.line, field, fmt::format("'{}' is not a number", s));
+  if (!std::isfinite(v))
+    throw InputError(file_, row.line, field, fmt::format("'{}' is not a finite number", s));
+  return v;
+}
+
+std::optional<double> CsvTable::optional_number(const CsvRow& row, std::size_t col) const {
+  if (row.cells.at(col).empty()) return std::nullopt;
+  return number(row, col);
+}
+
+}  // namespace chutelab::validation

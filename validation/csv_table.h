@@ -1,0 +1,39 @@
+#pragma once
+// A small CSV table on top of fccp's LineReader (Debian libfccp-dev): header by name, every cell
+// kept with its line number so that each error can name file, line and column.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace chutelab::validation {
+
+struct CsvRow {
+  long line = 0;
+  std::vector<std::string> cells;
+};
+
+class CsvTable {
+ public:
+  static CsvTable read(const std::filesystem::path& file);
+
+  const std::string& file() const { return file_; }
+  const std::vector<std::string>& header() const { return header_; }
+  const std::vector<CsvRow>& rows() const { return rows_; }
+  std::optional<std::size_t> column(std::string_view name) const;
+  // Throws InputError naming the file and the missing column.
+  std::size_t require(std::string_view name) const;
+
+  const std::string& text(const CsvRow& row, std::size_t col) const;
+  // A finite number; throws InputError (file, line, column) for empty, non-numeric, NaN or inf.
+  double number(const CsvRow& row, std::size_t col) const;
+  // Empty cell -> nullopt; otherwise as number().
+  std::optional<double> optional_number(const CsvRow& row, std::size_t col) const;
+
+ private:
+  std::string file_;
+  std::vector<std::string> header_;
+  std::vector<CsvRow> rows_;
+};
+
+}  // namespace chutelab::validation

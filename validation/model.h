@@ -1,0 +1,55 @@
+#pragma once
+// A model predicts one condition in the measurement vocabulary (DESIGN.md §2). The harness,
+// the diagnosis and the report see models only through this interface.
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "analytical/effect.h"
+#include "core/quantity.h"
+#include "core/rig.h"
+
+namespace chutelab::validation {
+
+struct TrajectoryQuery {
+  Boundary boundary = Boundary::centre;
+  double x = 0.0;  // m
+};
+
+// A named polyline in the x-y plane for pictures (streamlines, stream limits), m.
+struct Curve {
+  std::string name;
+  std::vector<Eigen::Vector2d> points;
+};
+
+struct ModelPrediction {
+  QuantityValues values;                          // SI
+  std::vector<std::optional<double>> trajectory;  // y (m) per query, absent where not predicted
+  std::vector<Curve> curves;
+  std::vector<std::string> notes;                 // e.g. "R_s from Eq 7 (no stationary flow)"
+};
+
+class Model {
+ public:
+  virtual ~Model() = default;
+  virtual std::string name() const = 0;
+  virtual std::string description() const = 0;
+  // Cheap models answer in microseconds; an expensive one (DEM) says so, and the diagnosis then
+  // works with analytical signatures applied as differences (DESIGN.md §5).
+  virtual bool expensive() const { return false; }
+  virtual ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
+                                  std::span<const TrajectoryQuery> queries) const = 0;
+};
+
+using ModelPtr = std::shared_ptr<const Model>;
+
+// All models chutelab knows, in report order.
+std::vector<std::string> model_names();
+// Throws InputError (field "--models") naming the unknown model and the known ones.
+ModelPtr make_model(const std::string& name);
+std::vector<ModelPtr> make_models(const std::vector<std::string>& names);
+
+}  // namespace chutelab::validation

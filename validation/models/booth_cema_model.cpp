@@ -1,0 +1,42 @@
+// Booth trajectories with the CEMA load-shape centroid (the seed's "Booth/CEMA hybrid"): stream
+// limits, the centroid's impact point and its speed at the plate.
+#include "analytical/transfer_station.h"
+#include "validation/models/models.h"
+
+namespace chutelab::validation {
+namespace {
+
+class BoothCemaModel final : public Model {
+ public:
+  std::string name() const override { return "booth-cema"; }
+  std::string description() const override {
+    return "Booth discharge trajectories, CEMA load-shape centroid";
+  }
+  ModelPrediction predict(const Station& st, const analytical::EffectList& effects,
+                          std::span<const TrajectoryQuery> queries) const override {
+    using analytical::Streamline;
+    const auto a = analytical::analyse_transfer(st, effects);
+    const auto& hit = *a.line(Streamline::cema_centroid).hit;
+    ModelPrediction p;
+    p.values[Quantity::impact_velocity] = hit.speed;
+    p.values[Quantity::impact_point_y] = hit.point.position.y();
+    p.trajectory.reserve(queries.size());
+    for (const auto& q : queries) {
+      const Streamline s = q.boundary == Boundary::upper   ? Streamline::upper
+                           : q.boundary == Boundary::lower ? Streamline::lower
+                                                           : Streamline::cema_centroid;
+      const auto pt = a.line(s).trajectory.at_x(q.x);
+      p.trajectory.push_back(pt ? std::optional<double>(pt->position.y()) : std::nullopt);
+    }
+    p.curves.push_back(streamline_curve(a, Streamline::upper, "upper"));
+    p.curves.push_back(streamline_curve(a, Streamline::cema_centroid, "centre (CEMA a1)"));
+    p.curves.push_back(streamline_curve(a, Streamline::lower, "lower"));
+    return p;
+  }
+};
+
+}  // namespace
+
+ModelPtr make_booth_cema_model() { return std::make_shared<BoothCemaModel>(); }
+
+}  // namespace chutelab::validation

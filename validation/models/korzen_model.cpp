@@ -1,0 +1,44 @@
+// The Korzen impact-plate model (seed Eqs 1-7) as a harness model: plate forces, V_p, V_a and the
+// impact point on Korzen's own centroid assumption (0.5 h_b).
+#include <fmt/format.h>
+
+#include "analytical/transfer_station.h"
+#include "validation/models/models.h"
+
+namespace chutelab::validation {
+namespace {
+
+class KorzenModel final : public Model {
+ public:
+  std::string name() const override { return "korzen"; }
+  std::string description() const override {
+    return "Korzen impact-plate model (seed Eqs 1-7) on the 0.5 h_b streamline";
+  }
+  ModelPrediction predict(const Station& st, const analytical::EffectList& effects,
+                          std::span<const TrajectoryQuery> queries) const override {
+    using analytical::Streamline;
+    const auto a = analytical::analyse_transfer(st, effects);
+    const auto& k = a.korzen;
+    const auto& hit = *a.line(Streamline::korzen_centroid).hit;
+    ModelPrediction p;
+    p.values[Quantity::normal_force] = k.normal_force;
+    p.values[Quantity::shear_force] = k.shear_force;
+    p.values[Quantity::resultant_force] = k.resultant_force;
+    p.values[Quantity::impact_velocity] = hit.speed;
+    if (k.exit_speed) p.values[Quantity::exit_velocity] = *k.exit_speed;
+    p.values[Quantity::impact_point_y] = hit.point.position.y();
+    p.trajectory.assign(queries.size(), std::nullopt);
+    p.curves.push_back(streamline_curve(a, Streamline::korzen_centroid, "centre (0.5 h_b)"));
+    p.notes.push_back(k.stationary_flow
+                          ? fmt::format("stationary flow; V_a from Eq 4 ({} iterations), R_s from Eq 6",
+                                        k.iterations)
+                          : "no stationary flow (Eq 3): Eq 4 has no solution, R_s from Eq 7");
+    return p;
+  }
+};
+
+}  // namespace
+
+ModelPtr make_korzen_model() { return std::make_shared<KorzenModel>(); }
+
+}  // namespace chutelab::validation
