@@ -52,8 +52,8 @@ LoadShape flat_segment(double chord, double height) {
                                  "{:.1f} mm (height must be positive and at most half the chord)",
                                  height * 1e3, chord * 1e3));
   const double r = (0.25 * chord * chord + height * height) / (2.0 * height);
-  const double half_angle = std::asin(std::min(1.0, 0.5 * chord / r));
-  // For height == chord/2 the segment is a half disc; asin covers 0..pi/2 which is all we allow.
+  // atan2 rather than asin(chord / 2r): asin loses half the digits as the segment nears a half disc.
+  const double half_angle = std::atan2(0.5 * chord, r - height);
   const Segment s = circular_segment(r, half_angle);
   return {s.area, height, s.centroid_above_chord, chord};
 }

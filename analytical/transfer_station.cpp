@@ -1,5 +1,6 @@
 #include "analytical/transfer_station.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -63,6 +64,19 @@ TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects) 
   a.plate.top = {st.plate_distance, st.plate_top};
   a.plate.angle = st.plate.angle;
   a.plate.height = st.plate.height;
+
+  {
+    // The plate must stand clear of the belt on the pulley: a face that cuts the pulley circle
+    // (radius R_b) is an impossible rig, however the stream might fly.
+    const Eigen::Vector2d d = a.plate.down();
+    const double along = std::clamp(-a.plate.top.dot(d), 0.0, a.plate.height);
+    const double clearance = (a.plate.top + along * d).norm();
+    if (clearance <= st.belt.belt_radius())
+      throw InputError("", 0, "plate_distance_mm",
+                       fmt::format("the plate (face at x = {:.0f} mm) cuts into the head pulley and "
+                                   "belt (radius {:.0f} mm): it is behind the pulley's front",
+                                   st.plate_distance * 1e3, st.belt.belt_radius() * 1e3));
+  }
 
   const FlightContext ctx{st.material.particle_diameter, st.material.solid_density};
   bool has_force = false;
