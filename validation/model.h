@@ -27,6 +27,7 @@ struct Curve {
 
 struct ModelPrediction {
   QuantityValues values;                          // SI
+  QuantityValues uncertainty;                     // SI, one sd of the prediction (e.g. DEM mean)
   std::vector<std::optional<double>> trajectory;  // y (m) per query, absent where not predicted
   std::vector<Curve> curves;
   std::vector<std::string> notes;                 // e.g. "R_s from Eq 7 (no stationary flow)"

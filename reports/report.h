@@ -1,0 +1,33 @@
+#pragma once
+// The validation report as Markdown and as one self-contained HTML page (inline SVG, no network).
+// The report knows no physics: it draws what the harness and the diagnosis give it.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "validation/dataset.h"
+#include "validation/diagnosis.h"
+#include "validation/harness.h"
+
+namespace chutelab::reports {
+
+struct EffectDescription {
+  std::string name, parameter, unit, physics, source;
+  double value = 0.0;                 // boundary unit
+  std::optional<double> uncertainty;  // when fitted
+  bool fitted = false;
+};
+
+struct ReportInput {
+  const validation::Dataset* dataset = nullptr;             // required
+  const validation::ValidationResult* baseline = nullptr;   // required: models as they are
+  const validation::ValidationResult* with_effects = nullptr;  // optional: after adding effects
+  std::vector<EffectDescription> effects;                   // what with_effects added
+  const validation::DiagnosisResult* diagnosis = nullptr;   // optional: "What is missing"
+  std::vector<std::string> notes;                           // provenance of numbers, warnings
+};
+
+std::string report_markdown(const ReportInput& in);
+std::string report_html(const ReportInput& in);
+
+}  // namespace chutelab::reports

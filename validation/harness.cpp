@@ -1,0 +1,198 @@
+#include "validation/harness.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <iostream>
+#include <map>
+
+#include "core/input_error.h"
+
+namespace chutelab::validation {
+
+std::optional<double> Comparison::relative_error() const {
+  if (!predicted || measured == 0.0) return std::nullopt;
+  return error() / std::abs(measured);
+}
+
+std::optional<double> Comparison::normalised_error() const {
+  if (!predicted || !uncertainty) return std::nullopt;
+  return error() / *uncertainty;
+}
+
+std::optional<double> Comparison::validation_uncertainty() const {
+  if (!predicted || (!uncertainty && !prediction_uncertainty)) return std::nullopt;
+  const double ud = uncertainty.value_or(0.0), un = prediction_uncertainty.value_or(0.0);
+  return std::sqrt(ud * ud + un * un);
+}
+
+std::optional<double> Comparison::vv20_ratio() const {
+  const auto u = validation_uncertainty();
+  if (!u || *u <= 0.0) return std::nullopt;
+  return std::abs(error()) / *u;
+}
+
+const ConditionResult* ValidationResult::prediction(const std::string& condition,
+                                                    const std::string& model) const {
+  for (const auto& p : predictions)
+    if (p.condition == condition && p.model == model) return &p;
+  return nullptr;
+}
+
+std::optional<double> ValidationResult::overall_rms_normalised(const std::string& model) const {
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& c : comparisons)
+    if (c.model == model)
+      if (auto z = c.normalised_error()) {
+        sum += *z * *z;
+        ++n;
+      }
+  if (n == 0) return std::nullopt;
+  return std::sqrt(sum / n);
+}
+
+std::string ValidationResult::brief() const {
+  std::string s = fmt::format("{}: {} conditions x {} models", dataset_name,
+                              predictions.size() / std::max<std::size_t>(1, models.size()),
+                              models.size());
+  for (const auto& m : models)
+    if (auto z = overall_rms_normalised(m)) s += fmt::format("; {} RMS normalised error {:.2f}", m, *z);
+  if (acceptance_checked) s += acceptance_failed ? "; ACCEPTANCE FAILED" : "; acceptance passed";
+  return s;
+}
+
+std::vector<TrajectoryQuery> trajectory_queries(const Dataset& d, const std::string& condition) {
+  std::vector<TrajectoryQuery> q;
+  for (const auto& p : d.trajectory)
+    if (p.condition == condition) q.push_back({p.boundary, p.x});
+  return q;
+}
+
+namespace {
+
+std::string trajectory_quantity(Boundary b) { return fmt::format("trajectory_{}_y_mm", name(b)); }
+
+void check_tolerance(Comparison& c, const Tolerances& tol) {
+  const Tolerance* t = tol.find(c.model, c.quantity);
+  if (!t || !c.predicted) return;
+  c.verdict.checked = true;
+  auto fail = [&](std::string why) {
+    if (c.verdict.passed) c.verdict.limit = std::move(why);
+    c.verdict.passed = false;
+  };
+  if (t->relative)
+    if (auto r = c.relative_error(); r && std::abs(*r) > *t->relative)
+      fail(fmt::format("|rel| {:.3f} > {:.3f}", std::abs(*r), *t->relative));
+  if (t->normalised) {
+    // Without a stated uncertainty a normalised limit cannot be met: that is a failure to show,
+    // not a pass to assume.
+    if (auto z = c.normalised_error(); !z) fail("no uncertainty for a normalised limit");
+    else if (std::abs(*z) > *t->normalised)
+      fail(fmt::format("|z| {:.2f} > {:.2f}", std::abs(*z), *t->normalised));
+  }
+  if (t->absolute && std::abs(c.error() * c.scale) > *t->absolute)
+    fail(fmt::format("|err| {:.3g} > {:.3g}", std::abs(c.error() * c.scale), *t->absolute));
+}
+
+}  // namespace
+
+ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
+                          const ValidateOptions& options) {
+  ValidationResult r;
+  r.dataset_name = d.setup.name.empty() ? d.dir.filename().string() : d.setup.name;
+  for (const auto& m : models) r.models.push_back(m->name());
+  r.effects = options.effect_labels;
+
+  for (std::size_t i = 0; i < d.stations.size(); ++i) {
+    const Station& st = d.stations[i];
+    const auto queries = trajectory_queries(d, st.condition);
+    for (const auto& m : models) {
+      if (!options.quiet && m->expensive())
+        std::cerr << fmt::format("{}: condition {} ({}/{})\n", m->name(), st.condition, i + 1,
+                                 d.stations.size());
+      ModelPrediction p;
+      try {
+        p = m->predict(st, options.effects, queries);
+      } catch (const InputError& e) {
+        throw e.located(d.station_lines[i].file, d.station_lines[i].line);
+      }
+      // An instrument effect changes what the rig would have recorded, whichever model predicted.
+      for (const auto& e : options.effects) e->adjust_measurement(p.values);
+      r.predictions.push_back({st.condition, m->name(), std::move(p)});
+    }
+  }
+
+  for (const auto& meas : d.measurements)
+    for (const auto& m : models) {
+      const ConditionResult* cr = r.prediction(meas.condition, m->name());
+      Comparison c;
+      c.condition = meas.condition;
+      c.model = m->name();
+      c.quantity = std::string(name(meas.quantity));
+      c.q = meas.quantity;
+      c.scale = info(meas.quantity).to_boundary;
+      c.measured = meas.value;
+      c.uncertainty = meas.uncertainty;
+      c.predicted = cr->prediction.values[meas.quantity];
+      c.prediction_uncertainty = cr->prediction.uncertainty[meas.quantity];
+      r.comparisons.push_back(std::move(c));
+    }
+  for (const auto& m : models) {
+    std::map<std::string, std::size_t> next;  // query index per condition, in dataset order
+    for (const auto& pt : d.trajectory) {
+      const ConditionResult* cr = r.prediction(pt.condition, m->name());
+      const std::size_t k = next[pt.condition]++;
+      Comparison c;
+      c.condition = pt.condition;
+      c.model = m->name();
+      c.quantity = trajectory_quantity(pt.boundary);
+      c.boundary = pt.boundary;
+      c.x = pt.x;
+      c.scale = 1e3;
+      c.measured = pt.y;
+      c.uncertainty = pt.uncertainty;
+      if (k < cr->prediction.trajectory.size()) c.predicted = cr->prediction.trajectory[k];
+      r.comparisons.push_back(std::move(c));
+    }
+  }
+
+  if (options.tolerances) {
+    r.acceptance_checked = true;
+    for (auto& c : r.comparisons) {
+      check_tolerance(c, *options.tolerances);
+      if (c.verdict.checked && !c.verdict.passed) r.acceptance_failed = true;
+    }
+  }
+
+  // Summary per model and quantity, in model order and the vocabulary's order.
+  std::vector<std::string> quantities;
+  for (Quantity q : kAllQuantities) quantities.emplace_back(name(q));
+  for (Boundary b : kAllBoundaries) quantities.push_back(trajectory_quantity(b));
+  for (const auto& m : r.models)
+    for (const auto& qn : quantities) {
+      SummaryRow s;
+      s.model = m;
+      s.quantity = qn;
+      double se = 0.0, sz = 0.0, worst = 0.0;
+      int nz = 0, nr = 0;
+      bool checked = false, ok = true;
+      for (const auto& c : r.comparisons) {
+        if (c.model != m || c.quantity != qn || !c.predicted) continue;
+        ++s.n;
+        se += std::pow(c.error() * c.scale, 2);
+        if (auto z = c.normalised_error()) { sz += *z * *z; ++nz; }
+        if (auto rel = c.relative_error()) { worst = std::max(worst, std::abs(*rel)); ++nr; }
+        if (c.verdict.checked) { checked = true; ok = ok && c.verdict.passed; }
+      }
+      if (s.n == 0) continue;
+      s.rms_error = std::sqrt(se / s.n);
+      if (nz) s.rms_normalised_error = std::sqrt(sz / nz);
+      if (nr) s.max_abs_relative_error = worst;
+      if (checked) s.within_tolerance = ok;
+      r.summary.push_back(s);
+    }
+  return r;
+}
+
+}  // namespace chutelab::validation

@@ -1,0 +1,84 @@
+#pragma once
+// Run every condition of a dataset through every model and compare with the measurements.
+// Errors follow ASME V&V 20-2009: comparison error E = S - D (prediction minus data) and the
+// validation uncertainty u_val = sqrt(u_num^2 + u_input^2 + u_D^2); here u_num is what the model
+// states about its own prediction (the DEM's uncertainty of the mean, 0 for analytical models),
+// u_input is not known and taken as 0, u_D is the measurement's uncertainty.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analytical/effect.h"
+#include "validation/dataset.h"
+#include "validation/model.h"
+#include "validation/tolerances.h"
+
+namespace chutelab::validation {
+
+// One measured value against one model (quantities and trajectory points alike).
+struct Comparison {
+  std::string condition;
+  std::string model;
+  std::string quantity;          // boundary name, e.g. "normal_force_N" or "trajectory_upper_y_mm"
+  std::optional<Quantity> q;     // set for the quantities of DESIGN.md §2
+  std::optional<Boundary> boundary;  // set for trajectory points
+  double x = 0.0;                // m, trajectory points only
+  double scale = 1.0;            // SI -> boundary unit
+  double measured = 0.0;         // SI
+  std::optional<double> uncertainty;       // u_D, SI
+  std::optional<double> predicted;         // absent when the model does not predict it
+  std::optional<double> prediction_uncertainty;  // u_num, SI
+  double error() const { return *predicted - measured; }  // E = S - D
+  std::optional<double> relative_error() const;
+  std::optional<double> normalised_error() const;   // E / u_D
+  std::optional<double> validation_uncertainty() const;  // u_val
+  std::optional<double> vv20_ratio() const;          // |E| / u_val
+  ToleranceVerdict verdict;      // filled when a tolerance applies
+};
+
+struct SummaryRow {
+  std::string model, quantity;
+  int n = 0;                     // compared values (with a prediction)
+  double rms_error = 0.0;        // boundary unit
+  std::optional<double> rms_normalised_error;
+  std::optional<double> max_abs_relative_error;
+  std::optional<bool> within_tolerance;  // absent when no tolerance was set
+};
+
+struct ConditionResult {
+  std::string condition;
+  std::string model;
+  ModelPrediction prediction;    // effects (measurement ones too) applied
+};
+
+struct ValidationResult {
+  std::string dataset_name;
+  std::vector<std::string> models;
+  std::vector<std::string> effects;      // "name=value" as applied
+  std::vector<ConditionResult> predictions;
+  std::vector<Comparison> comparisons;   // quantities first, then trajectory points
+  std::vector<SummaryRow> summary;
+  bool acceptance_checked = false;
+  bool acceptance_failed = false;
+
+  const ConditionResult* prediction(const std::string& condition, const std::string& model) const;
+  // RMS of the normalised error over every comparison of a model that has an uncertainty.
+  std::optional<double> overall_rms_normalised(const std::string& model) const;
+  std::string brief() const;  // one line for a terminal
+};
+
+struct ValidateOptions {
+  analytical::EffectList effects;
+  std::vector<std::string> effect_labels;
+  const Tolerances* tolerances = nullptr;
+  bool quiet = true;             // progress on stderr for slow models
+};
+
+// Throws InputError, located at the condition's line, when a model cannot handle a condition.
+ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
+                          const ValidateOptions& options = {});
+
+// The trajectory points a condition asks models for.
+std::vector<TrajectoryQuery> trajectory_queries(const Dataset& d, const std::string& condition);
+
+}  // namespace chutelab::validation

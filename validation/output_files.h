@@ -1,0 +1,26 @@
+#pragma once
+// The CSV files of `validate` (DESIGN.md §3) and a writer that never leaves half a result behind.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "validation/harness.h"
+
+namespace chutelab::validation {
+
+std::string predictions_csv(const ValidationResult& r);
+std::string errors_csv(const ValidationResult& r);
+std::string summary_csv(const ValidationResult& r);
+
+using OutputFile = std::pair<std::string, std::string>;  // file name, content
+
+// Writes every file to a temporary name first and renames them into `dir` only when all were
+// written: an interrupted or failed run leaves the previous result (or nothing), never a mix.
+void write_outputs(const std::filesystem::path& dir, const std::vector<OutputFile>& files);
+
+// Number formatting shared by every CSV: enough digits to round-trip what matters, no noise.
+std::string csv_number(double v);
+std::string csv_number(const std::optional<double>& v);
+
+}  // namespace chutelab::validation

@@ -1,0 +1,40 @@
+#pragma once
+// Acceptance tolerances (tolerances.toml): per model and quantity, the largest allowed |relative|,
+// |normalised| and/or |absolute| error of any single comparison. A "*" table applies to every model
+// that has no table of its own for that quantity.
+//
+//   [korzen]
+//   normal_force_N = { relative = 0.15 }
+//   impact_point_y_mm = { absolute = 10.0, normalised = 3.0 }   # absolute in the quantity's unit
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace chutelab::validation {
+
+struct Tolerance {
+  std::optional<double> relative;
+  std::optional<double> normalised;
+  std::optional<double> absolute;  // boundary unit of the quantity
+};
+
+struct ToleranceVerdict {
+  bool checked = false;
+  bool passed = true;
+  std::string limit;  // which limit failed, for the report, e.g. "|rel| 0.21 > 0.15"
+};
+
+class Tolerances {
+ public:
+  static Tolerances read(const std::filesystem::path& file);
+  const Tolerance* find(const std::string& model, const std::string& quantity) const;
+  bool empty() const { return table_.empty(); }
+  std::string file() const { return file_; }
+
+ private:
+  std::string file_;
+  std::map<std::pair<std::string, std::string>, Tolerance> table_;
+};
+
+}  // namespace chutelab::validation
