@@ -26,6 +26,7 @@ struct DischargeInput {
   double incline = 0.0;         // rad
   double gravity = 0.0;         // m/s^2
   double holding_accel = 0.0;   // m/s^2 pulling the material towards the pulley axis (adhesion)
+  double layer_mass_per_area = 0.0;  // kg/m^2 of belt: rho_bl * load area / contact width
 };
 
 // The stream striking the plate: everything Korzen's control volume needs, adjustable by effects.

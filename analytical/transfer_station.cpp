@@ -97,7 +97,8 @@ TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects) 
     f.which = which;
     f.height_above_belt = heights[static_cast<std::size_t>(which)];
     DischargeInput din{rb + f.height_above_belt, a.operating.belt_speed, st.belt.incline,
-                       st.gravity, 0.0};
+                       st.gravity, 0.0,
+                       st.material.bulk_density * a.load.area / a.load.contact_width};
     for (const auto& e : effects) e->adjust_discharge(din, st);
     f.release = booth_release(din);
     if (a.plate.signed_distance(f.release.position) >= 0.0)

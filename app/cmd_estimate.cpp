@@ -11,6 +11,7 @@
 #include "core/units.h"
 #include "effects/registry.h"
 #include "validation/dataset.h"
+#include "validation/harness.h"
 #include "validation/model.h"
 
 namespace chutelab::app {
@@ -75,12 +76,12 @@ int run_estimate(const EstimateOptions& o) {
   for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false));
   const auto fx = effects::instantiate(settings);
   const auto analysis = analytical::analyse_transfer(st, fx);
-  std::vector<std::pair<std::string, QuantityValues>> models;
-  for (const auto& m : validation::make_models(validation::model_names())) {
-    auto p = m->predict(st, fx, {});
-    for (const auto& e : fx) e->adjust_measurement(p.values);
-    models.emplace_back(m->name(), p.values);
-  }
+  std::vector<validation::ConditionResult> predicted;
+  for (const auto& m : validation::make_models(validation::model_names()))
+    if (!m->expensive()) predicted.push_back({st.condition, m->name(), m->predict(st, fx, {})});
+  validation::apply_measurement_effects(fx, predicted);
+  ModelValues models;
+  for (const auto& p : predicted) models.emplace_back(p.model, p.prediction.values);
   if (o.format == "json")
     std::cout << estimate_json(analysis, models, settings);
   else if (o.format == "csv")

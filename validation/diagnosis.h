@@ -59,3 +59,20 @@ struct DiagnosisResult {
 };
 
 }  // namespace chutelab::validation
+
+namespace chutelab::validation {
+
+struct DiagnoseOptions {
+  double alpha = 0.01;           // family-wise false-alarm rate over all candidates
+  bool pairs = true;
+  double pair_margin_bic = 6.0;  // a pair must beat the best single by this much ("strong", Kass & Raftery 1995)
+  double tie_margin_bic = 2.0;   // within this of the best: indistinguishable
+};
+
+DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
+                         const DiagnoseOptions& options = {});
+
+std::string diagnosis_csv(const DiagnosisResult& r);
+std::string diagnosis_markdown(const DiagnosisResult& r);
+
+}  // namespace chutelab::validation

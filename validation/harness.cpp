@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <map>
+#include <span>
 
 #include "core/input_error.h"
 
@@ -69,6 +70,27 @@ std::vector<TrajectoryQuery> trajectory_queries(const Dataset& d, const std::str
   return q;
 }
 
+// An instrument effect changes what the rig would have recorded, whichever model predicted. The
+// instrument is one: a recorded value may depend on quantities this model does not predict (the
+// point of application from moments needs R_n), so each model's values are completed from the
+// other models of the same condition, in model order, before the effect acts; only the model's own
+// quantities are kept.
+void apply_measurement_effects(const analytical::EffectList& effects, std::span<ConditionResult> same) {
+  if (effects.empty()) return;
+  std::vector<QuantityValues> recorded;
+  for (const auto& own : same) {
+    QuantityValues v = own.prediction.values;
+    for (const auto& other : same)
+      for (Quantity q : kAllQuantities)
+        if (!v[q] && other.prediction.values[q]) v[q] = other.prediction.values[q];
+    for (const auto& e : effects) e->adjust_measurement(v);
+    recorded.push_back(v);
+  }
+  for (std::size_t k = 0; k < same.size(); ++k)
+    for (Quantity q : kAllQuantities)
+      if (same[k].prediction.values[q]) same[k].prediction.values[q] = recorded[k][q];
+}
+
 namespace {
 
 std::string trajectory_quantity(Boundary b) { return fmt::format("trajectory_{}_y_mm", name(b)); }
@@ -107,6 +129,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
   for (std::size_t i = 0; i < d.stations.size(); ++i) {
     const Station& st = d.stations[i];
     const auto queries = trajectory_queries(d, st.condition);
+    const std::size_t first = r.predictions.size();
     for (const auto& m : models) {
       if (!options.quiet && m->expensive())
         std::cerr << fmt::format("{}: condition {} ({}/{})\n", m->name(), st.condition, i + 1,
@@ -117,10 +140,10 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       } catch (const InputError& e) {
         throw e.located(d.station_lines[i].file, d.station_lines[i].line);
       }
-      // An instrument effect changes what the rig would have recorded, whichever model predicted.
-      for (const auto& e : options.effects) e->adjust_measurement(p.values);
       r.predictions.push_back({st.condition, m->name(), std::move(p)});
     }
+    apply_measurement_effects(options.effects,
+                              std::span(r.predictions).subspan(first, models.size()));
   }
 
   for (const auto& meas : d.measurements)

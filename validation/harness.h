@@ -5,6 +5,7 @@
 // states about its own prediction (the DEM's uncertainty of the mean, 0 for analytical models),
 // u_input is not known and taken as 0, u_D is the measurement's uncertainty.
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,11 @@ struct ValidateOptions {
 // Throws InputError, located at the condition's line, when a model cannot handle a condition.
 ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
                           const ValidateOptions& options = {});
+
+// Applies the measurement stage of the effects to the predictions of one condition (one entry per
+// model), each model's values completed from the others first: the instrument is shared.
+void apply_measurement_effects(const analytical::EffectList& effects,
+                               std::span<ConditionResult> same_condition);
 
 // The trajectory points a condition asks models for.
 std::vector<TrajectoryQuery> trajectory_queries(const Dataset& d, const std::string& condition);

@@ -1,0 +1,59 @@
+// `chutelab diagnose`: which physical effect is missing from the models?
+#include <fmt/format.h>
+#include <iostream>
+
+#include "app/commands.h"
+#include "app/effect_options.h"
+#include "validation/diagnosis.h"
+#include "validation/output_files.h"
+
+namespace chutelab::app {
+namespace {
+
+struct DiagnoseCli {
+  std::string dataset, out, models = "booth-cema,korzen";
+  double alpha = 0.01;
+  bool no_pairs = false;
+};
+
+int run_diagnose(const DiagnoseCli& o) {
+  namespace fs = std::filesystem;
+  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
+  const auto d = validation::read_dataset(dir);
+  std::vector<std::string> names;
+  for (std::size_t s = 0, e; s <= o.models.size(); s = e + 1) {
+    e = o.models.find(',', s);
+    if (e == std::string::npos) e = o.models.size();
+    if (e > s) names.push_back(o.models.substr(s, e - s));
+  }
+  validation::DiagnoseOptions opt;
+  opt.alpha = o.alpha;
+  opt.pairs = !o.no_pairs;
+  const auto r = validation::diagnose(d, validation::make_models(names), opt);
+  const std::string md = validation::diagnosis_markdown(r);
+  validation::write_outputs(o.out, {{"diagnosis.csv", validation::diagnosis_csv(r)}, {"diagnosis.md", md}});
+  std::cout << r.verdict << "\n";
+  std::cout << fmt::format("diagnosis: {}\n", (fs::path(o.out) / "diagnosis.md").string());
+  return 0;
+}
+
+}  // namespace
+
+void add_diagnose(CLI::App& app, Action& action) {
+  auto o = std::make_shared<DiagnoseCli>();
+  auto* cmd = app.add_subcommand("diagnose",
+                                 "Rank candidate physical effects by how much of the models' misfit "
+                                 "to the measurements each explains.");
+  cmd->add_option("--dataset", o->dataset, "dataset folder (default: the bundled grima2010 rig)");
+  cmd->add_option("--models", o->models,
+                  "comma-separated models; each measurement is compared with the first that predicts it")
+      ->capture_default_str();
+  cmd->add_option("--alpha", o->alpha, "family-wise false-alarm rate over all candidates")
+      ->check(CLI::Range(1e-6, 0.5))
+      ->capture_default_str();
+  cmd->add_flag("--no-pairs", o->no_pairs, "do not fit pairs of effects");
+  cmd->add_option("--out", o->out, "output folder")->required();
+  cmd->callback([o, &action] { action = [o] { return run_diagnose(*o); }; });
+}
+
+}  // namespace chutelab::app

@@ -1,0 +1,95 @@
+// `chutelab validate`: every condition through every model, compared with the measurements.
+#include <fmt/format.h>
+#include <iostream>
+
+#include "app/commands.h"
+#include "app/effect_options.h"
+#include "core/input_error.h"
+#include "reports/report.h"
+#include "validation/dataset.h"
+#include "validation/harness.h"
+#include "validation/output_files.h"
+#include "validation/tolerances.h"
+
+namespace chutelab::app {
+namespace {
+
+struct ValidateCli {
+  std::string dataset, out, tolerances, models = "korzen,booth-cema";
+  std::vector<std::string> effects;
+};
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const auto end = s.find(',', start);
+    std::string item = s.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    if (!item.empty()) out.push_back(item);
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return out;
+}
+
+int run_validate(const ValidateCli& o) {
+  namespace fs = std::filesystem;
+  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
+  const auto dataset = validation::read_dataset(dir);
+  const auto models = validation::make_models(split_list(o.models));
+  if (models.empty()) throw InputError("", 0, "--models", "no model given");
+
+  std::optional<validation::Tolerances> tol;
+  if (!o.tolerances.empty()) tol = validation::Tolerances::read(o.tolerances);
+  else if (fs::exists(dir / "tolerances.toml")) tol = validation::Tolerances::read(dir / "tolerances.toml");
+
+  validation::ValidateOptions base_opts;
+  base_opts.tolerances = tol ? &*tol : nullptr;
+  base_opts.quiet = false;
+  const auto baseline = validation::validate(dataset, models, base_opts);
+
+  reports::ReportInput report;
+  report.dataset = &dataset;
+  report.baseline = &baseline;
+  const auto applied = resolve_effects(o.effects, dataset, models, report.effects);
+  std::optional<validation::ValidationResult> after;
+  if (!applied.effects.empty()) {
+    validation::ValidateOptions opts = base_opts;
+    opts.effects = applied.effects;
+    opts.effect_labels = applied.labels;
+    after = validation::validate(dataset, models, opts);
+    report.with_effects = &*after;
+  }
+  report.notes = applied.notes;
+  const auto& final_result = after ? *after : baseline;
+
+  validation::write_outputs(
+      o.out, {{"predictions.csv", validation::predictions_csv(final_result)},
+              {"errors.csv", validation::errors_csv(final_result)},
+              {"summary.csv", validation::summary_csv(final_result)},
+              {"report.md", reports::report_markdown(report)},
+              {"report.html", reports::report_html(report)}});
+  if (after) std::cout << "before: " << baseline.brief() << "\nafter:  " << after->brief() << "\n";
+  else std::cout << baseline.brief() << "\n";
+  std::cout << fmt::format("report: {}\n", (fs::path(o.out) / "report.html").string());
+  return final_result.acceptance_failed ? kExitAcceptanceFailed : kExitOk;
+}
+
+}  // namespace
+
+void add_validate(CLI::App& app, Action& action) {
+  auto o = std::make_shared<ValidateCli>();
+  auto* cmd = app.add_subcommand("validate",
+                                 "Run every condition of a dataset through the models and compare "
+                                 "with its measurements; writes CSV tables and a report.");
+  cmd->add_option("--dataset", o->dataset, "dataset folder (default: the bundled grima2010 rig)");
+  cmd->add_option("--models", o->models, "comma-separated models")->capture_default_str();
+  cmd->add_option("--effect", o->effects,
+                  "add a physical effect: NAME=VALUE or NAME=fit (calibrated on the dataset)");
+  cmd->add_option("--tolerances", o->tolerances,
+                  "acceptance tolerances (default: the dataset's tolerances.toml if present)");
+  cmd->add_option("--out", o->out, "output folder")->required();
+  cmd->callback([o, &action] { action = [o] { return run_validate(*o); }; });
+}
+
+}  // namespace chutelab::app

@@ -1,0 +1,61 @@
+#include "app/effect_options.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include "core/input_error.h"
+#include "validation/effect_fit.h"
+
+namespace chutelab::app {
+
+std::vector<validation::ModelPtr> in_registry_order(const std::vector<validation::ModelPtr>& models) {
+  const auto order = validation::model_names();
+  auto pos = [&](const validation::ModelPtr& m) {
+    return std::find(order.begin(), order.end(), m->name()) - order.begin();
+  };
+  auto sorted = models;
+  std::stable_sort(sorted.begin(), sorted.end(), [&](const auto& a, const auto& b) { return pos(a) < pos(b); });
+  return sorted;
+}
+
+AppliedEffects resolve_effects(const std::vector<std::string>& args, const validation::Dataset& d,
+                               const std::vector<validation::ModelPtr>& models,
+                               std::vector<reports::EffectDescription>& described) {
+  std::vector<effects::EffectSetting> fixed, to_fit;
+  for (const auto& a : args) {
+    auto s = effects::parse_setting(a, true);
+    for (const auto& seen : fixed)
+      if (seen.info == s.info) throw InputError("", 0, "--effect", fmt::format("{} given twice", s.info->name));
+    for (const auto& seen : to_fit)
+      if (seen.info == s.info) throw InputError("", 0, "--effect", fmt::format("{} given twice", s.info->name));
+    (s.value ? fixed : to_fit).push_back(s);
+  }
+  AppliedEffects out;
+  out.effects = effects::instantiate(fixed);
+  for (const auto& s : fixed) {
+    out.labels.push_back(fmt::format("{}={}", s.info->name, *s.value));
+    described.push_back({s.info->name, s.info->parameter, s.info->unit, s.info->physics, s.info->source,
+                         *s.value, std::nullopt, false});
+  }
+  if (to_fit.empty()) return out;
+
+  const validation::Misfit misfit(d, in_registry_order(models), out.effects);
+  if (misfit.size() == 0)
+    throw InputError(d.dir.string(), 0, "--effect",
+                     "nothing to fit: no measurement with an uncertainty that these models predict");
+  std::vector<const effects::EffectInfo*> fx;
+  for (const auto& s : to_fit) fx.push_back(s.info);
+  const auto fit = validation::fit_strengths(misfit, fx);
+  for (std::size_t i = 0; i < fx.size(); ++i) {
+    out.effects.push_back(fx[i]->make(fit.estimate[i]));
+    out.labels.push_back(fmt::format("{}={:.4g} (fitted)", fx[i]->name, fit.estimate[i]));
+    described.push_back({fx[i]->name, fx[i]->parameter, fx[i]->unit, fx[i]->physics, fx[i]->source,
+                         fit.estimate[i], fit.uncertainty[i], true});
+  }
+  out.notes.push_back(fmt::format(
+      "Fitted on this dataset ({} values with uncertainties): chi^2 {:.1f} -> {:.1f}.", misfit.size(),
+      misfit.chi2({}, {}), fit.chi2));
+  return out;
+}
+
+}  // namespace chutelab::app

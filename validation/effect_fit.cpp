@@ -1,0 +1,214 @@
+#include "validation/effect_fit.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multifit_nlinear.h>
+#include <limits>
+
+#include "core/input_error.h"
+#include "validation/harness.h"
+
+namespace chutelab::validation {
+
+Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed)
+    : d_(&d), models_(std::move(models)), fixed_(std::move(fixed)) {
+  for (const auto& st : d.stations) queries_.push_back(trajectory_queries(d, st.condition));
+  const auto base = predict_all({}, {});
+  auto condition_index = [&](const std::string& c) {
+    for (std::size_t i = 0; i < d.stations.size(); ++i)
+      if (d.stations[i].condition == c) return i;
+    throw std::logic_error("measurement of an unknown condition");
+  };
+  for (const auto& m : d.measurements) {
+    const std::size_t ci = condition_index(m.condition);
+    std::optional<std::size_t> by;
+    for (std::size_t k = 0; k < models_.size() && !by; ++k)
+      if (base[ci][k].values[m.quantity]) by = k;
+    if (!by || !m.uncertainty) {
+      ++left_out_;
+      continue;
+    }
+    points_.push_back({ci, std::string(name(m.quantity)), m.quantity, 0, *by, m.value, *m.uncertainty});
+  }
+  std::vector<std::size_t> next(d.stations.size(), 0);
+  for (const auto& p : d.trajectory) {
+    const std::size_t ci = condition_index(p.condition);
+    const std::size_t qi = next[ci]++;
+    std::optional<std::size_t> by;
+    for (std::size_t k = 0; k < models_.size() && !by; ++k)
+      if (qi < base[ci][k].trajectory.size() && base[ci][k].trajectory[qi]) by = k;
+    if (!by || !p.uncertainty) {
+      ++left_out_;
+      continue;
+    }
+    points_.push_back({ci, "trajectory_" + std::string(name(p.boundary)) + "_y_mm", std::nullopt, qi,
+                       *by, p.y, *p.uncertainty});
+  }
+}
+
+std::vector<std::vector<ModelPrediction>> Misfit::predict_all(
+    std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const {
+  analytical::EffectList list = fixed_;
+  for (std::size_t i = 0; i < fx.size(); ++i) list.push_back(fx[i]->make(strengths[i]));
+  std::vector<std::vector<ModelPrediction>> out(d_->stations.size());
+  for (std::size_t c = 0; c < d_->stations.size(); ++c) {
+    std::vector<ConditionResult> same;
+    for (const auto& m : models_)
+      same.push_back({d_->stations[c].condition, m->name(),
+                      m->predict(d_->stations[c], list, queries_[c])});
+    apply_measurement_effects(list, same);
+    for (auto& s : same) out[c].push_back(std::move(s.prediction));
+  }
+  return out;
+}
+
+std::vector<double> Misfit::residuals(std::span<const effects::EffectInfo* const> fx,
+                                      std::span<const double> strengths) const {
+  // Off the map: the misfit of a model that predicts nothing useful, large but finite so that
+  // the minimiser can still step back.
+  constexpr double kInfeasible = 1e3;
+  std::vector<double> r(points_.size(), kInfeasible);
+  std::vector<std::vector<ModelPrediction>> pred;
+  try {
+    pred = predict_all(fx, strengths);
+  } catch (const InputError&) {
+    return r;
+  }
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const auto& p = points_[i];
+    const ModelPrediction& mp = pred[p.condition][p.model];
+    std::optional<double> v;
+    if (p.q) v = mp.values[*p.q];
+    else if (p.query < mp.trajectory.size()) v = mp.trajectory[p.query];
+    // A prediction that an effect makes vanish (Korzen's V_a when stationary flow stops) counts as
+    // zero: the effect has to explain the measurement, not remove it.
+    r[i] = (v.value_or(0.0) - p.measured) / p.uncertainty;
+  }
+  return r;
+}
+
+double Misfit::chi2(std::span<const effects::EffectInfo* const> fx,
+                    std::span<const double> strengths) const {
+  double s = 0.0;
+  for (double x : residuals(fx, strengths)) s += x * x;
+  return s;
+}
+
+namespace {
+
+// Bounds by a logistic map: p = lo + (hi - lo) / (1 + e^-u) keeps every trial inside the range.
+double to_p(double u, double lo, double hi) { return lo + (hi - lo) / (1.0 + std::exp(-u)); }
+double to_u(double p, double lo, double hi) {
+  const double f = std::clamp((p - lo) / (hi - lo), 1e-9, 1.0 - 1e-9);
+  return std::log(f / (1.0 - f));
+}
+
+struct GslContext {
+  const Misfit* m;
+  std::span<const effects::EffectInfo* const> fx;
+};
+
+int gsl_residuals(const gsl_vector* u, void* params, gsl_vector* f) {
+  const auto* ctx = static_cast<GslContext*>(params);
+  std::vector<double> p(ctx->fx.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p[i] = to_p(gsl_vector_get(u, i), ctx->fx[i]->lower, ctx->fx[i]->upper);
+  const auto r = ctx->m->residuals(ctx->fx, p);
+  for (std::size_t i = 0; i < r.size(); ++i) gsl_vector_set(f, i, r[i]);
+  return GSL_SUCCESS;
+}
+
+// Grid over the physical range, finer for one parameter than for two.
+void grid_scan(const Misfit& m, std::span<const effects::EffectInfo* const> fx,
+               std::vector<double>& best, double& best_chi2) {
+  const int n = fx.size() == 1 ? 40 : 8;
+  std::vector<double> p(fx.size());
+  std::vector<int> idx(fx.size(), 0);
+  while (true) {
+    for (std::size_t i = 0; i < fx.size(); ++i)
+      p[i] = fx[i]->lower + (fx[i]->upper - fx[i]->lower) * idx[i] / n;
+    const double c = m.chi2(fx, p);
+    if (c < best_chi2) {
+      best_chi2 = c;
+      best = p;
+    }
+    std::size_t k = 0;
+    while (k < idx.size() && ++idx[k] > n) idx[k++] = 0;
+    if (k == idx.size()) break;
+  }
+}
+
+}  // namespace
+
+StrengthFit fit_strengths(const Misfit& m, std::span<const effects::EffectInfo* const> fx,
+                          const std::vector<std::vector<double>>& starts) {
+  gsl_set_error_handler_off();
+  const std::size_t k = fx.size();
+  StrengthFit out;
+  std::vector<double> best(k);
+  for (std::size_t i = 0; i < k; ++i) best[i] = fx[i]->neutral;
+  double best_chi2 = m.chi2(fx, best);
+  for (const auto& s : starts)
+    if (s.size() == k) {
+      const double c = m.chi2(fx, s);
+      if (c < best_chi2) {
+        best_chi2 = c;
+        best = s;
+      }
+    }
+  grid_scan(m, fx, best, best_chi2);
+
+  if (m.size() > k) {
+    GslContext ctx{&m, fx};
+    gsl_multifit_nlinear_fdf fdf{};
+    fdf.f = gsl_residuals;
+    fdf.df = nullptr;  // forward-difference Jacobian
+    fdf.n = m.size();
+    fdf.p = k;
+    fdf.params = &ctx;
+    gsl_multifit_nlinear_parameters par = gsl_multifit_nlinear_default_parameters();
+    gsl_multifit_nlinear_workspace* w =
+        gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &par, m.size(), k);
+    gsl_vector* u = gsl_vector_alloc(k);
+    for (std::size_t i = 0; i < k; ++i) gsl_vector_set(u, i, to_u(best[i], fx[i]->lower, fx[i]->upper));
+    int info = 0;
+    gsl_multifit_nlinear_init(u, &fdf, w);
+    const int status = gsl_multifit_nlinear_driver(100, 1e-10, 1e-10, 1e-12, nullptr, nullptr, &info, w);
+    std::vector<double> p(k);
+    for (std::size_t i = 0; i < k; ++i)
+      p[i] = to_p(gsl_vector_get(w->x, i), fx[i]->lower, fx[i]->upper);
+    const double c = m.chi2(fx, p);
+    out.converged = status == GSL_SUCCESS;
+    if (c <= best_chi2) {
+      best_chi2 = c;
+      best = p;
+    }
+    gsl_vector_free(u);
+    gsl_multifit_nlinear_free(w);
+  }
+  out.estimate = best;
+  out.chi2 = best_chi2;
+
+  // Uncertainty in the parameters' own units: central differences of the residuals give J, and
+  // the covariance of a weighted least-squares estimate is (J^T J)^-1.
+  Eigen::MatrixXd J(m.size(), k);
+  for (std::size_t j = 0; j < k; ++j) {
+    const double h = 1e-4 * (fx[j]->upper - fx[j]->lower);
+    std::vector<double> lo = best, hi = best;
+    lo[j] = std::max(fx[j]->lower, best[j] - h);
+    hi[j] = std::min(fx[j]->upper, best[j] + h);
+    const auto rl = m.residuals(fx, lo), rh = m.residuals(fx, hi);
+    for (std::size_t i = 0; i < m.size(); ++i) J(i, j) = (rh[i] - rl[i]) / (hi[j] - lo[j]);
+  }
+  const Eigen::MatrixXd JtJ = J.transpose() * J;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
+  out.uncertainty.assign(k, std::numeric_limits<double>::infinity());
+  if (lu.isInvertible() && lu.rcond() > 1e-12) {
+    const Eigen::MatrixXd cov = lu.inverse();
+    for (std::size_t j = 0; j < k; ++j) out.uncertainty[j] = std::sqrt(std::max(0.0, cov(j, j)));
+  }
+  return out;
+}
+
+}  // namespace chutelab::validation

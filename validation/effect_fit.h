@@ -1,0 +1,68 @@
+#pragma once
+// The models' misfit to a dataset as a function of effect strengths, and its minimisation.
+// Each measured value (quantities and trajectory points with a stated uncertainty) is compared
+// with the first model, in the order given, that predicts it: with the default order
+// booth-cema,korzen the trajectory, impact point and V_p come from Booth/CEMA and the forces and
+// V_a from Korzen, the seed's hybrid.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "effects/registry.h"
+#include "validation/dataset.h"
+#include "validation/model.h"
+
+namespace chutelab::validation {
+
+struct MisfitPoint {
+  std::size_t condition = 0;     // index into the dataset's stations
+  std::string quantity;          // boundary name (trajectory points: trajectory_<b>_y_mm)
+  std::optional<Quantity> q;
+  std::size_t query = 0;         // trajectory query index within the condition
+  std::size_t model = 0;         // index of the model that predicts it
+  double measured = 0.0, uncertainty = 0.0;  // SI
+};
+
+class Misfit {
+ public:
+  // Points the baseline (fixed effects only) cannot predict, or without uncertainty, are left out.
+  Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed = {});
+
+  std::size_t size() const { return points_.size(); }
+  const std::vector<MisfitPoint>& points() const { return points_; }
+  int left_out() const { return left_out_; }
+  const Dataset& dataset() const { return *d_; }
+  const std::vector<ModelPtr>& models() const { return models_; }
+
+  // (prediction - measurement) / uncertainty for every point. A strength at which a model cannot
+  // handle a condition (the stream misses the plate, ...) gives a large misfit, not an error.
+  std::vector<double> residuals(std::span<const effects::EffectInfo* const> fx,
+                                std::span<const double> strengths) const;
+  double chi2(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
+  // Every model's prediction of every condition with these effects (for pictures and comparisons).
+  std::vector<std::vector<ModelPrediction>> predict_all(
+      std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
+
+ private:
+  const Dataset* d_;
+  std::vector<ModelPtr> models_;
+  analytical::EffectList fixed_;
+  std::vector<std::vector<TrajectoryQuery>> queries_;
+  std::vector<MisfitPoint> points_;
+  int left_out_ = 0;
+};
+
+struct StrengthFit {
+  std::vector<double> estimate;     // boundary units
+  std::vector<double> uncertainty;  // one sd from (J^T J)^-1; infinite where the data say nothing
+  double chi2 = 0.0;
+  bool converged = false;
+};
+
+// Minimise chi^2 over the strengths of `fx` within their physical ranges: a grid scan (effects
+// with a threshold have no gradient at their neutral value) followed by GSL's trust-region
+// least squares. `starts` (optional, one vector per start) adds starting points.
+StrengthFit fit_strengths(const Misfit& m, std::span<const effects::EffectInfo* const> fx,
+                          const std::vector<std::vector<double>>& starts = {});
+
+}  // namespace chutelab::validation

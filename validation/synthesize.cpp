@@ -1,0 +1,128 @@
+#include "validation/synthesize.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/input_error.h"
+#include "validation/harness.h"
+
+namespace chutelab::validation {
+
+NormalStream::NormalStream(std::uint64_t seed) : state_(seed ^ 0x9E3779B97F4A7C15ull) {}
+
+double NormalStream::uniform() {
+  // splitmix64: a full-period 64-bit generator with a fixed definition.
+  std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;  // in (0, 1)
+}
+
+double NormalStream::next() {
+  if (has_spare_) {
+    has_spare_ = false;
+    return spare_;
+  }
+  // Box-Muller: two uniforms give two independent standard normals.
+  const double r = std::sqrt(-2.0 * std::log(uniform()));
+  const double t = 2.0 * 3.14159265358979323846 * uniform();
+  spare_ = r * std::sin(t);
+  has_spare_ = true;
+  return r * std::cos(t);
+}
+
+namespace {
+
+double default_uncertainty(Quantity q, double value) {
+  switch (q) {
+    case Quantity::normal_force:
+    case Quantity::shear_force:
+    case Quantity::resultant_force: return std::max(0.02 * std::abs(value), 0.2);
+    case Quantity::impact_velocity:
+    case Quantity::exit_velocity: return 0.04;
+    case Quantity::impact_point_y: return 2.5e-3;
+  }
+  return 0.0;
+}
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPtr>& models,
+                                   const SynthesizeOptions& opt) {
+  NormalStream noise(opt.seed);
+  std::map<std::pair<std::string, Quantity>, double> given_u;
+  for (const auto& m : src.measurements)
+    if (m.uncertainty) given_u[{m.condition, m.quantity}] = *m.uncertainty;
+
+  std::string meas = "condition,quantity,value,uncertainty\n";
+  std::string traj = "condition,boundary,x_mm,y_mm,uncertainty_mm\n";
+  for (std::size_t i = 0; i < src.stations.size(); ++i) {
+    const Station& st = src.stations[i];
+    std::vector<TrajectoryQuery> queries = trajectory_queries(src, st.condition);
+    std::vector<double> traj_u;
+    for (const auto& p : src.trajectory)
+      if (p.condition == st.condition) traj_u.push_back(p.uncertainty.value_or(2e-3));
+    if (queries.empty())
+      for (double x = 0.1; x <= st.plate_distance - 0.05 + 1e-9; x += 0.05)
+        for (Boundary b : {Boundary::upper, Boundary::centre, Boundary::lower}) {
+          queries.push_back({b, x});
+          traj_u.push_back(2e-3);
+        }
+    std::vector<ConditionResult> same;
+    try {
+      for (const auto& m : models)
+        same.push_back({st.condition, m->name(), m->predict(st, opt.effects, queries)});
+    } catch (const InputError& e) {
+      throw e.located(src.station_lines[i].file, src.station_lines[i].line);
+    }
+    apply_measurement_effects(opt.effects, same);
+
+    for (Quantity q : kAllQuantities) {
+      std::optional<double> truth;
+      for (const auto& s : same)
+        if (!truth && s.prediction.values[q]) truth = s.prediction.values[q];
+      if (!truth) continue;
+      auto it = given_u.find({st.condition, q});
+      const double u = (it != given_u.end() ? it->second : default_uncertainty(q, *truth)) * opt.noise_scale;
+      const double s = info(q).to_boundary;
+      const double value = *truth + u * noise.next();
+      meas += fmt::format("{},{},{:.4f},{:.4f}\n", st.condition, name(q), value * s, u * s);
+    }
+    for (std::size_t k = 0; k < queries.size(); ++k) {
+      std::optional<double> truth;
+      for (const auto& s : same)
+        if (!truth && k < s.prediction.trajectory.size() && s.prediction.trajectory[k])
+          truth = s.prediction.trajectory[k];
+      if (!truth) continue;
+      const double u = traj_u[k] * opt.noise_scale;
+      traj += fmt::format("{},{},{:.1f},{:.3f},{:.3f}\n", st.condition, name(queries[k].boundary),
+                          queries[k].x * 1e3, (*truth + u * noise.next()) * 1e3, u * 1e3);
+    }
+  }
+  const std::string readme = fmt::format(
+      "# Synthetic dataset\n\n"
+      "Made by `chutelab synthesize` from the rig and conditions of `{}` (copied unchanged as\n"
+      "`setup.toml` and `conditions.csv`), random seed {}. `measurements.csv` and `trajectory.csv` hold\n"
+      "values computed by chutelab's analytical models with Gaussian noise of one stated uncertainty\n"
+      "added to each. What else went into the generating model is deliberately not recorded here, so\n"
+      "the dataset can serve as a blind test of `chutelab diagnose`.\n",
+      src.setup.name.empty() ? src.dir.filename().string() : src.setup.name, opt.seed);
+  return {{"setup.toml", slurp(src.dir / "setup.toml")},
+          {"conditions.csv", slurp(src.dir / "conditions.csv")},
+          {"measurements.csv", meas},
+          {"trajectory.csv", traj},
+          {"README.md", readme}};
+}
+
+}  // namespace chutelab::validation
