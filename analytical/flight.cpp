@@ -35,6 +35,40 @@ FlightPoint Trajectory::step(const FlightPoint& s, double h) const {
   return out;
 }
 
+const FlightPoint& Trajectory::stored(std::size_t i) const {
+  if (path_.empty()) path_.push_back(start_);
+  while (path_.size() <= i) {
+    FlightPoint next = step(path_.back(), dt_);
+    next.t = start_.t + dt_ * static_cast<double>(path_.size());  // no drift from summing dt
+    path_.push_back(next);
+  }
+  return path_[i];
+}
+
+Eigen::Vector2d Trajectory::interpolate_position(std::size_t i, double tau) const {
+  const FlightPoint& a = stored(i);
+  const FlightPoint& b = stored(i + 1);
+  const double t2 = tau * tau, t3 = t2 * tau;
+  return (2 * t3 - 3 * t2 + 1) * a.position + (t3 - 2 * t2 + tau) * dt_ * a.velocity +
+         (-2 * t3 + 3 * t2) * b.position + (t3 - t2) * dt_ * b.velocity;
+}
+
+FlightPoint Trajectory::interpolate(std::size_t i, double tau) const {
+  const FlightPoint& a = stored(i);
+  const FlightPoint& b = stored(i + 1);
+  const double h = dt_;
+  const double t2 = tau * tau, t3 = t2 * tau;
+  // Cubic Hermite on positions (slopes = velocities) and on velocities (slopes = accelerations).
+  const double h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + tau, h01 = -2 * t3 + 3 * t2,
+               h11 = t3 - t2;
+  FlightPoint p;
+  p.t = a.t + tau * h;
+  p.position = h00 * a.position + h10 * h * a.velocity + h01 * b.position + h11 * h * b.velocity;
+  p.velocity = h00 * a.velocity + h10 * h * accel(a.velocity) + h01 * b.velocity +
+               h11 * h * accel(b.velocity);
+  return p;
+}
+
 FlightPoint Trajectory::at_time(double t) const {
   if (!extra_) {
     FlightPoint p;
@@ -43,39 +77,40 @@ FlightPoint Trajectory::at_time(double t) const {
     p.velocity = start_.velocity + Eigen::Vector2d(0.0, -g_ * t);
     return p;
   }
-  FlightPoint s = start_;
-  double left = t;
-  while (left > 0.0) {
-    const double h = std::min(dt_, left);
-    s = step(s, h);
-    left -= h;
-  }
-  s.t = start_.t + t;
-  return s;
+  const double steps = std::max(0.0, t / dt_);
+  const auto i = static_cast<std::size_t>(steps);
+  return interpolate(i, steps - static_cast<double>(i));
 }
 
 std::optional<FlightPoint> Trajectory::first_root(
     const std::function<double(const FlightPoint&)>& event, double t_max) const {
-  // March until the event turns non-negative, then refine the time inside the bracketing step by
-  // bisection on the exact (closed-form or single RK4 part-step) state: a part-step of RK4 from the
-  // bracket start is as accurate as a full step, so the root carries the integrator's accuracy.
-  const double h = extra_ ? dt_ : std::min(dt_, 1e-2);
-  FlightPoint a = start_;
-  if (event(a) >= 0.0) return std::nullopt;
-  auto advance = [&](const FlightPoint& from, double dt) {
-    return extra_ ? step(from, dt) : at_time(from.t - start_.t + dt);
-  };
-  while (a.t - start_.t < t_max) {
-    const FlightPoint b = advance(a, h);
-    if (event(b) >= 0.0) {
-      double lo = 0.0, hi = h;
-      for (int i = 0; i < 80 && hi - lo > 1e-15; ++i) {
+  // March until the event turns non-negative, then bisect the time inside the bracketing interval
+  // on the exact state (closed form) or the step's Hermite interpolant (integrated).
+  if (event(start_) >= 0.0) return std::nullopt;
+  if (extra_) {
+    for (std::size_t i = 0; dt_ * static_cast<double>(i) < t_max; ++i) {
+      if (event(stored(i + 1)) < 0.0) continue;
+      // Events depend on position only: bisect on the cheap position interpolant.
+      double lo = 0.0, hi = 1.0;
+      FlightPoint probe;
+      for (int k = 0; k < 52; ++k) {
         const double mid = 0.5 * (lo + hi);
-        (event(advance(a, mid)) < 0.0 ? lo : hi) = mid;
+        probe.position = interpolate_position(i, mid);
+        (event(probe) < 0.0 ? lo : hi) = mid;
       }
-      return advance(a, 0.5 * (lo + hi));
+      return interpolate(i, 0.5 * (lo + hi));
     }
-    a = b;
+    return std::nullopt;
+  }
+  const double h = 1e-2;
+  for (double t = 0.0; t < t_max; t += h) {
+    if (event(at_time(t + h)) < 0.0) continue;
+    double lo = t, hi = t + h;
+    for (int k = 0; k < 80 && hi - lo > 1e-15; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (event(at_time(mid)) < 0.0 ? lo : hi) = mid;
+    }
+    return at_time(0.5 * (lo + hi));
   }
   return std::nullopt;
 }
@@ -131,17 +166,7 @@ std::optional<PlateHit> Trajectory::hit(const PlateLine& plate, double t_max) co
 std::vector<FlightPoint> Trajectory::sample(double t_end, int n) const {
   std::vector<FlightPoint> out;
   out.reserve(static_cast<std::size_t>(n) + 1);
-  if (!extra_) {
-    for (int i = 0; i <= n; ++i) out.push_back(at_time(t_end * i / n));
-    return out;
-  }
-  FlightPoint s = start_;
-  out.push_back(s);
-  for (int i = 1; i <= n; ++i) {
-    const double target = t_end * i / n;
-    while (s.t - start_.t < target - 1e-15) s = step(s, std::min(dt_, target - (s.t - start_.t)));
-    out.push_back(s);
-  }
+  for (int i = 0; i <= n; ++i) out.push_back(at_time(t_end * i / n));
   return out;
 }
 

@@ -41,8 +41,10 @@ using AccelerationFn = std::function<Eigen::Vector2d(const Eigen::Vector2d& velo
 
 class Trajectory {
  public:
-  // extra == nullptr: closed form. Otherwise RK4 with step dt (s) plus an exact final part-step.
-  Trajectory(FlightPoint start, double gravity, AccelerationFn extra = nullptr, double dt = 1e-3);
+  // extra == nullptr: closed form. Otherwise RK4 with step dt (s), marched once and stored; states
+  // between steps come from the cubic Hermite interpolant of the stored positions and velocities
+  // (error O(dt^4), and exact for constant acceleration like the steps themselves).
+  Trajectory(FlightPoint start, double gravity, AccelerationFn extra = nullptr, double dt = 2e-3);
 
   FlightPoint at_time(double t) const;
   // First crossing of the vertical x = const after the start; nullopt if never within t_max.
@@ -56,7 +58,11 @@ class Trajectory {
  private:
   FlightPoint step(const FlightPoint& s, double h) const;
   Eigen::Vector2d accel(const Eigen::Vector2d& v) const;
-  // First time at which event(state) changes sign from negative; event is evaluated on states.
+  // Integrated path: stored state i (at t = i dt), marching further on demand.
+  const FlightPoint& stored(std::size_t i) const;
+  FlightPoint interpolate(std::size_t i, double tau) const;  // tau in [0, 1] within step i
+  Eigen::Vector2d interpolate_position(std::size_t i, double tau) const;
+  // First time at which event(state) changes sign from negative. Events look at the position only.
   std::optional<FlightPoint> first_root(const std::function<double(const FlightPoint&)>& event,
                                         double t_max) const;
 
@@ -64,6 +70,7 @@ class Trajectory {
   double g_;
   AccelerationFn extra_;
   double dt_;
+  mutable std::vector<FlightPoint> path_;  // integrated states, grown on demand
 };
 
 }  // namespace chutelab::analytical

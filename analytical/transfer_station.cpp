@@ -83,7 +83,8 @@ TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects) 
   for (const auto& e : effects) has_force = has_force || e->has_flight_force();
   AccelerationFn extra;
   if (has_force)
-    extra = [&effects, ctx](const Eigen::Vector2d& v) {
+    // By value: the trajectory integrates lazily and may outlive the caller's list.
+    extra = [effects, ctx](const Eigen::Vector2d& v) {
       Eigen::Vector2d acc = Eigen::Vector2d::Zero();
       for (const auto& e : effects) acc += e->flight_acceleration(v, ctx);
       return acc;

@@ -78,7 +78,7 @@ int run_estimate(const EstimateOptions& o) {
   const auto analysis = analytical::analyse_transfer(st, fx);
   std::vector<validation::ConditionResult> predicted;
   for (const auto& m : validation::make_models(validation::model_names()))
-    if (!m->expensive()) predicted.push_back({st.condition, m->name(), m->predict(st, fx, {})});
+    if (!m->expensive()) predicted.push_back({st.condition, m->name(), m->predict(st, fx, {{}, false})});
   validation::apply_measurement_effects(fx, predicted);
   ModelValues models;
   for (const auto& p : predicted) models.emplace_back(p.model, p.prediction.values);

@@ -56,7 +56,7 @@ std::vector<std::vector<ModelPrediction>> Misfit::predict_all(
     std::vector<ConditionResult> same;
     for (const auto& m : models_)
       same.push_back({d_->stations[c].condition, m->name(),
-                      m->predict(d_->stations[c], list, queries_[c])});
+                      m->predict(d_->stations[c], list, {queries_[c], false})});
     apply_measurement_effects(list, same);
     for (auto& s : same) out[c].push_back(std::move(s.prediction));
   }
@@ -122,7 +122,7 @@ int gsl_residuals(const gsl_vector* u, void* params, gsl_vector* f) {
 // Grid over the physical range, finer for one parameter than for two.
 void grid_scan(const Misfit& m, std::span<const effects::EffectInfo* const> fx,
                std::vector<double>& best, double& best_chi2) {
-  const int n = fx.size() == 1 ? 40 : 8;
+  const int n = fx.size() == 1 ? 40 : 5;
   std::vector<double> p(fx.size());
   std::vector<int> idx(fx.size(), 0);
   while (true) {

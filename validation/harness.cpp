@@ -136,7 +136,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
                                  d.stations.size());
       ModelPrediction p;
       try {
-        p = m->predict(st, options.effects, queries);
+        p = m->predict(st, options.effects, {queries, true});
       } catch (const InputError& e) {
         throw e.located(d.station_lines[i].file, d.station_lines[i].line);
       }

@@ -25,6 +25,12 @@ struct Curve {
   std::vector<Eigen::Vector2d> points;
 };
 
+// What a caller wants besides the quantities.
+struct PredictRequest {
+  std::span<const TrajectoryQuery> trajectory;  // stream points to predict
+  bool curves = true;                           // polylines for pictures (not needed by fits)
+};
+
 struct ModelPrediction {
   QuantityValues values;                          // SI
   QuantityValues uncertainty;                     // SI, one sd of the prediction (e.g. DEM mean)
@@ -42,7 +48,7 @@ class Model {
   // works with analytical signatures applied as differences (DESIGN.md §5).
   virtual bool expensive() const { return false; }
   virtual ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
-                                  std::span<const TrajectoryQuery> queries) const = 0;
+                                  const PredictRequest& request) const = 0;
 };
 
 using ModelPtr = std::shared_ptr<const Model>;

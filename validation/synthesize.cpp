@@ -82,7 +82,7 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
     std::vector<ConditionResult> same;
     try {
       for (const auto& m : models)
-        same.push_back({st.condition, m->name(), m->predict(st, opt.effects, queries)});
+        same.push_back({st.condition, m->name(), m->predict(st, opt.effects, {queries, false})});
     } catch (const InputError& e) {
       throw e.located(src.station_lines[i].file, src.station_lines[i].line);
     }

@@ -13,24 +13,26 @@ class BoothCemaModel final : public Model {
     return "Booth discharge trajectories, CEMA load-shape centroid";
   }
   ModelPrediction predict(const Station& st, const analytical::EffectList& effects,
-                          std::span<const TrajectoryQuery> queries) const override {
+                          const PredictRequest& request) const override {
     using analytical::Streamline;
     const auto a = analytical::analyse_transfer(st, effects);
     const auto& hit = *a.line(Streamline::cema_centroid).hit;
     ModelPrediction p;
     p.values[Quantity::impact_velocity] = hit.speed;
     p.values[Quantity::impact_point_y] = hit.point.position.y();
-    p.trajectory.reserve(queries.size());
-    for (const auto& q : queries) {
+    p.trajectory.reserve(request.trajectory.size());
+    for (const auto& q : request.trajectory) {
       const Streamline s = q.boundary == Boundary::upper   ? Streamline::upper
                            : q.boundary == Boundary::lower ? Streamline::lower
                                                            : Streamline::cema_centroid;
       const auto pt = a.line(s).trajectory.at_x(q.x);
       p.trajectory.push_back(pt ? std::optional<double>(pt->position.y()) : std::nullopt);
     }
-    p.curves.push_back(streamline_curve(a, Streamline::upper, "upper"));
-    p.curves.push_back(streamline_curve(a, Streamline::cema_centroid, "centre (CEMA a1)"));
-    p.curves.push_back(streamline_curve(a, Streamline::lower, "lower"));
+    if (request.curves) {
+      p.curves.push_back(streamline_curve(a, Streamline::upper, "upper"));
+      p.curves.push_back(streamline_curve(a, Streamline::cema_centroid, "centre (CEMA a1)"));
+      p.curves.push_back(streamline_curve(a, Streamline::lower, "lower"));
+    }
     return p;
   }
 };

@@ -15,7 +15,7 @@ class KorzenModel final : public Model {
     return "Korzen impact-plate model (seed Eqs 1-7) on the 0.5 h_b streamline";
   }
   ModelPrediction predict(const Station& st, const analytical::EffectList& effects,
-                          std::span<const TrajectoryQuery> queries) const override {
+                          const PredictRequest& request) const override {
     using analytical::Streamline;
     const auto a = analytical::analyse_transfer(st, effects);
     const auto& k = a.korzen;
@@ -27,8 +27,9 @@ class KorzenModel final : public Model {
     p.values[Quantity::impact_velocity] = hit.speed;
     if (k.exit_speed) p.values[Quantity::exit_velocity] = *k.exit_speed;
     p.values[Quantity::impact_point_y] = hit.point.position.y();
-    p.trajectory.assign(queries.size(), std::nullopt);
-    p.curves.push_back(streamline_curve(a, Streamline::korzen_centroid, "centre (0.5 h_b)"));
+    p.trajectory.assign(request.trajectory.size(), std::nullopt);
+    if (request.curves)
+      p.curves.push_back(streamline_curve(a, Streamline::korzen_centroid, "centre (0.5 h_b)"));
     p.notes.push_back(k.stationary_flow
                           ? fmt::format("stationary flow; V_a from Eq 4 ({} iterations), R_s from Eq 6",
                                         k.iterations)
