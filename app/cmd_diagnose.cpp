@@ -18,7 +18,7 @@ struct DiagnoseCli {
 
 int run_diagnose(const DiagnoseCli& o) {
   namespace fs = std::filesystem;
-  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
+  const fs::path dir(o.dataset);
   const auto d = validation::read_dataset(dir);
   std::vector<std::string> names;
   for (std::size_t s = 0, e; s <= o.models.size(); s = e + 1) {
@@ -44,7 +44,7 @@ void add_diagnose(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("diagnose",
                                  "Rank candidate physical effects by how much of the models' misfit "
                                  "to the measurements each explains.");
-  cmd->add_option("--dataset", o->dataset, "dataset folder (default: the bundled grima2010 rig)");
+  cmd->add_option("--dataset", o->dataset, "dataset folder with measurements")->required();
   cmd->add_option("--models", o->models,
                   "comma-separated models; each measurement is compared with the first that predicts it")
       ->capture_default_str();

@@ -34,7 +34,7 @@ std::vector<std::string> split_list(const std::string& s) {
 
 int run_validate(const ValidateCli& o) {
   namespace fs = std::filesystem;
-  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
+  const fs::path dir(o.dataset);
   const auto dataset = validation::read_dataset(dir);
   const auto models = validation::make_models(split_list(o.models));
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
@@ -82,7 +82,7 @@ void add_validate(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("validate",
                                  "Run every condition of a dataset through the models and compare "
                                  "with its measurements; writes CSV tables and a report.");
-  cmd->add_option("--dataset", o->dataset, "dataset folder (default: the bundled grima2010 rig)");
+  cmd->add_option("--dataset", o->dataset, "dataset folder with measurements")->required();
   cmd->add_option("--models", o->models, "comma-separated models")->capture_default_str();
   cmd->add_option("--effect", o->effects,
                   "add a physical effect: NAME=VALUE or NAME=fit (calibrated on the dataset)");

@@ -283,6 +283,24 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
         "(chi^2 = {:.1f} for {} data, p = {:.2g}).",
         out.chi2_baseline, out.n_data, out.baseline_p_value);
   }
+  if (const EffectFit* b = out.best()) {
+    for (std::size_t i = 0; i < b->effects.size(); ++i) {
+      const auto* info = effects::find(b->effects[i]);
+      const double span = info->upper - info->lower;
+      if (b->estimate[i] <= info->lower + 1e-3 * span || b->estimate[i] >= info->upper - 1e-3 * span)
+        out.caveats.push_back(fmt::format(
+            "{} sits at the edge of its physical range ({} = {:.4g} {}): the data ask for more than "
+            "this effect can physically give, so it is probably standing in for something else.",
+            b->effects[i], info->parameter, b->estimate[i], info->unit));
+    }
+    const double left = b->chi2_after - (out.n_data - static_cast<double>(b->effects.size()));
+    if (b->explained_fraction < 0.7 && left > 0)
+      out.caveats.push_back(fmt::format(
+          "The best explanation removes only {:.0f} % of the excess misfit (chi^2 {:.1f} remains for "
+          "{} data): a large part of the failure lies outside the library - look at the quantities "
+          "with the largest residuals above, and at how they were measured.",
+          100 * b->explained_fraction, b->chi2_after, out.n_data));
+  }
   out.caveats.push_back(fmt::format(
       "Significance: likelihood-ratio test per candidate, Bonferroni-corrected over the {} "
       "candidates tried (family-wise false-alarm rate {:.0f} %).",

@@ -53,12 +53,31 @@ std::optional<double> ValidationResult::overall_rms_normalised(const std::string
   return std::sqrt(sum / n);
 }
 
+std::optional<double> ValidationResult::combined_rms_normalised() const {
+  const auto order = model_names();
+  auto rank = [&](const std::string& m) {
+    return static_cast<std::size_t>(std::find(order.begin(), order.end(), m) - order.begin());
+  };
+  std::map<std::tuple<std::string, std::string, double>, const Comparison*> chosen;
+  for (const auto& c : comparisons) {
+    if (!c.predicted || !c.uncertainty) continue;
+    auto& slot = chosen[{c.condition, c.quantity, c.x}];
+    if (!slot || rank(c.model) < rank(slot->model)) slot = &c;
+  }
+  if (chosen.empty()) return std::nullopt;
+  double sum = 0.0;
+  for (const auto& [key, c] : chosen) sum += std::pow(*c->normalised_error(), 2);
+  return std::sqrt(sum / static_cast<double>(chosen.size()));
+}
+
 std::string ValidationResult::brief() const {
   std::string s = fmt::format("{}: {} conditions x {} models", dataset_name,
                               predictions.size() / std::max<std::size_t>(1, models.size()),
                               models.size());
   for (const auto& m : models)
     if (auto z = overall_rms_normalised(m)) s += fmt::format("; {} RMS normalised error {:.2f}", m, *z);
+  if (models.size() > 1)
+    if (auto z = combined_rms_normalised()) s += fmt::format("; combined {:.2f}", *z);
   if (acceptance_checked) s += acceptance_failed ? "; ACCEPTANCE FAILED" : "; acceptance passed";
   return s;
 }
