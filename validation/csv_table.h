@@ -2,6 +2,7 @@
 // A small CSV table on top of fccp's LineReader (Debian libfccp-dev): header by name, every cell
 // kept with its line number so that each error can name file, line and column.
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,7 +16,10 @@ struct CsvRow {
 
 class CsvTable {
  public:
-  static CsvTable read(const std::filesystem::path& file);
+  // Columns in `required` are checked as soon as the header is read, so a missing column is
+  // reported as such rather than as every row being too long.
+  static CsvTable read(const std::filesystem::path& file,
+                       std::initializer_list<std::string_view> required = {});
 
   const std::string& file() const { return file_; }
   const std::vector<std::string>& header() const { return header_; }

@@ -123,7 +123,8 @@ Station make_station(const Setup& setup, std::string condition, double belt_spee
 
 std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
                                      std::vector<SourceLine>* lines) {
-  const CsvTable t = CsvTable::read(path);
+  const CsvTable t = CsvTable::read(
+      path, {"condition", "belt_speed_mps", "mass_flow_tph", "plate_distance_mm", "plate_top_mm"});
   const std::size_t c_id = t.require("condition");
   const std::size_t c_speed = t.require("belt_speed_mps");
   const std::size_t c_flow = t.require("mass_flow_tph");
@@ -193,7 +194,7 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
 namespace {
 
 std::vector<Measurement> read_measurements(const fs::path& path, const Dataset& d) {
-  const CsvTable t = CsvTable::read(path);
+  const CsvTable t = CsvTable::read(path, {"condition", "quantity", "value"});
   const std::size_t c_id = t.require("condition");
   const std::size_t c_q = t.require("quantity");
   const std::size_t c_v = t.require("value");
@@ -241,7 +242,7 @@ std::vector<Measurement> read_measurements(const fs::path& path, const Dataset& 
 }
 
 std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset& d) {
-  const CsvTable t = CsvTable::read(path);
+  const CsvTable t = CsvTable::read(path, {"condition", "boundary", "x_mm", "y_mm"});
   const std::size_t c_id = t.require("condition");
   const std::size_t c_b = t.require("boundary");
   const std::size_t c_x = t.require("x_mm");

@@ -1,0 +1,99 @@
+#define BOOST_TEST_MODULE validation
+#include <boost/test/unit_test.hpp>
+#include <filesystem>
+#include <fstream>
+
+#include "../cli/cli_runner.h"
+
+using namespace chutelab::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A copy of the LIGGGHTS reference dataset with one file replaced or edited.
+fs::path dataset_with(const std::string& name, const std::string& file, const std::string& text) {
+  const fs::path d = fresh_dir(name);
+  for (const char* f : {"setup.toml", "conditions.csv", "measurements.csv", "trajectory.csv"})
+    fs::copy_file(fs::path(CHUTELAB_SOURCE_DIR) / "datasets/liggghts-rig" / f, d / f);
+  if (!file.empty()) write_file(d / file, text);
+  return d;
+}
+
+std::string replace_line(const std::string& file, int line, const std::string& with) {
+  std::ifstream in(fs::path(CHUTELAB_SOURCE_DIR) / "datasets/liggghts-rig" / file);
+  std::string out, l;
+  for (int n = 1; std::getline(in, l); ++n) out += (n == line ? with : l) + "\n";
+  return out;
+}
+
+struct BadCase {
+  const char* label;
+  const char* file;
+  std::string text;
+  std::string expect_in_message;  // file:line and field
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(dataset_errors)
+
+BOOST_AUTO_TEST_CASE(each_error_class_names_file_line_field_and_writes_nothing) {
+  const std::vector<BadCase> cases = {
+      {"missing column", "measurements.csv",
+       replace_line("measurements.csv", 1, "condition,quantity,uncertainty"), "measurements.csv:1: value"},
+      {"unknown quantity", "measurements.csv",
+       replace_line("measurements.csv", 3, "V2-26,normal_force_kN,14.9,0.07"), "measurements.csv:3: quantity"},
+      {"non-number", "measurements.csv",
+       replace_line("measurements.csv", 4, "V2-26,shear_force_N,abc,0.02"), "measurements.csv:4: value"},
+      {"NaN", "measurements.csv",
+       replace_line("measurements.csv", 5, "V2-26,resultant_force_N,nan,0.07"), "measurements.csv:5: value"},
+      {"negative speed", "conditions.csv",
+       replace_line("conditions.csv", 3, "V2-41,-2.0,41.0,300.0,250.0,48.6"), "conditions.csv:3: belt_speed_mps"},
+      {"negative flow", "conditions.csv",
+       replace_line("conditions.csv", 4, "V3-28,3.0,-28.0,400.0,250.0,25.8"), "conditions.csv:4: mass_flow_tph"},
+      {"negative measured speed", "measurements.csv",
+       replace_line("measurements.csv", 6, "V2-26,impact_velocity_mps,-1.9,0.01"), "measurements.csv:6: value"},
+      {"unknown condition", "measurements.csv",
+       replace_line("measurements.csv", 7, "V9-99,exit_velocity_mps,1.7,0.003"), "measurements.csv:7: condition"},
+      {"duplicate measurement", "measurements.csv",
+       replace_line("measurements.csv", 3, "V2-26,normal_force_N,14.910,0.068"), "measurements.csv:3: quantity"},
+      {"duplicate condition", "conditions.csv",
+       replace_line("conditions.csv", 3, "V2-26,2.0,41.0,300.0,250.0,48.6"), "conditions.csv:3: condition"},
+      {"trajectory non-number", "trajectory.csv",
+       replace_line("trajectory.csv", 2, "V2-26,upper,100.0,inf,1.0"), "trajectory.csv:2: y_mm"},
+      {"unknown boundary", "trajectory.csv",
+       replace_line("trajectory.csv", 3, "V2-26,middle,150.0,133.1,1.0"), "trajectory.csv:3: boundary"},
+      {"malformed TOML", "setup.toml", "name = \"x\"\n[belt\npulley_diameter_mm = 250\n", "setup.toml:2"},
+      {"missing TOML key", "setup.toml",
+       "name = \"x\"\n[belt]\npulley_diameter_mm = 250.0\n", "setup.toml: belt.belt_thickness_mm"},
+      {"impossible geometry", "setup.toml", replace_line("setup.toml", 7, "loaded_width_mm = 400.0"),
+       "setup.toml: loaded_width_mm"},
+      {"value outside its physical range", "setup.toml",
+       replace_line("setup.toml", 24, "restitution_plate = 1.66"), "setup.toml:24: material.restitution_plate"},
+  };
+  int n = 0;
+  for (const auto& c : cases) {
+    BOOST_TEST_CONTEXT(c.label) {
+      const fs::path d = dataset_with("bad" + std::to_string(n++), c.file, c.text);
+      const fs::path out = d / "out";
+      const auto r = run_chutelab("validate --dataset '" + d.string() + "' --out '" + out.string() + "'");
+      BOOST_TEST(r.exit_code == 2);
+      BOOST_TEST(count_lines(r.err) == 1);
+      BOOST_TEST(r.err.find(c.expect_in_message) != std::string::npos, "message: " << r.err);
+      BOOST_TEST(!fs::exists(out));  // nothing written, not even the folder
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(plate_that_the_stream_misses_is_reported_at_its_condition_line) {
+  // A plate 1.5 m away at 2 m/s: the stream falls below it. Found after parsing, still located.
+  const fs::path d = dataset_with("miss", "conditions.csv",
+                                  replace_line("conditions.csv", 2, "V2-26,2.0,26.0,1500.0,250.0,34.2"));
+  const auto r = run_chutelab("validate --dataset '" + d.string() + "' --out '" + (d / "out").string() + "'");
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.err.find("conditions.csv:2: plate_top_mm") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("misses the plate") != std::string::npos);
+  BOOST_TEST(!fs::exists(d / "out"));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
