@@ -7,6 +7,7 @@
 #include "core/input_error.h"
 #include "reports/report.h"
 #include "validation/dataset.h"
+#include "validation/diagnosis.h"
 #include "validation/harness.h"
 #include "validation/output_files.h"
 #include "validation/tolerances.h"
@@ -17,6 +18,7 @@ namespace {
 struct ValidateCli {
   std::string dataset, out, tolerances, models = "korzen,booth-cema";
   std::vector<std::string> effects;
+  bool diagnose = false;
 };
 
 std::vector<std::string> split_list(const std::string& s) {
@@ -63,14 +65,27 @@ int run_validate(const ValidateCli& o) {
   report.notes = applied.notes;
   const auto& final_result = after ? *after : baseline;
 
-  validation::write_outputs(
-      o.out, {{"predictions.csv", validation::predictions_csv(final_result)},
-              {"errors.csv", validation::errors_csv(final_result)},
-              {"summary.csv", validation::summary_csv(final_result)},
-              {"report.md", reports::report_markdown(report)},
-              {"report.html", reports::report_html(report)}});
+  // "What is missing" comes from the models as they are, so the reader sees why an effect was added.
+  std::optional<validation::DiagnosisResult> diagnosis;
+  if (o.diagnose || !o.effects.empty()) {
+    diagnosis = validation::diagnose(dataset, in_registry_order(models));
+    report.diagnosis = &*diagnosis;
+  }
+
+  std::vector<validation::OutputFile> files = {
+      {"predictions.csv", validation::predictions_csv(final_result)},
+      {"errors.csv", validation::errors_csv(final_result)},
+      {"summary.csv", validation::summary_csv(final_result)},
+      {"report.md", reports::report_markdown(report)},
+      {"report.html", reports::report_html(report)}};
+  if (diagnosis) {
+    files.emplace_back("diagnosis.csv", validation::diagnosis_csv(*diagnosis));
+    files.emplace_back("diagnosis.md", validation::diagnosis_markdown(*diagnosis));
+  }
+  validation::write_outputs(o.out, files);
   if (after) std::cout << "before: " << baseline.brief() << "\nafter:  " << after->brief() << "\n";
   else std::cout << baseline.brief() << "\n";
+  if (diagnosis) std::cout << diagnosis->verdict << "\n";
   std::cout << fmt::format("report: {}\n", (fs::path(o.out) / "report.html").string());
   return final_result.acceptance_failed ? kExitAcceptanceFailed : kExitOk;
 }
@@ -88,6 +103,8 @@ void add_validate(CLI::App& app, Action& action) {
                   "add a physical effect: NAME=VALUE or NAME=fit (calibrated on the dataset)");
   cmd->add_option("--tolerances", o->tolerances,
                   "acceptance tolerances (default: the dataset's tolerances.toml if present)");
+  cmd->add_flag("--diagnose", o->diagnose,
+                "also rank the candidate missing effects (always done when --effect is given)");
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_validate(*o); }; });
 }

@@ -122,6 +122,23 @@ std::vector<ResidualPattern> residual_patterns(const Misfit& m, const std::vecto
   return out;
 }
 
+// Where the chi^2 of the models as they are comes from, by quantity, largest first (top three).
+std::string largest_misfit(const Misfit& m, const std::vector<double>& r) {
+  std::map<std::string, double> share;
+  double total = 0.0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    share[quantity_words(m.points()[i].quantity)] += r[i] * r[i];
+    total += r[i] * r[i];
+  }
+  std::vector<std::pair<double, std::string>> sorted;
+  for (const auto& [q, c] : share) sorted.emplace_back(c, q);
+  std::sort(sorted.rbegin(), sorted.rend());
+  std::vector<std::string> parts;
+  for (std::size_t i = 0; i < sorted.size() && i < 3; ++i)
+    parts.push_back(fmt::format("{} ({:.0f} % of chi^2)", sorted[i].second, 100 * sorted[i].first / total));
+  return fmt::format("{}", fmt::join(parts, ", "));
+}
+
 EffectFit make_fit(const Misfit& m, std::vector<const effects::EffectInfo*> fx, const StrengthFit& f,
                    double chi2_before) {
   EffectFit e;
@@ -265,13 +282,28 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
       est += fmt::format("{}{} = {:.4g} ± {:.2g}{}", i ? ", " : "", info->parameter, b.estimate[i],
                          b.uncertainty[i], info->unit.empty() ? "" : " " + info->unit);
     }
-    out.verdict = fmt::format(
-        "Missing effect: {} ({}). It lowers chi^2 from {:.1f} to {:.1f} for {} data, explains {:.0f} % "
-        "of the excess misfit, delta BIC {:.1f}{}.",
-        b.label(), est, b.chi2_before, b.chi2_after, out.n_data, 100 * b.explained_fraction, b.delta_bic,
-        out.indistinguishable.empty()
-            ? ""
-            : fmt::format("; about as good: {}", fmt::join(out.indistinguishable, ", ")));
+    bool at_bound = false;
+    for (std::size_t i = 0; i < b.effects.size(); ++i) {
+      const auto* info = effects::find(b.effects[i]);
+      const double span = info->upper - info->lower;
+      at_bound = at_bound || b.estimate[i] <= info->lower + 1e-3 * span ||
+                 b.estimate[i] >= info->upper - 1e-3 * span;
+    }
+    if (b.explained_fraction >= 0.7 && !at_bound) {
+      out.verdict = fmt::format(
+          "Missing effect: {} ({}). It lowers chi^2 from {:.1f} to {:.1f} for {} data, explains {:.0f} % "
+          "of the excess misfit, delta BIC {:.1f}{}.",
+          b.label(), est, b.chi2_before, b.chi2_after, out.n_data, 100 * b.explained_fraction, b.delta_bic,
+          out.indistinguishable.empty()
+              ? ""
+              : fmt::format("; about as good: {}", fmt::join(out.indistinguishable, ", ")));
+    } else {
+      out.verdict = fmt::format(
+          "No effect in the library explains the misfit well: the best candidate, {} ({}), removes "
+          "only {:.0f} % of the excess misfit{}. Most of the failure lies elsewhere: {}.",
+          b.label(), est, 100 * b.explained_fraction,
+          at_bound ? " and needs a strength at the edge of its physical range" : "", largest_misfit(m, r0));
+    }
   } else if (out.baseline_p_value < opt.alpha) {
     out.verdict = fmt::format(
         "The models miss the data (chi^2 = {:.1f} for {} data, p = {:.2g}) but no effect in the "
