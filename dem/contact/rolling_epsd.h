@@ -38,9 +38,9 @@ struct RollingEpsd {
       total = m;
     } else {
       // Inertia about the contact point; a wall (m_j == 0) is infinitely heavy.
-      const double ii = 1.0 / (1.0 / k.inv_inertia_i + k.m_i * k.r_i * k.r_i);
+      const double inv_i = 1.0 / (1.0 / k.inv_inertia_i + k.m_i * k.r_i * k.r_i);
       const double inv_j = k.m_j > 0.0 ? 1.0 / (1.0 / k.inv_inertia_j + k.m_j * k.r_j * k.r_j) : 0.0;
-      const double ir = 1.0 / (1.0 / ii + inv_j);
+      const double ir = 1.0 / (inv_i + inv_j);
       total -= c.rolling_damping_ratio * 2.0 * std::sqrt(ir * kr) * wr;
     }
     ti += total;
