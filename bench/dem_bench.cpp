@@ -1,0 +1,157 @@
+// chutelab side of bench/dem_vs_liggghts: a dense bed of ~20 000 spheres (Hertz-Mindlin with tangential
+// history and constant-torque rolling friction, 9 mm polyethylene-like pellets, dt = 3e-5 s) in a box of
+// five planes. Modes:
+//   settle  --out FILE.ckpt --data FILE.data   pour from a loose lattice and settle; write the state as
+//                                              a chutelab checkpoint and as a LIGGGHTS data file
+//   run     --in FILE.ckpt --steps N --threads T   time N steps from the settled state; prints psps
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include "dem/world.h"
+
+using namespace chutelab::dem;
+
+namespace {
+
+struct Params {
+  int particles = 20000;
+  double box = 0.2;        // m, square base side
+  double radius = 4.5e-3;  // m (9 mm spheres, +-5 % uniform so the bed does not crystallise)
+  double dt = 3e-5;        // s (the seed's LIGGGHTS virtual rig)
+  double skin = 1.0e-3;    // m, Verlet skin (same in LIGGGHTS: neighbor 0.001 bin)
+  double settle_time = 0.35;
+  int threads = 1;
+  std::int64_t steps = 2000;
+  std::string in, out, data;
+};
+
+World make_world(const Params& P, bool add_particles) {
+  Settings s;
+  s.dt = P.dt;
+  s.skin = P.skin;
+  s.threads = P.threads;
+  s.gravity = Vec3(0, 0, -9.81);
+  s.normal = NormalModel::hertz_mindlin;
+  s.tangential = TangentialModel::coulomb_history;
+  s.rolling = RollingModel::constant_torque;
+  s.domain = Box{Vec3(-0.01, -0.01, -0.01), Vec3(P.box + 0.01, P.box + 0.01, 2.0)};
+  World w(s);
+  // Seed study material (polyethylene pellets, LIGGGHTS rig modulus) and steel walls.
+  const int pe = w.materials().add({"pellet", 2.5e7, 0.38, 1000});
+  const int steel = w.materials().add({"steel", 2.0e11, 0.30, 7800});
+  Interaction pp, pw;
+  pp.friction = 0.3;
+  pp.rolling_friction = 0.1;
+  pp.restitution = 0.7;
+  pw.friction = 0.27;
+  pw.rolling_friction = 0.1;
+  pw.restitution = 0.66;
+  w.materials().set_interaction(pe, pe, pp);
+  w.materials().set_interaction(pe, steel, pw);
+  w.materials().set_interaction(steel, steel, pw);
+  w.add_wall(Wall::plane("floor", Vec3(0, 0, 0), Vec3::UnitZ(), steel));
+  w.add_wall(Wall::plane("x0", Vec3(0, 0, 0), Vec3::UnitX(), steel));
+  w.add_wall(Wall::plane("x1", Vec3(P.box, 0, 0), -Vec3::UnitX(), steel));
+  w.add_wall(Wall::plane("y0", Vec3(0, 0, 0), Vec3::UnitY(), steel));
+  w.add_wall(Wall::plane("y1", Vec3(0, P.box, 0), -Vec3::UnitY(), steel));
+  if (add_particles) {
+    const double rmax = 1.05 * P.radius;
+    const double pitch = 2.0 * rmax * 1.04;
+    const int per_row = static_cast<int>(std::floor((P.box - 2 * rmax) / pitch)) + 1;
+    std::uint64_t seed = 2024;
+    for (int k = 0; k < P.particles; ++k) {
+      const int ix = k % per_row, iy = (k / per_row) % per_row, iz = k / (per_row * per_row);
+      Vec3 x(rmax + ix * pitch, rmax + iy * pitch, rmax + iz * pitch);
+      x.x() += 0.02 * P.radius * (uniform01(seed) - 0.5);
+      x.y() += 0.02 * P.radius * (uniform01(seed) - 0.5);
+      const double r = P.radius * (0.95 + 0.1 * uniform01(seed));
+      w.add_particle({x, Vec3(0, 0, -0.5), Vec3::Zero(), r, pe});
+    }
+  }
+  return w;
+}
+
+void write_liggghts_data(const std::string& path, const World& w, const Params& P) {
+  std::ofstream f(path);
+  const auto& p = w.particles();
+  f << "LIGGGHTS data file written by chutelab dem_bench (settled bed)\n\n";
+  f << p.size() << " atoms\n2 atom types\n\n";
+  f << fmt::format("{:.9g} {:.9g} xlo xhi\n{:.9g} {:.9g} ylo yhi\n{:.9g} {:.9g} zlo zhi\n\n", -0.01, P.box + 0.01, -0.01,
+                   P.box + 0.01, -0.01, 2.0);
+  // atom_style granular: atom-ID atom-type diameter density x y z
+  f << "Atoms\n\n";
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double rho = p.mass[i] / (4.0 / 3.0 * M_PI * std::pow(p.radius[i], 3));
+    f << fmt::format("{} 1 {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}\n", i + 1, 2 * p.radius[i], rho, p.x[i].x(), p.x[i].y(),
+                     p.x[i].z());
+  }
+  f << "\nVelocities\n\n";  // atom-ID vx vy vz wx wy wz
+  for (std::size_t i = 0; i < p.size(); ++i)
+    f << fmt::format("{} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}\n", i + 1, p.v[i].x(), p.v[i].y(), p.v[i].z(),
+                     p.w[i].x(), p.w[i].y(), p.w[i].z());
+}
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: dem_bench settle|run [--particles N] [--steps N] [--threads T] [--in F] [--out F] [--data F]\n");
+    return 2;
+  }
+  const std::string mode = argv[1];
+  Params P;
+  for (int a = 2; a + 1 < argc; a += 2) {
+    const std::string k = argv[a], v = argv[a + 1];
+    if (k == "--particles") P.particles = std::stoi(v);
+    else if (k == "--steps") P.steps = std::stoll(v);
+    else if (k == "--threads") P.threads = std::stoi(v);
+    else if (k == "--settle-time") P.settle_time = std::stod(v);
+    else if (k == "--in") P.in = v;
+    else if (k == "--out") P.out = v;
+    else if (k == "--data") P.data = v;
+    else { std::fprintf(stderr, "unknown option %s\n", k.c_str()); return 2; }
+  }
+  if (mode == "settle") {
+    P.threads = P.threads > 0 ? P.threads : omp_get_max_threads();
+    World w = make_world(P, true);
+    w.initialise();
+    const double t0 = now();
+    const auto steps = static_cast<std::int64_t>(std::llround(P.settle_time / P.dt));
+    for (std::int64_t s = 0; s < steps; s += 1000) {
+      w.step(std::min<std::int64_t>(1000, steps - s));
+      std::fprintf(stderr, "settle t=%.3f s  KE=%.3e J  contacts=%zu  (%.1f s wall)\n", w.time(), w.energy().translational,
+                   w.contact_count(), now() - t0);
+    }
+    w.save_checkpoint(P.out);
+    if (!P.data.empty()) write_liggghts_data(P.data, w, P);
+    double top = 0;
+    for (const auto& x : w.particles().x) top = std::max(top, x.z());
+    std::printf("settled %zu particles, bed top %.4f m, %zu contacts, %zu wall contacts\n", w.particles().size(), top,
+                w.contact_count(), w.wall_contact_count());
+    return 0;
+  }
+  if (mode == "run") {
+    World w = make_world(P, false);
+    w.load_checkpoint(P.in);
+    const std::int64_t r0 = w.rebuild_count();
+    const double t0 = now();
+    w.step(P.steps);
+    const double t1 = now();
+    const double psps = static_cast<double>(w.particles().size()) * static_cast<double>(P.steps) / (t1 - t0);
+    std::printf("threads=%d particles=%zu steps=%lld seconds=%.3f rebuilds=%lld contacts=%zu psps=%.0f\n", P.threads,
+                w.particles().size(), static_cast<long long>(P.steps), t1 - t0,
+                static_cast<long long>(w.rebuild_count() - r0), w.contact_count(), psps);
+    return 0;
+  }
+  std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
+  return 2;
+}

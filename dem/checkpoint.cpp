@@ -1,0 +1,165 @@
+// Binary checkpoint of a World's dynamic state (everything the next step reads), so that a restarted
+// run continues bit-identically. The scene definition (materials, walls, inserters, sinks, settings)
+// is rebuilt by the caller and checked against the file.
+#include <cstring>
+#include <fstream>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "core/input_error.h"
+#include "dem/world.h"
+
+namespace chutelab::dem {
+namespace {
+
+constexpr char kMagic[8] = {'C', 'H', 'L', 'D', 'E', 'M', 'C', 'K'};
+constexpr std::uint32_t kVersion = 1;
+
+struct Writer {
+  std::ofstream out;
+  template <class T>
+  void pod(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T> || std::is_same_v<T, Vec3>);  // Vec3 is three doubles
+    out.write(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  template <class T>
+  void vec(const std::vector<T>& v) {
+    pod(static_cast<std::uint64_t>(v.size()));
+    if (!v.empty()) out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+  }
+};
+
+struct Reader {
+  std::ifstream in;
+  std::string path;
+  template <class T>
+  void pod(T& v, const char* what) {
+    in.read(reinterpret_cast<char*>(&v), sizeof v);
+    if (!in) throw InputError(path, 0, what, "checkpoint is truncated");
+  }
+  template <class T>
+  void vec(std::vector<T>& v, const char* what) {
+    std::uint64_t n = 0;
+    pod(n, what);
+    if (n > (1ULL << 36)) throw InputError(path, 0, what, "checkpoint array size is corrupt");
+    v.resize(n);
+    if (n) in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
+    if (!in) throw InputError(path, 0, what, "checkpoint is truncated");
+  }
+};
+
+}  // namespace
+
+void World::save_checkpoint(const std::string& path) const {
+  Writer w{std::ofstream(path, std::ios::binary)};
+  if (!w.out) throw InputError(path, 0, "", "cannot write checkpoint");
+  w.out.write(kMagic, 8);
+  w.pod(kVersion);
+  w.pod(static_cast<std::int32_t>(settings_.normal));
+  w.pod(static_cast<std::int32_t>(settings_.tangential));
+  w.pod(static_cast<std::int32_t>(settings_.rolling));
+  w.pod(static_cast<std::int32_t>(materials_.size()));
+  w.pod(static_cast<std::uint64_t>(walls_.size()));
+  w.pod(static_cast<std::uint64_t>(inserters_.size()));
+  w.pod(static_cast<std::uint64_t>(sinks_.size()));
+  w.pod(static_cast<std::uint8_t>(initialised_));
+  w.pod(time_);
+  w.pod(dt_);
+  w.pod(skin_);
+  w.pod(max_speed_);
+  w.pod(max_disp_);
+  w.pod(step_);
+  w.pod(next_id_);
+  w.pod(rebuilds_);
+  w.pod(static_cast<std::uint8_t>(list_dirty_));
+  w.vec(p_.x); w.vec(p_.v); w.vec(p_.w); w.vec(p_.f); w.vec(p_.t);
+  w.vec(p_.radius); w.vec(p_.mass); w.vec(p_.inv_mass); w.vec(p_.inv_inertia);
+  w.vec(p_.material); w.vec(p_.id);
+  w.vec(nl_.row_begin); w.vec(nl_.nbr); w.vec(nl_.shear); w.vec(nl_.roll);
+  w.vec(nl_.rev_begin); w.vec(nl_.rev_slot); w.vec(nl_.touch);
+  w.vec(wc_.begin); w.vec(wc_.wall); w.vec(wc_.element); w.vec(wc_.shear); w.vec(wc_.roll); w.vec(wc_.touch);
+  w.vec(wc_.out_f); w.vec(wc_.out_t); w.vec(wc_.out_point);
+  w.vec(x_ref_); w.vec(wall_time_ref_); w.vec(index_map_);
+  for (const auto& wl : walls_) {
+    w.pod(static_cast<std::uint64_t>(wl.element_count()));
+    w.pod(wl.force); w.pod(wl.torque); w.vec(wl.element_force);
+  }
+  for (const auto& in : inserters_) {
+    w.pod(in.rng_state); w.pod(in.pending_mass); w.pod(in.inserted_mass); w.pod(in.next_time);
+    w.pod(static_cast<std::uint8_t>(in.warned_full));
+  }
+  for (const auto& s : sinks_) { w.pod(s.removed_mass); w.pod(s.removed_count); }
+  if (!w.out) throw InputError(path, 0, "", "error while writing checkpoint");
+}
+
+void World::load_checkpoint(const std::string& path) {
+  Reader r{std::ifstream(path, std::ios::binary), path};
+  if (!r.in) throw InputError(path, 0, "", "cannot open checkpoint");
+  char magic[8];
+  r.in.read(magic, 8);
+  if (!r.in || std::memcmp(magic, kMagic, 8) != 0) throw InputError(path, 0, "header", "not a chutelab DEM checkpoint");
+  std::uint32_t version;
+  r.pod(version, "version");
+  if (version != kVersion) throw InputError(path, 0, "version", fmt::format("checkpoint version {} (this build reads {})", version, kVersion));
+  std::int32_t nm, tm, rm, mats;
+  std::uint64_t nw, ni, ns;
+  r.pod(nm, "normal model"); r.pod(tm, "tangential model"); r.pod(rm, "rolling model"); r.pod(mats, "materials");
+  r.pod(nw, "walls"); r.pod(ni, "inserters"); r.pod(ns, "sinks");
+  auto mismatch = [&](const char* what, auto file, auto scene) {
+    throw InputError(path, 0, what, fmt::format("checkpoint has {} but the scene has {}", file, scene));
+  };
+  if (nm != static_cast<std::int32_t>(settings_.normal)) mismatch("normal model", nm, static_cast<int>(settings_.normal));
+  if (tm != static_cast<std::int32_t>(settings_.tangential)) mismatch("tangential model", tm, static_cast<int>(settings_.tangential));
+  if (rm != static_cast<std::int32_t>(settings_.rolling)) mismatch("rolling model", rm, static_cast<int>(settings_.rolling));
+  if (mats != materials_.size()) mismatch("materials", mats, materials_.size());
+  if (nw != walls_.size()) mismatch("walls", nw, walls_.size());
+  if (ni != inserters_.size()) mismatch("inserters", ni, inserters_.size());
+  if (ns != sinks_.size()) mismatch("sinks", ns, sinks_.size());
+  std::uint8_t init, dirty;
+  r.pod(init, "state");
+  r.pod(time_, "time"); r.pod(dt_, "dt"); r.pod(skin_, "skin"); r.pod(max_speed_, "max speed");
+  r.pod(max_disp_, "displacement"); r.pod(step_, "step"); r.pod(next_id_, "next id"); r.pod(rebuilds_, "rebuilds");
+  r.pod(dirty, "state");
+  r.vec(p_.x, "x"); r.vec(p_.v, "v"); r.vec(p_.w, "w"); r.vec(p_.f, "f"); r.vec(p_.t, "t");
+  r.vec(p_.radius, "radius"); r.vec(p_.mass, "mass"); r.vec(p_.inv_mass, "inv_mass"); r.vec(p_.inv_inertia, "inv_inertia");
+  r.vec(p_.material, "material"); r.vec(p_.id, "id");
+  const std::size_t n = p_.x.size();
+  if (p_.v.size() != n || p_.w.size() != n || p_.f.size() != n || p_.t.size() != n || p_.radius.size() != n ||
+      p_.mass.size() != n || p_.inv_mass.size() != n || p_.inv_inertia.size() != n || p_.id.size() != n ||
+      p_.material.size() != n)
+    throw InputError(path, 0, "particles", "particle arrays have different lengths");
+  for (auto m : p_.material)
+    if (m < 0 || m >= materials_.size()) throw InputError(path, 0, "particles", "particle material index out of range");
+  r.vec(nl_.row_begin, "neighbour list"); r.vec(nl_.nbr, "neighbour list"); r.vec(nl_.shear, "history");
+  r.vec(nl_.roll, "history"); r.vec(nl_.rev_begin, "neighbour list"); r.vec(nl_.rev_slot, "neighbour list");
+  r.vec(nl_.touch, "history");
+  r.vec(wc_.begin, "wall list"); r.vec(wc_.wall, "wall list"); r.vec(wc_.element, "wall list");
+  r.vec(wc_.shear, "wall history"); r.vec(wc_.roll, "wall history"); r.vec(wc_.touch, "wall history");
+  r.vec(wc_.out_f, "wall forces"); r.vec(wc_.out_t, "wall forces"); r.vec(wc_.out_point, "wall forces");
+  r.vec(x_ref_, "reference positions"); r.vec(wall_time_ref_, "wall times"); r.vec(index_map_, "index map");
+  if (nl_.row_begin.size() != n + 1 || wc_.begin.size() != n + 1 || x_ref_.size() != n)
+    throw InputError(path, 0, "neighbour list", "sizes do not match the particle count");
+  const std::size_t slots = nl_.nbr.size();
+  nl_.out_f.resize(slots); nl_.out_ti.resize(slots); nl_.out_tj.resize(slots);
+  for (auto& wl : walls_) {
+    std::uint64_t ne;
+    r.pod(ne, "wall elements");
+    if (ne != wl.element_count()) mismatch("wall elements", ne, wl.element_count());
+    r.pod(wl.force, "wall force"); r.pod(wl.torque, "wall torque"); r.vec(wl.element_force, "wall element forces");
+    wl.set_time(time_);
+  }
+  for (auto& in : inserters_) {
+    std::uint8_t warned;
+    r.pod(in.rng_state, "inserter"); r.pod(in.pending_mass, "inserter"); r.pod(in.inserted_mass, "inserter");
+    r.pod(in.next_time, "inserter"); r.pod(warned, "inserter");
+    in.warned_full = warned != 0;
+  }
+  for (auto& s : sinks_) { r.pod(s.removed_mass, "sink"); r.pod(s.removed_count, "sink"); }
+  if (settings_.dt > 0.0 && settings_.dt != dt_)
+    warn(fmt::format("checkpoint {} uses dt = {:.6g} s; the scene's dt {:.6g} s is ignored", path, dt_, settings_.dt));
+  initialised_ = init != 0;
+  list_dirty_ = dirty != 0;
+}
+
+}  // namespace chutelab::dem

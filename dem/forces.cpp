@@ -1,0 +1,342 @@
+// Contact force evaluation. One template per contact-model combination (no virtual call in the loop);
+// compute_forces() picks the instantiation at run time.
+#include <algorithm>
+#include <cmath>
+
+#include <omp.h>
+
+#include "dem/walls/closest_point.h"
+#include "dem/world.h"
+
+namespace chutelab::dem {
+namespace {
+
+struct WallGeom {
+  Vec3 n;        // unit, from the sphere centre towards the wall
+  double delta;  // overlap
+  Vec3 point;    // contact point on the wall surface
+  TriFeature feature;
+};
+
+bool plane_contact(const Plane& p, const Vec3& x, double r, WallGeom& g) {
+  const Vec3 rel = x - p.point;
+  const double s = rel.dot(p.normal);
+  if (s >= r) return false;
+  if (std::abs(rel.dot(p.axis_u)) > p.half_u || std::abs(rel.dot(p.axis_v)) > p.half_v) return false;
+  g.n = -p.normal;
+  g.delta = r - s;
+  g.point = x - s * p.normal;
+  g.feature = TriFeature::face;
+  return true;
+}
+
+bool cylinder_contact(const Cylinder& c, const Vec3& x, double r, WallGeom& g) {
+  const Vec3 rel = x - c.point;
+  const double a = rel.dot(c.axis);
+  if (a < c.axial_min || a > c.axial_max) return false;
+  const Vec3 radial = rel - a * c.axis;
+  const double rho = radial.norm();
+  if (!(rho > 0.0)) return false;
+  const Vec3 out = radial / rho;
+  const double gap = c.inside ? c.radius - rho : rho - c.radius;  // centre to surface
+  if (gap >= r) return false;
+  g.n = c.inside ? out : Vec3(-out);
+  g.delta = r - gap;
+  g.point = c.point + a * c.axis + c.radius * out;
+  g.feature = TriFeature::face;
+  return true;
+}
+
+}  // namespace
+
+template <class Model>
+void World::compute_forces_impl() {
+  const std::size_t n = p_.size();
+  const int nt = thread_count();
+  const double dt = dt_;
+  const Vec3 g = settings_.gravity;
+  const Vec3* x = p_.x.data();
+  const Vec3* v = p_.v.data();
+  const Vec3* w = p_.w.data();
+  const double* rad = p_.radius.data();
+  const double* mass = p_.mass.data();
+  const double* inv_i = p_.inv_inertia.data();
+  const std::int32_t* mat = p_.material.data();
+  const std::int32_t* row = nl_.row_begin.data();
+  const std::int32_t* nbr = nl_.nbr.data();
+  Vec3* shear = nl_.shear.data();
+  Vec3* roll = nl_.roll.data();
+  std::uint8_t* touch = nl_.touch.data();
+  const MaterialTable& mt = materials_;
+
+  // One pair: returns false when the spheres do not touch (history reset).
+  auto pair = [&](std::size_t i, std::size_t s, ContactForce& out) -> bool {
+    const auto j = static_cast<std::size_t>(nbr[s]);
+    const Vec3 d = x[j] - x[i];
+    const double r2 = d.squaredNorm();
+    const double rs = rad[i] + rad[j];
+    if (r2 >= rs * rs) {
+      if (touch[s]) {
+        touch[s] = 0;
+        shear[s].setZero();
+        if constexpr (Model::rolling_history) roll[s].setZero();
+      }
+      return false;
+    }
+    touch[s] = 1;
+    const double dist = std::sqrt(r2);
+    ContactKinematics k;
+    k.n = d / dist;
+    k.delta = rs - dist;
+    k.r_i = rad[i];
+    k.r_j = rad[j];
+    k.v_rel = (v[i] - v[j]) + (rad[i] * w[i] + rad[j] * w[j]).cross(k.n);
+    k.w_rel = w[i] - w[j];
+    k.r_eff = rad[i] * rad[j] / rs;
+    k.m_eff = mass[i] * mass[j] / (mass[i] + mass[j]);
+    k.inv_inertia_i = inv_i[i];
+    k.inv_inertia_j = inv_i[j];
+    k.m_i = mass[i];
+    k.m_j = mass[j];
+    out = Model::compute(mt.pair(mat[i], mat[j]), k, shear[s], roll + s, dt);
+    return true;
+  };
+
+  // Wall contacts of one particle, into per-entry storage. Within one mesh, face contacts win over
+  // edge contacts and edges over vertices, so a sphere on a flat or convex seam touches once.
+  auto walls_of = [&](std::size_t i) {
+    const auto b = static_cast<std::size_t>(wc_.begin[i]);
+    const auto e = static_cast<std::size_t>(wc_.begin[i + 1]);
+    thread_local std::vector<WallGeom> geo;
+    thread_local std::vector<char> hit;
+    std::size_t k = b;
+    while (k < e) {
+      const std::size_t wi = static_cast<std::size_t>(wc_.wall[k]);
+      std::size_t kend = k;
+      while (kend < e && static_cast<std::size_t>(wc_.wall[kend]) == wi) ++kend;
+      const Wall& wl = walls_[wi];
+      geo.resize(kend - k);
+      hit.assign(kend - k, 0);
+      if (const auto* m = std::get_if<TriangleMesh>(&wl.current)) {
+        for (std::size_t q = k; q < kend; ++q) {
+          const auto& t = m->triangles[static_cast<std::size_t>(wc_.element[q])];
+          const TriClosest cp = closest_point_on_triangle(x[i], m->vertices[static_cast<std::size_t>(t[0])],
+                                                          m->vertices[static_cast<std::size_t>(t[1])],
+                                                          m->vertices[static_cast<std::size_t>(t[2])]);
+          const Vec3 d = cp.point - x[i];
+          const double dist = d.norm();
+          WallGeom& gq = geo[q - k];
+          if (dist >= rad[i] || !(dist > 0.0)) continue;
+          gq.n = d / dist;
+          gq.delta = rad[i] - dist;
+          gq.point = cp.point;
+          gq.feature = cp.feature;
+          hit[q - k] = 1;
+        }
+        // Resolve faces, then edges, then vertices.
+        auto tri_has = [&](std::size_t q, std::int32_t vtx) {
+          const auto& t = m->triangles[static_cast<std::size_t>(wc_.element[q])];
+          return t[0] == vtx || t[1] == vtx || t[2] == vtx;
+        };
+        auto feature_vertices = [&](std::size_t q, std::int32_t& a, std::int32_t& bb) {
+          const auto& t = m->triangles[static_cast<std::size_t>(wc_.element[q])];
+          switch (geo[q - k].feature) {
+            case TriFeature::edge_ab: a = t[0]; bb = t[1]; break;
+            case TriFeature::edge_bc: a = t[1]; bb = t[2]; break;
+            case TriFeature::edge_ca: a = t[2]; bb = t[0]; break;
+            case TriFeature::vertex_a: a = bb = t[0]; break;
+            case TriFeature::vertex_b: a = bb = t[1]; break;
+            case TriFeature::vertex_c: a = bb = t[2]; break;
+            default: a = bb = -1;
+          }
+          if (a > bb) std::swap(a, bb);
+        };
+        for (int pass = 1; pass <= 2; ++pass) {  // 1: edges, 2: vertices
+          for (std::size_t q = k; q < kend; ++q) {
+            if (!hit[q - k]) continue;
+            const TriFeature f = geo[q - k].feature;
+            const bool is_edge = f == TriFeature::edge_ab || f == TriFeature::edge_bc || f == TriFeature::edge_ca;
+            const bool is_vertex = f == TriFeature::vertex_a || f == TriFeature::vertex_b || f == TriFeature::vertex_c;
+            if ((pass == 1 && !is_edge) || (pass == 2 && !is_vertex)) continue;
+            std::int32_t a, bb;
+            feature_vertices(q, a, bb);
+            bool shadowed = false;
+            for (std::size_t o = k; o < kend && !shadowed; ++o) {
+              if (o == q || !hit[o - k]) continue;
+              const TriFeature fo = geo[o - k].feature;
+              if (fo == TriFeature::face) {
+                shadowed = tri_has(o, a) && tri_has(o, bb);
+              } else {
+                const bool o_edge = fo == TriFeature::edge_ab || fo == TriFeature::edge_bc || fo == TriFeature::edge_ca;
+                std::int32_t oa, ob;
+                feature_vertices(o, oa, ob);
+                if (pass == 1 && o_edge) shadowed = (oa == a && ob == bb && o < q);
+                if (pass == 2 && o_edge) shadowed = (oa == a || ob == a);
+                if (pass == 2 && !o_edge) shadowed = (oa == a && o < q);
+              }
+            }
+            if (shadowed) hit[q - k] = 0;
+          }
+        }
+      } else {
+        for (std::size_t q = k; q < kend; ++q) {
+          WallGeom& gq = geo[q - k];
+          if (const auto* p = std::get_if<Plane>(&wl.current))
+            hit[q - k] = plane_contact(*p, x[i], rad[i], gq);
+          else
+            hit[q - k] = cylinder_contact(std::get<Cylinder>(wl.current), x[i], rad[i], gq);
+        }
+      }
+      const PairCoeffs& c = mt.pair(mat[i], wl.material);
+      const Vec3 ww = wl.angular_velocity();
+      for (std::size_t q = k; q < kend; ++q) {
+        if (!hit[q - k]) {
+          if (wc_.touch[q]) {
+            wc_.touch[q] = 0;
+            wc_.shear[q].setZero();
+            wc_.roll[q].setZero();
+          }
+          continue;
+        }
+        const WallGeom& gq = geo[q - k];
+        ContactKinematics kin;
+        kin.n = gq.n;
+        kin.delta = gq.delta;
+        kin.r_i = rad[i];
+        kin.r_j = 0.0;
+        kin.v_rel = v[i] + (rad[i] * w[i]).cross(gq.n) - wl.velocity_at(gq.point);
+        kin.w_rel = w[i] - ww;
+        kin.r_eff = rad[i];
+        kin.m_eff = mass[i];
+        kin.inv_inertia_i = inv_i[i];
+        kin.inv_inertia_j = 0.0;
+        kin.m_i = mass[i];
+        kin.m_j = 0.0;
+        const ContactForce cf = Model::compute(c, kin, wc_.shear[q], &wc_.roll[q], dt);
+        wc_.touch[q] = 1;
+        wc_.out_f[q] = cf.force;
+        wc_.out_t[q] = cf.torque_i;
+        wc_.out_point[q] = gq.point;
+      }
+      k = kend;
+    }
+  };
+
+  auto finish_particle = [&](std::size_t i, Vec3& fi, Vec3& ti) {
+    for (auto q = wc_.begin[i]; q < wc_.begin[i + 1]; ++q) {
+      const auto qs = static_cast<std::size_t>(q);
+      if (!wc_.touch[qs]) continue;
+      fi += wc_.out_f[qs];
+      ti += wc_.out_t[qs];
+    }
+    fi += mass[i] * g;
+  };
+
+  if (nt == 1) {
+    for (std::size_t i = 0; i < n; ++i) walls_of(i);
+    Vec3* f = p_.f.data();
+    Vec3* t = p_.t.data();
+    std::fill(p_.f.begin(), p_.f.end(), Vec3::Zero());
+    std::fill(p_.t.begin(), p_.t.end(), Vec3::Zero());
+    for (std::size_t i = 0; i < n; ++i) {
+      Vec3 fi = f[i], ti = t[i];
+      for (auto s = row[i]; s < row[i + 1]; ++s) {
+        ContactForce cf;
+        if (!pair(i, static_cast<std::size_t>(s), cf)) continue;
+        const auto j = static_cast<std::size_t>(nbr[s]);
+        fi += cf.force;
+        ti += cf.torque_i;
+        f[j] -= cf.force;
+        t[j] += cf.torque_j;
+      }
+      f[i] = fi;
+      t[i] = ti;
+    }
+    for (std::size_t i = 0; i < n; ++i) finish_particle(i, f[i], t[i]);
+  } else {
+    Vec3* of = nl_.out_f.data();
+    Vec3* oti = nl_.out_ti.data();
+    Vec3* otj = nl_.out_tj.data();
+    const std::int32_t* rb = nl_.rev_begin.data();
+    const std::int32_t* rs = nl_.rev_slot.data();
+#pragma omp parallel num_threads(nt)
+    {
+#pragma omp for schedule(dynamic, 256) nowait
+      for (std::size_t i = 0; i < n; ++i) walls_of(i);
+#pragma omp for schedule(dynamic, 256)
+      for (std::size_t i = 0; i < n; ++i)
+        for (auto s = row[i]; s < row[i + 1]; ++s) {
+          ContactForce cf;
+          if (!pair(i, static_cast<std::size_t>(s), cf)) continue;
+          of[s] = cf.force;
+          oti[s] = cf.torque_i;
+          otj[s] = cf.torque_j;
+        }
+      // Same order as the one-thread scatter: as second body by ascending row, then own row.
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        Vec3 fi = Vec3::Zero(), ti = Vec3::Zero();
+        for (auto r = rb[i]; r < rb[i + 1]; ++r) {
+          const auto s = static_cast<std::size_t>(rs[r]);
+          if (!touch[s]) continue;
+          fi -= of[s];
+          ti += otj[s];
+        }
+        for (auto s = row[i]; s < row[i + 1]; ++s) {
+          if (!touch[s]) continue;
+          fi += of[s];
+          ti += oti[s];
+        }
+        finish_particle(i, fi, ti);
+        p_.f[i] = fi;
+        p_.t[i] = ti;
+      }
+    }
+  }
+
+  // Wall loads, serially in entry order (deterministic).
+  for (auto& wl : walls_) {
+    wl.force.setZero();
+    wl.torque.setZero();
+    std::fill(wl.element_force.begin(), wl.element_force.end(), Vec3::Zero());
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (auto q = wc_.begin[i]; q < wc_.begin[i + 1]; ++q) {
+      const auto qs = static_cast<std::size_t>(q);
+      if (!wc_.touch[qs]) continue;
+      Wall& wl = walls_[static_cast<std::size_t>(wc_.wall[qs])];
+      const Vec3 fw = -wc_.out_f[qs];
+      const Vec3 c = wc_.out_point[qs];
+      const Vec3 lever = rad[i] * (c - x[i]).normalized();
+      const Vec3 rolling_couple = wc_.out_t[qs] - lever.cross(wc_.out_f[qs]);  // on the particle
+      wl.force += fw;
+      wl.element_force[static_cast<std::size_t>(wc_.element[qs])] += fw;
+      wl.torque += (c - wl.to_world(wl.load_point)).cross(fw) - rolling_couple;
+    }
+  if (body_force_) body_force_(p_, time_, p_.f);
+}
+
+void World::compute_forces() {
+  using HM = HertzMindlin;
+  using LSD = LinearSpringDashpot;
+  using CH = CoulombHistorySpring;
+  using NT = NoTangential;
+  const bool hertz = settings_.normal == NormalModel::hertz_mindlin;
+  const bool fric = settings_.tangential == TangentialModel::coulomb_history;
+  switch (settings_.rolling) {
+    case RollingModel::none:
+      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, NoRolling>>() : compute_forces_impl<ContactModel<HM, NT, NoRolling>>();
+      else fric ? compute_forces_impl<ContactModel<LSD, CH, NoRolling>>() : compute_forces_impl<ContactModel<LSD, NT, NoRolling>>();
+      break;
+    case RollingModel::constant_torque:
+      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, RollingConstantTorque>>() : compute_forces_impl<ContactModel<HM, NT, RollingConstantTorque>>();
+      else fric ? compute_forces_impl<ContactModel<LSD, CH, RollingConstantTorque>>() : compute_forces_impl<ContactModel<LSD, NT, RollingConstantTorque>>();
+      break;
+    case RollingModel::epsd:
+      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, RollingEpsd>>() : compute_forces_impl<ContactModel<HM, NT, RollingEpsd>>();
+      else fric ? compute_forces_impl<ContactModel<LSD, CH, RollingEpsd>>() : compute_forces_impl<ContactModel<LSD, NT, RollingEpsd>>();
+      break;
+  }
+}
+
+}  // namespace chutelab::dem

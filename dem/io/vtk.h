@@ -1,0 +1,14 @@
+#pragma once
+// Legacy VTK (.vtk, ASCII POLYDATA) output that ParaView opens: particles as points with id, radius,
+// velocity, angular velocity and force; walls (meshes and plane/cylinder patches) as polygons with the
+// per-triangle force.
+#include <string>
+
+#include "dem/world.h"
+
+namespace chutelab::dem {
+
+void write_vtk_particles(const std::string& path, const Particles& p);
+void write_vtk_walls(const std::string& path, const std::vector<Wall>& walls);
+
+}  // namespace chutelab::dem

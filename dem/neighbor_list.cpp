@@ -1,0 +1,292 @@
+// Neighbour search: a cell grid over the particles' bounding box (cell >= largest cut-off), particles
+// sorted by cell for memory locality, and a Verlet half list with cut-off R_i + R_j + skin that is kept
+// until some particle has moved more than skin/2 (or a wall more than skin minus that). Contact history
+// is carried over to the new list by particle index maps.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <omp.h>
+
+#include "dem/walls/closest_point.h"
+#include "dem/world.h"
+
+namespace chutelab::dem {
+namespace {
+
+constexpr double kInfinity() { return std::numeric_limits<double>::infinity(); }
+
+// Distance from a sphere centre to a wall element (for candidate lists), or +inf if out of reach.
+double element_distance(const Wall& w, std::size_t element, const Vec3& x) {
+  if (const auto* p = std::get_if<Plane>(&w.current)) {
+    const Vec3 r = x - p->point;
+    const double s = r.dot(p->normal);
+    if (std::abs(r.dot(p->axis_u)) > p->half_u + 1e-300 || std::abs(r.dot(p->axis_v)) > p->half_v + 1e-300) {
+      // Outside the strip: distance to the rectangle.
+      const double du = std::max(std::abs(r.dot(p->axis_u)) - p->half_u, 0.0);
+      const double dv = std::max(std::abs(r.dot(p->axis_v)) - p->half_v, 0.0);
+      return std::sqrt(s * s + du * du + dv * dv);
+    }
+    return s;  // signed: behind the plane counts as touching
+  }
+  if (const auto* c = std::get_if<Cylinder>(&w.current)) {
+    const Vec3 r = x - c->point;
+    const double a = r.dot(c->axis);
+    const double rho = (r - a * c->axis).norm();
+    const double radial = c->inside ? c->radius - rho : rho - c->radius;
+    const double axial = std::max({c->axial_min - a, a - c->axial_max, 0.0});
+    return std::hypot(std::max(radial, 0.0), axial) + std::min(radial, 0.0);
+  }
+  const auto& m = std::get<TriangleMesh>(w.current);
+  const auto& t = m.triangles[element];
+  const TriClosest cp = closest_point_on_triangle(x, m.vertices[static_cast<std::size_t>(t[0])],
+                                                  m.vertices[static_cast<std::size_t>(t[1])],
+                                                  m.vertices[static_cast<std::size_t>(t[2])]);
+  return (cp.point - x).norm();
+}
+
+}  // namespace
+
+void World::rebuild() {
+  const std::size_t n = p_.size();
+  const int nt = thread_count();
+  // Keep the old lists for the history transfer.
+  NeighborList old_nl;
+  std::swap(old_nl.row_begin, nl_.row_begin);
+  std::swap(old_nl.nbr, nl_.nbr);
+  std::swap(old_nl.shear, nl_.shear);
+  std::swap(old_nl.roll, nl_.roll);
+  std::swap(old_nl.touch, nl_.touch);
+  WallCandidates old_wc;
+  std::swap(old_wc.begin, wc_.begin);
+  std::swap(old_wc.wall, wc_.wall);
+  std::swap(old_wc.element, wc_.element);
+  std::swap(old_wc.shear, wc_.shear);
+  std::swap(old_wc.roll, wc_.roll);
+  std::swap(old_wc.touch, wc_.touch);
+  std::vector<std::int32_t> map = std::move(index_map_);  // old list index -> current index
+
+  // --- cell grid ---
+  double rmax = 0.0;
+  Vec3 lo = Vec3::Constant(kInfinity()), hi = Vec3::Constant(-kInfinity());
+  for (std::size_t i = 0; i < n; ++i) {
+    rmax = std::max(rmax, p_.radius[i]);
+    lo = lo.cwiseMin(p_.x[i]);
+    hi = hi.cwiseMax(p_.x[i]);
+  }
+  double h = 2.0 * rmax + skin_;
+  std::array<std::int64_t, 3> dim{1, 1, 1};
+  if (n > 0) {
+    // Cap the number of cells (sparse scenes, long trajectories) at a few per particle.
+    const double cap = std::max(8.0 * static_cast<double>(n), 4096.0);
+    for (;;) {
+      double total = 1.0;
+      for (int d = 0; d < 3; ++d) total *= std::floor((hi[d] - lo[d]) / h) + 1.0;
+      if (total <= cap) break;
+      h *= 1.25;
+    }
+    for (int d = 0; d < 3; ++d) dim[static_cast<std::size_t>(d)] = static_cast<std::int64_t>(std::floor((hi[d] - lo[d]) / h)) + 1;
+  }
+  const std::int64_t ncell = dim[0] * dim[1] * dim[2];
+  auto cell_coord = [&](const Vec3& x, int d) {
+    auto c = static_cast<std::int64_t>(std::floor((x[d] - lo[d]) / h));
+    return std::clamp<std::int64_t>(c, 0, dim[static_cast<std::size_t>(d)] - 1);
+  };
+  auto cell_of = [&](const Vec3& x) {
+    return (cell_coord(x, 2) * dim[1] + cell_coord(x, 1)) * dim[0] + cell_coord(x, 0);
+  };
+  std::vector<std::int64_t> cell(n);
+  std::vector<std::int32_t> cell_start(static_cast<std::size_t>(ncell) + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    cell[i] = cell_of(p_.x[i]);
+    ++cell_start[static_cast<std::size_t>(cell[i]) + 1];
+  }
+  for (std::int64_t c = 0; c < ncell; ++c) cell_start[static_cast<std::size_t>(c) + 1] += cell_start[static_cast<std::size_t>(c)];
+  std::vector<std::int32_t> order(n);
+  {
+    std::vector<std::int32_t> fill(cell_start.begin(), cell_start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) order[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell[i])]++)] = static_cast<std::int32_t>(i);
+  }
+  std::vector<std::int32_t> cell_members;  // particle indices by cell
+  if (settings_.sort_particles) {
+    p_.permute(order);
+    std::vector<std::int32_t> inv(n);
+    for (std::size_t k = 0; k < n; ++k) inv[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k);
+    for (auto& m : map)
+      if (m >= 0) m = inv[static_cast<std::size_t>(m)];
+    std::vector<std::int64_t> sorted_cell(n);
+    for (std::size_t k = 0; k < n; ++k) sorted_cell[k] = cell[static_cast<std::size_t>(order[k])];
+    cell = std::move(sorted_cell);
+    cell_members.resize(n);
+    for (std::size_t k = 0; k < n; ++k) cell_members[k] = static_cast<std::int32_t>(k);
+  } else {
+    cell_members = order;
+  }
+
+  // --- pair half list: count, prefix, fill (parallel, each row written by one thread) ---
+  nl_.row_begin.assign(n + 1, 0);
+  auto visit_row = [&](std::size_t i, auto&& emit) {
+    const Vec3 xi = p_.x[i];
+    const double ri = p_.radius[i] + skin_;
+    const std::int64_t cx = cell_coord(xi, 0), cy = cell_coord(xi, 1), cz = cell_coord(xi, 2);
+    for (std::int64_t z = std::max<std::int64_t>(cz - 1, 0); z <= std::min(cz + 1, dim[2] - 1); ++z)
+      for (std::int64_t y = std::max<std::int64_t>(cy - 1, 0); y <= std::min(cy + 1, dim[1] - 1); ++y)
+        for (std::int64_t x = std::max<std::int64_t>(cx - 1, 0); x <= std::min(cx + 1, dim[0] - 1); ++x) {
+          const std::size_t c = static_cast<std::size_t>((z * dim[1] + y) * dim[0] + x);
+          for (std::int32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
+            const std::int32_t j = cell_members[static_cast<std::size_t>(k)];
+            if (j <= static_cast<std::int32_t>(i)) continue;
+            const double cut = ri + p_.radius[static_cast<std::size_t>(j)];
+            if ((p_.x[static_cast<std::size_t>(j)] - xi).squaredNorm() < cut * cut) emit(j);
+          }
+        }
+  };
+#pragma omp parallel for num_threads(nt) schedule(dynamic, 512)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int32_t count = 0;
+    visit_row(i, [&](std::int32_t) { ++count; });
+    nl_.row_begin[i + 1] = count;
+  }
+  for (std::size_t i = 0; i < n; ++i) nl_.row_begin[i + 1] += nl_.row_begin[i];
+  const std::size_t nslots = static_cast<std::size_t>(nl_.row_begin[n]);
+  nl_.nbr.resize(nslots);
+#pragma omp parallel for num_threads(nt) schedule(dynamic, 512)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int32_t s = nl_.row_begin[i];
+    visit_row(i, [&](std::int32_t j) { nl_.nbr[static_cast<std::size_t>(s++)] = j; });
+    if (!settings_.sort_particles)
+      std::sort(nl_.nbr.begin() + nl_.row_begin[i], nl_.nbr.begin() + nl_.row_begin[i + 1]);
+  }
+  nl_.shear.assign(nslots, Vec3::Zero());
+  nl_.roll.assign(nslots, Vec3::Zero());
+  nl_.touch.assign(nslots, 0);
+  nl_.out_f.resize(nslots);
+  nl_.out_ti.resize(nslots);
+  nl_.out_tj.resize(nslots);
+  // Reverse index: for each particle, the slots where it is the second body, by ascending row.
+  nl_.rev_begin.assign(n + 1, 0);
+  for (auto j : nl_.nbr) ++nl_.rev_begin[static_cast<std::size_t>(j) + 1];
+  for (std::size_t i = 0; i < n; ++i) nl_.rev_begin[i + 1] += nl_.rev_begin[i];
+  nl_.rev_slot.resize(nslots);
+  {
+    std::vector<std::int32_t> fill(nl_.rev_begin.begin(), nl_.rev_begin.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+      for (auto s = nl_.row_begin[i]; s < nl_.row_begin[i + 1]; ++s)
+        nl_.rev_slot[static_cast<std::size_t>(fill[static_cast<std::size_t>(nl_.nbr[static_cast<std::size_t>(s)])]++)] = s;
+  }
+
+  // --- wall candidates: (particle, wall, element) within R + skin, CSR by particle ---
+  struct Cand {
+    std::int32_t p, wall, element;
+  };
+  std::vector<Cand> cands;
+  for (std::size_t wi = 0; wi < walls_.size(); ++wi) {
+    const Wall& w = walls_[wi];
+    if (const auto* m = std::get_if<TriangleMesh>(&w.current)) {
+      const double reach = rmax + skin_;
+      std::vector<Cand> local;
+      for (std::size_t t = 0; t < m->triangles.size(); ++t) {
+        Vec3 tlo = m->vertices[static_cast<std::size_t>(m->triangles[t][0])], thi = tlo;
+        for (int k = 1; k < 3; ++k) {
+          tlo = tlo.cwiseMin(m->vertices[static_cast<std::size_t>(m->triangles[t][static_cast<std::size_t>(k)])]);
+          thi = thi.cwiseMax(m->vertices[static_cast<std::size_t>(m->triangles[t][static_cast<std::size_t>(k)])]);
+        }
+        tlo.array() -= reach;
+        thi.array() += reach;
+        if (n == 0 || (tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) continue;
+        const std::int64_t x0 = cell_coord(tlo, 0), x1 = cell_coord(thi, 0);
+        const std::int64_t y0 = cell_coord(tlo, 1), y1 = cell_coord(thi, 1);
+        const std::int64_t z0 = cell_coord(tlo, 2), z1 = cell_coord(thi, 2);
+        for (std::int64_t z = z0; z <= z1; ++z)
+          for (std::int64_t y = y0; y <= y1; ++y)
+            for (std::int64_t x = x0; x <= x1; ++x) {
+              const std::size_t c = static_cast<std::size_t>((z * dim[1] + y) * dim[0] + x);
+              for (std::int32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
+                const std::int32_t pi = cell_members[static_cast<std::size_t>(k)];
+                const auto ps = static_cast<std::size_t>(pi);
+                if (element_distance(w, t, p_.x[ps]) < p_.radius[ps] + skin_)
+                  local.push_back({pi, static_cast<std::int32_t>(wi), static_cast<std::int32_t>(t)});
+              }
+            }
+      }
+      cands.insert(cands.end(), local.begin(), local.end());
+    } else {
+      for (std::size_t i = 0; i < n; ++i)
+        if (element_distance(w, 0, p_.x[i]) < p_.radius[i] + skin_)
+          cands.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(wi), 0});
+    }
+  }
+  // Stable counting sort by particle keeps (wall, element) ascending within a particle when the input
+  // is ordered by wall and, within a mesh, by element.
+  std::stable_sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) {
+    if (a.p != b.p) return a.p < b.p;
+    if (a.wall != b.wall) return a.wall < b.wall;
+    return a.element < b.element;
+  });
+  wc_.begin.assign(n + 1, 0);
+  for (const auto& c : cands) ++wc_.begin[static_cast<std::size_t>(c.p) + 1];
+  for (std::size_t i = 0; i < n; ++i) wc_.begin[i + 1] += wc_.begin[i];
+  wc_.wall.resize(cands.size());
+  wc_.element.resize(cands.size());
+  for (std::size_t k = 0; k < cands.size(); ++k) {
+    wc_.wall[k] = cands[k].wall;
+    wc_.element[k] = cands[k].element;
+  }
+  wc_.shear.assign(cands.size(), Vec3::Zero());
+  wc_.roll.assign(cands.size(), Vec3::Zero());
+  wc_.touch.assign(cands.size(), 0);
+  wc_.out_f.resize(cands.size());
+  wc_.out_t.resize(cands.size());
+  wc_.out_point.resize(cands.size());
+
+  // --- carry contact history over ---
+  for (std::size_t io = 0; io + 1 < old_nl.row_begin.size(); ++io) {
+    const std::int32_t a0 = io < map.size() ? map[io] : -1;
+    if (a0 < 0) continue;
+    for (auto s = old_nl.row_begin[io]; s < old_nl.row_begin[io + 1]; ++s) {
+      const auto so = static_cast<std::size_t>(s);
+      if (!old_nl.touch[so]) continue;
+      const auto jo = static_cast<std::size_t>(old_nl.nbr[so]);
+      const std::int32_t b0 = jo < map.size() ? map[jo] : -1;
+      if (b0 < 0) continue;
+      const std::int32_t a = std::min(a0, b0), b = std::max(a0, b0);
+      const double sign = a0 < b0 ? 1.0 : -1.0;  // history is i's view; swapping i and j negates it
+      const auto first = nl_.nbr.begin() + nl_.row_begin[static_cast<std::size_t>(a)];
+      const auto last = nl_.nbr.begin() + nl_.row_begin[static_cast<std::size_t>(a) + 1];
+      const auto it = std::lower_bound(first, last, b);
+      if (it == last || *it != b) continue;
+      const auto sn = static_cast<std::size_t>(it - nl_.nbr.begin());
+      nl_.shear[sn] = sign * old_nl.shear[so];
+      nl_.roll[sn] = sign * old_nl.roll[so];
+      nl_.touch[sn] = 1;
+    }
+  }
+  for (std::size_t io = 0; io + 1 < old_wc.begin.size(); ++io) {
+    const std::int32_t a = io < map.size() ? map[io] : -1;
+    if (a < 0) continue;
+    for (auto e = old_wc.begin[io]; e < old_wc.begin[io + 1]; ++e) {
+      const auto eo = static_cast<std::size_t>(e);
+      if (!old_wc.touch[eo]) continue;
+      for (auto k = wc_.begin[static_cast<std::size_t>(a)]; k < wc_.begin[static_cast<std::size_t>(a) + 1]; ++k) {
+        const auto kn = static_cast<std::size_t>(k);
+        if (wc_.wall[kn] == old_wc.wall[eo] && wc_.element[kn] == old_wc.element[eo]) {
+          wc_.shear[kn] = old_wc.shear[eo];
+          wc_.roll[kn] = old_wc.roll[eo];
+          wc_.touch[kn] = 1;
+          break;
+        }
+      }
+    }
+  }
+
+  index_map_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) index_map_[i] = static_cast<std::int32_t>(i);
+  x_ref_ = p_.x;
+  for (std::size_t k = 0; k < walls_.size(); ++k) wall_time_ref_[k] = time_;
+  max_disp_ = 0.0;
+  list_dirty_ = false;
+  ++rebuilds_;
+}
+
+}  // namespace chutelab::dem

@@ -1,0 +1,66 @@
+#pragma once
+// Sphere state as a structure of arrays: each field is one contiguous array so the contact loop reads
+// only what it needs (position and radius for the distance test, velocities for the forces). Index
+// order changes when the neighbour list sorts particles spatially; id is the persistent identity.
+#include <cstdint>
+#include <vector>
+
+#include "dem/types.h"
+
+namespace chutelab::dem {
+
+struct Particles {
+  std::vector<Vec3> x;       // position, m
+  std::vector<Vec3> v;       // velocity, m/s
+  std::vector<Vec3> w;       // angular velocity, rad/s
+  std::vector<Vec3> f;       // force of the last evaluation, N
+  std::vector<Vec3> t;       // torque of the last evaluation, N m
+  std::vector<double> radius;       // m
+  std::vector<double> mass;         // kg
+  std::vector<double> inv_mass;     // 1/kg
+  std::vector<double> inv_inertia;  // 1/(kg m^2), solid sphere I = 2/5 m R^2
+  std::vector<std::int32_t> material;
+  std::vector<std::int64_t> id;
+
+  std::size_t size() const { return x.size(); }
+
+  void push_back(const Vec3& pos, const Vec3& vel, const Vec3& omega, double r, double m, int mat,
+                 std::int64_t ident) {
+    x.push_back(pos);
+    v.push_back(vel);
+    w.push_back(omega);
+    f.push_back(Vec3::Zero());
+    t.push_back(Vec3::Zero());
+    radius.push_back(r);
+    mass.push_back(m);
+    inv_mass.push_back(1.0 / m);
+    inv_inertia.push_back(1.0 / (0.4 * m * r * r));
+    material.push_back(mat);
+    id.push_back(ident);
+  }
+
+  // Applies f(old) for every array: out[k] = in[order[k]].
+  void permute(const std::vector<std::int32_t>& order) {
+    gather(x, order);
+    gather(v, order);
+    gather(w, order);
+    gather(f, order);
+    gather(t, order);
+    gather(radius, order);
+    gather(mass, order);
+    gather(inv_mass, order);
+    gather(inv_inertia, order);
+    gather(material, order);
+    gather(id, order);
+  }
+
+ private:
+  template <class T>
+  static void gather(std::vector<T>& a, const std::vector<std::int32_t>& order) {
+    std::vector<T> out(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) out[k] = a[static_cast<std::size_t>(order[k])];
+    a = std::move(out);
+  }
+};
+
+}  // namespace chutelab::dem

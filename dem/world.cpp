@@ -1,0 +1,461 @@
+#include "dem/world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include "core/input_error.h"
+
+namespace chutelab::dem {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string vec_str(const Vec3& v) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", v.x(), v.y(), v.z()); }
+
+// Largest distance of a wall's geometry from its pivot (for the displacement bound of a rotating wall).
+double reach_from_pivot(const Wall& w) {
+  if (const auto* m = std::get_if<TriangleMesh>(&w.shape)) {
+    double r = 0.0;
+    for (const auto& v : m->vertices) r = std::max(r, (v - w.motion.pivot).norm());
+    return r;
+  }
+  if (const auto* p = std::get_if<Plane>(&w.shape)) {
+    if (!p->bounded()) return kInf;
+    return (p->point - w.motion.pivot).norm() + std::hypot(p->half_u, p->half_v);
+  }
+  const auto& c = std::get<Cylinder>(w.shape);
+  const Vec3 off = c.point - w.motion.pivot;
+  const bool about_own_axis = w.motion.omega.normalized().cross(c.axis).norm() < 1e-12 &&
+                              (off - off.dot(c.axis) * c.axis).norm() < 1e-12;
+  if (about_own_axis) return 0.0;  // the shape maps onto itself
+  if (!std::isfinite(c.axial_min) || !std::isfinite(c.axial_max)) return kInf;
+  return off.norm() + std::max(std::abs(c.axial_min), std::abs(c.axial_max)) + c.radius;
+}
+
+}  // namespace
+
+World::World(Settings settings) : settings_(std::move(settings)) {
+  if (!(settings_.dt >= 0.0) || !std::isfinite(settings_.dt))
+    throw InputError("", 0, "dt", fmt::format("time step must be >= 0 s (0 = automatic), got {}", settings_.dt));
+  if (!(settings_.skin >= 0.0)) throw InputError("", 0, "skin", "Verlet skin must be >= 0 m");
+  if (!settings_.gravity.allFinite()) throw InputError("", 0, "gravity", "gravity must be finite");
+  if (settings_.check_every < 1) throw InputError("", 0, "check_every", "must be >= 1");
+  if (settings_.threads < 0) throw InputError("", 0, "threads", "must be >= 0");
+}
+
+void World::warn(const std::string& msg) {
+  warnings_.push_back(msg);
+  if (settings_.on_warning)
+    settings_.on_warning(msg);
+  else
+    std::cerr << "chutelab dem warning: " << msg << '\n';
+}
+
+int World::thread_count() const { return settings_.threads > 0 ? settings_.threads : omp_get_max_threads(); }
+
+std::int64_t World::add_particle(const ParticleSpec& s) {
+  const std::string field = "particle";
+  if (!(s.radius > 0.0) || !std::isfinite(s.radius))
+    throw InputError("", 0, field, fmt::format("radius must be > 0 m, got {}", s.radius));
+  if (s.material < 0 || s.material >= materials_.size())
+    throw InputError("", 0, field, fmt::format("unknown material index {}", s.material));
+  if (!s.position.allFinite() || !s.velocity.allFinite() || !s.omega.allFinite())
+    throw InputError("", 0, field, "position and velocities must be finite");
+  const double rho = s.density > 0.0 ? s.density : materials_.material(s.material).density;
+  if (!(rho > 0.0))
+    throw InputError("", 0, field,
+                     fmt::format("density must be > 0 kg/m^3 (material '{}' has {})",
+                                 materials_.material(s.material).name, rho));
+  const double m = rho * 4.0 / 3.0 * std::numbers::pi * s.radius * s.radius * s.radius;
+  const std::int64_t id = next_id_++;
+  p_.push_back(s.position, s.velocity, s.omega, s.radius, m, s.material, id);
+  list_dirty_ = true;
+  return id;
+}
+
+int World::add_wall(Wall w) {
+  const std::string field = fmt::format("wall '{}'", w.name);
+  if (w.material < 0 || w.material >= materials_.size())
+    throw InputError("", 0, field, fmt::format("unknown material index {}", w.material));
+  if (!w.motion.omega.isZero(0.0) && !std::isfinite(reach_from_pivot(w)))
+    throw InputError("", 0, field,
+                     "an unbounded plane or infinite cylinder cannot rotate (bound it or use a mesh)");
+  w.set_time(time_);
+  walls_.push_back(std::move(w));
+  wall_time_ref_.push_back(time_);
+  list_dirty_ = true;
+  return static_cast<int>(walls_.size()) - 1;
+}
+
+int World::add_inserter(Inserter in) {
+  const std::string field = "inserter";
+  if (in.region.empty()) throw InputError("", 0, field, "insertion region is empty (need hi > lo on every axis)");
+  if (!(in.mass_rate >= 0.0)) throw InputError("", 0, field, "mass rate must be >= 0 kg/s");
+  if (!(in.radius_min > 0.0) || !(in.radius_max >= in.radius_min))
+    throw InputError("", 0, field, fmt::format("need 0 < radius_min <= radius_max, got {} and {}", in.radius_min, in.radius_max));
+  if (in.material < 0 || in.material >= materials_.size()) throw InputError("", 0, field, "unknown material index");
+  if (!(materials_.material(in.material).density > 0.0)) throw InputError("", 0, field, "material density must be > 0");
+  if (!(in.interval > 0.0)) throw InputError("", 0, field, "interval must be > 0 s");
+  const Vec3 size = in.region.hi - in.region.lo;
+  if (size.minCoeff() < 2.0 * in.radius_max)
+    throw InputError("", 0, field, "insertion region is narrower than one particle diameter");
+  in.rng_state = in.seed;
+  in.next_time = in.start_time;
+  inserters_.push_back(in);
+  return static_cast<int>(inserters_.size()) - 1;
+}
+
+int World::add_sink(Sink s) {
+  if (!(s.normal.norm() > 0.0)) throw InputError("", 0, "sink", "sink normal must be non-zero");
+  s.normal.normalize();
+  sinks_.push_back(s);
+  return static_cast<int>(sinks_.size()) - 1;
+}
+
+void World::remove_particles_if(const std::function<bool(std::size_t)>& pred) {
+  const std::size_t n = p_.size();
+  std::vector<std::int32_t> keep;
+  std::vector<std::int32_t> remap(n, -1);
+  keep.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!pred(i)) {
+      remap[i] = static_cast<std::int32_t>(keep.size());
+      keep.push_back(static_cast<std::int32_t>(i));
+    }
+  if (keep.size() == n) return;
+  p_.permute(keep);
+  for (auto& m : index_map_)
+    if (m >= 0) m = remap[static_cast<std::size_t>(m)];
+  list_dirty_ = true;
+}
+
+TimeStepEstimate World::time_step_estimate() const {
+  TimeStepEstimate est;
+  // Characteristic speed: free fall across the domain, plus boundary and feed speeds.
+  double v = settings_.characteristic_speed;
+  if (!(v > 0.0)) {
+    double vmax = 0.0;
+    for (const auto& vi : p_.v) vmax = std::max(vmax, vi.norm());
+    for (const auto& in : inserters_) vmax = std::max(vmax, in.velocity.norm());
+    for (const auto& w : walls_) {
+      double vw = w.motion.velocity.norm() + w.surface.linear.norm();
+      vw += (w.motion.omega.norm() + w.surface.omega.norm()) * std::min(reach_from_pivot(w), 10.0);
+      vmax = std::max(vmax, 2.0 * vw);
+    }
+    const double g = settings_.gravity.norm();
+    const double h = settings_.domain.empty() ? 0.0 : (settings_.domain.hi - settings_.domain.lo).norm();
+    v = std::max(vmax + std::sqrt(2.0 * g * h), 0.1);
+  }
+  est.speed = v;
+  // Smallest particles of each material in the scene (existing and inserted).
+  std::vector<double> rmin(static_cast<std::size_t>(materials_.size()), kInf);
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    auto& r = rmin[static_cast<std::size_t>(p_.material[i])];
+    r = std::min(r, p_.radius[i]);
+  }
+  for (const auto& in : inserters_) {
+    auto& r = rmin[static_cast<std::size_t>(in.material)];
+    r = std::min(r, in.radius_min);
+  }
+  est.rayleigh = kInf;
+  est.collision = kInf;
+  for (int a = 0; a < materials_.size(); ++a) {
+    const double ra = rmin[static_cast<std::size_t>(a)];
+    if (!std::isfinite(ra)) continue;
+    const Material& ma = materials_.material(a);
+    const double rho = ma.density;
+    est.rayleigh = std::min(est.rayleigh, rayleigh_time(ra, rho, materials_.shear_modulus(a), ma.poisson_ratio));
+    const double m = rho * 4.0 / 3.0 * std::numbers::pi * ra * ra * ra;
+    auto consider = [&](int b, double r_eff, double m_eff) {
+      const PairCoeffs& c = materials_.pair(a, b);
+      double tc;
+      if (settings_.normal == NormalModel::hertz_mindlin)
+        tc = hertz_collision_time(m_eff, r_eff, c.e_star, v);
+      else
+        tc = c.linear_kn > 0.0 ? linear_collision_time(m_eff, c.linear_kn, 0.5 * c.linear_damping) : kInf;
+      est.collision = std::min(est.collision, tc);
+    };
+    for (int b = 0; b < materials_.size(); ++b) {
+      const double rb = rmin[static_cast<std::size_t>(b)];
+      if (std::isfinite(rb)) {
+        const double mb = materials_.material(b).density * 4.0 / 3.0 * std::numbers::pi * rb * rb * rb;
+        consider(b, ra * rb / (ra + rb), m * mb / (m + mb));
+      }
+    }
+    for (const auto& w : walls_) consider(w.material, ra, m);
+  }
+  est.recommended = std::min(kDtFractionOfCollision * est.collision, kDtFractionOfRayleigh * est.rayleigh);
+  est.unsafe_above = std::min(kUnsafeFractionOfCollision * est.collision, kUnsafeFractionOfRayleigh * est.rayleigh);
+  return est;
+}
+
+void World::initialise() {
+  if (initialised_) return;
+  if (settings_.domain.empty())
+    throw InputError("", 0, "domain", "the simulation domain box is required (hi > lo on every axis)");
+  if (settings_.normal == NormalModel::linear_spring_dashpot) {
+    std::vector<char> used(static_cast<std::size_t>(materials_.size()), 0);
+    for (auto m : p_.material) used[static_cast<std::size_t>(m)] = 1;
+    for (const auto& in : inserters_) used[static_cast<std::size_t>(in.material)] = 1;
+    for (int a = 0; a < materials_.size(); ++a) {
+      if (!used[static_cast<std::size_t>(a)]) continue;
+      auto check = [&](int b) {
+        if (!(materials_.pair(a, b).linear_kn > 0.0))
+          throw InputError("", 0,
+                           fmt::format("interaction '{}'-'{}'", materials_.material(a).name, materials_.material(b).name),
+                           "linear spring-dashpot model needs linear_stiffness > 0 N/m");
+      };
+      for (int b = 0; b < materials_.size(); ++b)
+        if (used[static_cast<std::size_t>(b)]) check(b);
+      for (const auto& w : walls_) check(w.material);
+    }
+  }
+  const TimeStepEstimate est = time_step_estimate();
+  if (settings_.dt > 0.0) {
+    dt_ = settings_.dt;
+    if (std::isfinite(est.unsafe_above) && dt_ > est.unsafe_above)
+      warn(fmt::format(
+          "time step {:.3g} s is unsafe: the shortest collision lasts {:.3g} s ({:.1f} steps; need >= 4) and the "
+          "Rayleigh time is {:.3g} s (dt/t_R = {:.2f}; need <= {}); recommended dt = {:.3g} s",
+          dt_, est.collision, est.collision / dt_, est.rayleigh, dt_ / est.rayleigh, kUnsafeFractionOfRayleigh,
+          est.recommended));
+  } else {
+    if (!std::isfinite(est.recommended))
+      throw InputError("", 0, "dt", "cannot derive a time step: no particles and no inserters; set dt");
+    dt_ = est.recommended;
+  }
+  double rmax = 0.0;
+  for (double r : p_.radius) rmax = std::max(rmax, r);
+  for (const auto& in : inserters_) rmax = std::max(rmax, in.radius_max);
+  skin_ = settings_.skin > 0.0 ? settings_.skin : 0.25 * rmax;
+  if (!(skin_ > 0.0)) skin_ = 1e-3;
+  if (settings_.max_speed > 0.0) {
+    max_speed_ = settings_.max_speed;
+  } else {
+    // Nothing can move faster than its fastest source of energy allows: the fastest initial, feed or
+    // boundary speed plus free fall across the whole domain. Twice that (plus 1 m/s) is "impossible".
+    double vmax = 0.0;
+    for (const auto& vi : p_.v) vmax = std::max(vmax, vi.norm());
+    for (const auto& in : inserters_) vmax = std::max(vmax, in.velocity.norm());
+    for (const auto& w : walls_) {
+      double vw = w.motion.velocity.norm() + w.surface.linear.norm();
+      vw += (w.motion.omega.norm() + w.surface.omega.norm()) * std::min(reach_from_pivot(w), 10.0);
+      vmax = std::max(vmax, 2.0 * vw);
+    }
+    const double h = (settings_.domain.hi - settings_.domain.lo).norm();
+    max_speed_ = 2.0 * (vmax + std::sqrt(2.0 * settings_.gravity.norm() * h)) + 1.0;
+  }
+  initialised_ = true;
+  for (auto& w : walls_) w.set_time(time_);
+  rebuild();
+  compute_forces();
+  check_state();
+}
+
+bool World::needs_rebuild() const {
+  if (list_dirty_) return true;
+  if (2.0 * max_disp_ > skin_) return true;
+  for (std::size_t k = 0; k < walls_.size(); ++k)
+    if (walls_[k].motion.moving() && max_disp_ + wall_displacement_since_rebuild(walls_[k]) > skin_) return true;
+  return false;
+}
+
+double World::wall_displacement_since_rebuild(const Wall& w) const {
+  const std::size_t k = static_cast<std::size_t>(&w - walls_.data());
+  const double dt = time_ - wall_time_ref_[k];
+  return w.motion.velocity.norm() * std::abs(dt) +
+         std::abs(w.motion.omega.norm() * dt) * reach_from_pivot(w);
+}
+
+void World::step(std::int64_t n) {
+  initialise();
+  const int nt = thread_count();
+  for (std::int64_t s = 0; s < n; ++s) {
+    const double dt = dt_;
+    const std::size_t np = p_.size();
+    double maxd2 = max_disp_ * max_disp_;
+    // Velocity Verlet: half kick with the forces of the last evaluation, then drift.
+#pragma omp parallel for num_threads(nt) schedule(static) reduction(max : maxd2)
+    for (std::size_t i = 0; i < np; ++i) {
+      p_.v[i] += (0.5 * dt * p_.inv_mass[i]) * p_.f[i];
+      p_.w[i] += (0.5 * dt * p_.inv_inertia[i]) * p_.t[i];
+      p_.x[i] += dt * p_.v[i];
+      const double d2 = (p_.x[i] - x_ref_[i]).squaredNorm();
+      maxd2 = std::max(maxd2, d2);
+    }
+    max_disp_ = std::sqrt(maxd2);
+    time_ = static_cast<double>(step_ + 1) * dt;  // no accumulated round-off in time
+    for (auto& w : walls_)
+      if (w.motion.moving()) w.set_time(time_);
+    if (!inserters_.empty() || !sinks_.empty()) insert_and_delete();
+    if (needs_rebuild()) rebuild();
+    compute_forces();
+    const std::size_t np2 = p_.size();
+#pragma omp parallel for num_threads(nt) schedule(static)
+    for (std::size_t i = 0; i < np2; ++i) {
+      p_.v[i] += (0.5 * dt * p_.inv_mass[i]) * p_.f[i];
+      p_.w[i] += (0.5 * dt * p_.inv_inertia[i]) * p_.t[i];
+    }
+    ++step_;
+    if (step_ % settings_.check_every == 0) check_state();
+  }
+}
+
+void World::check_state() const {
+  const std::size_t np = p_.size();
+  const double vlim2 = max_speed_ * max_speed_;
+  std::size_t bad = np;
+  for (std::size_t i = 0; i < np; ++i) {
+    const double v2 = p_.v[i].squaredNorm();
+    if (!(v2 <= vlim2) || !p_.x[i].allFinite() || !p_.w[i].allFinite() || !settings_.domain.contains(p_.x[i])) {
+      bad = i;
+      break;
+    }
+  }
+  if (bad == np) return;
+  const std::size_t i = bad;
+  const std::string where = fmt::format("DEM stopped at step {} (t = {:.6g} s): particle id {} ", step_, time_, p_.id[i]);
+  const TimeStepEstimate est = time_step_estimate();
+  const std::string hint = fmt::format(
+      " Time step {:.3g} s; collision time {:.3g} s, Rayleigh time {:.3g} s, recommended dt {:.3g} s.", dt_,
+      est.collision, est.rayleigh, est.recommended);
+  if (!p_.x[i].allFinite() || !p_.v[i].allFinite() || !p_.w[i].allFinite())
+    throw SimulationError(where + fmt::format("has a non-finite state (x = {}, v = {}): the integration blew up.",
+                                              vec_str(p_.x[i]), vec_str(p_.v[i])) + hint);
+  if (p_.v[i].squaredNorm() > vlim2)
+    throw SimulationError(where + fmt::format("moves at {:.4g} m/s, faster than physically possible here "
+                                              "({:.4g} m/s): the contacts are unstable (overlap too deep).",
+                                              p_.v[i].norm(), max_speed_) + hint);
+  throw SimulationError(where + fmt::format("left the domain at {} (domain {} to {}): a lost particle (it passed "
+                                            "through a wall, or the domain/sinks do not cover the scene).",
+                                            vec_str(p_.x[i]), vec_str(settings_.domain.lo), vec_str(settings_.domain.hi)) + hint);
+}
+
+void World::insert_and_delete() {
+  // Sinks first, so that their mass counts and indices are settled before new particles arrive.
+  if (!sinks_.empty()) {
+    bool any = false;
+    for (std::size_t i = 0; i < p_.size() && !any; ++i)
+      for (const auto& s : sinks_)
+        if ((p_.x[i] - s.point).dot(s.normal) < 0.0) any = true;
+    if (any) {
+      std::vector<char> gone(p_.size(), 0);
+      for (std::size_t i = 0; i < p_.size(); ++i)
+        for (auto& s : sinks_)
+          if ((p_.x[i] - s.point).dot(s.normal) < 0.0) {
+            gone[i] = 1;
+            s.removed_mass += p_.mass[i];
+            ++s.removed_count;
+            break;
+          }
+      remove_particles_if([&](std::size_t i) { return gone[i] != 0; });
+    }
+  }
+  for (auto& in : inserters_) {
+    if (time_ < in.start_time || time_ - dt_ >= in.end_time) continue;
+    in.pending_mass += in.mass_rate * dt_;
+    if (time_ + 0.5 * dt_ < in.next_time) continue;
+    in.next_time += in.interval;
+    const double rho = materials_.material(in.material).density;
+    // Nearby particles that a new one could overlap.
+    std::vector<std::size_t> near;
+    Box grow = in.region;
+    double rmax = in.radius_max;
+    for (double r : p_.radius) rmax = std::max(rmax, r);
+    grow.lo.array() -= 2.0 * rmax;
+    grow.hi.array() += 2.0 * rmax;
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      if (grow.contains(p_.x[i])) near.push_back(i);
+    while (in.pending_mass > 0.0) {
+      const double r = in.radius_min + (in.radius_max - in.radius_min) * uniform01(in.rng_state);
+      bool placed = false;
+      for (int attempt = 0; attempt < in.max_attempts && !placed; ++attempt) {
+        Vec3 pos;
+        for (int d = 0; d < 3; ++d)
+          pos[d] = in.region.lo[d] + r + (in.region.hi[d] - in.region.lo[d] - 2.0 * r) * uniform01(in.rng_state);
+        bool free = true;
+        for (std::size_t j : near) {
+          const double rr = r + p_.radius[j];
+          if ((p_.x[j] - pos).squaredNorm() < rr * rr) {
+            free = false;
+            break;
+          }
+        }
+        if (!free) continue;
+        ParticleSpec spec;
+        spec.position = pos;
+        spec.velocity = in.velocity;
+        spec.radius = r;
+        spec.material = in.material;
+        add_particle(spec);
+        near.push_back(p_.size() - 1);
+        const double m = rho * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+        in.pending_mass -= m;
+        in.inserted_mass += m;
+        placed = true;
+      }
+      if (!placed) {
+        if (!in.warned_full) {
+          warn(fmt::format("inserter cannot place particles fast enough at t = {:.4g} s ({:.3g} kg owed): the "
+                           "insertion region is full; enlarge it or lower the mass rate",
+                           time_, in.pending_mass));
+          in.warned_full = true;
+        }
+        break;
+      }
+    }
+  }
+}
+
+std::size_t World::contact_count() const {
+  std::size_t n = 0;
+  for (auto t : nl_.touch) n += t;
+  return n;
+}
+
+std::size_t World::wall_contact_count() const {
+  std::size_t n = 0;
+  for (auto t : wc_.touch) n += t;
+  return n;
+}
+
+Energy World::energy() const {
+  Energy e;
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    e.translational += 0.5 * p_.mass[i] * p_.v[i].squaredNorm();
+    e.rotational += 0.5 / p_.inv_inertia[i] * p_.w[i].squaredNorm();
+    e.gravitational -= p_.mass[i] * settings_.gravity.dot(p_.x[i]);
+  }
+  auto normal_energy = [&](const PairCoeffs& c, double delta, double r_eff) {
+    return settings_.normal == NormalModel::hertz_mindlin ? HertzMindlin::elastic_energy(c, delta, r_eff)
+                                                          : LinearSpringDashpot::elastic_energy(c, delta, r_eff);
+  };
+  for (std::size_t i = 0; i + 1 < nl_.row_begin.size(); ++i)
+    for (auto s = nl_.row_begin[i]; s < nl_.row_begin[i + 1]; ++s) {
+      const auto j = static_cast<std::size_t>(nl_.nbr[static_cast<std::size_t>(s)]);
+      const double rs = p_.radius[i] + p_.radius[j];
+      const double delta = rs - (p_.x[j] - p_.x[i]).norm();
+      if (delta <= 0.0) continue;
+      const double r_eff = p_.radius[i] * p_.radius[j] / rs;
+      e.elastic += normal_energy(materials_.pair(p_.material[i], p_.material[j]), delta, r_eff);
+    }
+  for (std::size_t e_i = 0; e_i < wc_.touch.size(); ++e_i) {
+    if (!wc_.touch[e_i]) continue;
+    std::size_t i = 0;  // owner particle
+    i = static_cast<std::size_t>(std::upper_bound(wc_.begin.begin(), wc_.begin.end(), static_cast<std::int32_t>(e_i)) -
+                                 wc_.begin.begin()) - 1;
+    const double delta = p_.radius[i] - (wc_.out_point[e_i] - p_.x[i]).norm();
+    if (delta <= 0.0) continue;
+    const Wall& w = walls_[static_cast<std::size_t>(wc_.wall[e_i])];
+    e.elastic += normal_energy(materials_.pair(p_.material[i], w.material), delta, p_.radius[i]);
+  }
+  return e;
+}
+
+}  // namespace chutelab::dem

@@ -1,0 +1,175 @@
+#pragma once
+// The World owns a DEM scene: particles, walls, materials, contacts (neighbour list with contact
+// history), sources and sinks, and advances it in time with velocity Verlet.
+//
+// Determinism: forces on every particle are summed in one fixed order (pair contacts in which it is
+// the second body, by ascending first body; then its own pair contacts in list order; then its wall
+// contacts; then gravity; then the body-force hook), whatever the number of OpenMP threads. One thread
+// scatters pair forces directly; several threads compute each pair into per-contact storage and then
+// reduce per particle in that same order, so 1 and N threads give bit-identical results.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dem/contact/contact_model.h"
+#include "dem/insertion.h"
+#include "dem/material.h"
+#include "dem/particles.h"
+#include "dem/timestep.h"
+#include "dem/types.h"
+#include "dem/walls/wall.h"
+
+namespace chutelab::dem {
+
+struct Settings {
+  double dt = 0.0;  // s; 0 picks TimeStepEstimate::recommended at the first step
+  Vec3 gravity = Vec3(0.0, 0.0, -9.80665);
+  NormalModel normal = NormalModel::hertz_mindlin;
+  TangentialModel tangential = TangentialModel::coulomb_history;
+  RollingModel rolling = RollingModel::constant_torque;
+  double skin = 0.0;        // m, Verlet skin; 0 -> 0.25 of the largest radius
+  Box domain;               // required: a particle outside it (and not removed by a sink) stops the run
+  double max_speed = 0.0;   // m/s; 0 -> derived from gravity, domain size and boundary speeds
+  double characteristic_speed = 0.0;  // m/s for Eq 11; 0 -> derived like max_speed
+  int threads = 0;          // OpenMP threads; 0 -> omp_get_max_threads()
+  bool sort_particles = true;  // spatially sort particles at every neighbour-list rebuild
+  int check_every = 1;      // steps between blow-up/lost-particle checks
+  std::function<void(const std::string&)> on_warning;  // default prints "chutelab dem warning: ..." to stderr
+};
+
+struct ParticleSpec {
+  Vec3 position = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();
+  Vec3 omega = Vec3::Zero();
+  double radius = 0.0;
+  int material = 0;
+  double density = 0.0;  // kg/m^3; 0 -> the material's density
+};
+
+struct Energy {
+  double translational = 0.0;
+  double rotational = 0.0;
+  double gravitational = 0.0;  // -m g . x
+  double elastic = 0.0;        // normal springs (+ tangential springs)
+  double total() const { return translational + rotational + gravitational + elastic; }
+};
+
+// Thrown when the simulation blows up or loses particles; the message says what, where and why.
+class SimulationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Extra force per particle, called once per step after contacts and gravity (air drag, fields).
+// It must add to `force` (indexed like `particles`) and be deterministic.
+using BodyForceHook = std::function<void(const Particles& particles, double time, std::vector<Vec3>& force)>;
+
+// Pairs within cut-off (half list, j > i, ascending), with per-slot contact history.
+struct NeighborList {
+  std::vector<std::int32_t> row_begin;  // size N+1
+  std::vector<std::int32_t> nbr;
+  std::vector<Vec3> shear;
+  std::vector<Vec3> roll;
+  std::vector<std::int32_t> rev_begin;  // slots where particle p is the second body, by ascending row
+  std::vector<std::int32_t> rev_slot;
+  // Per-slot results for the multi-thread path.
+  std::vector<Vec3> out_f, out_ti, out_tj;
+  std::vector<std::uint8_t> touch;
+};
+
+// Wall elements near each particle (CSR by particle, sorted by wall then element), with history.
+struct WallCandidates {
+  std::vector<std::int32_t> begin;  // size N+1
+  std::vector<std::int32_t> wall, element;
+  std::vector<Vec3> shear, roll;
+  std::vector<Vec3> out_f, out_t, out_point;
+  std::vector<std::uint8_t> touch;
+};
+
+class World {
+ public:
+  explicit World(Settings settings);
+
+  MaterialTable& materials() { return materials_; }
+  const MaterialTable& materials() const { return materials_; }
+
+  // Returns the particle's persistent id. Throws InputError for impossible values.
+  std::int64_t add_particle(const ParticleSpec& spec);
+  int add_wall(Wall wall);
+  int add_inserter(Inserter inserter);
+  int add_sink(Sink sink);
+  void set_body_force(BodyForceHook hook) { body_force_ = std::move(hook); }
+  // Removes particles for which pred(index) is true (e.g. by id or region).
+  void remove_particles_if(const std::function<bool(std::size_t)>& pred);
+
+  // Advances n steps. Throws SimulationError on blow-up or a lost particle.
+  void step(std::int64_t n = 1);
+  // Validates the scene, picks dt and computes the initial forces; step() calls it when needed.
+  void initialise();
+
+  double time() const { return time_; }
+  std::int64_t step_count() const { return step_; }
+  double dt() const { return dt_; }
+  const Settings& settings() const { return settings_; }
+  const Particles& particles() const { return p_; }
+  // Mutable access; call mark_changed() after editing positions or radii by hand.
+  Particles& particles() { return p_; }
+  void mark_changed() { list_dirty_ = true; }
+  const std::vector<Wall>& walls() const { return walls_; }
+  Wall& wall(int i) { return walls_.at(static_cast<std::size_t>(i)); }
+  const std::vector<Inserter>& inserters() const { return inserters_; }
+  const std::vector<Sink>& sinks() const { return sinks_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+  TimeStepEstimate time_step_estimate() const;
+  Energy energy() const;
+  std::int64_t rebuild_count() const { return rebuilds_; }
+  std::size_t contact_count() const;      // particle-particle contacts touching now
+  std::size_t wall_contact_count() const;
+  double max_speed_limit() const { return max_speed_; }
+
+  // Binary checkpoint of the dynamic state. Restore into a World built with the same scene
+  // (materials, walls, inserters, sinks, settings): continuation is bit-identical.
+  void save_checkpoint(const std::string& path) const;
+  void load_checkpoint(const std::string& path);
+
+ private:
+  template <class Model>
+  void compute_forces_impl();
+  void compute_forces();
+  void rebuild();
+  bool needs_rebuild() const;
+  void insert_and_delete();
+  void check_state() const;
+  void warn(const std::string& msg);
+  int thread_count() const;
+  double wall_displacement_since_rebuild(const Wall& w) const;
+
+  Settings settings_;
+  MaterialTable materials_;
+  Particles p_;
+  std::vector<Wall> walls_;
+  std::vector<Inserter> inserters_;
+  std::vector<Sink> sinks_;
+  BodyForceHook body_force_;
+  NeighborList nl_;
+  WallCandidates wc_;
+  std::vector<Vec3> x_ref_;              // positions at the last rebuild
+  std::vector<double> wall_time_ref_;    // wall pose times at the last rebuild
+  std::vector<std::int32_t> index_map_;  // index at last rebuild -> current index (-1 removed)
+  std::vector<std::int32_t> scratch_;
+  double time_ = 0.0;
+  double dt_ = 0.0;
+  double skin_ = 0.0;
+  double max_speed_ = 0.0;
+  double max_disp_ = 0.0;                // largest particle displacement since the rebuild
+  std::int64_t step_ = 0;
+  std::int64_t next_id_ = 0;
+  std::int64_t rebuilds_ = 0;
+  bool initialised_ = false;
+  bool list_dirty_ = true;
+  std::vector<std::string> warnings_;
+};
+
+}  // namespace chutelab::dem
