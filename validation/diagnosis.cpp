@@ -315,6 +315,24 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
         "(chi^2 = {:.1f} for {} data, p = {:.2g}).",
         out.chi2_baseline, out.n_data, out.baseline_p_value);
   }
+  out.used_surrogate = m.has_expensive();
+  if (out.used_surrogate) {
+    std::vector<std::string> slow;
+    for (const auto& mm : models)
+      if (mm->expensive()) slow.push_back(mm->name());
+    out.caveats.push_back(fmt::format(
+        "{} predictions with a candidate effect were estimated from one run without it plus the "
+        "analytical models' response to the effect (DESIGN.md §5), not run for every candidate.",
+        fmt::join(slow, ", ")));
+    if (const EffectFit* b = out.best()) {
+      std::vector<const effects::EffectInfo*> fx;
+      for (const auto& n : b->effects) fx.push_back(effects::find(n));
+      out.confirmed_chi2 = m.chi2_exact(fx, b->estimate);
+      out.caveats.push_back(fmt::format(
+          "Confirmed by running {} with {} on: chi^2 = {:.1f} (the estimate from differences was {:.1f}).",
+          fmt::join(slow, ", "), b->label(), *out.confirmed_chi2, b->chi2_after));
+    }
+  }
   if (const EffectFit* b = out.best()) {
     for (std::size_t i = 0; i < b->effects.size(); ++i) {
       const auto* info = effects::find(b->effects[i]);

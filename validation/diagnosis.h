@@ -55,6 +55,10 @@ struct DiagnosisResult {
   std::vector<std::string> discriminators;     // which measurement would tell them apart
   std::vector<std::string> caveats;
   std::string verdict;                    // one sentence
+  // With an expensive model (DEM) the ranking uses the cheap models' signatures as differences
+  // (DESIGN.md §5); the recommended fit is then re-run with the expensive model for real.
+  bool used_surrogate = false;
+  std::optional<double> confirmed_chi2;   // chi^2 of the recommended fit from real runs
   const EffectFit* best() const;          // the recommended fit (single or pair), if significant
 };
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <functional>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
 #include <limits>
@@ -14,6 +15,11 @@ namespace chutelab::validation {
 Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed)
     : d_(&d), models_(std::move(models)), fixed_(std::move(fixed)) {
   for (const auto& st : d.stations) queries_.push_back(trajectory_queries(d, st.condition));
+  // The cheap models carry effect signatures for an expensive one even when they are not among
+  // the models being judged (e.g. --models dem).
+  if (has_expensive())
+    for (const auto& n : model_names())
+      if (auto m = make_model(n); !m->expensive()) signature_.push_back(m);
   const auto base = predict_all({}, {});
   auto condition_index = [&](const std::string& c) {
     for (std::size_t i = 0; i < d.stations.size(); ++i)
@@ -49,18 +55,84 @@ Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::Effec
 
 std::vector<std::vector<ModelPrediction>> Misfit::predict_all(
     std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const {
+  return predict(fx, strengths, Evaluation::surrogate);
+}
+
+std::vector<std::vector<ModelPrediction>> Misfit::predict(std::span<const effects::EffectInfo* const> fx,
+                                                          std::span<const double> strengths,
+                                                          Evaluation how) const {
   analytical::EffectList list = fixed_;
   for (std::size_t i = 0; i < fx.size(); ++i) list.push_back(fx[i]->make(strengths[i]));
   std::vector<std::vector<ModelPrediction>> out(d_->stations.size());
   for (std::size_t c = 0; c < d_->stations.size(); ++c) {
-    std::vector<ConditionResult> same;
-    for (const auto& m : models_)
-      same.push_back({d_->stations[c].condition, m->name(),
-                      m->predict(d_->stations[c], list, {queries_[c], false})});
+    const Station& st = d_->stations[c];
+    std::vector<ConditionResult> same(models_.size());
+    for (std::size_t k = 0; k < models_.size(); ++k)
+      if (!models_[k]->expensive() || how == Evaluation::exact)
+        same[k] = {st.condition, models_[k]->name(), models_[k]->predict(st, list, {queries_[c], false})};
+    std::vector<ModelPrediction> signature;  // cheap models with the effects, raw
+    bool need_signature = how == Evaluation::surrogate && has_expensive();
+    if (need_signature)
+      for (const auto& m : signature_) signature.push_back(m->predict(st, list, {queries_[c], false}));
+    for (std::size_t k = 0; k < models_.size(); ++k) {
+      if (!models_[k]->expensive() || how == Evaluation::exact) continue;
+      // DESIGN.md §5: an expensive model is run once without the candidate effects; an effect's
+      // signature comes from the cheap models, applied as a difference: dem + (cheap(e) - cheap).
+      ModelPrediction p = expensive_base(c, k);
+      for (Quantity q : kAllQuantities)
+        if (p.values[q])
+          if (auto d = cheap_delta(c, signature, [q](const ModelPrediction& mp) { return mp.values[q]; }))
+            *p.values[q] += *d;
+      for (std::size_t t = 0; t < p.trajectory.size(); ++t)
+        if (p.trajectory[t])
+          if (auto d = cheap_delta(c, signature, [t](const ModelPrediction& mp) {
+                return t < mp.trajectory.size() ? mp.trajectory[t] : std::nullopt;
+              }))
+            *p.trajectory[t] += *d;
+      same[k] = {st.condition, models_[k]->name(), std::move(p)};
+    }
     apply_measurement_effects(list, same);
     for (auto& s : same) out[c].push_back(std::move(s.prediction));
   }
   return out;
+}
+
+const ModelPrediction& Misfit::expensive_base(std::size_t c, std::size_t k) const {
+  auto& slot = expensive_cache_[{c, k}];
+  if (!slot) slot = models_[k]->predict(d_->stations[c], fixed_, {queries_[c], false});
+  return *slot;
+}
+
+std::optional<double> Misfit::cheap_delta(
+    std::size_t c, const std::vector<ModelPrediction>& with_effects,
+    const std::function<std::optional<double>(const ModelPrediction&)>& pick) const {
+  // The first cheap model (registry order) that predicts the value carries the signature; raw
+  // predictions, before measurement effects, since those are applied to every model afterwards.
+  for (std::size_t k = 0; k < signature_.size(); ++k) {
+    const auto b = pick(cheap_base(c, signature_[k]));
+    if (!b) continue;
+    const auto e = pick(with_effects[k]);
+    if (!e) return std::nullopt;
+    return *e - *b;
+  }
+  return std::nullopt;
+}
+
+const ModelPrediction& Misfit::cheap_base(std::size_t c, const ModelPtr& m) const {
+  auto& slot = cheap_cache_[{c, m->name()}];
+  if (!slot) slot = m->predict(d_->stations[c], fixed_, {queries_[c], false});
+  return *slot;
+}
+
+bool Misfit::has_expensive() const {
+  for (const auto& m : models_)
+    if (m->expensive()) return true;
+  return false;
+}
+
+double Misfit::chi2_exact(std::span<const effects::EffectInfo* const> fx,
+                          std::span<const double> strengths) const {
+  return chi2_of(predict(fx, strengths, Evaluation::exact));
 }
 
 std::vector<double> Misfit::residuals(std::span<const effects::EffectInfo* const> fx,
@@ -68,13 +140,15 @@ std::vector<double> Misfit::residuals(std::span<const effects::EffectInfo* const
   // Off the map: the misfit of a model that predicts nothing useful, large but finite so that
   // the minimiser can still step back.
   constexpr double kInfeasible = 1e3;
-  std::vector<double> r(points_.size(), kInfeasible);
-  std::vector<std::vector<ModelPrediction>> pred;
   try {
-    pred = predict_all(fx, strengths);
+    return residuals_of(predict_all(fx, strengths));
   } catch (const InputError&) {
-    return r;
+    return std::vector<double>(points_.size(), kInfeasible);
   }
+}
+
+std::vector<double> Misfit::residuals_of(const std::vector<std::vector<ModelPrediction>>& pred) const {
+  std::vector<double> r(points_.size());
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const auto& p = points_[i];
     const ModelPrediction& mp = pred[p.condition][p.model];
@@ -86,6 +160,12 @@ std::vector<double> Misfit::residuals(std::span<const effects::EffectInfo* const
     r[i] = (v.value_or(0.0) - p.measured) / p.uncertainty;
   }
   return r;
+}
+
+double Misfit::chi2_of(const std::vector<std::vector<ModelPrediction>>& pred) const {
+  double s = 0.0;
+  for (double x : residuals_of(pred)) s += x * x;
+  return s;
 }
 
 double Misfit::chi2(std::span<const effects::EffectInfo* const> fx,

@@ -4,12 +4,16 @@
 // with the first model, in the order given, that predicts it: with the default order
 // booth-cema,korzen the trajectory, impact point and V_p come from Booth/CEMA and the forces and
 // V_a from Korzen, the seed's hybrid.
+#include <functional>
+#include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "effects/registry.h"
 #include "validation/dataset.h"
+#include "validation/harness.h"
 #include "validation/model.h"
 
 namespace chutelab::validation {
@@ -39,17 +43,34 @@ class Misfit {
   std::vector<double> residuals(std::span<const effects::EffectInfo* const> fx,
                                 std::span<const double> strengths) const;
   double chi2(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
-  // Every model's prediction of every condition with these effects (for pictures and comparisons).
+  // Every model's prediction of every condition with these effects. An expensive model (DEM) is
+  // run once without the candidate effects and shifted by the cheap models' response to them
+  // (DESIGN.md §5); chi2_exact runs it with the effects instead, to confirm a winner.
   std::vector<std::vector<ModelPrediction>> predict_all(
       std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
+  bool has_expensive() const;
+  double chi2_exact(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
 
  private:
+  enum class Evaluation { surrogate, exact };
+  std::vector<std::vector<ModelPrediction>> predict(std::span<const effects::EffectInfo* const> fx,
+                                                    std::span<const double> strengths, Evaluation how) const;
+  std::vector<double> residuals_of(const std::vector<std::vector<ModelPrediction>>& pred) const;
+  double chi2_of(const std::vector<std::vector<ModelPrediction>>& pred) const;
+  const ModelPrediction& expensive_base(std::size_t condition, std::size_t model) const;
+  const ModelPrediction& cheap_base(std::size_t condition, const ModelPtr& model) const;
+  std::optional<double> cheap_delta(std::size_t condition, const std::vector<ModelPrediction>& with_effects,
+                                    const std::function<std::optional<double>(const ModelPrediction&)>& pick) const;
+
   const Dataset* d_;
   std::vector<ModelPtr> models_;
   analytical::EffectList fixed_;
+  std::vector<ModelPtr> signature_;  // cheap models whose response to an effect shifts an expensive one
   std::vector<std::vector<TrajectoryQuery>> queries_;
   std::vector<MisfitPoint> points_;
   int left_out_ = 0;
+  mutable std::map<std::pair<std::size_t, std::size_t>, std::optional<ModelPrediction>> expensive_cache_;
+  mutable std::map<std::pair<std::size_t, std::string>, std::optional<ModelPrediction>> cheap_cache_;
 };
 
 struct StrengthFit {
