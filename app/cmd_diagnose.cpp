@@ -20,12 +20,7 @@ int run_diagnose(const DiagnoseCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.dataset);
   const auto d = validation::read_dataset(dir);
-  std::vector<std::string> names;
-  for (std::size_t s = 0, e; s <= o.models.size(); s = e + 1) {
-    e = o.models.find(',', s);
-    if (e == std::string::npos) e = o.models.size();
-    if (e > s) names.push_back(o.models.substr(s, e - s));
-  }
+  const auto names = split_list(o.models);
   validation::DiagnoseOptions opt;
   opt.alpha = o.alpha;
   opt.pairs = !o.no_pairs;

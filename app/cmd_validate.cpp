@@ -21,19 +21,6 @@ struct ValidateCli {
   bool diagnose = false;
 };
 
-std::vector<std::string> split_list(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (start <= s.size()) {
-    const auto end = s.find(',', start);
-    std::string item = s.substr(start, end == std::string::npos ? std::string::npos : end - start);
-    if (!item.empty()) out.push_back(item);
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  return out;
-}
-
 int run_validate(const ValidateCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.dataset);

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace chutelab::app {
 
@@ -12,6 +14,9 @@ void add_estimate(CLI::App& app, Action& action);
 void add_validate(CLI::App& app, Action& action);
 void add_diagnose(CLI::App& app, Action& action);
 void add_synthesize(CLI::App& app, Action& action);
+
+// "a,b,,c" -> {"a", "b", "c"}: the comma lists of --models.
+std::vector<std::string> split_list(const std::string& s);
 
 // The bundled default rig, found next to the source tree this binary was built from.
 std::filesystem::path default_dataset();

@@ -7,6 +7,19 @@
 #include "core/input_error.h"
 
 namespace chutelab::app {
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= s.size()) {
+    const auto end = s.find(',', start);
+    std::string item = s.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    if (!item.empty()) out.push_back(item);
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return out;
+}
+
 std::filesystem::path default_dataset() {
   return std::filesystem::path(CHUTELAB_DATASETS_DIR) / "grima2010";
 }

@@ -193,6 +193,28 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
 
 namespace {
 
+// The condition column of measurement-like files must name a row of conditions.csv.
+std::string known_condition(const CsvTable& t, const CsvRow& row, std::size_t col, const Dataset& d) {
+  const std::string& c = t.text(row, col);
+  if (!d.station(c))
+    throw InputError(t.file(), row.line, t.header()[col],
+                     fmt::format("condition '{}' is not in conditions.csv", c));
+  return c;
+}
+
+// An optional one-sigma uncertainty cell: empty or 0 means unknown; negative is an error.
+std::optional<double> uncertainty_cell(const CsvTable& t, const CsvRow& row,
+                                       const std::optional<std::size_t>& col, double scale) {
+  if (!col) return std::nullopt;
+  const auto u = t.optional_number(row, *col);
+  if (!u) return std::nullopt;
+  if (*u < 0.0)
+    throw InputError(t.file(), row.line, t.header()[*col],
+                     fmt::format("uncertainty cannot be negative, got {}", *u));
+  if (*u == 0.0) return std::nullopt;
+  return *u * scale;
+}
+
 std::vector<Measurement> read_measurements(const fs::path& path, const Dataset& d) {
   const CsvTable t = CsvTable::read(path, {"condition", "quantity", "value"});
   const std::size_t c_id = t.require("condition");
@@ -204,10 +226,7 @@ std::vector<Measurement> read_measurements(const fs::path& path, const Dataset& 
   for (const auto& row : t.rows()) {
     Measurement m;
     m.where = {t.file(), row.line};
-    m.condition = t.text(row, c_id);
-    if (!d.station(m.condition))
-      throw InputError(t.file(), row.line, "condition",
-                       fmt::format("condition '{}' is not in conditions.csv", m.condition));
+    m.condition = known_condition(t, row, c_id, d);
     const auto q = parse_quantity(t.text(row, c_q));
     if (!q) {
       std::string known;
@@ -224,14 +243,7 @@ std::vector<Measurement> read_measurements(const fs::path& path, const Dataset& 
       throw InputError(t.file(), row.line, "value",
                        fmt::format("{} is a magnitude and cannot be negative, got {}", name(*q), v));
     m.value = v * scale;
-    if (c_u) {
-      if (auto u = t.optional_number(row, *c_u)) {
-        if (*u < 0.0)
-          throw InputError(t.file(), row.line, "uncertainty",
-                           fmt::format("uncertainty cannot be negative, got {}", *u));
-        if (*u > 0.0) m.uncertainty = *u * scale;
-      }
-    }
+    m.uncertainty = uncertainty_cell(t, row, c_u, scale);
     if (auto [it, fresh] = seen.emplace(std::pair{m.condition, m.quantity}, row.line); !fresh)
       throw InputError(t.file(), row.line, "quantity",
                        fmt::format("duplicate row: {} of condition '{}' is already on line {}",
@@ -253,10 +265,7 @@ std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset
   for (const auto& row : t.rows()) {
     TrajectoryPoint p;
     p.where = {t.file(), row.line};
-    p.condition = t.text(row, c_id);
-    if (!d.station(p.condition))
-      throw InputError(t.file(), row.line, "condition",
-                       fmt::format("condition '{}' is not in conditions.csv", p.condition));
+    p.condition = known_condition(t, row, c_id, d);
     const auto b = parse_boundary(t.text(row, c_b));
     if (!b)
       throw InputError(t.file(), row.line, "boundary",
@@ -265,14 +274,7 @@ std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset
     p.boundary = *b;
     p.x = t.number(row, c_x) * units::mm;
     p.y = t.number(row, c_y) * units::mm;
-    if (c_u) {
-      if (auto u = t.optional_number(row, *c_u)) {
-        if (*u < 0.0)
-          throw InputError(t.file(), row.line, "uncertainty_mm",
-                           fmt::format("uncertainty cannot be negative, got {}", *u));
-        if (*u > 0.0) p.uncertainty = *u * units::mm;
-      }
-    }
+    p.uncertainty = uncertainty_cell(t, row, c_u, units::mm);
     if (auto [it, fresh] = seen.emplace(std::tuple{p.condition, p.boundary, p.x}, row.line); !fresh)
       throw InputError(t.file(), row.line, "x_mm",
                        fmt::format("duplicate row: {} boundary of '{}' at x = {} mm is already on "
