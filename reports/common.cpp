@@ -140,8 +140,10 @@ std::string table_html(const Table& t) {
     for (std::size_t i = 0; i < t.columns.size();) {
       std::size_t j = i + 1;
       while (j < t.columns.size() && t.columns[j].group == t.columns[i].group) ++j;
-      if (j - i > 1) o += fmt::format("<th colspan=\"{}\">{}</th>", j - i, esc(t.columns[i].group));
-      else o += fmt::format("<th>{}</th>", esc(t.columns[i].group));
+      const auto& c = t.columns[i];
+      const std::string g = c.group_html.empty() ? esc(c.group) : c.group_html;
+      if (j - i > 1) o += fmt::format("<th colspan=\"{}\">{}</th>", j - i, g);
+      else o += fmt::format("<th>{}</th>", g);
       i = j;
     }
     o += "</tr>\n";

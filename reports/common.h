@@ -86,6 +86,7 @@ struct Column {
   std::string text{};       // plain header
   std::string html{};       // optional rich header
   bool left = false;
+  std::string group_html{}; // optional rich group header
 };
 
 struct Table {

@@ -93,7 +93,7 @@ std::string force_bar_chart(const Context& c, const validation::ValidationResult
 
   const Ticks yt = nice_ticks(0.0, top > 0.0 ? top * 1.04 : 1.0, 6);
   const Scale y{0.0, yt.hi, f.bottom(), f.top};
-  svg.y_axis(f, y, yt, fmt::format("{} {} ({})", qn.symbol, qn.label, qn.unit));
+  svg.y_axis(f, y, yt, fmt::format("{} {} ({})", qn.label, qn.symbol, qn.unit));
   svg.line(f.left, f.bottom(), f.right(), f.bottom(), "stroke=\"#444\"");
 
   const double gw = f.width / static_cast<double>(c.conditions.size());

@@ -158,14 +158,16 @@ std::string residual_chart(const Context& c, const validation::ValidationResult&
           }
         }
         // Off-scale values are printed (print has no tooltips); several points: the extreme one.
+        // Models' labels sit on separate lines so neighbours never overprint.
         auto label = [&](double v) {
-          return std::abs(v) >= 100 ? fmt::format("{:.0f}", v) : fmt::format("{:.1f}", v);
+          return std::abs(v) >= 10 ? fmt::format("{:.0f}", v) : fmt::format("{:.1f}", v);
         };
+        const double line = 10.0 * static_cast<double>(mi);
         if (extreme_hi)
-          svg.text(cx, f.top + 20, label(*extreme_hi), "middle",
+          svg.text(cx, f.top + 20 + line, label(*extreme_hi), "middle",
                    fmt::format("font-size=\"9\" fill=\"{}\" class=\"clip-label\"", c.colour(m)));
         if (extreme_lo)
-          svg.text(cx, f.bottom() - 14, label(*extreme_lo), "middle",
+          svg.text(cx, f.bottom() - 14 - line, label(*extreme_lo), "middle",
                    fmt::format("font-size=\"9\" fill=\"{}\" class=\"clip-label\"", c.colour(m)));
       }
     }
@@ -188,13 +190,14 @@ Table trend_table(const Context& c, const validation::ValidationResult& r, std::
   constexpr double kStrong = 0.7;  // |r| above which a trend is named
   for (const auto& m : r.models)
     for (const auto& qname : compared_quantities(r)) {
-      std::vector<double> z, v, f;
+      std::vector<double> z, az, v, f;
       for (const auto& cmp : r.comparisons) {
         if (cmp.model != m || cmp.quantity != qname) continue;
         const auto e = cmp.normalised_error();
         const Station* s = c.in.dataset->station(cmp.condition);
         if (!e || !s) continue;
         z.push_back(*e);
+        az.push_back(std::abs(*e));
         v.push_back(s->belt_speed);
         f.push_back(s->mass_flow);
       }
@@ -203,18 +206,20 @@ Table trend_table(const Context& c, const validation::ValidationResult& r, std::
       for (double x : z) mean += x;
       mean /= static_cast<double>(z.size());
       const auto rv = pearson(z, v), rf = pearson(z, f);
+      // Whether the misfit itself grows: the size |E/u|, not its sign (E/u may cross zero).
+      const auto av = pearson(az, v), af = pearson(az, f);
       const auto qn = quantity_name(qname);
       std::vector<std::string> reading;
       const bool biased = std::abs(mean) > 2.0;
       if (biased) reading.push_back(mean > 0 ? "over-predicts" : "under-predicts");
-      auto trend = [&](const std::optional<double>& rr, std::string_view driver) {
+      auto trend = [&](const std::optional<double>& rr, const std::optional<double>& ra, std::string_view driver) {
         if (!rr || std::abs(*rr) < kStrong || z.size() < 4) return;
-        // With a bias, a correlation of the same sign means the misfit grows with the driver.
-        if (biased) reading.push_back(fmt::format("misfit {} with {}", (*rr > 0) == (mean > 0) ? "grows" : "shrinks", driver));
+        if (ra && std::abs(*ra) >= 0.5)
+          reading.push_back(fmt::format("misfit {} with {}", *ra > 0 ? "grows" : "shrinks", driver));
         else reading.push_back(fmt::format("E/u {} with {}", *rr > 0 ? "rises" : "falls", driver));
       };
-      trend(rv, "belt speed");
-      trend(rf, "mass flow");
+      trend(rv, av, "belt speed");
+      trend(rf, af, "mass flow");
       auto rcell = [&](const std::optional<double>& rr) {
         Cell cell{rr ? fmt::format("{:+.2f}", *rr) : std::string(kDash)};
         cell.strong = rr && std::abs(*rr) >= kStrong;
@@ -238,7 +243,8 @@ Table trend_table(const Context& c, const validation::ValidationResult& r, std::
       f.push_back(row.station->mass_flow);
     }
   t.notes.push_back(fmt::format("r = Pearson correlation of E/u with the operating variable over the "
-                                "compared values; |r| ≥ {:.1f} is named (a hint with few conditions, not a test).",
+                                "compared values; |r| ≥ {:.1f} is named, as growing or shrinking when |E/u| follows it too "
+                                "(a hint with few conditions, not a test).",
                                 kStrong));
   if (const auto rvf = pearson(v, f); rvf && std::abs(*rvf) > 0.5)
     t.notes.push_back(fmt::format("Belt speed and mass flow are correlated in this dataset (r = {:+.2f}): a trend "

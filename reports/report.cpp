@@ -166,8 +166,11 @@ Doc assemble(const ReportInput& in) {
 
   // ---- Header: what was compared (no date: the report is a function of its inputs) ----
   std::vector<std::string> meta;
-  meta.push_back("Dataset: " + in.baseline->dataset_name +
-                 (in.dataset->dir.empty() ? std::string() : " (" + in.dataset->dir.filename().string() + ")"));
+  {
+    const std::string folder = in.dataset->dir.filename().string();
+    meta.push_back("Dataset: " + in.baseline->dataset_name +
+                   (folder.empty() || folder == in.baseline->dataset_name ? std::string() : " (folder " + folder + ")"));
+  }
   if (!in.dataset->setup.source.empty()) meta.push_back("Source: " + in.dataset->setup.source);
   meta.push_back(fmt::format("Conditions: {}; measured values: {}; trajectory points: {}", c.conditions.size(),
                              in.dataset->measurements.size(), in.dataset->trajectory.size()));
@@ -262,7 +265,7 @@ constexpr std::string_view kCss = R"(
 * { box-sizing: border-box; }
 body { margin: 0; color: var(--ink); background: #fff;
   font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, "Helvetica Neue", Arial, sans-serif; }
-main { max-width: 1020px; margin: 0 auto; padding: 24px 20px 60px; }
+main { max-width: 1100px; margin: 0 auto; padding: 24px 20px 60px; }
 h1 { font-size: 24px; margin: 0 0 10px; }
 h2 { font-size: 19px; margin: 34px 0 10px; padding-bottom: 4px; border-bottom: 2px solid var(--ink); }
 h3 { font-size: 15px; margin: 22px 0 8px; }
@@ -275,8 +278,8 @@ dl.effect { margin: 8px 0; } dl.effect dt { font-weight: 600; } dl.effect dd { m
 .table-wrap { overflow-x: auto; margin: 8px 0; }
 table.data { border-collapse: collapse; font-size: 12.5px; font-variant-numeric: tabular-nums; }
 table.data caption { text-align: left; font-weight: 600; padding: 2px 0 6px; }
-table.data th, table.data td { padding: 3px 7px; border-bottom: 1px solid var(--rule); white-space: nowrap; }
-table.data th { background: #f1f1f1; font-weight: 600; text-align: right; vertical-align: bottom; }
+table.data th, table.data td { padding: 3px 6px; border-bottom: 1px solid var(--rule); white-space: nowrap; }
+table.data th { background: #f1f1f1; font-weight: 600; text-align: right; vertical-align: bottom; white-space: normal; }
 table.data tr.group th { text-align: center; border-bottom: 1px solid #999; background: #e7e7e7; }
 table.data td.num { text-align: right; }
 table.data td.left, table.data th.left { text-align: left; white-space: normal; }

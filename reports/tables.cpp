@@ -49,12 +49,19 @@ bool model_predicts(const ValidationResult& r, const std::string& model, Quantit
 }
 
 // Display decimals of a quantity: one choice for the whole table, measured and predicted alike,
-// so columns line up and equal numbers look equal.
+// so columns line up and equal numbers look equal. Where the measurements state uncertainties,
+// the smallest one sets the precision (one significant digit of it): more digits would be noise,
+// fewer would hide what the measurement resolves.
 int quantity_decimals(const Context& c, const ValidationResult& r, Quantity q) {
   const double s = info(q).to_boundary;
-  double m = 0.0;
+  double m = 0.0, u_min = 0.0;
   for (const auto& meas : c.in.dataset->measurements)
-    if (meas.quantity == q) m = std::max(m, std::abs(meas.value * s));
+    if (meas.quantity == q) {
+      m = std::max(m, std::abs(meas.value * s));
+      if (meas.uncertainty && *meas.uncertainty > 0.0)
+        u_min = u_min > 0.0 ? std::min(u_min, *meas.uncertainty * s) : *meas.uncertainty * s;
+    }
+  if (u_min > 0.0) return std::clamp(static_cast<int>(std::ceil(-std::log10(u_min) - 1e-9)), 0, 4);
   for (const auto& p : r.predictions)
     if (p.prediction.values[q]) m = std::max(m, std::abs(*p.prediction.values[q] * s));
   return decimals_for(m, 4);
@@ -116,9 +123,10 @@ Col predicted_col(const Context& c, const ValidationResult& r, const Lookup& loo
 
 enum class ErrorKind { relative_percent, absolute };
 
-Col error_col(const Lookup& look, Quantity q, const std::string& model, ErrorKind kind, std::string group) {
+Col error_col(const Lookup& look, Quantity q, const std::string& model, ErrorKind kind, std::string group,
+              int dec = 1) {
   const auto qn = quantity_name(name(q));
-  return {{std::move(group), model, "", false}, [&look, q, model, kind, qn](const ConditionRow& row) {
+  return {{std::move(group), model, "", false}, [&look, q, model, kind, qn, dec](const ConditionRow& row) {
             Cell cell;
             const auto* cmp = look.one(row.name, model, std::string(name(q)));
             if (!cmp || !cmp->predicted) { cell.text = std::string(kDash); return cell; }
@@ -127,9 +135,8 @@ Col error_col(const Lookup& look, Quantity q, const std::string& model, ErrorKin
               cell.text = rel ? fmt::format("{:+.1f}", 100.0 * *rel) : std::string(kDash);
             } else {
               const double e = cmp->error() * qn.scale;
-              cell.text = fmt::format("{:+.{}f}", e, decimals_for(std::abs(e), 3));
-              if (cell.text == "+0" || cell.text.find_first_not_of("+-0.") == std::string::npos)
-                cell.text = fixed(0.0, decimals_for(std::abs(e), 3));
+              cell.text = fmt::format("{:+.{}f}", e, dec);
+              if (cell.text.find_first_not_of("+-0.") == std::string::npos) cell.text = fixed(0.0, dec);
             }
             annotate(cell, cmp, qn);
             return cell;
@@ -209,7 +216,7 @@ Table velocity_table(const Context& c, const ValidationResult& r, std::string_vi
                     }});
   };
   geometry("Z (mm)", "Z (mm)", [](const Station& s) { return fixed(s.plate_distance * 1e3, 1); });
-  geometry("plate top (mm)", "plate top (mm)", [](const Station& s) { return fixed(s.plate_top * 1e3, 1); });
+  geometry("top (mm)", "top (mm)", [](const Station& s) { return fixed(s.plate_top * 1e3, 1); });
   const bool tilted = std::any_of(c.conditions.begin(), c.conditions.end(), [](const ConditionRow& row) {
     return row.station && row.station->plate.angle != 0.0;
   });
@@ -227,17 +234,22 @@ Table velocity_table(const Context& c, const ValidationResult& r, std::string_vi
     cols.push_back(measured_col(c, q, dec, group, false));
     for (const auto& m : r.models)
       if (model_predicts(r, m, q)) cols.push_back(predicted_col(c, r, look, q, m, dec, group, false));
+    for (auto& col : cols)
+      if (col.head.group == group) col.head.group_html = header_html(qn);
   }
   for (const auto& m : r.models)
-    if (model_predicts(r, m, Quantity::impact_point_y))
-      cols.push_back(error_col(look, Quantity::impact_point_y, m, ErrorKind::absolute, "error of y_R (mm)"));
+    if (model_predicts(r, m, Quantity::impact_point_y)) {
+      cols.push_back(error_col(look, Quantity::impact_point_y, m, ErrorKind::absolute, "error of y_R (mm)",
+                               quantity_decimals(c, r, Quantity::impact_point_y)));
+      cols.back().head.group_html = "error of y<sub>R</sub> (mm)";
+    }
   Table t = build(id, "Stream velocities and impact point: measured and predicted (cf. seed Table 5)", c, cols);
   for (const auto& m : r.models)
     for (Quantity q : qs)
       if (!model_predicts(r, m, q))
         t.notes.push_back(fmt::format("{} predicts no {} ({}).", m, info(q).symbol, info(q).label));
   if (continuity) t.notes.push_back(fmt::format("h_b {} = not given; the models take it from continuity.", kDash));
-  t.notes.push_back(fmt::format("Z = plate distance from the pulley centre; y_R = height of the point of "
+  t.notes.push_back(fmt::format("Z = plate distance from the pulley centre, top = height of its top edge; y_R = height of the point of "
                                 "application of R_n; error = predicted − measured; {} = no value.",
                                 kDash));
   return t;
