@@ -175,7 +175,8 @@ std::string table_markdown(const Table& t) {
   if (!t.caption.empty()) o += fmt::format("**{}**\n\n", md_esc(t.caption));
   o += "|";
   for (const auto& c : t.columns)
-    o += fmt::format(" {} |", md_esc(c.group.empty() ? c.text : fmt::format("{} {}", c.group, c.text)));
+    o += fmt::format(" {} |", md_esc(c.group.empty() || !c.group_in_markdown ? c.text
+                                                                              : fmt::format("{} {}", c.group, c.text)));
   o += "\n|";
   for (const auto& c : t.columns) o += c.left ? "---|" : "---:|";
   o += "\n";
@@ -190,7 +191,8 @@ std::string table_markdown(const Table& t) {
         const auto& col = t.columns[std::min(k, t.columns.size() - 1)];
         failures.push_back(fmt::format(
             "{} {}, {}: {}", kFailMark, md_esc(row.front().text),
-            md_esc(col.group.empty() ? col.text : col.group + " " + col.text), md_esc(cell.tip)));
+            md_esc(col.group.empty() || !col.group_in_markdown ? col.text : col.group + " " + col.text),
+            md_esc(cell.tip)));
       } else if (cell.strong) {
         body = fmt::format("**{}**", body);
       }

@@ -87,6 +87,7 @@ struct Column {
   std::string html{};       // optional rich header
   bool left = false;
   std::string group_html{}; // optional rich group header
+  bool group_in_markdown = true;  // Markdown has no spanning header: prefix the group to the text
 };
 
 struct Table {

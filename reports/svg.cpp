@@ -101,8 +101,7 @@ std::string Ticks::label(double v) const {
 Ticks nice_ticks(double lo, double hi, int target) {
   widen_degenerate(lo, hi);
   Ticks t;
-  const double range = nice_number(hi - lo, false);
-  t.step = nice_number(range / std::max(1, target - 1), true);
+  t.step = nice_number((hi - lo) / std::max(1, target - 1), true);
   t.lo = std::floor(lo / t.step + 1e-9) * t.step;
   t.hi = std::ceil(hi / t.step - 1e-9) * t.step;
   // Index times step, not repeated addition: no creeping rounding error in the labels.

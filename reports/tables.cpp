@@ -144,7 +144,7 @@ Col error_col(const Lookup& look, Quantity q, const std::string& model, ErrorKin
 }
 
 std::vector<Col> condition_cols() {
-  return {
+  std::vector<Col> cols = {
       {{"condition", "condition", "", true}, [](const ConditionRow& r) { return Cell{r.name, "", false, "", true}; }},
       {{"condition", "V_b (m/s)", "V<sub>b</sub> (m/s)", false},
        [](const ConditionRow& r) {
@@ -155,6 +155,8 @@ std::vector<Col> condition_cols() {
          return Cell{r.station ? fmt::format("{:.4g}", r.station->mass_flow * 3.6) : std::string(kDash)};
        }},
   };
+  for (auto& c : cols) c.head.group_in_markdown = false;
+  return cols;
 }
 
 std::vector<std::string> models_predicting(const Context& c, const ValidationResult& r,
@@ -210,7 +212,7 @@ Table velocity_table(const Context& c, const ValidationResult& r, std::string_vi
   models_predicting(c, r, qs, &left_out);
   auto cols = condition_cols();
   auto geometry = [&](std::string text, std::string html, std::function<std::string(const Station&)> f) {
-    cols.push_back({{"plate and stream", std::move(text), std::move(html), false},
+    cols.push_back({{"plate and stream", std::move(text), std::move(html), false, {}, false},
                     [f](const ConditionRow& row) {
                       return Cell{row.station ? f(*row.station) : std::string(kDash)};
                     }});
