@@ -179,7 +179,7 @@ std::string rms_bar_chart(const Context& c, const validation::ValidationResult& 
       const double yv = y(std::max(*v, log ? yt.lo : 0.0));
       svg.rect(x, yv, bw, f.bottom() - yv, fmt::format("fill=\"{}\" class=\"bar\"", colour),
                fmt::format("{} {}: RMS E/u = {:.3g}", pairs[i].model, what, *v));
-      svg.text(x + bw / 2, yv - 4, fmt::format("{:.3g}", *v), "middle", "font-size=\"11\"");
+      svg.text(x + bw / 2, yv - 4, fixed(*v, *v >= 100 ? 0 : 2), "middle", "font-size=\"11\"");
     };
     bar(pairs[i].b, cx - bw - 2, kBefore, "as they are");
     bar(pairs[i].a, cx + 2, c.colour(pairs[i].model), "with effects");

@@ -81,12 +81,14 @@ std::vector<Variant> variants(const ReportInput& in) {
 }
 
 // Before/after block: what was added, its physics, and how far the misfit fell.
-void before_after(Doc& d, const Context& c, int level) {
+// `described`: effects whose physics the page already shows (the recommended one).
+void before_after(Doc& d, const Context& c, int level, const std::vector<std::string>& described = {}) {
   const ReportInput& in = c.in;
   if (!in.with_effects) return;
   d.h(level, "before-after", "Before and after adding the effects");
   d.table(effects_table(in.effects));
   for (const auto& e : in.effects) {
+    if (std::find(described.begin(), described.end(), e.name) != described.end()) continue;
     std::string body = e.physics.empty() ? "No description of its physics was supplied." : e.physics;
     if (!e.source.empty()) body += " Source: " + e.source + ".";
     d.definition(fmt::format("{} ({})", e.name, e.parameter), body);
@@ -145,7 +147,7 @@ void what_is_missing(Doc& d, const Context& c) {
     d.p("No candidate effect is significant: none of the library's effects explains the misfit better than "
         "chance would.");
   }
-  before_after(d, c, 3);
+  before_after(d, c, 3, g.best() ? g.best()->effects : std::vector<std::string>{});
   if (!g.indistinguishable.empty() || !g.discriminators.empty()) {
     d.h(3, "missing-alternatives", "Alternatives the data cannot tell apart");
     if (!g.indistinguishable.empty())
@@ -185,6 +187,7 @@ Doc assemble(const ReportInput& in) {
   }
   d.h(1, "top", "chutelab validation report: " + in.baseline->dataset_name);
   d.list(meta);
+  if (in.diagnosis) d.verdict(in.diagnosis->verdict);  // the headline; details under "What is missing"
   if (!in.notes.empty()) {
     d.h(2, "notes", "Notes");
     d.list(in.notes);

@@ -50,8 +50,8 @@ bool model_predicts(const ValidationResult& r, const std::string& model, Quantit
 
 // Display decimals of a quantity: one choice for the whole table, measured and predicted alike,
 // so columns line up and equal numbers look equal. Where the measurements state uncertainties,
-// the smallest one sets the precision (one significant digit of it): more digits would be noise,
-// fewer would hide what the measurement resolves.
+// the smallest one sets the precision: more digits would be noise, fewer would hide what the
+// measurement resolves.
 int quantity_decimals(const Context& c, const ValidationResult& r, Quantity q) {
   const double s = info(q).to_boundary;
   double m = 0.0, u_min = 0.0;
@@ -61,7 +61,12 @@ int quantity_decimals(const Context& c, const ValidationResult& r, Quantity q) {
       if (meas.uncertainty && *meas.uncertainty > 0.0)
         u_min = u_min > 0.0 ? std::min(u_min, *meas.uncertainty * s) : *meas.uncertainty * s;
     }
-  if (u_min > 0.0) return std::clamp(static_cast<int>(std::ceil(-std::log10(u_min) - 1e-9)), 0, 4);
+  if (u_min > 0.0) {
+    // One significant digit of the uncertainty, two when it starts with 1 or 2 (0.15 is not 0.2).
+    const int first = static_cast<int>(std::floor(std::log10(u_min) + 1e-9));
+    const double lead = u_min / std::pow(10.0, first);
+    return std::clamp(-first + (lead < 3.0 ? 1 : 0), 0, 4);
+  }
   for (const auto& p : r.predictions)
     if (p.prediction.values[q]) m = std::max(m, std::abs(*p.prediction.values[q] * s));
   return decimals_for(m, 4);
