@@ -34,6 +34,75 @@ double face_x(const Station& s, double y) {
   return s.plate_distance + along * std::sin(s.plate.angle);
 }
 
+
+struct PlateHit {
+  std::string model, curve;
+  double y;  // mm
+};
+
+// The plate face as a vertical axis of its own (mm), zoomed onto where the stream meets it:
+// measured impact point with its error bar, each model's impact point, and where each streamline
+// arrives.
+template <class Dash>
+void draw_plate_strip(Svg& svg, const Frame& sf, const Context& c, const validation::Measurement* meas_y,
+                      const std::vector<std::pair<std::string, double>>& model_impacts,
+                      const std::vector<PlateHit>& hits, Dash dash) {
+  double lo = 1e300, hi = -1e300;
+  auto note = [&](double y) { lo = std::min(lo, y); hi = std::max(hi, y); };
+  if (meas_y) {
+    note(meas_y->value * 1e3 - meas_y->uncertainty.value_or(0.0) * 1e3);
+    note(meas_y->value * 1e3 + meas_y->uncertainty.value_or(0.0) * 1e3);
+  }
+  for (const auto& [m, y] : model_impacts) note(y);
+  for (const auto& h : hits) note(h.y);
+  const double pad = std::max(2.0, 0.12 * (hi - lo));
+  lo -= pad;
+  hi += pad;
+  const Ticks t = inner_ticks(lo, hi, 5);
+  const Scale Y{lo, hi, sf.bottom(), sf.top};
+  svg.text(sf.left + sf.width / 2, sf.top - 6, "at the plate", "middle", "font-size=\"10\" fill=\"#333\"");
+  svg.rect(sf.left, sf.top, sf.width, sf.height, "fill=\"#fafafa\" stroke=\"#444\"");
+  double label_w = 0.0;
+  for (double v : t.values) {
+    svg.line(sf.left, Y(v), sf.right(), Y(v), "stroke=\"#e2e2e2\"");
+    svg.line(sf.right(), Y(v), sf.right() + 4, Y(v), "stroke=\"#444\"");
+    svg.text(sf.right() + 7, Y(v) + 4, t.label(v), "start", "font-size=\"11\" fill=\"#333\"");
+    label_w = std::max(label_w, text_width(t.label(v), 11));
+  }
+  const double lx = sf.right() + 14 + label_w;
+  svg.raw(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(90 {} {})\" "
+                      "class=\"axis-label\" font-size=\"11\">y on the plate (mm)</text>\n",
+                      px(lx), px(sf.top + sf.height / 2), px(lx), px(sf.top + sf.height / 2)));
+  svg.rect(sf.left, sf.top, 4, sf.height, "fill=\"#555\"");  // the plate face
+  for (const auto& h : hits) {
+    const std::string d = dash(h.curve);
+    svg.raw(fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"2\"{}>"
+                        "<title>{}: {} meets the plate at y = {:.1f} mm</title></line>\n",
+                        px(sf.left + 4), px(Y(h.y)), px(sf.left + 26), px(Y(h.y)), c.colour(h.model),
+                        d.empty() ? "" : fmt::format(" stroke-dasharray=\"{}\"", d), esc(h.model), esc(h.curve), h.y));
+  }
+  const double n = static_cast<double>(model_impacts.size());
+  for (std::size_t i = 0; i < model_impacts.size(); ++i) {
+    const auto& [m, y] = model_impacts[i];
+    const double x = sf.left + 36 + (static_cast<double>(i) - (n - 1) / 2) * 11;
+    std::string tip = fmt::format("{}: impact point y_R = {:.1f} mm", m, y);
+    if (meas_y) tip += fmt::format(" (error {:+.1f} mm)", y - meas_y->value * 1e3);
+    svg.marker(Shape::diamond, x, Y(y), 10, c.colour(m), false, tip);
+  }
+  if (meas_y) {
+    const double y = meas_y->value * 1e3, x = sf.left + 36;
+    std::string tip = fmt::format("measured impact point y_R = {:.1f}", y);
+    if (meas_y->uncertainty) {
+      const double u = *meas_y->uncertainty * 1e3;
+      tip += fmt::format(" ± {:.1f}", u);
+      svg.line(x, Y(y + u), x, Y(y - u), "stroke=\"#111\" stroke-width=\"1.2\"");
+      svg.line(x - 3, Y(y + u), x + 3, Y(y + u), "stroke=\"#111\"");
+      svg.line(x - 3, Y(y - u), x + 3, Y(y - u), "stroke=\"#111\"");
+    }
+    svg.marker(Shape::diamond, x, Y(y), 7, kMeasuredColour, true, tip + " mm");
+  }
+}
+
 }  // namespace
 
 std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id) {
@@ -137,12 +206,16 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
       top = std::max(top, pt->y * 1e3 + pt->uncertainty.value_or(0.0) * 1e3);
     }
     // Where a streamline meets the plate counts too (the lower one hits below the impact point).
+    std::vector<PlateHit> hits;
     for (const auto& m : r.models)
       if (const auto* p = r.prediction(row.name, m))
         for (const auto& cv : p->prediction.curves) {
           if (cv.points.empty()) continue;
           const auto& e = cv.points.back();
-          if (std::abs(e.x() * 1e3 - face_x(*s, e.y()) * 1e3) < 5.0) note_low(e.y() * 1e3);
+          if (std::abs(e.x() * 1e3 - face_x(*s, e.y()) * 1e3) < 5.0) {
+            note_low(e.y() * 1e3);
+            hits.push_back({m, cv.name, e.y() * 1e3});
+          }
           for (const auto& q : cv.points) top = std::max(top, q.y() * 1e3);
         }
     if (low > 1e299) low = std::max(plate_bottom, -Rb);  // nothing to show below: the pulley
@@ -157,16 +230,21 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
     double x0 = -Rb - pad_x, x1 = right + pad_x;
 
     // Equal aspect: one mm is the same number of pixels along x and y.
-    const double max_w = 400.0, max_h = 460.0, min_h = 150.0;
+    const double max_w = 300.0, max_h = 460.0, min_h = 170.0;
     double k = std::min(max_w / (x1 - x0), max_h / (y1 - y0));
     if ((y1 - y0) * k < min_h) {  // a flat picture: show more below rather than squash it
       y0 = y1 - min_h / k;
     }
     const double pw = (x1 - x0) * k, ph = (y1 - y0) * k;
     Frame f{60.0, 30.0, pw, ph};
-    const double W = f.right() + 14.0, H = f.bottom() + 44.0;
+    // Beside the picture, the plate face magnified: at the rig's scale the impact points of the
+    // models and the measurement sit within a few pixels of each other.
+    const bool strip = meas_y || !model_impacts.empty() || !hits.empty();
+    const Frame sf{f.right() + 26.0, f.top, 56.0, f.height};
+    const double W = (strip ? sf.right() + 74.0 : f.right() + 14.0), H = f.bottom() + 44.0;
     Svg svg(W, H, "plot trajectory-panel", pid, fmt::format("Stream picture of {}", row.name));
-    svg.title(shorten(fmt::format("{} — {}, {}", row.name, row.speed_label(), row.flow_label()), 56));
+    svg.title(shorten(fmt::format("{} — {}, {}", row.name, row.speed_label(), row.flow_label()),
+                      static_cast<std::size_t>(std::max(20.0, (W - 20.0) / 8.5))));
     const Scale X{x0, x1, f.left, f.right()}, Y{y0, y1, f.bottom(), f.top};
     // Same tick step on both axes (equal aspect, equal grid squares).
     Ticks xt = inner_ticks(x0, x1, 6);
@@ -239,6 +317,7 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
       svg.marker(Shape::diamond, xx, Y(y), 8, kMeasuredColour, true, tip + " mm");
     }
     svg.raw("</g>\n");
+    if (strip) draw_plate_strip(svg, sf, c, meas_y, model_impacts, hits, [&](const std::string& n) { return dash(n); });
     o += svg.finish();
   }
   o += "</div>\n</figure>\n";

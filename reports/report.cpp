@@ -235,7 +235,9 @@ Doc assemble(const ReportInput& in) {
   d.h(2, "trajectories", "Stream trajectories");
   d.p("Each panel: the head pulley at the origin, the plate face, each model's streamlines, the measured stream "
       "points (± 1 sd) and the measured and predicted impact points on the plate face. Equal scales on both "
-      "axes; the view ends a little below the lowest impact point.");
+      "axes; the view ends a little below the lowest impact point. Beside each panel, the plate face "
+      "magnified (\u201cat the plate\u201d): where each streamline arrives, the models' impact points and the "
+      "measured one with its ± 1 sd.");
   for (const auto& v : vs) {
     if (vs.size() > 1) d.h(3, "trajectories-" + v.suffix, v.title);
     d.figure(trajectory_grid(c, *v.result, "traj-" + v.suffix), "Stream trajectories per condition (cf. seed Fig. 7)");
