@@ -117,8 +117,8 @@ std::string residual_chart(const Context& c, const validation::ValidationResult&
     Frame f{ox + 62.0, oy + 24.0, pw - 62.0 - 12.0, 170.0};
     const Scale y{-L, L, f.bottom(), f.top};
     svg.raw(fmt::format("<g class=\"residual-panel\" data-quantity=\"{}\">\n", esc(p.qn.name)));
-    svg.text(f.left, oy + 16, fmt::format("{} — {} ({})", p.qn.symbol, p.qn.label, p.qn.unit), "start",
-             "font-size=\"12\" font-weight=\"600\"");
+    svg.markup(f.left, oy + 16, fmt::format("{} — {} ({})", symbol_svg(p.qn.symbol), esc(p.qn.label), esc(p.qn.unit)),
+               "start", "font-size=\"12\" font-weight=\"600\"");
     svg.rect(f.left, y(2.0), f.width, y(-2.0) - y(2.0), fmt::format("fill=\"{}\"", kBandColour));
     svg.y_axis(f, y, yt, "E/u (–)");
     svg.line(f.left, y(0.0), f.right(), y(0.0), "stroke=\"#777\" stroke-width=\"1\"");

@@ -49,6 +49,13 @@ std::string symbol_html(std::string_view symbol) {
   return esc(symbol.substr(0, u)) + "<sub>" + esc(symbol.substr(u + 1)) + "</sub>";
 }
 
+std::string symbol_svg(std::string_view symbol) {
+  const auto u = symbol.find('_');
+  if (u == std::string_view::npos) return esc(symbol);
+  return esc(symbol.substr(0, u)) + "<tspan baseline-shift=\"sub\" font-size=\"75%\">" +
+         esc(symbol.substr(u + 1)) + "</tspan>";
+}
+
 std::string fixed(double v, int decimals) {
   if (!std::isfinite(v)) return v > 0 ? "inf" : (v < 0 ? "-inf" : "nan");
   std::string s = fmt::format("{:.{}f}", v, std::max(0, decimals));
@@ -189,6 +196,10 @@ void Svg::polyline(const std::vector<std::pair<double, double>>& pts, std::strin
 void Svg::text(double x, double y, std::string_view s, std::string_view anchor, std::string_view attrs) {
   out_ += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"{}\" {}>{}</text>\n", px(x), px(y),
                       anchor, attrs, esc(s));
+}
+
+void Svg::markup(double x, double y, std::string_view m, std::string_view anchor, std::string_view attrs) {
+  out_ += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"{}\" {}>{}</text>\n", px(x), px(y), anchor, attrs, m);
 }
 
 void Svg::marker(Shape shape, double x, double y, double size, std::string_view colour, bool filled,

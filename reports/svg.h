@@ -18,6 +18,9 @@ std::string md_esc(std::string_view s);
 // "R_n" -> "R<sub>n</sub>" (escaped) for headings and legends in HTML.
 std::string symbol_html(std::string_view symbol);
 
+// "R_n" -> "R<tspan ...>n</tspan>" (escaped) for SVG text drawn with Svg::markup.
+std::string symbol_svg(std::string_view symbol);
+
 // Fixed decimals, never "-0.00".
 std::string fixed(double v, int decimals);
 // Decimals that show about `digits` significant digits of the largest magnitude in a column.
@@ -84,6 +87,9 @@ class Svg {
   // Text is escaped here; `attrs` are extra attributes (already safe).
   void text(double x, double y, std::string_view s, std::string_view anchor = "start",
             std::string_view attrs = {});
+  // Like text(), but `markup` is already-escaped SVG text content (e.g. from symbol_svg).
+  void markup(double x, double y, std::string_view markup, std::string_view anchor = "start",
+              std::string_view attrs = {});
   void marker(Shape shape, double x, double y, double size, std::string_view colour, bool filled,
               std::string_view title = {});
   // A title centred over the whole picture.
