@@ -42,6 +42,13 @@ Column quantity_column(const QuantityName& qn, std::string group) {
   return {std::move(group), qn.symbol + unit_suffix(qn.unit), header_html(qn), false};
 }
 
+// An error column is only worth its width when the model was compared on that quantity somewhere.
+bool compared(const ValidationResult& r, const std::string& model, Quantity q) {
+  for (const auto& c : r.comparisons)
+    if (c.model == model && c.q == q && c.predicted) return true;
+  return false;
+}
+
 bool model_predicts(const ValidationResult& r, const std::string& model, Quantity q) {
   for (const auto& p : r.predictions)
     if (p.model == model && p.prediction.values[q]) return true;
@@ -197,7 +204,7 @@ Table force_table(const Context& c, const ValidationResult& r, std::string_view 
   for (const auto& m : models)
     for (Quantity q : qs) cols.push_back(predicted_col(c, r, look, q, m, quantity_decimals(c, r, q), m));
   for (const auto& m : models)
-    if (model_predicts(r, m, Quantity::resultant_force))
+    if (compared(r, m, Quantity::resultant_force))
       cols.push_back(error_col(look, Quantity::resultant_force, m, ErrorKind::relative_percent, "error of R (%)"));
   Table t = build(id, "Plate forces: measured and predicted (cf. seed Table 4)", c, cols);
   if (!left_out.empty())
@@ -245,7 +252,7 @@ Table velocity_table(const Context& c, const ValidationResult& r, std::string_vi
       if (col.head.group == group) col.head.group_html = header_html(qn);
   }
   for (const auto& m : r.models)
-    if (model_predicts(r, m, Quantity::impact_point_y)) {
+    if (compared(r, m, Quantity::impact_point_y)) {
       cols.push_back(error_col(look, Quantity::impact_point_y, m, ErrorKind::absolute, "error of y_R (mm)",
                                quantity_decimals(c, r, Quantity::impact_point_y)));
       cols.back().head.group_html = "error of y<sub>R</sub> (mm)";
