@@ -1,26 +1,400 @@
-// Interim renderer: the summary table only, until the full report (tables, charts) lands.
+// The report: one assembly of sections, rendered twice (Markdown for diffs and terminals, HTML with
+// inline SVG for reading and printing). Sections and tables come from the same builders, so the
+// two files never disagree. No clock, no random ids, no locale: same inputs, same bytes.
 #include "reports/report.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
+#include <stdexcept>
 
-#include "validation/output_files.h"
+#include "reports/common.h"
 
 namespace chutelab::reports {
+namespace {
 
-std::string report_markdown(const ReportInput& in) {
-  std::string o = fmt::format("# chutelab validation: {}\n\n", in.baseline->dataset_name);
-  o += "| model | quantity | n | RMS error | RMS normalised error | max abs relative error |\n";
-  o += "|---|---|---|---|---|---|\n";
-  for (const auto& s : in.baseline->summary)
-    o += fmt::format("| {} | {} | {} | {} | {} | {} |\n", s.model, s.quantity, s.n,
-                     validation::csv_number(s.rms_error), validation::csv_number(s.rms_normalised_error),
-                     validation::csv_number(s.max_abs_relative_error));
+using validation::ValidationResult;
+
+// Both renderers walk the same list of blocks.
+struct Block {
+  enum class Kind { heading, paragraph, list, table, figure, verdict, definition } kind{};
+  int level = 2;                    // headings
+  std::string id{};                 // headings: anchor
+  std::string text{};               // plain text (headings, paragraphs, verdict, definition term)
+  std::string detail{};             // definition body (plain)
+  std::vector<std::string> items{}; // lists (plain)
+  Table table{};
+  std::string svg_html{};           // figures: ready HTML (inline SVG)
+  std::string caption{};            // figures: plain
+};
+
+class Doc {
+ public:
+  void h(int level, std::string id, std::string text) {
+    blocks.push_back({Block::Kind::heading, level, std::move(id), std::move(text)});
+  }
+  void p(std::string text) {
+    if (!text.empty()) blocks.push_back({Block::Kind::paragraph, 0, {}, std::move(text)});
+  }
+  void list(std::vector<std::string> items) {
+    if (items.empty()) return;
+    Block b{Block::Kind::list};
+    b.items = std::move(items);
+    blocks.push_back(std::move(b));
+  }
+  void table(Table t) {
+    if (t.rows.empty()) return;
+    Block b{Block::Kind::table};
+    b.table = std::move(t);
+    blocks.push_back(std::move(b));
+  }
+  void figure(std::string html, std::string caption) {
+    Block b{Block::Kind::figure};
+    b.svg_html = std::move(html);
+    b.caption = std::move(caption);
+    blocks.push_back(std::move(b));
+  }
+  void verdict(std::string text) { blocks.push_back({Block::Kind::verdict, 0, {}, std::move(text)}); }
+  void definition(std::string term, std::string body) {
+    Block b{Block::Kind::definition};
+    b.text = std::move(term);
+    b.detail = std::move(body);
+    blocks.push_back(std::move(b));
+  }
+  std::vector<Block> blocks;
+};
+
+std::string effects_label(const ValidationResult& r) {
+  return r.effects.empty() ? std::string("(none)") : fmt::format("{}", fmt::join(r.effects, ", "));
+}
+
+struct Variant {
+  const ValidationResult* result;
+  std::string suffix;  // element ids: "base" / "effects"
+  std::string title;   // "models as they are" / "with effects: ..."
+};
+
+std::vector<Variant> variants(const ReportInput& in) {
+  std::vector<Variant> v{{in.baseline, "base", "Models as they are"}};
+  if (in.with_effects) v.push_back({in.with_effects, "effects", "With effects: " + effects_label(*in.with_effects)});
+  return v;
+}
+
+// Before/after block: what was added, its physics, and how far the misfit fell.
+// `described`: effects whose physics the page already shows (the recommended one).
+void before_after(Doc& d, const Context& c, int level, const std::vector<std::string>& described = {}) {
+  const ReportInput& in = c.in;
+  if (!in.with_effects) return;
+  d.h(level, "before-after", "Before and after adding the effects");
+  d.table(effects_table(in.effects));
+  for (const auto& e : in.effects) {
+    if (std::find(described.begin(), described.end(), e.name) != described.end()) continue;
+    std::string body = e.physics.empty() ? "No description of its physics was supplied." : e.physics;
+    if (!e.source.empty()) body += " Source: " + e.source + ".";
+    d.definition(fmt::format("{} ({})", e.name, e.parameter), body);
+  }
+  d.table(rms_change_table(c, *in.baseline, *in.with_effects));
+  const std::string chart = rms_bar_chart(c, *in.baseline, *in.with_effects, "rms-before-after");
+  if (!chart.empty())
+    d.figure(chart, "RMS normalised error per model (all compared values), before and after; the dashed line "
+                    "is what measurement noise alone gives.");
+}
+
+void what_is_missing(Doc& d, const Context& c) {
+  const auto& g = *c.in.diagnosis;
+  d.h(2, "missing", "What is missing");
+  d.verdict(g.verdict);
+  d.p(fmt::format("Models: {}; {} data with uncertainties ({} without, left out of χ²); χ² of the models as "
+                  "they are: {:.1f} (chance of this much from noise alone: p = {:.2g}).",
+                  fmt::join(g.models, ", "), g.n_data, g.n_without_uncertainty, g.chi2_baseline,
+                  g.baseline_p_value));
+  d.h(3, "missing-failures", "Where the models fail");
+  if (g.failure_summary.empty()) d.p("Every quantity is within about two uncertainties of its measurement.");
+  d.list(g.failure_summary);
+  d.h(3, "missing-ranking", "Which effect explains the misfit");
+  const std::string chart = ranking_chart(g, "ranking-chart");
+  if (!chart.empty())
+    d.figure(chart, "Fall of χ² when each candidate effect is fitted; significant candidates in colour, the "
+                    "recommended one highlighted.");
+  d.table(ranking_table(g));
+
+  if (const auto* best = g.best()) {
+    d.h(3, "missing-physics", fmt::format("The recommended effect: {}", best->label()));
+    for (std::size_t i = 0; i < best->effects.size(); ++i) {
+      const auto& nm = best->effects[i];
+      std::string fit;
+      if (i < best->estimate.size() && i < best->parameters.size())
+        fit = fmt::format("Diagnosis estimate: {} = {:.4g}{}.", best->parameters[i], best->estimate[i],
+                          i < best->uncertainty.size() && std::isfinite(best->uncertainty[i])
+                              ? fmt::format(" ± {:.2g}", best->uncertainty[i])
+                              : std::string(" (unconstrained)"));
+      const auto e = std::find_if(c.in.effects.begin(), c.in.effects.end(),
+                                  [&](const EffectDescription& x) { return x.name == nm; });
+      if (e == c.in.effects.end()) {
+        d.definition(nm, fit + " Its physics is described in the effect library (effects/" + nm +
+                             ".cpp); validate with --effect " + nm + "=fit to see the models with it.");
+        continue;
+      }
+      std::string body = fit;
+      body += fmt::format(" Applied in this report: {} = {:.4g}{}{}.", e->parameter, e->value,
+                          e->uncertainty ? fmt::format(" ± {:.2g}", *e->uncertainty) : std::string(),
+                          e->unit.empty() ? std::string() : " " + e->unit);
+      if (!e->physics.empty()) body += " " + e->physics;
+      if (!e->source.empty()) body += " Source: " + e->source + ".";
+      d.definition(nm, body);
+    }
+  } else {
+    d.p("No candidate effect is significant: none of the library's effects explains the misfit better than "
+        "chance would.");
+  }
+  before_after(d, c, 3, g.best() ? g.best()->effects : std::vector<std::string>{});
+  if (!g.indistinguishable.empty() || !g.discriminators.empty()) {
+    d.h(3, "missing-alternatives", "Alternatives the data cannot tell apart");
+    if (!g.indistinguishable.empty())
+      d.p(fmt::format("About as good as the best: {}.", fmt::join(g.indistinguishable, ", ")));
+    d.list(g.discriminators);
+  }
+  if (!g.caveats.empty()) {
+    d.h(3, "missing-caveats", "Caveats");
+    d.list(g.caveats);
+  }
+}
+
+Doc assemble(const ReportInput& in) {
+  if (!in.dataset || !in.baseline) throw std::invalid_argument("report: dataset and baseline are required");
+  const Context c = make_context(in);
+  const auto vs = variants(in);
+  Doc d;
+
+  // ---- Header: what was compared (no date: the report is a function of its inputs) ----
+  std::vector<std::string> meta;
+  {
+    const std::string folder = in.dataset->dir.filename().string();
+    meta.push_back("Dataset: " + in.baseline->dataset_name +
+                   (folder.empty() || folder == in.baseline->dataset_name ? std::string() : " (folder " + folder + ")"));
+  }
+  if (!in.dataset->setup.source.empty()) meta.push_back("Source: " + in.dataset->setup.source);
+  meta.push_back(fmt::format("Conditions: {}; measured values: {}; trajectory points: {}", c.conditions.size(),
+                             in.dataset->measurements.size(), in.dataset->trajectory.size()));
+  meta.push_back(fmt::format("Models: {}", fmt::join(in.baseline->models, ", ")));
+  meta.push_back("Effects: " + (in.with_effects ? effects_label(*in.with_effects) : std::string("none")));
+  if (in.baseline->acceptance_checked || (in.with_effects && in.with_effects->acceptance_checked)) {
+    const auto& last = in.with_effects ? *in.with_effects : *in.baseline;
+    meta.push_back(std::string("Acceptance: ") + (last.acceptance_failed ? "FAILED (values outside tolerance are marked ✗)"
+                                                                          : "passed (every checked value within tolerance)"));
+  } else {
+    meta.push_back("Acceptance: no tolerances set");
+  }
+  d.h(1, "top", "chutelab validation report: " + in.baseline->dataset_name);
+  d.list(meta);
+  if (in.diagnosis) d.verdict(in.diagnosis->verdict);  // the headline; details under "What is missing"
+  if (!in.notes.empty()) {
+    d.h(2, "notes", "Notes");
+    d.list(in.notes);
+  }
+
+  // ---- Summary ----
+  d.h(2, "summary", "Summary");
+  {
+    std::vector<std::string> lines;
+    for (const auto& v : vs)
+      for (const auto& m : v.result->models)
+        if (auto z = v.result->overall_rms_normalised(m))
+          lines.push_back(fmt::format("{} — {}: RMS normalised error {:.2f} over all compared values{}", v.title, m, *z,
+                                      *z > 2.0 ? " (more than measurement noise explains)" : ""));
+    d.list(lines);
+  }
+  for (const auto& v : vs) {
+    if (vs.size() > 1) d.h(3, "summary-" + v.suffix, v.title);
+    d.table(summary_table(*v.result, "summary-" + v.suffix));
+  }
+
+  if (in.diagnosis) what_is_missing(d, c);
+  else if (in.with_effects) before_after(d, c, 2);
+
+  // ---- Seed Table 4 and Fig. 6 ----
+  d.h(2, "forces", "Plate forces");
+  for (const auto& v : vs) {
+    if (vs.size() > 1) d.h(3, "forces-" + v.suffix, v.title);
+    d.table(force_table(c, *v.result, "table4-" + v.suffix));
+    const std::string chart = force_bar_chart(c, *v.result, "bars-" + v.suffix);
+    if (!chart.empty())
+      d.figure(chart, "Resultant plate force R per condition (cf. seed Fig. 6); error bars: ±1 sd of the "
+                      "measurement.");
+    else d.p("Neither measured nor predicted: the resultant force R.");
+  }
+
+  // ---- Seed Table 5 ----
+  d.h(2, "velocities", "Stream velocities and impact point");
+  for (const auto& v : vs) {
+    if (vs.size() > 1) d.h(3, "velocities-" + v.suffix, v.title);
+    d.table(velocity_table(c, *v.result, "table5-" + v.suffix));
+  }
+
+  // ---- Seed Fig. 7 ----
+  d.h(2, "trajectories", "Stream trajectories");
+  d.p("Each panel: the head pulley at the origin, the plate face, each model's streamlines, the measured stream "
+      "points (± 1 sd) and the measured and predicted impact points on the plate face. Equal scales on both "
+      "axes; the view ends a little below the lowest impact point. Beside each panel, the plate face "
+      "magnified (\u201cat the plate\u201d): where each streamline arrives, the models' impact points and the "
+      "measured one with its ± 1 sd.");
+  for (const auto& v : vs) {
+    if (vs.size() > 1) d.h(3, "trajectories-" + v.suffix, v.title);
+    d.figure(trajectory_grid(c, *v.result, "traj-" + v.suffix), "Stream trajectories per condition (cf. seed Fig. 7)");
+  }
+
+  // ---- Residuals ----
+  d.h(2, "residuals", "Where each model fails");
+  d.p("Normalised error E/u per condition and quantity, conditions ordered by belt speed, then mass flow. "
+      "Inside the shaded band (|E/u| ≤ 2) the difference is what measurement noise gives; outside it the model "
+      "misses something.");
+  for (const auto& v : vs) {
+    if (vs.size() > 1) d.h(3, "residuals-" + v.suffix, v.title);
+    const std::string chart = residual_chart(c, *v.result, "resid-" + v.suffix);
+    if (chart.empty()) d.p("No compared value has a stated uncertainty: no normalised error to show.");
+    else d.figure(chart, "");
+    d.table(trend_table(c, *v.result, "trends-" + v.suffix));
+  }
+
+  // ---- Provenance of the numbers ----
+  const Table notes = model_notes_table(c, in.with_effects ? *in.with_effects : *in.baseline, "model-notes");
+  if (!notes.rows.empty()) {
+    d.h(2, "provenance", "How the numbers were obtained");
+    d.table(notes);
+  }
+  return d;
+}
+
+constexpr std::string_view kCss = R"(
+:root { --ink:#1b1b1b; --muted:#5a5a5a; --rule:#d0d0d0; --fail:#fbd5d5; --failink:#8e1b1b; }
+* { box-sizing: border-box; }
+body { margin: 0; color: var(--ink); background: #fff;
+  font: 14px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, "Helvetica Neue", Arial, sans-serif; }
+main { max-width: 1100px; margin: 0 auto; padding: 24px 20px 60px; }
+h1 { font-size: 24px; margin: 0 0 10px; }
+h2 { font-size: 19px; margin: 34px 0 10px; padding-bottom: 4px; border-bottom: 2px solid var(--ink); }
+h3 { font-size: 15px; margin: 22px 0 8px; }
+ul { padding-left: 22px; }
+nav.toc { font-size: 13px; margin: 10px 0 0; }
+nav.toc a { margin-right: 14px; color: #0b5394; text-decoration: none; }
+.meta { list-style: none; padding: 0; margin: 0 0 8px; color: var(--muted); }
+.verdict { font-weight: 600; font-size: 15px; border-left: 4px solid #D55E00; padding: 8px 12px; background: #fff4ec; }
+dl.effect { margin: 8px 0; } dl.effect dt { font-weight: 600; } dl.effect dd { margin: 2px 0 8px 18px; }
+.table-wrap { overflow-x: auto; margin: 8px 0; }
+table.data { border-collapse: collapse; font-size: 12.5px; font-variant-numeric: tabular-nums; }
+table.data caption { text-align: left; font-weight: 600; padding: 2px 0 6px; }
+table.data th, table.data td { padding: 3px 6px; border-bottom: 1px solid var(--rule); white-space: nowrap; }
+table.data th { background: #f1f1f1; font-weight: 600; text-align: right; vertical-align: bottom; white-space: normal; }
+table.data tr.group th { text-align: center; border-bottom: 1px solid #999; background: #e7e7e7; }
+table.data td.num { text-align: right; }
+table.data td.left, table.data th.left { text-align: left; white-space: normal; }
+table.data td.fail { background: var(--fail); color: var(--failink); }
+table.data td .mark { font-weight: 700; }
+table.data td .u { color: var(--muted); font-size: 11px; }
+.table-note { font-size: 12px; color: var(--muted); margin: 2px 0 8px; }
+figure { margin: 12px 0 18px; }
+figcaption { font-size: 12px; color: var(--muted); margin-top: 4px; }
+svg.plot { display: block; max-width: 100%; height: auto; font-family: inherit; background: #fff; }
+svg.plot text { font-family: inherit; fill: #1b1b1b; }
+.traj-grid { display: flex; flex-wrap: wrap; gap: 10px 14px; align-items: flex-start; }
+.traj-grid svg.plot { flex: 0 1 auto; }
+footer { margin-top: 40px; font-size: 12px; color: var(--muted); }
+@media print {
+  body { font-size: 11px; } main { max-width: none; padding: 0; }
+  nav.toc { display: none; }
+  h2 { break-after: avoid; } figure, .table-wrap, svg.plot { break-inside: avoid; }
+  table.data td.fail { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
+}
+)";
+
+std::string render_html(const Doc& d, const ReportInput& in) {
+  std::string o = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+                  "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+  o += fmt::format("<title>chutelab validation: {}</title>\n<style>{}</style>\n</head>\n<body>\n<main>\n",
+                   esc(in.baseline->dataset_name), kCss);
+  // Contents from the level-2 headings.
+  std::string toc;
+  for (const auto& b : d.blocks)
+    if (b.kind == Block::Kind::heading && b.level == 2)
+      toc += fmt::format("<a href=\"#{}\">{}</a>", esc(b.id), esc(b.text));
+  bool toc_done = false;
+  bool in_section = false;
+  for (const auto& b : d.blocks) {
+    switch (b.kind) {
+      case Block::Kind::heading:
+        if (b.level == 2) {
+          if (!toc_done) {
+            o += fmt::format("<nav class=\"toc\">{}</nav>\n</header>\n", toc);
+            toc_done = true;
+          }
+          if (in_section) o += "</section>\n";
+          o += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n", esc(b.id), esc(b.text));
+          in_section = true;
+        } else if (b.level == 1) {
+          o += fmt::format("<header>\n<h1 id=\"{}\">{}</h1>\n", esc(b.id), esc(b.text));
+        } else {
+          o += fmt::format("<h{0} id=\"{1}\">{2}</h{0}>\n", b.level, esc(b.id), esc(b.text));
+        }
+        break;
+      case Block::Kind::paragraph: o += fmt::format("<p>{}</p>\n", esc(b.text)); break;
+      case Block::Kind::verdict: o += fmt::format("<p class=\"verdict\">{}</p>\n", esc(b.text)); break;
+      case Block::Kind::list:
+        o += toc_done ? "<ul>\n" : "<ul class=\"meta\">\n";
+        for (const auto& i : b.items) o += fmt::format("<li>{}</li>\n", esc(i));
+        o += "</ul>\n";
+        break;
+      case Block::Kind::definition:
+        o += fmt::format("<dl class=\"effect\"><dt>{}</dt><dd>{}</dd></dl>\n", esc(b.text), esc(b.detail));
+        break;
+      case Block::Kind::table: o += table_html(b.table); break;
+      case Block::Kind::figure:
+        if (b.svg_html.starts_with("<figure")) o += b.svg_html;  // a figure of its own (trajectory grid)
+        else {
+          o += "<figure>\n" + b.svg_html;
+          if (!b.caption.empty()) o += fmt::format("<figcaption>{}</figcaption>\n", esc(b.caption));
+          o += "</figure>\n";
+        }
+        break;
+    }
+  }
+  if (!toc_done) o += "</header>\n";
+  if (in_section) o += "</section>\n";
+  o += "<footer>Written by chutelab. E = predicted − measured (ASME V&amp;V 20 sign); u = one standard "
+       "deviation of the measurement. Values outside tolerance: red, marked ✗, the limit in the tooltip."
+       "</footer>\n</main>\n</body>\n</html>\n";
   return o;
 }
 
-std::string report_html(const ReportInput& in) {
-  return "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>chutelab report</title></head>"
-         "<body><pre>" + report_markdown(in) + "</pre></body></html>\n";
+std::string render_markdown(const Doc& d) {
+  std::string o;
+  for (const auto& b : d.blocks) {
+    switch (b.kind) {
+      case Block::Kind::heading:
+        o += fmt::format("{} {}\n\n", std::string(static_cast<std::size_t>(b.level), '#'), md_esc(b.text));
+        break;
+      case Block::Kind::paragraph: o += md_esc(b.text) + "\n\n"; break;
+      case Block::Kind::verdict: o += "**" + md_esc(b.text) + "**\n\n"; break;
+      case Block::Kind::list:
+        for (const auto& i : b.items) o += "- " + md_esc(i) + "\n";
+        o += "\n";
+        break;
+      case Block::Kind::definition: o += fmt::format("**{}**: {}\n\n", md_esc(b.text), md_esc(b.detail)); break;
+      case Block::Kind::table: o += table_markdown(b.table); break;
+      case Block::Kind::figure: {
+        // The pictures live in report.html; say what is there so the Markdown reader knows.
+        const std::string what = b.caption.empty() ? "Chart" : b.caption;
+        o += fmt::format("*{} (see report.html)*\n\n", md_esc(what));
+        break;
+      }
+    }
+  }
+  return o;
 }
+
+}  // namespace
+
+std::string report_markdown(const ReportInput& in) { return render_markdown(assemble(in)); }
+
+std::string report_html(const ReportInput& in) { return render_html(assemble(in), in); }
 
 }  // namespace chutelab::reports

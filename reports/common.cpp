@@ -1,0 +1,213 @@
+#include "reports/common.h"
+
+#include <algorithm>
+#include <array>
+#include <fmt/format.h>
+
+namespace chutelab::reports {
+
+std::string ConditionRow::speed_label() const {
+  return station ? fmt::format("{:.4g} m/s", station->belt_speed) : std::string();
+}
+
+std::string ConditionRow::flow_label() const {
+  return station ? fmt::format("{:.4g} t/h", station->mass_flow * 3.6) : std::string();
+}
+
+namespace {
+// Okabe & Ito's colour-blind-safe palette; the measured data are always near-black.
+constexpr std::array<std::string_view, 6> kColours = {"#0072B2", "#D55E00", "#009E73",
+                                                      "#CC79A7", "#E69F00", "#56B4E9"};
+constexpr std::array<Shape, 6> kShapes = {Shape::circle,  Shape::square,        Shape::triangle_up,
+                                          Shape::diamond, Shape::triangle_down, Shape::cross};
+
+std::size_t model_index(const std::vector<std::string>& models, const std::string& m) {
+  return static_cast<std::size_t>(std::find(models.begin(), models.end(), m) - models.begin());
+}
+}  // namespace
+
+std::string Context::colour(const std::string& model) const {
+  return std::string(kColours[model_index(models, model) % kColours.size()]);
+}
+
+Shape Context::shape(const std::string& model) const {
+  return kShapes[model_index(models, model) % kShapes.size()];
+}
+
+Context make_context(const ReportInput& in) {
+  Context c{in, {}, {}};
+  c.models = in.baseline->models;
+  if (in.with_effects)
+    for (const auto& m : in.with_effects->models)
+      if (std::find(c.models.begin(), c.models.end(), m) == c.models.end()) c.models.push_back(m);
+
+  // Conditions as the results list them (the dataset's order), then sorted for display.
+  std::vector<std::string> names;
+  auto add = [&](const std::string& n) {
+    if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+  };
+  for (const auto& p : in.baseline->predictions) add(p.condition);
+  for (const auto& cmp : in.baseline->comparisons) add(cmp.condition);
+  for (const auto& n : names) c.conditions.push_back({n, in.dataset ? in.dataset->station(n) : nullptr});
+  std::stable_sort(c.conditions.begin(), c.conditions.end(),
+                   [](const ConditionRow& a, const ConditionRow& b) {
+                     if (!a.station || !b.station) return a.station && !b.station;
+                     if (a.station->belt_speed != b.station->belt_speed)
+                       return a.station->belt_speed < b.station->belt_speed;
+                     return a.station->mass_flow < b.station->mass_flow;
+                   });
+  return c;
+}
+
+QuantityName quantity_name(std::string_view n) {
+  QuantityName out;
+  out.name = std::string(n);
+  if (auto q = parse_quantity(n)) {
+    const auto& i = info(*q);
+    out.symbol = std::string(i.symbol);
+    out.label = std::string(i.label);
+    out.unit = std::string(i.unit);
+    out.scale = i.to_boundary;
+    out.q = q;
+    return out;
+  }
+  // "trajectory_<boundary>_y_mm": the harness's name for measured stream points.
+  constexpr std::string_view pre = "trajectory_", post = "_y_mm";
+  if (n.starts_with(pre) && n.ends_with(post) && n.size() > pre.size() + post.size()) {
+    const auto b = n.substr(pre.size(), n.size() - pre.size() - post.size());
+    out.symbol = fmt::format("y_{}", b);
+    out.label = fmt::format("{} stream boundary, y", b);
+    out.unit = "mm";
+    out.scale = 1e3;
+    return out;
+  }
+  out.symbol = out.name;
+  out.label = out.name;
+  return out;
+}
+
+std::vector<std::string> compared_quantities(const validation::ValidationResult& r) {
+  std::vector<std::string> order;
+  for (Quantity q : kAllQuantities) order.emplace_back(name(q));
+  for (Boundary b : kAllBoundaries) order.push_back(fmt::format("trajectory_{}_y_mm", name(b)));
+  std::vector<std::string> seen;
+  for (const auto& c : r.comparisons)
+    if (std::find(seen.begin(), seen.end(), c.quantity) == seen.end()) seen.push_back(c.quantity);
+  std::vector<std::string> out;
+  for (const auto& q : order)
+    if (std::find(seen.begin(), seen.end(), q) != seen.end()) out.push_back(q);
+  for (const auto& q : seen)  // anything the vocabulary does not know yet goes last
+    if (std::find(order.begin(), order.end(), q) == order.end()) out.push_back(q);
+  return out;
+}
+
+Lookup::Lookup(const validation::ValidationResult& r) {
+  for (const auto& c : r.comparisons) map_[{c.condition, c.model, c.quantity}].push_back(&c);
+}
+
+const validation::Comparison* Lookup::one(const std::string& condition, const std::string& model,
+                                          const std::string& quantity) const {
+  const auto& v = all(condition, model, quantity);
+  return v.empty() ? nullptr : v.front();
+}
+
+const std::vector<const validation::Comparison*>& Lookup::all(const std::string& condition,
+                                                              const std::string& model,
+                                                              const std::string& quantity) const {
+  auto it = map_.find({condition, model, quantity});
+  return it == map_.end() ? none_ : it->second;
+}
+
+const validation::Measurement* find_measurement(const validation::Dataset& d,
+                                                const std::string& condition, Quantity q) {
+  for (const auto& m : d.measurements)
+    if (m.condition == condition && m.quantity == q) return &m;
+  return nullptr;
+}
+
+// ---- Table rendering ---------------------------------------------------------------------------
+
+std::string table_html(const Table& t) {
+  std::string o = "<div class=\"table-wrap\">\n<table class=\"data\"";
+  if (!t.id.empty()) o += fmt::format(" id=\"{}\"", esc(t.id));
+  o += ">\n";
+  if (!t.caption.empty()) o += fmt::format("<caption>{}</caption>\n", esc(t.caption));
+  o += "<thead>\n";
+  const bool groups = std::any_of(t.columns.begin(), t.columns.end(),
+                                  [](const Column& c) { return !c.group.empty(); });
+  if (groups) {
+    o += "<tr class=\"group\">";
+    for (std::size_t i = 0; i < t.columns.size();) {
+      std::size_t j = i + 1;
+      while (j < t.columns.size() && t.columns[j].group == t.columns[i].group) ++j;
+      const auto& c = t.columns[i];
+      const std::string g = c.group_html.empty() ? esc(c.group) : c.group_html;
+      if (j - i > 1) o += fmt::format("<th colspan=\"{}\">{}</th>", j - i, g);
+      else o += fmt::format("<th>{}</th>", g);
+      i = j;
+    }
+    o += "</tr>\n";
+  }
+  o += "<tr>";
+  for (const auto& c : t.columns)
+    o += fmt::format("<th{}>{}</th>", c.left ? " class=\"left\"" : "", c.html.empty() ? esc(c.text) : c.html);
+  o += "</tr>\n</thead>\n<tbody>\n";
+  for (const auto& row : t.rows) {
+    o += "<tr>";
+    for (const auto& cell : row) {
+      std::string cls = cell.left ? "left" : "num";
+      if (cell.fail) cls += " fail";
+      std::string body = cell.html.empty() ? esc(cell.text) : cell.html;
+      if (cell.strong) body = "<strong>" + body + "</strong>";
+      if (cell.fail) body += fmt::format(" <span class=\"mark\">{}</span>", kFailMark);
+      o += fmt::format("<td class=\"{}\"{}>{}</td>", cls,
+                       cell.tip.empty() ? "" : fmt::format(" title=\"{}\"", esc(cell.tip)), body);
+    }
+    o += "</tr>\n";
+  }
+  o += "</tbody>\n</table>\n</div>\n";
+  for (const auto& n : t.notes) o += fmt::format("<p class=\"table-note\">{}</p>\n", esc(n));
+  return o;
+}
+
+std::string table_markdown(const Table& t) {
+  std::string o;
+  if (!t.caption.empty()) o += fmt::format("**{}**\n\n", md_esc(t.caption));
+  o += "|";
+  for (const auto& c : t.columns)
+    o += fmt::format(" {} |", md_esc(c.group.empty() || !c.group_in_markdown ? c.text
+                                                                              : fmt::format("{} {}", c.group, c.text)));
+  o += "\n|";
+  for (const auto& c : t.columns) o += c.left ? "---|" : "---:|";
+  o += "\n";
+  std::vector<std::string> failures;
+  for (const auto& row : t.rows) {
+    o += "|";
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      const auto& cell = row[k];
+      std::string body = md_esc(cell.text);
+      if (cell.fail) {
+        body = fmt::format("**{} {}**", body, kFailMark);
+        const auto& col = t.columns[std::min(k, t.columns.size() - 1)];
+        failures.push_back(fmt::format(
+            "{} {}, {}: {}", kFailMark, md_esc(row.front().text),
+            md_esc(col.group.empty() || !col.group_in_markdown ? col.text : col.group + " " + col.text),
+            md_esc(cell.tip)));
+      } else if (cell.strong) {
+        body = fmt::format("**{}**", body);
+      }
+      o += fmt::format(" {} |", body);
+    }
+    o += "\n";
+  }
+  o += "\n";
+  if (!failures.empty()) {
+    o += "Outside tolerance:\n\n";
+    for (const auto& f : failures) o += "- " + f + "\n";
+    o += "\n";
+  }
+  for (const auto& n : t.notes) o += md_esc(n) + "\n\n";
+  return o;
+}
+
+}  // namespace chutelab::reports

@@ -1,0 +1,133 @@
+#pragma once
+// What the report's sections share: the conditions in display order, how each model is drawn,
+// quantity names for headings, look-ups into a ValidationResult, and a table model that renders
+// to both HTML and Markdown (so the two reports cannot disagree on a number or a failing cell).
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <vector>
+
+#include "core/quantity.h"
+#include "reports/report.h"
+#include "reports/svg.h"
+
+namespace chutelab::reports {
+
+struct ConditionRow {
+  std::string name;
+  const Station* station = nullptr;  // null when the dataset does not list the condition
+  std::string speed_label() const;   // "2 m/s" (or "" without a station)
+  std::string flow_label() const;    // "26 t/h"
+};
+
+struct Context {
+  const ReportInput& in;
+  // Ordered by belt speed, then mass flow (stable: ties keep the dataset's order), so a trend
+  // with either operating variable reads left to right in every table and chart.
+  std::vector<ConditionRow> conditions;
+  std::vector<std::string> models;  // the baseline's order; styles follow it in every picture
+  std::string colour(const std::string& model) const;
+  Shape shape(const std::string& model) const;
+};
+
+Context make_context(const ReportInput& in);
+
+inline constexpr std::string_view kMeasuredColour = "#111111";
+inline constexpr std::string_view kBandColour = "#dde6d5";
+
+// Headings for a comparison quantity: the six of DESIGN.md §2 and the trajectory boundaries.
+struct QuantityName {
+  std::string name;    // boundary name, e.g. "normal_force_N"
+  std::string symbol;  // "R_n", "y_upper"
+  std::string label;   // words
+  std::string unit;    // boundary unit
+  double scale = 1.0;  // SI -> boundary unit
+  std::optional<Quantity> q;
+};
+QuantityName quantity_name(std::string_view boundary_name);
+// Quantities that occur in a result's comparisons, in the vocabulary's order.
+std::vector<std::string> compared_quantities(const validation::ValidationResult& r);
+
+// (condition, model, quantity) -> comparisons (several for trajectory points).
+class Lookup {
+ public:
+  explicit Lookup(const validation::ValidationResult& r);
+  const validation::Comparison* one(const std::string& condition, const std::string& model,
+                                    const std::string& quantity) const;
+  const std::vector<const validation::Comparison*>& all(const std::string& condition,
+                                                        const std::string& model,
+                                                        const std::string& quantity) const;
+
+ private:
+  std::map<std::tuple<std::string, std::string, std::string>,
+           std::vector<const validation::Comparison*>>
+      map_;
+  std::vector<const validation::Comparison*> none_;
+};
+
+const validation::Measurement* find_measurement(const validation::Dataset& d,
+                                                const std::string& condition, Quantity q);
+
+// ---- Tables -----------------------------------------------------------------------------------
+
+struct Cell {
+  std::string text{};   // plain text (escaped by the renderer)
+  std::string html{};   // optional rich HTML instead of text (already escaped)
+  bool fail = false;    // outside tolerance: marked in both renderers
+  std::string tip{};    // HTML title / Markdown footnote (e.g. the tolerance limit)
+  bool left = false;    // text column (numbers are right-aligned)
+  bool strong = false;
+};
+
+struct Column {
+  std::string group{};      // spanning header above (consecutive equal groups merge)
+  std::string text{};       // plain header
+  std::string html{};       // optional rich header
+  bool left = false;
+  std::string group_html{}; // optional rich group header
+  bool group_in_markdown = true;  // Markdown has no spanning header: prefix the group to the text
+};
+
+struct Table {
+  std::string id{};
+  std::string caption{};              // plain text
+  std::vector<Column> columns{};
+  std::vector<std::vector<Cell>> rows{};
+  std::vector<std::string> notes{};   // plain text lines under the table
+};
+
+std::string table_html(const Table& t);
+std::string table_markdown(const Table& t);
+
+inline constexpr std::string_view kDash = "\u2014";   // no value
+inline constexpr std::string_view kFailMark = "\u2717";  // outside tolerance
+
+// ---- Sections' building blocks (one file each) ------------------------------------------------
+
+// tables.cpp
+Table force_table(const Context& c, const validation::ValidationResult& r, std::string_view id);
+Table velocity_table(const Context& c, const validation::ValidationResult& r, std::string_view id);
+Table summary_table(const validation::ValidationResult& r, std::string_view id);
+Table rms_change_table(const Context& c, const validation::ValidationResult& before,
+                       const validation::ValidationResult& after);
+Table effects_table(const std::vector<EffectDescription>& effects);
+Table ranking_table(const validation::DiagnosisResult& d);
+Table model_notes_table(const Context& c, const validation::ValidationResult& r, std::string_view id);
+
+// plot_bars.cpp
+std::string force_bar_chart(const Context& c, const validation::ValidationResult& r, std::string_view id);
+std::string rms_bar_chart(const Context& c, const validation::ValidationResult& before,
+                          const validation::ValidationResult& after, std::string_view id);
+std::string ranking_chart(const validation::DiagnosisResult& d, std::string_view id);
+
+// plot_trajectory.cpp: HTML (a shared legend and one SVG panel per condition).
+std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id);
+
+// plot_residuals.cpp
+std::string residual_chart(const Context& c, const validation::ValidationResult& r, std::string_view id);
+// Pearson r of E/u with belt speed and with mass flow per model and quantity.
+Table trend_table(const Context& c, const validation::ValidationResult& r, std::string_view id);
+
+}  // namespace chutelab::reports

@@ -1,0 +1,327 @@
+// The stream picture of every condition (the seed's Fig. 7), as small multiples: the head pulley,
+// the plate, each model's streamlines, the measured stream points and the measured impact point.
+// Equal aspect in every panel so that angles and distances look as they are on the rig.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "reports/common.h"
+
+namespace chutelab::reports {
+namespace {
+
+// Dash patterns given to curve names in order of first appearance: the picture distinguishes a
+// model by colour and a streamline by dash, whatever the models call their curves.
+constexpr std::array<std::string_view, 6> kDashes = {"", "8 4", "2 3", "10 3 2 3", "5 2", "1 4"};
+
+Shape boundary_shape(Boundary b) {
+  switch (b) {
+    case Boundary::upper: return Shape::triangle_up;
+    case Boundary::lower: return Shape::triangle_down;
+    case Boundary::centre: return Shape::circle;
+  }
+  return Shape::circle;
+}
+
+struct Geometry {
+  double x0, x1, y0, y1;  // mm
+};
+
+// The plate face runs from its top edge (Z, top) along (sin beta, -cos beta).
+double face_x(const Station& s, double y) {
+  const double c = std::cos(s.plate.angle);
+  const double along = c > 1e-9 ? (s.plate_top - y) / c : 0.0;
+  return s.plate_distance + along * std::sin(s.plate.angle);
+}
+
+
+struct PlateHit {
+  std::string model, curve;
+  double y;  // mm
+};
+
+// The plate face as a vertical axis of its own (mm), zoomed onto where the stream meets it:
+// measured impact point with its error bar, each model's impact point, and where each streamline
+// arrives.
+template <class Dash>
+void draw_plate_strip(Svg& svg, const Frame& sf, const Context& c, const validation::Measurement* meas_y,
+                      const std::vector<std::pair<std::string, double>>& model_impacts,
+                      const std::vector<PlateHit>& hits, Dash dash) {
+  double lo = 1e300, hi = -1e300;
+  auto note = [&](double y) { lo = std::min(lo, y); hi = std::max(hi, y); };
+  if (meas_y) {
+    note(meas_y->value * 1e3 - meas_y->uncertainty.value_or(0.0) * 1e3);
+    note(meas_y->value * 1e3 + meas_y->uncertainty.value_or(0.0) * 1e3);
+  }
+  for (const auto& [m, y] : model_impacts) note(y);
+  for (const auto& h : hits) note(h.y);
+  const double pad = std::max(2.0, 0.12 * (hi - lo));
+  lo -= pad;
+  hi += pad;
+  const Ticks t = inner_ticks(lo, hi, 5);
+  const Scale Y{lo, hi, sf.bottom(), sf.top};
+  svg.text(sf.left + sf.width / 2, sf.top - 6, "at the plate", "middle", "font-size=\"10\" fill=\"#333\"");
+  svg.rect(sf.left, sf.top, sf.width, sf.height, "fill=\"#fafafa\" stroke=\"#444\"");
+  double label_w = 0.0;
+  for (double v : t.values) {
+    svg.line(sf.left, Y(v), sf.right(), Y(v), "stroke=\"#e2e2e2\"");
+    svg.line(sf.right(), Y(v), sf.right() + 4, Y(v), "stroke=\"#444\"");
+    svg.text(sf.right() + 7, Y(v) + 4, t.label(v), "start", "font-size=\"11\" fill=\"#333\"");
+    label_w = std::max(label_w, text_width(t.label(v), 11));
+  }
+  const double lx = sf.right() + 14 + label_w;
+  svg.raw(fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(90 {} {})\" "
+                      "class=\"axis-label\" font-size=\"11\">y on the plate (mm)</text>\n",
+                      px(lx), px(sf.top + sf.height / 2), px(lx), px(sf.top + sf.height / 2)));
+  svg.rect(sf.left, sf.top, 4, sf.height, "fill=\"#555\"");  // the plate face
+  for (const auto& h : hits) {
+    const std::string d = dash(h.curve);
+    svg.raw(fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"2\"{}>"
+                        "<title>{}: {} meets the plate at y = {:.1f} mm</title></line>\n",
+                        px(sf.left + 4), px(Y(h.y)), px(sf.left + 26), px(Y(h.y)), c.colour(h.model),
+                        d.empty() ? "" : fmt::format(" stroke-dasharray=\"{}\"", d), esc(h.model), esc(h.curve), h.y));
+  }
+  const double n = static_cast<double>(model_impacts.size());
+  for (std::size_t i = 0; i < model_impacts.size(); ++i) {
+    const auto& [m, y] = model_impacts[i];
+    const double x = sf.left + 36 + (static_cast<double>(i) - (n - 1) / 2) * 11;
+    std::string tip = fmt::format("{}: impact point y_R = {:.1f} mm", m, y);
+    if (meas_y) tip += fmt::format(" (error {:+.1f} mm)", y - meas_y->value * 1e3);
+    svg.marker(Shape::diamond, x, Y(y), 10, c.colour(m), false, tip);
+  }
+  if (meas_y) {
+    const double y = meas_y->value * 1e3, x = sf.left + 36;
+    std::string tip = fmt::format("measured impact point y_R = {:.1f}", y);
+    if (meas_y->uncertainty) {
+      const double u = *meas_y->uncertainty * 1e3;
+      tip += fmt::format(" ± {:.1f}", u);
+      svg.line(x, Y(y + u), x, Y(y - u), "stroke=\"#111\" stroke-width=\"1.2\"");
+      svg.line(x - 3, Y(y + u), x + 3, Y(y + u), "stroke=\"#111\"");
+      svg.line(x - 3, Y(y - u), x + 3, Y(y - u), "stroke=\"#111\"");
+    }
+    svg.marker(Shape::diamond, x, Y(y), 7, kMeasuredColour, true, tip + " mm");
+  }
+}
+
+}  // namespace
+
+std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id) {
+  // Styles: one dash per curve name, one colour per model.
+  std::vector<std::string> curve_names;
+  std::vector<std::pair<std::string, std::string>> model_curves;  // (model, curve) as they occur
+  for (const auto& m : r.models)
+    for (const auto& p : r.predictions)
+      if (p.model == m)
+        for (const auto& cv : p.prediction.curves) {
+          if (std::find(curve_names.begin(), curve_names.end(), cv.name) == curve_names.end())
+            curve_names.push_back(cv.name);
+          if (std::find(model_curves.begin(), model_curves.end(), std::pair{m, cv.name}) == model_curves.end())
+            model_curves.emplace_back(m, cv.name);
+        }
+  auto dash = [&](const std::string& curve) {
+    const auto i = static_cast<std::size_t>(std::find(curve_names.begin(), curve_names.end(), curve) -
+                                            curve_names.begin());
+    return std::string(kDashes[i % kDashes.size()]);
+  };
+  std::vector<std::string> impact_models;
+  for (const auto& m : r.models)
+    for (const auto& p : r.predictions)
+      if (p.model == m && p.prediction.values[Quantity::impact_point_y]) {
+        impact_models.push_back(m);
+        break;
+      }
+  std::vector<Boundary> boundaries;
+  for (Boundary b : kAllBoundaries)
+    for (const auto& pt : c.in.dataset->trajectory)
+      if (pt.boundary == b) {
+        boundaries.push_back(b);
+        break;
+      }
+  bool any_impact_measured = false;
+  for (const auto& row : c.conditions)
+    any_impact_measured = any_impact_measured || find_measurement(*c.in.dataset, row.name, Quantity::impact_point_y);
+
+  std::vector<LegendEntry> legend;
+  for (const auto& [m, cv] : model_curves)
+    legend.push_back({LegendEntry::Kind::line, fmt::format("{}: {}", m, cv), c.colour(m), dash(cv)});
+  for (Boundary b : boundaries)
+    legend.push_back({LegendEntry::Kind::marker, fmt::format("measured {} boundary", name(b)),
+                      std::string(kMeasuredColour), "", boundary_shape(b), true});
+  if (any_impact_measured)
+    legend.push_back({LegendEntry::Kind::marker, "measured impact point", std::string(kMeasuredColour), "",
+                      Shape::diamond, true});
+  for (const auto& m : impact_models)
+    legend.push_back({LegendEntry::Kind::marker, fmt::format("{}: impact point", m), c.colour(m), "",
+                      Shape::diamond, false});
+  legend.push_back({LegendEntry::Kind::line, "impact plate", "#555", ""});
+  legend.push_back({LegendEntry::Kind::box, "head pulley", "#d9d9d9"});
+
+  std::string o = fmt::format("<figure class=\"traj-figure\" id=\"{}\">\n", esc(id));
+  {
+    const double W = 980.0;
+    const double lh = legend_height(W - 20, legend);
+    Svg leg(W, lh + 30.0, "plot traj-legend", fmt::format("{}-legend", id), "Legend of the stream pictures");
+    leg.title("Stream trajectories per condition: x, y from the head-pulley centre (mm)");
+    leg.legend(10.0, 26.0, W - 20, legend);
+    o += leg.finish();
+  }
+  o += "<div class=\"traj-grid\">\n";
+
+  std::size_t panel = 0;
+  for (const auto& row : c.conditions) {
+    const std::string pid = fmt::format("{}-{}", id, panel++);
+    const Station* s = row.station;
+    std::vector<const validation::TrajectoryPoint*> points;
+    for (const auto& pt : c.in.dataset->trajectory)
+      if (pt.condition == row.name) points.push_back(&pt);
+    const auto* meas_y = find_measurement(*c.in.dataset, row.name, Quantity::impact_point_y);
+
+    if (!s) {
+      Svg svg(300, 80, "plot trajectory-panel", pid, fmt::format("Stream picture of {}", row.name));
+      svg.title(shorten(row.name, 40));
+      svg.text(150, 50, "no geometry for this condition in the dataset", "middle", "font-size=\"12\"");
+      o += svg.finish();
+      continue;
+    }
+
+    // Data extent in mm. Vertically from above the plate's top edge to a bit below the lowest
+    // impact point (the plate goes on much further down; that is not the interesting part).
+    const double Rb = s->belt.belt_radius() * 1e3;
+    const double Z = s->plate_distance * 1e3, T = s->plate_top * 1e3, Hp = s->plate.height * 1e3;
+    const double plate_bottom = T - Hp * std::cos(s->plate.angle);
+    double top = std::max(T, Rb), low = 1e300;
+    auto note_low = [&](double y) {
+      if (std::isfinite(y) && y >= plate_bottom - 1e-9) low = std::min(low, y);
+    };
+    if (meas_y) note_low(meas_y->value * 1e3 - meas_y->uncertainty.value_or(0.0) * 1e3);
+    std::vector<std::pair<std::string, double>> model_impacts;
+    for (const auto& m : impact_models)
+      if (const auto* p = r.prediction(row.name, m); p && p->prediction.values[Quantity::impact_point_y]) {
+        const double y = *p->prediction.values[Quantity::impact_point_y] * 1e3;
+        model_impacts.emplace_back(m, y);
+        note_low(y);
+      }
+    for (const auto* pt : points) {
+      note_low(pt->y * 1e3 - pt->uncertainty.value_or(0.0) * 1e3);
+      top = std::max(top, pt->y * 1e3 + pt->uncertainty.value_or(0.0) * 1e3);
+    }
+    // Where a streamline meets the plate counts too (the lower one hits below the impact point).
+    std::vector<PlateHit> hits;
+    for (const auto& m : r.models)
+      if (const auto* p = r.prediction(row.name, m))
+        for (const auto& cv : p->prediction.curves) {
+          if (cv.points.empty()) continue;
+          const auto& e = cv.points.back();
+          if (std::abs(e.x() * 1e3 - face_x(*s, e.y()) * 1e3) < 5.0) {
+            note_low(e.y() * 1e3);
+            hits.push_back({m, cv.name, e.y() * 1e3});
+          }
+          for (const auto& q : cv.points) top = std::max(top, q.y() * 1e3);
+        }
+    if (low > 1e299) low = std::max(plate_bottom, -Rb);  // nothing to show below: the pulley
+    const double span_y0 = top - low;
+    const double pad_y = std::max(10.0, 0.08 * span_y0);
+    double y0 = low - pad_y, y1 = top + pad_y;
+    // Rightmost: the plate face over the shown height (a tilted plate reaches further down there).
+    double right = std::max(Z, face_x(*s, std::max(y0, plate_bottom) / 1e3) * 1e3);
+    for (const auto* pt : points) right = std::max(right, pt->x * 1e3);
+    const double span_x0 = right + Rb;
+    const double pad_x = std::max(10.0, 0.05 * span_x0);
+    double x0 = -Rb - pad_x, x1 = right + pad_x;
+
+    // Equal aspect: one mm is the same number of pixels along x and y.
+    const double max_w = 300.0, max_h = 460.0, min_h = 170.0;
+    double k = std::min(max_w / (x1 - x0), max_h / (y1 - y0));
+    if ((y1 - y0) * k < min_h) {  // a flat picture: show more below rather than squash it
+      y0 = y1 - min_h / k;
+    }
+    const double pw = (x1 - x0) * k, ph = (y1 - y0) * k;
+    Frame f{60.0, 30.0, pw, ph};
+    // Beside the picture, the plate face magnified: at the rig's scale the impact points of the
+    // models and the measurement sit within a few pixels of each other.
+    const bool strip = meas_y || !model_impacts.empty() || !hits.empty();
+    const Frame sf{f.right() + 26.0, f.top, 56.0, f.height};
+    const double W = (strip ? sf.right() + 74.0 : f.right() + 14.0), H = f.bottom() + 44.0;
+    Svg svg(W, H, "plot trajectory-panel", pid, fmt::format("Stream picture of {}", row.name));
+    svg.title(shorten(fmt::format("{} — {}, {}", row.name, row.speed_label(), row.flow_label()),
+                      static_cast<std::size_t>(std::max(20.0, (W - 20.0) / 8.5))));
+    const Scale X{x0, x1, f.left, f.right()}, Y{y0, y1, f.bottom(), f.top};
+    // Same tick step on both axes (equal aspect, equal grid squares).
+    Ticks xt = inner_ticks(x0, x1, 6);
+    Ticks yt = xt;
+    yt.values.clear();
+    for (long i = static_cast<long>(std::ceil(y0 / xt.step)); i * xt.step <= y1 + 1e-9; ++i)
+      yt.values.push_back(static_cast<double>(i) * xt.step);
+    if (yt.values.size() < 3) {  // a short y range: finer ticks there
+      yt = inner_ticks(y0, y1, 4);
+    }
+    svg.axes(f, X, xt, Y, yt, "x (mm)", "y (mm)");
+    const std::string clip = svg.clip(f);
+    svg.raw(fmt::format("<g clip-path=\"url(#{})\">\n", clip));
+
+    // Head pulley and the belt running onto it (tangent at the top, along the belt's incline).
+    const double inc = s->belt.incline;
+    svg.raw(fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"#d9d9d9\" stroke=\"#888\"><title>head "
+                        "pulley, belt radius {:.1f} mm</title></circle>\n",
+                        px(X(0)), px(Y(0)), px(Rb * k), Rb));
+    svg.line(X(-Rb * std::sin(inc) - 2000 * std::cos(inc)), Y(Rb * std::cos(inc) - 2000 * std::sin(inc)),
+             X(-Rb * std::sin(inc)), Y(Rb * std::cos(inc)), "stroke=\"#888\" stroke-width=\"2\"");
+    // Plate: its face from the top edge down its height.
+    svg.raw(fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#555\" stroke-width=\"4\" "
+                        "stroke-linecap=\"butt\"><title>impact plate: Z = {:.1f} mm, top {:.1f} mm, height "
+                        "{:.1f} mm, angle {:.1f} deg</title></line>\n",
+                        px(X(Z)), px(Y(T)), px(X(Z + Hp * std::sin(s->plate.angle))), px(Y(plate_bottom)), Z, T,
+                        Hp, s->plate.angle * 180.0 / M_PI));
+
+    for (const auto& m : r.models)
+      if (const auto* p = r.prediction(row.name, m))
+        for (const auto& cv : p->prediction.curves) {
+          std::vector<std::pair<double, double>> pts;
+          for (const auto& q : cv.points) pts.emplace_back(X(q.x() * 1e3), Y(q.y() * 1e3));
+          const std::string d = dash(cv.name);
+          svg.raw(fmt::format("<g class=\"curve\"><title>{}: {}</title>\n", esc(m), esc(cv.name)));
+          svg.polyline(pts, fmt::format("stroke=\"{}\" stroke-width=\"1.8\"{}", c.colour(m),
+                                        d.empty() ? "" : fmt::format(" stroke-dasharray=\"{}\"", d)));
+          svg.raw("</g>\n");
+        }
+
+    for (const auto* pt : points) {
+      const double px_ = X(pt->x * 1e3), py = Y(pt->y * 1e3);
+      std::string tip = fmt::format("measured {} boundary at x = {:.1f} mm: y = {:.1f}", name(pt->boundary),
+                                    pt->x * 1e3, pt->y * 1e3);
+      if (pt->uncertainty) {
+        const double u = *pt->uncertainty * 1e3;
+        tip += fmt::format(" ± {:.1f}", u);
+        if (u * k > 2.0) {
+          svg.line(px_, Y(pt->y * 1e3 + u), px_, Y(pt->y * 1e3 - u), "stroke=\"#111\" stroke-width=\"1\"");
+          svg.line(px_ - 3, Y(pt->y * 1e3 + u), px_ + 3, Y(pt->y * 1e3 + u), "stroke=\"#111\"");
+          svg.line(px_ - 3, Y(pt->y * 1e3 - u), px_ + 3, Y(pt->y * 1e3 - u), "stroke=\"#111\"");
+        }
+      }
+      svg.marker(boundary_shape(pt->boundary), px_, py, 7, kMeasuredColour, true, tip + " mm");
+    }
+    // Impact points on the plate face: models hollow and larger, measured filled on top.
+    for (const auto& [m, y] : model_impacts) {
+      std::string tip = fmt::format("{}: impact point y_R = {:.1f} mm", m, y);
+      if (meas_y) tip += fmt::format(" (error {:+.1f} mm)", y - meas_y->value * 1e3);
+      svg.marker(Shape::diamond, X(face_x(*s, y / 1e3) * 1e3), Y(y), 13, c.colour(m), false, tip);
+    }
+    if (meas_y) {
+      const double y = meas_y->value * 1e3, xx = X(face_x(*s, meas_y->value) * 1e3);
+      std::string tip = fmt::format("measured impact point y_R = {:.1f}", y);
+      if (meas_y->uncertainty) {
+        const double u = *meas_y->uncertainty * 1e3;
+        tip += fmt::format(" ± {:.1f}", u);
+        if (u * k > 2.0) svg.line(xx, Y(y + u), xx, Y(y - u), "stroke=\"#111\" stroke-width=\"1.2\"");
+      }
+      svg.marker(Shape::diamond, xx, Y(y), 8, kMeasuredColour, true, tip + " mm");
+    }
+    svg.raw("</g>\n");
+    if (strip) draw_plate_strip(svg, sf, c, meas_y, model_impacts, hits, [&](const std::string& n) { return dash(n); });
+    o += svg.finish();
+  }
+  o += "</div>\n</figure>\n";
+  return o;
+}
+
+}  // namespace chutelab::reports

@@ -1,0 +1,293 @@
+#define BOOST_TEST_MODULE report_browser
+// report.html in a real browser (headless Chromium): it loads without errors, fetches nothing,
+// every picture has a size and content, no label sticks out of its picture, and the expected
+// sections and plots are there. A script injected into a copy of the page does the checking and
+// writes its verdict into the DOM, which Chromium dumps.
+#include <boost/test/unit_test.hpp>
+#include <chrono>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <unistd.h>
+
+#include "effects/registry.h"
+#include "reports/report.h"
+#include "validation/diagnosis.h"
+#include "validation/effect_fit.h"
+#include "validation/harness.h"
+#include "validation/synthesize.h"
+#include "validation/tolerances.h"
+
+namespace chutelab::test {
+namespace {
+namespace fs = std::filesystem;
+
+const fs::path kChromium = "/usr/bin/chromium";
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void spit(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+fs::path work_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / fmt::format("chutelab-report-browser-{}", ::getpid()) / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Records errors from the very start of the page (script errors and failed resource loads).
+constexpr std::string_view kRecorder = R"(<script>
+window.__errors = [];
+window.onerror = function (msg, src, line) { window.__errors.push('script error: ' + msg + ' at ' + line); };
+window.addEventListener('error', function (e) {
+  if (e.target && e.target !== window) window.__errors.push('resource failed: ' + (e.target.src || e.target.href || e.target.tagName));
+}, true);
+</script>
+)";
+
+// Runs after the page has loaded; `EXPECT` is replaced by the test's expectations.
+constexpr std::string_view kChecker = R"(<script>
+(function () {
+  var expect = EXPECT;
+  function check() {
+    var bad = window.__errors.slice();
+    var svgs = document.querySelectorAll('svg');
+    if (svgs.length === 0) bad.push('no svg at all');
+    for (var i = 0; i < svgs.length; ++i) {
+      var s = svgs[i], r = s.getBoundingClientRect();
+      if (!(r.width > 0 && r.height > 0)) bad.push('svg with an empty box: ' + s.id);
+      var b = s.getBBox();
+      if (!(b.width > 0 && b.height > 0)) bad.push('svg with nothing drawn: ' + s.id);
+      var texts = s.querySelectorAll('text');
+      for (var k = 0; k < texts.length; ++k) {
+        var t = texts[k].getBoundingClientRect();
+        if (t.width > 0 && (t.left < r.left - 1 || t.right > r.right + 1 || t.top < r.top - 1 || t.bottom > r.bottom + 1))
+          bad.push('text outside its picture: "' + texts[k].textContent + '" in ' + s.id);
+      }
+      if (s.classList.contains('plot') && !s.classList.contains('traj-legend')) {
+        if (!s.querySelector('.plot-title')) bad.push('plot without a title: ' + s.id);
+        if (!s.querySelector('.axis-label')) bad.push('plot without axis labels: ' + s.id);
+        if (!s.classList.contains('trajectory-panel') && !s.querySelector('.legend')) bad.push('plot without a legend: ' + s.id);
+      }
+    }
+    expect.sections.forEach(function (id) {
+      if (!document.getElementById(id)) bad.push('missing element #' + id);
+    });
+    Object.keys(expect.counts).forEach(function (sel) {
+      var n = document.querySelectorAll(sel).length;
+      if (n !== expect.counts[sel]) bad.push(sel + ': ' + n + ' found, ' + expect.counts[sel] + ' expected');
+    });
+    Object.keys(expect.at_least).forEach(function (sel) {
+      var n = document.querySelectorAll(sel).length;
+      if (n < expect.at_least[sel]) bad.push(sel + ': ' + n + ' found, at least ' + expect.at_least[sel] + ' expected');
+    });
+    var fetched = performance.getEntriesByType('resource');
+    for (var j = 0; j < fetched.length; ++j) bad.push('page fetched ' + fetched[j].name);
+    var out = document.createElement('pre');
+    out.id = 'chutelab-check';
+    out.textContent = (bad.length ? 'FAIL: ' + bad.join(' | ') : 'PASS') + ' [svgs=' + svgs.length + ']';
+    document.body.appendChild(out);
+  }
+  if (document.readyState === 'complete') check(); else window.addEventListener('load', check);
+})();
+</script>
+)";
+
+struct Expectations {
+  std::vector<std::string> ids;
+  std::vector<std::pair<std::string, int>> counts, at_least;
+  std::string js() const {
+    auto quote = [](const std::string& s) { return "'" + s + "'"; };
+    std::string o = "{sections: [";
+    for (const auto& id : ids) o += quote(id) + ",";
+    o += "], counts: {";
+    for (const auto& [sel, n] : counts) o += fmt::format("{}: {},", quote(sel), n);
+    o += "}, at_least: {";
+    for (const auto& [sel, n] : at_least) o += fmt::format("{}: {},", quote(sel), n);
+    return o + "}}";
+  }
+};
+
+// The browser's verdict on a page, or the reason it could not be obtained.
+std::string browse(const fs::path& dir, const std::string& html, const Expectations& e) {
+  std::string page = html;
+  const auto head = page.find("<head>");
+  const auto body_end = page.rfind("</body>");
+  BOOST_REQUIRE(head != std::string::npos && body_end != std::string::npos);
+  std::string checker(kChecker);
+  checker.replace(checker.find("EXPECT"), 6, e.js());
+  page.insert(body_end, checker);
+  page.insert(head + 6, kRecorder);
+  spit(dir / "check.html", page);
+  const fs::path profile = dir / "profile";  // fresh: no state from earlier runs or other users
+  fs::remove_all(profile);
+  const std::string cmd = fmt::format(
+      "timeout 90 '{}' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+      "--disable-background-networking --disable-component-update --disable-sync --disable-extensions "
+      "--user-data-dir='{}' --window-size=1200,900 --virtual-time-budget=5000 --dump-dom 'file://{}' "
+      ">'{}' 2>'{}' </dev/null",
+      kChromium.string(), profile.string(), fs::absolute(dir / "check.html").string(), (dir / "dom.html").string(),
+      (dir / "stderr.txt").string());
+  const int status = std::system(cmd.c_str());
+  const std::string dom = slurp(dir / "dom.html");
+  const auto at = dom.find("id=\"chutelab-check\">");
+  if (at == std::string::npos)
+    return fmt::format("no verdict in the DOM (chromium exit status {}); stderr: {}", status,
+                       slurp(dir / "stderr.txt").substr(0, 2000));
+  const auto start = at + std::string("id=\"chutelab-check\">").size();
+  return dom.substr(start, dom.find("</pre>", start) - start);
+}
+
+int quantities_with_normalised_error(const validation::ValidationResult& r) {
+  std::set<std::string> q;
+  for (const auto& c : r.comparisons)
+    if (c.normalised_error()) q.insert(c.quantity);
+  return static_cast<int>(q.size());
+}
+
+bool have_chromium() {
+  if (fs::exists(kChromium)) return true;
+  BOOST_TEST_MESSAGE("SKIPPED: " << kChromium << " is not installed (scripts/setup.sh installs Debian's chromium); "
+                                    "the report was not checked in a browser.");
+  return false;
+}
+
+void finish(const fs::path& dir, const std::string& verdict, double seconds) {
+  BOOST_TEST_MESSAGE("browser verdict: " << verdict << " (" << seconds << " s); page: " << (dir / "report.html"));
+  BOOST_TEST(verdict.starts_with("PASS"), verdict);
+  if (verdict.starts_with("PASS") && !std::getenv("CHUTELAB_KEEP_REPORTS")) fs::remove_all(dir);
+}
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+// The bundled virtual-experiment rig, models as they are, with tolerances that some values break.
+BOOST_AUTO_TEST_CASE(reference_rig_report_renders_in_chromium) {
+  if (!have_chromium()) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const fs::path dir = work_dir("reference");
+  const auto d = validation::read_dataset(fs::path(CHUTELAB_SOURCE_DIR) / "datasets" / "liggghts-rig");
+  spit(dir / "tolerances.toml",
+       "[korzen]\nshear_force_N = { relative = 0.5 }\nresultant_force_N = { relative = 0.03 }\n"
+       "[\"*\"]\nimpact_point_y_mm = { absolute = 5.0 }\n");
+  const auto tol = validation::Tolerances::read(dir / "tolerances.toml");
+  validation::ValidateOptions opt;
+  opt.tolerances = &tol;
+  const auto r = validation::validate(d, validation::make_models({"korzen", "booth-cema"}), opt);
+  BOOST_REQUIRE(r.acceptance_failed);
+
+  reports::ReportInput in;
+  in.dataset = &d;
+  in.baseline = &r;
+  in.notes = {"Tolerances chosen by the test so that some values fail."};
+  const std::string html = reports::report_html(in);
+  spit(dir / "report.html", html);
+  spit(dir / "report.md", reports::report_markdown(in));
+
+  const int n = static_cast<int>(d.stations.size());
+  Expectations e;
+  e.ids = {"summary", "forces", "velocities", "trajectories", "residuals", "table4-base", "table5-base",
+           "bars-base", "traj-base", "resid-base", "trends-base"};
+  e.counts = {{"#traj-base .trajectory-panel", n},
+              {"#resid-base .residual-panel", quantities_with_normalised_error(r)},
+              {"#table4-base tbody tr", n},
+              {"#table5-base tbody tr", n},
+              {"#bars-base rect.bar", 2 * n},  // measured and korzen (booth-cema predicts no R)
+              {"#missing", 0}};
+  e.at_least = {{"#table4-base td.fail", 1}, {"#table5-base td.fail", 1}, {"#traj-base polyline", 4 * n}};
+  const std::string verdict = browse(dir, html, e);
+  finish(dir, verdict, since(t0));
+}
+
+// A synthetic dataset with hidden air drag: diagnosis, the fitted effect, before and after.
+BOOST_AUTO_TEST_CASE(diagnosis_and_before_after_report_renders_in_chromium) {
+  if (!have_chromium()) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const fs::path dir = work_dir("synthetic");
+  const auto rig = validation::read_dataset(fs::path(CHUTELAB_SOURCE_DIR) / "datasets" / "grima2010",
+                                            validation::MeasurementsRequired::no);
+  const auto* drag = effects::find("air_drag");
+  BOOST_REQUIRE(drag);
+  validation::SynthesizeOptions so;
+  so.effects = {drag->make(0.6)};
+  so.seed = 5;
+  validation::write_outputs(dir / "data", validation::synthesize(rig, validation::make_models({"korzen", "booth-cema"}), so));
+  const auto d = validation::read_dataset(dir / "data");
+
+  const auto models = validation::make_models({"korzen", "booth-cema"});
+  const auto g = validation::diagnose(d, validation::make_models({"booth-cema", "korzen"}));
+  const auto* best = g.best();
+  BOOST_REQUIRE(best);
+  BOOST_REQUIRE(best->effects.size() == 1u);
+  const auto* info = effects::find(best->effects.front());
+  BOOST_REQUIRE(info);
+
+  const auto before = validation::validate(d, models);
+  validation::ValidateOptions opt;
+  opt.effects = {info->make(best->estimate.front())};
+  opt.effect_labels = {fmt::format("{}={:.4g} (fitted)", info->name, best->estimate.front())};
+  const auto after = validation::validate(d, models, opt);
+
+  reports::ReportInput in;
+  in.dataset = &d;
+  in.baseline = &before;
+  in.with_effects = &after;
+  in.diagnosis = &g;
+  in.effects.push_back({info->name, info->parameter, info->unit, info->physics, info->source,
+                        best->estimate.front(), best->uncertainty.front(), true});
+  const std::string html = reports::report_html(in);
+  spit(dir / "report.html", html);
+  spit(dir / "report.md", reports::report_markdown(in));
+
+  const int n = static_cast<int>(d.stations.size());
+  Expectations e;
+  e.ids = {"summary", "missing", "before-after", "ranking-chart", "rms-before-after", "forces", "velocities",
+           "trajectories", "residuals", "table4-base", "table4-effects", "table5-effects", "bars-effects",
+           "resid-effects", "trends-effects"};
+  e.counts = {{"#traj-base .trajectory-panel", n},
+              {"#traj-effects .trajectory-panel", n},
+              {"#resid-base .residual-panel", quantities_with_normalised_error(before)},
+              {"#resid-effects .residual-panel", quantities_with_normalised_error(after)},
+              {"#ranking-chart rect.bar", static_cast<int>(g.singles.size() + g.pairs.size())},
+              {"#rms-before-after rect.bar", 4}};
+  e.at_least = {{"#missing li", 1}, {"#ranking tbody tr", 1}};
+  const std::string verdict = browse(dir, html, e);
+  finish(dir, verdict, since(t0));
+}
+
+// The checker is not vacuous: a page with a script error, an empty picture, a label outside its
+// picture and a missing section fails, naming each problem.
+BOOST_AUTO_TEST_CASE(checker_catches_a_broken_page) {
+  if (!have_chromium()) return;
+  const fs::path dir = work_dir("broken");
+  const std::string html =
+      "<!DOCTYPE html><html><head><meta charset=\"utf-8\"></head><body>"
+      "<svg id=\"empty\" width=\"0\" height=\"0\"></svg>"
+      "<svg id=\"spill\" class=\"plot\" width=\"100\" height=\"50\" viewBox=\"0 0 100 50\">"
+      "<rect width=\"10\" height=\"10\"/><text x=\"90\" y=\"20\">far too long a label</text></svg>"
+      "<script>undefined_function();</script></body></html>\n";
+  Expectations e;
+  e.ids = {"summary"};
+  const std::string verdict = browse(dir, html, e);
+  BOOST_TEST_MESSAGE("verdict on the broken page: " << verdict);
+  BOOST_TEST(verdict.starts_with("FAIL"), verdict);
+  for (const char* problem : {"script error", "svg with an empty box: empty", "text outside its picture",
+                              "missing element #summary", "plot without a title: spill"})
+    BOOST_TEST(verdict.find(problem) != std::string::npos, problem);
+  fs::remove_all(dir);
+}
+
+}  // namespace chutelab::test

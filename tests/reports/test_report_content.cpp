@@ -1,0 +1,281 @@
+#define BOOST_TEST_MODULE reports
+// The report's content from a small hand-built result: failing cells marked in both renderers,
+// a dash where a model predicts nothing, user text escaped, the same bytes for the same inputs,
+// and nothing that reaches outside the file.
+#include <boost/test/unit_test.hpp>
+#include <string>
+
+#include "reports/report.h"
+#include "reports/svg.h"
+
+namespace chutelab::test {
+namespace {
+
+using validation::Comparison;
+using validation::ConditionResult;
+using validation::Dataset;
+using validation::ValidationResult;
+
+const std::string kNasty = "a<b&c>|*";  // condition name from a user's file
+
+Setup small_setup() {
+  Setup s;
+  s.name = "hand-made";
+  s.source = "unit test";
+  s.belt.pulley_diameter = 0.25;
+  s.belt.belt_thickness = 0.005;
+  s.belt.belt_width = 0.3;
+  s.belt.loaded_width = 0.2;
+  s.plate.width = 0.4;
+  s.plate.height = 0.5;
+  s.material.bulk_density = 558.0;
+  s.material.friction_plate = 0.27;
+  return s;
+}
+
+Dataset small_dataset() {
+  Dataset d;
+  d.dir = "hand-made";
+  d.setup = small_setup();
+  // Listed out of order: the report sorts by belt speed.
+  d.stations.push_back(validation::make_station(d.setup, "V3", 3.0, 41.0 / 3.6, 0.4, 0.25, 0.034));
+  d.stations.push_back(validation::make_station(d.setup, kNasty, 2.0, 26.0 / 3.6, 0.3, 0.25, 0.0342));
+  d.station_lines.resize(2);
+  auto meas = [&](const std::string& c, Quantity q, double v, double u) {
+    d.measurements.push_back({c, q, v, u, {}});
+  };
+  meas(kNasty, Quantity::normal_force, 14.91, 0.068);
+  meas(kNasty, Quantity::resultant_force, 15.091, 0.069);
+  meas(kNasty, Quantity::exit_velocity, 1.758, 0.003);
+  meas(kNasty, Quantity::impact_point_y, 0.0419, 0.0001);
+  meas("V3", Quantity::normal_force, 34.996, 0.148);
+  meas("V3", Quantity::resultant_force, 35.21, 0.15);
+  meas("V3", Quantity::exit_velocity, 1.828, 0.009);
+  meas("V3", Quantity::impact_point_y, 0.0589, 0.0003);
+  d.trajectory.push_back({kNasty, Boundary::upper, 0.1, 0.1475, 0.001, {}});
+  return d;
+}
+
+// m1 predicts forces and V_a (V_a only at the first condition); m2 only the impact point.
+ValidationResult small_result(const Dataset& d, bool with_tolerance) {
+  ValidationResult r;
+  r.dataset_name = "hand-made";
+  r.models = {"m1", "m2"};
+  auto pred = [&](const std::string& c, const std::string& m) -> validation::ModelPrediction& {
+    r.predictions.push_back({c, m, {}});
+    return r.predictions.back().prediction;
+  };
+  {
+    auto& p = pred(kNasty, "m1");
+    p.values[Quantity::normal_force] = 14.4444;
+    p.values[Quantity::shear_force] = 3.9;
+    p.values[Quantity::resultant_force] = 18.2617;  // +21 %: the failing cell
+    p.values[Quantity::exit_velocity] = 0.930998;
+    p.notes.push_back("note for <m1> & co");
+  }
+  pred(kNasty, "m2").values[Quantity::impact_point_y] = 0.0334859;
+  {
+    auto& p = pred("V3", "m1");
+    p.values[Quantity::normal_force] = 34.17;
+    p.values[Quantity::shear_force] = 9.22;
+    p.values[Quantity::resultant_force] = 35.39;
+    // no exit velocity here: the table shows a dash
+  }
+  pred("V3", "m2").values[Quantity::impact_point_y] = 0.0566;
+
+  for (const auto& m : d.measurements)
+    for (const auto& model : r.models) {
+      Comparison c;
+      c.condition = m.condition;
+      c.model = model;
+      c.quantity = std::string(name(m.quantity));
+      c.q = m.quantity;
+      c.scale = info(m.quantity).to_boundary;
+      c.measured = m.value;
+      c.uncertainty = m.uncertainty;
+      c.predicted = r.prediction(m.condition, model)->prediction.values[m.quantity];
+      if (with_tolerance && c.predicted) {
+        c.verdict.checked = true;
+        if (model == "m1" && m.quantity == Quantity::resultant_force && m.condition == kNasty) {
+          c.verdict.passed = false;
+          c.verdict.limit = "|rel| 0.210 > 0.150";
+        }
+      }
+      r.comparisons.push_back(c);
+    }
+  r.acceptance_checked = with_tolerance;
+  r.acceptance_failed = with_tolerance;
+  r.summary.push_back({"m1", "resultant_force_N", 2, 2.2, 34.0, 0.21, with_tolerance ? std::optional(false) : std::nullopt});
+  r.summary.push_back({"m2", "impact_point_y_mm", 2, 5.6, 40.0, 0.2, std::nullopt});
+  return r;
+}
+
+std::string section(const std::string& text, const std::string& from, const std::string& to) {
+  const auto a = text.find(from);
+  BOOST_REQUIRE_MESSAGE(a != std::string::npos, "missing: " + from);
+  const auto b = text.find(to, a + from.size());
+  return text.substr(a, b == std::string::npos ? std::string::npos : b - a);
+}
+
+std::string line_starting(const std::string& text, const std::string& start) {
+  const auto a = text.find("\n" + start);
+  BOOST_REQUIRE_MESSAGE(a != std::string::npos, "no line starting with " + start);
+  const auto b = text.find('\n', a + 1);
+  return text.substr(a + 1, b - a - 1);
+}
+
+struct Fixture {
+  Dataset d = small_dataset();
+  ValidationResult r = small_result(d, true);
+  reports::ReportInput in() const {
+    reports::ReportInput i;
+    i.dataset = &d;
+    i.baseline = &r;
+    i.notes = {"fitted on 3 values: chi^2 10 -> 2"};
+    return i;
+  }
+};
+
+}  // namespace
+
+BOOST_FIXTURE_TEST_CASE(failing_cell_is_marked_in_markdown_and_html, Fixture) {
+  const auto md = reports::report_markdown(in());
+  const auto html = reports::report_html(in());
+  // R of m1 at the first condition: 18.26 N, 21 % off, outside the tolerance.
+  const auto t4 = section(md, "**Plate forces", "**Stream");
+  BOOST_TEST(t4.find("**18.26 \u2717**") != std::string::npos, t4);
+  BOOST_TEST(t4.find("\\|rel\\| 0.210 &gt; 0.150") != std::string::npos, t4);
+  BOOST_TEST(html.find("class=\"num fail\" title=\"outside tolerance: |rel| 0.210 &gt; 0.150") != std::string::npos);
+  // Exactly the failing cells are marked: R and its error column.
+  const auto t4html = section(html, "<table class=\"data\" id=\"table4-base\"", "</table>");
+  std::size_t n = 0;
+  for (auto p = t4html.find("fail\""); p != std::string::npos; p = t4html.find("fail\"", p + 1)) ++n;
+  BOOST_TEST(n == 2u);
+  // The summary says the model is not within tolerance.
+  BOOST_TEST(md.find("**no \u2717**") != std::string::npos);
+}
+
+BOOST_FIXTURE_TEST_CASE(no_tolerance_means_no_marks, Fixture) {
+  r = small_result(d, false);
+  const auto html = reports::report_html(in());
+  BOOST_TEST(html.find("class=\"num fail\"") == std::string::npos);
+  BOOST_TEST(reports::report_markdown(in()).find("\u2717**") == std::string::npos);
+}
+
+BOOST_FIXTURE_TEST_CASE(dash_where_a_model_predicts_nothing, Fixture) {
+  const auto md = reports::report_markdown(in());
+  const auto t5 = section(md, "**Stream velocities", "\n\n\n");
+  // Row V3: m1 predicts no V_a there.
+  const auto row = line_starting(t5, "| V3 |");
+  BOOST_TEST(row.find("| 1.828 ± 0.009 | \u2014 |") != std::string::npos, row);
+  // m2 predicts no force at all: left out of Table 4 with a note, not a column of dashes.
+  const auto t4 = section(md, "**Plate forces", "**Stream");
+  BOOST_TEST(t4.find("m2 R") == std::string::npos);
+  BOOST_TEST(t4.find("Not shown: m2") != std::string::npos);
+  // Shear force is not measured: the measured column shows a dash.
+  const auto row4 = line_starting(t4, "| V3 |");
+  BOOST_TEST(row4.find("| 35.00 ± 0.15 | \u2014 |") != std::string::npos, row4);
+}
+
+BOOST_FIXTURE_TEST_CASE(user_text_is_escaped, Fixture) {
+  const auto md = reports::report_markdown(in());
+  const auto html = reports::report_html(in());
+  BOOST_TEST(html.find("a<b&c>") == std::string::npos);
+  BOOST_TEST(html.find("a&lt;b&amp;c&gt;|*") != std::string::npos);
+  BOOST_TEST(html.find("note for &lt;m1&gt; &amp; co") != std::string::npos);
+  BOOST_TEST(md.find("a<b&c>") == std::string::npos);
+  BOOST_TEST(md.find("a&lt;b&amp;c&gt;\\|\\*") != std::string::npos);
+  // The nasty name sorts first (2 m/s) and its table row stays one row of the right width.
+  const auto t4 = section(md, "**Plate forces", "**Stream");
+  const auto header = line_starting(t4, "| condition");
+  const auto row = line_starting(t4, "| a&lt;");
+  auto cells = [](const std::string& s) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) n += s[i] == '|' && (i == 0 || s[i - 1] != '\\');
+    return n;
+  };
+  BOOST_TEST(cells(row) == cells(header));
+  BOOST_TEST(md.find("| a&lt;") < md.find("| V3 |"));
+}
+
+BOOST_FIXTURE_TEST_CASE(same_inputs_same_bytes, Fixture) {
+  const auto html1 = reports::report_html(in());
+  const auto md1 = reports::report_markdown(in());
+  // A fresh copy of the same inputs (different addresses) renders identically.
+  const Dataset d2 = small_dataset();
+  const ValidationResult r2 = small_result(d2, true);
+  reports::ReportInput i2 = in();
+  i2.dataset = &d2;
+  i2.baseline = &r2;
+  BOOST_TEST(reports::report_html(i2) == html1);
+  BOOST_TEST(reports::report_markdown(i2) == md1);
+  BOOST_TEST(reports::report_html(in()) == html1);
+}
+
+BOOST_FIXTURE_TEST_CASE(html_is_self_contained, Fixture) {
+  const auto html = reports::report_html(in());
+  for (const char* s : {"<script", "<link", "http://", "https://", "@import", "src=", "<img"})
+    BOOST_TEST(html.find(s) == std::string::npos, s);
+  for (auto p = html.find("url("); p != std::string::npos; p = html.find("url(", p + 1))
+    BOOST_TEST(html.substr(p, 5) == "url(#");  // only references to the page's own clip paths
+  BOOST_TEST(html.find("<svg") != std::string::npos);
+  BOOST_TEST(reports::report_markdown(in()).find("<svg") == std::string::npos);
+  // Axis labels with units on the pictures.
+  BOOST_TEST(html.find(">x (mm)</text>") != std::string::npos);
+  BOOST_TEST(html.find(">y (mm)</text>") != std::string::npos);
+  BOOST_TEST(html.find("plate resultant force R (N)") != std::string::npos);
+  BOOST_TEST(html.find(">E/u (–)</text>") != std::string::npos);
+}
+
+BOOST_FIXTURE_TEST_CASE(before_after_and_diagnosis_sections, Fixture) {
+  ValidationResult after = small_result(d, false);
+  after.effects = {"air_drag=0.5 (fitted)"};
+  validation::DiagnosisResult g;
+  g.dataset = "hand-made";
+  g.models = {"m1", "m2"};
+  g.verdict = "Missing effect: air_drag <really>.";
+  g.failure_summary = {"m1 over-predicts R_s"};
+  validation::EffectFit f;
+  f.effects = {"air_drag"};
+  f.parameters = {"drag_coefficient"};
+  f.estimate = {0.5};
+  f.uncertainty = {0.03};
+  f.chi2_before = 100;
+  f.chi2_after = 20;
+  f.significant = true;
+  f.rank = 1;
+  g.singles.push_back(f);
+  g.any_significant = true;
+  g.caveats = {"only the library's effects were tried"};
+  auto i = in();
+  i.with_effects = &after;
+  i.diagnosis = &g;
+  i.effects.push_back({"air_drag", "drag_coefficient", "", "F = c v^2 <drag>", "Crowe", 0.5, 0.03, true});
+  const auto html = reports::report_html(i);
+  const auto md = reports::report_markdown(i);
+  for (const char* id : {"id=\"missing\"", "id=\"before-after\"", "id=\"ranking-chart\"", "id=\"rms-before-after\"",
+                         "id=\"table4-effects\"", "id=\"resid-effects\"", "id=\"traj-effects\""})
+    BOOST_TEST(html.find(id) != std::string::npos, id);
+  BOOST_TEST(html.find("Missing effect: air_drag &lt;really&gt;.") != std::string::npos);
+  BOOST_TEST(html.find("F = c v^2 &lt;drag&gt;") != std::string::npos);
+  BOOST_TEST(md.find("## What is missing") != std::string::npos);
+  BOOST_TEST(md.find("With effects: air\\_drag=0.5 (fitted)") != std::string::npos);
+  BOOST_TEST(md.find("only the library's effects were tried") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(nice_ticks_land_on_round_numbers) {
+  const auto t = reports::nice_ticks(0.0, 63.3, 6);
+  BOOST_TEST(t.step == 10.0);
+  BOOST_TEST(t.hi == 70.0);
+  BOOST_TEST(t.label(t.values[1]) == "10");
+  const auto s = reports::nice_ticks(-0.013, 0.042, 5);
+  BOOST_TEST(s.step == 0.01, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(s.label(-0.0) == "0.00");
+  BOOST_TEST(reports::fixed(-0.0004, 2) == "0.00");
+  const auto l = reports::log_ticks(0.9, 120.0);
+  BOOST_TEST(l.lo == 0.1);
+  BOOST_TEST(l.hi == 1000.0);
+  BOOST_TEST(l.label(100.0) == "100");
+}
+
+}  // namespace chutelab::test
