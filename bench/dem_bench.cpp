@@ -34,7 +34,8 @@ struct Params {
   std::int64_t steps = 2000;
   std::string in, out, data;
   RollingModel rolling = RollingModel::constant_torque;
-  bool fresh_contacts = false;  // start without contact history, like LIGGGHTS reading a data file
+  bool fresh_contacts = false;
+  int ke_every = 0;  // print kinetic energy every N steps (physics cross-check against LIGGGHTS)  // start without contact history, like LIGGGHTS reading a data file
   TangentialModel tangential = TangentialModel::coulomb_history;
 };
 
@@ -164,6 +165,7 @@ int main(int argc, char** argv) {
     else if (k == "--in") P.in = v;
     else if (k == "--out") P.out = v;
     else if (k == "--data") P.data = v;
+    else if (k == "--ke-every") P.ke_every = std::stoi(v);
     else if (k == "--fresh-contacts") P.fresh_contacts = v == "1";
     else if (k == "--rolling") P.rolling = v == "none" ? RollingModel::none : v == "epsd" ? RollingModel::epsd : RollingModel::constant_torque;
     else if (k == "--tangential") P.tangential = v == "none" ? TangentialModel::frictionless : TangentialModel::coulomb_history;
@@ -196,6 +198,13 @@ int main(int argc, char** argv) {
     } else {
       w.load_checkpoint(P.in);
       if (P.fresh_contacts) w.reset_contact_history();
+    }
+    if (P.ke_every > 0) {
+      for (std::int64_t s = 0; s <= P.steps; s += P.ke_every) {
+        std::printf("step %lld ke %.8g\n", static_cast<long long>(s), w.energy().translational);
+        if (s < P.steps) w.step(P.ke_every);
+      }
+      return 0;
     }
     const std::int64_t r0 = w.rebuild_count();
     const double t0 = now();
