@@ -165,16 +165,25 @@ void World::compute_forces_impl() {
   auto walls_of = [&](std::size_t i) {
     const auto b = static_cast<std::size_t>(wc_.begin[i]);
     const auto e = static_cast<std::size_t>(wc_.begin[i + 1]);
-    thread_local std::vector<WallGeom> geo;
-    thread_local std::vector<char> hit;
+    thread_local std::vector<WallGeom> geo_big;  // only for a particle touching many triangles
+    thread_local std::vector<char> hit_big;
+    WallGeom geo_small[16];
+    char hit_small[16];
     std::size_t k = b;
     while (k < e) {
       const std::size_t wi = static_cast<std::size_t>(wc_.wall[k]);
       std::size_t kend = k;
       while (kend < e && static_cast<std::size_t>(wc_.wall[kend]) == wi) ++kend;
       const Wall& wl = walls_[wi];
-      geo.resize(kend - k);
-      hit.assign(kend - k, 0);
+      WallGeom* geo = geo_small;
+      char* hit = hit_small;
+      if (kend - k > 16) {
+        geo_big.resize(kend - k);
+        hit_big.resize(kend - k);
+        geo = geo_big.data();
+        hit = hit_big.data();
+      }
+      std::fill(hit, hit + (kend - k), char{0});
       if (const auto* m = std::get_if<TriangleMesh>(&wl.current)) {
         for (std::size_t q = k; q < kend; ++q) {
           const auto& t = m->triangles[static_cast<std::size_t>(wc_.element[q])];
@@ -247,6 +256,7 @@ void World::compute_forces_impl() {
       }
       const PairCoeffs& c = mt.pair(mat[i], wl.material);
       const Vec3 ww = wl.angular_velocity();
+      const bool still = !wl.motion.moving() && wl.surface.zero();
       for (std::size_t q = k; q < kend; ++q) {
         if (!hit[q - k]) {
           if (wc_.touch[q]) {
@@ -262,7 +272,8 @@ void World::compute_forces_impl() {
         kin.delta = gq.delta;
         kin.r_i = rad[i];
         kin.r_j = 0.0;
-        kin.v_rel = v[i] + (rad[i] * w[i]).cross(gq.n) - wl.velocity_at(gq.point);
+        kin.v_rel = v[i] + (rad[i] * w[i]).cross(gq.n);
+        if (!still) kin.v_rel -= wl.velocity_at(gq.point);
         kin.w_rel = w[i] - ww;
         kin.r_eff = rad[i];
         kin.m_eff = mass[i];
@@ -301,6 +312,7 @@ void World::compute_forces_impl() {
   const std::size_t* blo = nl_.block_lo.data();
   const std::size_t* bhi = nl_.block_hi.data();
   const std::size_t* boff = nl_.block_off.data();
+  const std::size_t* bfirst = nl_.block_first.data();
   Vec3* bf = nl_.block_f.data();
   Vec3* bt = nl_.block_t.data();
   Vec3* f = p_.f.data();
@@ -318,17 +330,19 @@ void World::compute_forces_impl() {
       pair_rows<Model>(arrays, n * b / nblocks, n * (b + 1) / nblocks, fb, tb);
     }
 #pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      Vec3 fi = Vec3::Zero(), ti = Vec3::Zero();
-      for (std::size_t b = 0; b < nblocks && blo[b] <= i; ++b) {
-        if (i >= bhi[b]) continue;
-        fi += bf[boff[b] + i - blo[b]];
-        ti += bt[boff[b] + i - blo[b]];
+    for (std::size_t ob = 0; ob < nblocks; ++ob)
+      for (std::size_t i = blo[ob]; i < n * (ob + 1) / nblocks; ++i) {
+        // Buffers of blocks first..ob may hold contributions to i (rows before i touch it).
+        Vec3 fi = Vec3::Zero(), ti = Vec3::Zero();
+        for (std::size_t b = bfirst[ob]; b <= ob; ++b) {
+          if (i >= bhi[b]) continue;
+          fi += bf[boff[b] + i - blo[b]];
+          ti += bt[boff[b] + i - blo[b]];
+        }
+        finish_particle(i, fi, ti);
+        f[i] = fi;
+        t[i] = ti;
       }
-      finish_particle(i, fi, ti);
-      f[i] = fi;
-      t[i] = ti;
-    }
   }
 
   // Wall loads, serially in entry order (deterministic).

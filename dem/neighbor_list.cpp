@@ -60,6 +60,16 @@ void NeighborList::layout_blocks(std::size_t n, std::size_t blocks) {
     block_hi[b] = hi;
     block_off[b + 1] = block_off[b] + (hi - r0);
   }
+  block_first.assign(blocks, 0);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    std::size_t first = b;
+    for (std::size_t a = 0; a < b; ++a)
+      if (block_hi[a] > block_lo[b]) {
+        first = a;
+        break;
+      }
+    block_first[b] = first;
+  }
   block_f.resize(block_off[blocks]);
   block_t.resize(block_off[blocks]);
 }

@@ -76,6 +76,7 @@ struct NeighborList {
   // Force blocks (derived from row_begin/nbr by layout_blocks): block b owns rows
   // [b n / K, (b+1) n / K) and a partial-sum buffer covering particles [lo[b], hi[b]).
   std::vector<std::size_t> block_lo, block_hi, block_off;
+  std::vector<std::size_t> block_first;  // first block whose buffer reaches into block b
   std::vector<Vec3> block_f, block_t;
   void layout_blocks(std::size_t n, std::size_t blocks);
 };
