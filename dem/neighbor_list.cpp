@@ -136,7 +136,7 @@ void World::rebuild() {
   }
   std::vector<std::int32_t> cell_members;  // particle indices by cell
   if (settings_.sort_particles) {
-    p_.permute(order);
+    p_.permute(order, nt);
     std::vector<std::int32_t> inv(n);
     for (std::size_t k = 0; k < n; ++k) inv[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k);
     for (auto& m : map)
@@ -272,7 +272,10 @@ void World::rebuild() {
   wc_.index_owners();
 
   // --- carry contact history over ---
-  for (std::size_t io = 0; io + 1 < old_nl.row_begin.size(); ++io) {
+  // Each old contact lands in its own new slot, so the rows can be carried over in parallel.
+  const std::size_t old_rows = old_nl.row_begin.empty() ? 0 : old_nl.row_begin.size() - 1;
+#pragma omp parallel for num_threads(nt) schedule(dynamic, 512)
+  for (std::size_t io = 0; io < old_rows; ++io) {
     const std::int32_t a0 = io < map.size() ? map[io] : -1;
     if (a0 < 0) continue;
     for (auto s = old_nl.row_begin[io]; s < old_nl.row_begin[io + 1]; ++s) {
