@@ -3,12 +3,15 @@
 // five planes. Modes:
 //   settle  --out FILE.ckpt --data FILE.data   pour from a loose lattice and settle; write the state as
 //                                              a chutelab checkpoint and as a LIGGGHTS data file
-//   run     --in FILE.ckpt --steps N --threads T   time N steps from the settled state; prints psps
+//   run     --data FILE.data | --in FILE.ckpt  --steps N --threads T   time N steps from the settled
+//           state (the data file is what LIGGGHTS reads: same numbers, no contact history); prints psps
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include <fmt/format.h>
@@ -31,6 +34,8 @@ struct Params {
   std::int64_t steps = 2000;
   std::string in, out, data;
   RollingModel rolling = RollingModel::constant_torque;
+  bool fresh_contacts = false;
+  int ke_every = 0;  // print kinetic energy every N steps (physics cross-check against LIGGGHTS)  // start without contact history, like LIGGGHTS reading a data file
   TangentialModel tangential = TangentialModel::coulomb_history;
 };
 
@@ -100,6 +105,46 @@ void write_liggghts_data(const std::string& path, const World& w, const Params& 
                      p.w[i].x(), p.w[i].y(), p.w[i].z());
 }
 
+// Reads the bed back from the LIGGGHTS data file, so that both codes start from the same numbers
+// (positions, velocities, spins, diameters, densities; no contact history).
+void read_liggghts_data(const std::string& path, World& w) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error("cannot open " + path);
+  std::string line;
+  std::size_t n = 0;
+  std::vector<ParticleSpec> specs;
+  while (std::getline(f, line)) {
+    if (line.find(" atoms") != std::string::npos && n == 0) n = std::stoul(line);
+    if (line.rfind("Atoms", 0) == 0) {
+      specs.resize(n);
+      std::getline(f, line);
+      for (std::size_t k = 0; k < n; ++k) {
+        std::getline(f, line);
+        std::istringstream in(line);
+        std::size_t id;
+        int type;
+        double d, rho, x, y, z;
+        in >> id >> type >> d >> rho >> x >> y >> z;
+        specs.at(id - 1) = ParticleSpec{Vec3(x, y, z), Vec3::Zero(), Vec3::Zero(), 0.5 * d, 0, rho};
+      }
+    }
+    if (line.rfind("Velocities", 0) == 0) {
+      std::getline(f, line);
+      for (std::size_t k = 0; k < n; ++k) {
+        std::getline(f, line);
+        std::istringstream in(line);
+        std::size_t id;
+        double vx, vy, vz, wx, wy, wz;
+        in >> id >> vx >> vy >> vz >> wx >> wy >> wz;
+        specs.at(id - 1).velocity = Vec3(vx, vy, vz);
+        specs.at(id - 1).omega = Vec3(wx, wy, wz);
+      }
+    }
+  }
+  if (specs.empty()) throw std::runtime_error("no atoms in " + path);
+  for (const auto& sp : specs) w.add_particle(sp);
+}
+
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 }  // namespace
@@ -120,6 +165,8 @@ int main(int argc, char** argv) {
     else if (k == "--in") P.in = v;
     else if (k == "--out") P.out = v;
     else if (k == "--data") P.data = v;
+    else if (k == "--ke-every") P.ke_every = std::stoi(v);
+    else if (k == "--fresh-contacts") P.fresh_contacts = v == "1";
     else if (k == "--rolling") P.rolling = v == "none" ? RollingModel::none : v == "epsd" ? RollingModel::epsd : RollingModel::constant_torque;
     else if (k == "--tangential") P.tangential = v == "none" ? TangentialModel::frictionless : TangentialModel::coulomb_history;
     else { std::fprintf(stderr, "unknown option %s\n", k.c_str()); return 2; }
@@ -145,15 +192,29 @@ int main(int argc, char** argv) {
   }
   if (mode == "run") {
     World w = make_world(P, false);
-    w.load_checkpoint(P.in);
+    if (!P.data.empty()) {
+      read_liggghts_data(P.data, w);
+      w.initialise();
+    } else {
+      w.load_checkpoint(P.in);
+      if (P.fresh_contacts) w.reset_contact_history();
+    }
+    if (P.ke_every > 0) {
+      for (std::int64_t s = 0; s <= P.steps; s += P.ke_every) {
+        std::printf("step %lld ke %.8g\n", static_cast<long long>(s), w.energy().translational);
+        if (s < P.steps) w.step(P.ke_every);
+      }
+      return 0;
+    }
     const std::int64_t r0 = w.rebuild_count();
     const double t0 = now();
     w.step(P.steps);
     const double t1 = now();
     const double psps = static_cast<double>(w.particles().size()) * static_cast<double>(P.steps) / (t1 - t0);
-    std::printf("threads=%d particles=%zu steps=%lld seconds=%.3f rebuilds=%lld contacts=%zu psps=%.0f\n", P.threads,
-                w.particles().size(), static_cast<long long>(P.steps), t1 - t0,
-                static_cast<long long>(w.rebuild_count() - r0), w.contact_count(), psps);
+    std::printf("threads=%d particles=%zu steps=%lld seconds=%.3f rebuilds=%lld pairs=%zu contacts=%zu ke=%.6g psps=%.0f\n",
+                P.threads, w.particles().size(), static_cast<long long>(P.steps), t1 - t0,
+                static_cast<long long>(w.rebuild_count() - r0), w.neighbor_pair_count(), w.contact_count(),
+                w.energy().translational, psps);
     return 0;
   }
   std::fprintf(stderr, "unknown mode %s\n", mode.c_str());

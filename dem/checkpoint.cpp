@@ -14,7 +14,7 @@ namespace chutelab::dem {
 namespace {
 
 constexpr char kMagic[8] = {'C', 'H', 'L', 'D', 'E', 'M', 'C', 'K'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;
 
 struct Writer {
   std::ofstream out;
@@ -77,7 +77,7 @@ void World::save_checkpoint(const std::string& path) const {
   w.vec(p_.radius); w.vec(p_.mass); w.vec(p_.inv_mass); w.vec(p_.inv_inertia);
   w.vec(p_.material); w.vec(p_.id);
   w.vec(nl_.row_begin); w.vec(nl_.nbr); w.vec(nl_.shear); w.vec(nl_.roll);
-  w.vec(nl_.rev_begin); w.vec(nl_.rev_slot); w.vec(nl_.touch);
+  w.vec(nl_.touch);
   w.vec(wc_.begin); w.vec(wc_.wall); w.vec(wc_.element); w.vec(wc_.shear); w.vec(wc_.roll); w.vec(wc_.touch);
   w.vec(wc_.out_f); w.vec(wc_.out_t); w.vec(wc_.out_point);
   w.vec(x_ref_); w.vec(wall_time_ref_); w.vec(index_map_);
@@ -132,7 +132,7 @@ void World::load_checkpoint(const std::string& path) {
   for (auto m : p_.material)
     if (m < 0 || m >= materials_.size()) throw InputError(path, 0, "particles", "particle material index out of range");
   r.vec(nl_.row_begin, "neighbour list"); r.vec(nl_.nbr, "neighbour list"); r.vec(nl_.shear, "history");
-  r.vec(nl_.roll, "history"); r.vec(nl_.rev_begin, "neighbour list"); r.vec(nl_.rev_slot, "neighbour list");
+  r.vec(nl_.roll, "history");
   r.vec(nl_.touch, "history");
   r.vec(wc_.begin, "wall list"); r.vec(wc_.wall, "wall list"); r.vec(wc_.element, "wall list");
   r.vec(wc_.shear, "wall history"); r.vec(wc_.roll, "wall history"); r.vec(wc_.touch, "wall history");
@@ -141,8 +141,12 @@ void World::load_checkpoint(const std::string& path) {
   if (nl_.row_begin.size() != n + 1 || wc_.begin.size() != n + 1 || x_ref_.size() != n)
     throw InputError(path, 0, "neighbour list", "sizes do not match the particle count");
   wc_.index_owners();
-  const std::size_t slots = nl_.nbr.size();
-  nl_.out_f.resize(slots); nl_.out_ti.resize(slots); nl_.out_tj.resize(slots);
+  for (auto j : nl_.nbr)
+    if (j < 0 || static_cast<std::size_t>(j) >= n) throw InputError(path, 0, "neighbour list", "neighbour index out of range");
+  if (nl_.row_begin.front() != 0 || static_cast<std::size_t>(nl_.row_begin.back()) != nl_.nbr.size() ||
+      nl_.shear.size() != nl_.nbr.size() || nl_.roll.size() != nl_.nbr.size() || nl_.touch.size() != nl_.nbr.size())
+    throw InputError(path, 0, "neighbour list", "inconsistent neighbour list");
+  nl_.layout_blocks(n, kForceBlocks);
   for (auto& wl : walls_) {
     std::uint64_t ne;
     r.pod(ne, "wall elements");

@@ -67,11 +67,9 @@ struct PairArrays {
   double dt;
 };
 
-// Pair contacts of rows [i0, i1). Scatter == true adds the forces to f/t directly (one thread; rows in
-// ascending order); otherwise every touching slot's force and torques go to per-slot storage.
-template <class Model, bool Scatter>
-void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __restrict f, Vec3* __restrict t,
-               Vec3* __restrict of, Vec3* __restrict oti, Vec3* __restrict otj) {
+// Pair contacts of rows [i0, i1), scattered row by row into f/t (a block's partial-sum buffers).
+template <class Model>
+void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __restrict f, Vec3* __restrict t) {
   const Vec3* __restrict x = a.x;
   const Vec3* __restrict v = a.v;
   const Vec3* __restrict w = a.w;
@@ -95,11 +93,7 @@ void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __rest
     const Vec3 vi = v[i], wi = w[i];
     const double mi = mass[i], inv_ii = inv_i[i];
     const PairCoeffs* ci = coeffs + static_cast<std::size_t>(mat[i]) * nmat;
-    Vec3 fi = Vec3::Zero(), ti = Vec3::Zero();
-    if constexpr (Scatter) {
-      fi = f[i];
-      ti = t[i];
-    }
+    Vec3 fi = f[i], ti = t[i];
     for (std::int32_t s = s0; s < s1; ++s) {
       const auto j = static_cast<std::size_t>(nbr[s]);
       const Vec3 d = x[j] - xi;
@@ -132,21 +126,13 @@ void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __rest
       k.m_i = mi;
       k.m_j = mj;
       const ContactForce cf = Model::compute(ci[mat[j]], k, shear[s], roll + s, dt);
-      if constexpr (Scatter) {
-        fi += cf.force;
-        ti += cf.torque_i;
-        f[j] -= cf.force;
-        t[j] += cf.torque_j;
-      } else {
-        of[s] = cf.force;
-        oti[s] = cf.torque_i;
-        otj[s] = cf.torque_j;
-      }
+      fi += cf.force;
+      ti += cf.torque_i;
+      f[j] -= cf.force;
+      t[j] += cf.torque_j;
     }
-    if constexpr (Scatter) {
-      f[i] = fi;
-      t[i] = ti;
-    }
+    f[i] = fi;
+    t[i] = ti;
   }
 }
 
@@ -179,16 +165,25 @@ void World::compute_forces_impl() {
   auto walls_of = [&](std::size_t i) {
     const auto b = static_cast<std::size_t>(wc_.begin[i]);
     const auto e = static_cast<std::size_t>(wc_.begin[i + 1]);
-    thread_local std::vector<WallGeom> geo;
-    thread_local std::vector<char> hit;
+    thread_local std::vector<WallGeom> geo_big;  // only for a particle touching many triangles
+    thread_local std::vector<char> hit_big;
+    WallGeom geo_small[16];
+    char hit_small[16];
     std::size_t k = b;
     while (k < e) {
       const std::size_t wi = static_cast<std::size_t>(wc_.wall[k]);
       std::size_t kend = k;
       while (kend < e && static_cast<std::size_t>(wc_.wall[kend]) == wi) ++kend;
       const Wall& wl = walls_[wi];
-      geo.resize(kend - k);
-      hit.assign(kend - k, 0);
+      WallGeom* geo = geo_small;
+      char* hit = hit_small;
+      if (kend - k > 16) {
+        geo_big.resize(kend - k);
+        hit_big.resize(kend - k);
+        geo = geo_big.data();
+        hit = hit_big.data();
+      }
+      std::fill(hit, hit + (kend - k), char{0});
       if (const auto* m = std::get_if<TriangleMesh>(&wl.current)) {
         for (std::size_t q = k; q < kend; ++q) {
           const auto& t = m->triangles[static_cast<std::size_t>(wc_.element[q])];
@@ -261,6 +256,7 @@ void World::compute_forces_impl() {
       }
       const PairCoeffs& c = mt.pair(mat[i], wl.material);
       const Vec3 ww = wl.angular_velocity();
+      const bool still = !wl.motion.moving() && wl.surface.zero();
       for (std::size_t q = k; q < kend; ++q) {
         if (!hit[q - k]) {
           if (wc_.touch[q]) {
@@ -276,7 +272,8 @@ void World::compute_forces_impl() {
         kin.delta = gq.delta;
         kin.r_i = rad[i];
         kin.r_j = 0.0;
-        kin.v_rel = v[i] + (rad[i] * w[i]).cross(gq.n) - wl.velocity_at(gq.point);
+        kin.v_rel = v[i] + (rad[i] * w[i]).cross(gq.n);
+        if (!still) kin.v_rel -= wl.velocity_at(gq.point);
         kin.w_rel = w[i] - ww;
         kin.r_eff = rad[i];
         kin.m_eff = mass[i];
@@ -309,47 +306,43 @@ void World::compute_forces_impl() {
     fi += mass[i] * g;
   };
 
-  if (nt == 1) {
-    for (std::size_t k = 0; k < n_owners; ++k) walls_of(static_cast<std::size_t>(owners[k]));
-    std::fill(p_.f.begin(), p_.f.end(), Vec3::Zero());
-    std::fill(p_.t.begin(), p_.t.end(), Vec3::Zero());
-    pair_rows<Model, true>(arrays, 0, n, p_.f.data(), p_.t.data(), nullptr, nullptr, nullptr);
-    for (std::size_t i = 0; i < n; ++i) finish_particle(i, p_.f[i], p_.t[i]);
-  } else {
-    Vec3* of = nl_.out_f.data();
-    Vec3* oti = nl_.out_ti.data();
-    Vec3* otj = nl_.out_tj.data();
-    const std::int32_t* rb = nl_.rev_begin.data();
-    const std::int32_t* rs = nl_.rev_slot.data();
-    constexpr std::size_t chunk = 256;
-    const std::size_t nchunks = (n + chunk - 1) / chunk;
+  // Pair forces into fixed blocks of rows (see world.h), then one pass per particle that adds the
+  // block partial sums in block order, its wall contacts and gravity.
+  const std::size_t nblocks = nl_.block_lo.size();
+  const std::size_t* blo = nl_.block_lo.data();
+  const std::size_t* bhi = nl_.block_hi.data();
+  const std::size_t* boff = nl_.block_off.data();
+  const std::size_t* bfirst = nl_.block_first.data();
+  Vec3* bf = nl_.block_f.data();
+  Vec3* bt = nl_.block_t.data();
+  Vec3* f = p_.f.data();
+  Vec3* t = p_.t.data();
 #pragma omp parallel num_threads(nt)
-    {
-#pragma omp for schedule(dynamic, 64) nowait
-      for (std::size_t k = 0; k < n_owners; ++k) walls_of(static_cast<std::size_t>(owners[k]));
+  {
+#pragma omp for schedule(dynamic, 16) nowait
+    for (std::size_t k = 0; k < n_owners; ++k) walls_of(static_cast<std::size_t>(owners[k]));
 #pragma omp for schedule(dynamic, 1)
-      for (std::size_t c = 0; c < nchunks; ++c)
-        pair_rows<Model, false>(arrays, c * chunk, std::min(n, (c + 1) * chunk), nullptr, nullptr, of, oti, otj);
-      // Same order as the one-thread scatter: as second body by ascending row, then own row.
+    for (std::size_t b = 0; b < nblocks; ++b) {
+      Vec3* fb = bf + boff[b] - blo[b];  // fb[p] is valid for p in [lo, hi)
+      Vec3* tb = bt + boff[b] - blo[b];
+      std::fill(bf + boff[b], bf + boff[b + 1], Vec3::Zero());
+      std::fill(bt + boff[b], bt + boff[b + 1], Vec3::Zero());
+      pair_rows<Model>(arrays, n * b / nblocks, n * (b + 1) / nblocks, fb, tb);
+    }
 #pragma omp for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t ob = 0; ob < nblocks; ++ob)
+      for (std::size_t i = blo[ob]; i < n * (ob + 1) / nblocks; ++i) {
+        // Buffers of blocks first..ob may hold contributions to i (rows before i touch it).
         Vec3 fi = Vec3::Zero(), ti = Vec3::Zero();
-        for (auto r = rb[i]; r < rb[i + 1]; ++r) {
-          const auto s = static_cast<std::size_t>(rs[r]);
-          if (!touch[s]) continue;
-          fi -= of[s];
-          ti += otj[s];
-        }
-        for (auto s = row[i]; s < row[i + 1]; ++s) {
-          if (!touch[s]) continue;
-          fi += of[s];
-          ti += oti[s];
+        for (std::size_t b = bfirst[ob]; b <= ob; ++b) {
+          if (i >= bhi[b]) continue;
+          fi += bf[boff[b] + i - blo[b]];
+          ti += bt[boff[b] + i - blo[b]];
         }
         finish_particle(i, fi, ti);
-        p_.f[i] = fi;
-        p_.t[i] = ti;
+        f[i] = fi;
+        t[i] = ti;
       }
-    }
   }
 
   // Wall loads, serially in entry order (deterministic).

@@ -48,6 +48,32 @@ double element_distance(const Wall& w, std::size_t element, const Vec3& x) {
 
 }  // namespace
 
+void NeighborList::layout_blocks(std::size_t n, std::size_t blocks) {
+  block_lo.assign(blocks, 0);
+  block_hi.assign(blocks, 0);
+  block_off.assign(blocks + 1, 0);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t r0 = n * b / blocks, r1 = n * (b + 1) / blocks;
+    std::size_t hi = r1;
+    for (auto s = row_begin[r0]; s < row_begin[r1]; ++s) hi = std::max(hi, static_cast<std::size_t>(nbr[static_cast<std::size_t>(s)]) + 1);
+    block_lo[b] = r0;
+    block_hi[b] = hi;
+    block_off[b + 1] = block_off[b] + (hi - r0);
+  }
+  block_first.assign(blocks, 0);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    std::size_t first = b;
+    for (std::size_t a = 0; a < b; ++a)
+      if (block_hi[a] > block_lo[b]) {
+        first = a;
+        break;
+      }
+    block_first[b] = first;
+  }
+  block_f.resize(block_off[blocks]);
+  block_t.resize(block_off[blocks]);
+}
+
 void World::rebuild() {
   const std::size_t n = p_.size();
   const int nt = thread_count();
@@ -110,7 +136,7 @@ void World::rebuild() {
   }
   std::vector<std::int32_t> cell_members;  // particle indices by cell
   if (settings_.sort_particles) {
-    p_.permute(order);
+    p_.permute(order, nt);
     std::vector<std::int32_t> inv(n);
     for (std::size_t k = 0; k < n; ++k) inv[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k);
     for (auto& m : map)
@@ -178,20 +204,7 @@ void World::rebuild() {
   nl_.shear.assign(nslots, Vec3::Zero());
   nl_.roll.assign(nslots, Vec3::Zero());
   nl_.touch.assign(nslots, 0);
-  nl_.out_f.resize(nslots);
-  nl_.out_ti.resize(nslots);
-  nl_.out_tj.resize(nslots);
-  // Reverse index: for each particle, the slots where it is the second body, by ascending row.
-  nl_.rev_begin.assign(n + 1, 0);
-  for (auto j : nl_.nbr) ++nl_.rev_begin[static_cast<std::size_t>(j) + 1];
-  for (std::size_t i = 0; i < n; ++i) nl_.rev_begin[i + 1] += nl_.rev_begin[i];
-  nl_.rev_slot.resize(nslots);
-  {
-    std::vector<std::int32_t> fill(nl_.rev_begin.begin(), nl_.rev_begin.end() - 1);
-    for (std::size_t i = 0; i < n; ++i)
-      for (auto s = nl_.row_begin[i]; s < nl_.row_begin[i + 1]; ++s)
-        nl_.rev_slot[static_cast<std::size_t>(fill[static_cast<std::size_t>(nl_.nbr[static_cast<std::size_t>(s)])]++)] = s;
-  }
+  nl_.layout_blocks(n, kForceBlocks);
 
   // --- wall candidates: (particle, wall, element) within R + skin, CSR by particle ---
   struct Cand {
@@ -259,7 +272,10 @@ void World::rebuild() {
   wc_.index_owners();
 
   // --- carry contact history over ---
-  for (std::size_t io = 0; io + 1 < old_nl.row_begin.size(); ++io) {
+  // Each old contact lands in its own new slot, so the rows can be carried over in parallel.
+  const std::size_t old_rows = old_nl.row_begin.empty() ? 0 : old_nl.row_begin.size() - 1;
+#pragma omp parallel for num_threads(nt) schedule(dynamic, 512)
+  for (std::size_t io = 0; io < old_rows; ++io) {
     const std::int32_t a0 = io < map.size() ? map[io] : -1;
     if (a0 < 0) continue;
     for (auto s = old_nl.row_begin[io]; s < old_nl.row_begin[io + 1]; ++s) {

@@ -39,26 +39,29 @@ struct Particles {
     id.push_back(ident);
   }
 
-  // Applies f(old) for every array: out[k] = in[order[k]].
-  void permute(const std::vector<std::int32_t>& order) {
-    gather(x, order);
-    gather(v, order);
-    gather(w, order);
-    gather(f, order);
-    gather(t, order);
-    gather(radius, order);
-    gather(mass, order);
-    gather(inv_mass, order);
-    gather(inv_inertia, order);
-    gather(material, order);
-    gather(id, order);
+  // Reorders every array: out[k] = in[order[k]] (order may also drop entries). threads > 1 gathers
+  // in parallel; the result does not depend on it.
+  void permute(const std::vector<std::int32_t>& order, int threads = 1) {
+    gather(x, order, threads);
+    gather(v, order, threads);
+    gather(w, order, threads);
+    gather(f, order, threads);
+    gather(t, order, threads);
+    gather(radius, order, threads);
+    gather(mass, order, threads);
+    gather(inv_mass, order, threads);
+    gather(inv_inertia, order, threads);
+    gather(material, order, threads);
+    gather(id, order, threads);
   }
 
  private:
   template <class T>
-  static void gather(std::vector<T>& a, const std::vector<std::int32_t>& order) {
+  static void gather(std::vector<T>& a, const std::vector<std::int32_t>& order, int threads) {
     std::vector<T> out(order.size());
-    for (std::size_t k = 0; k < order.size(); ++k) out[k] = a[static_cast<std::size_t>(order[k])];
+    const std::size_t n = order.size();
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+    for (std::size_t k = 0; k < n; ++k) out[k] = a[static_cast<std::size_t>(order[k])];
     a = std::move(out);
   }
 };

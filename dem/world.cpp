@@ -277,6 +277,10 @@ void World::step(std::int64_t n) {
   initialise();
   const int nt = thread_count();
   for (std::int64_t s = 0; s < n; ++s) {
+    if (list_dirty_) {  // particles added or removed by the caller since the last step
+      rebuild();
+      compute_forces();
+    }
     const double dt = dt_;
     const std::size_t np = p_.size();
     double maxd2 = max_disp_ * max_disp_;

@@ -2,11 +2,12 @@
 // The World owns a DEM scene: particles, walls, materials, contacts (neighbour list with contact
 // history), sources and sinks, and advances it in time with velocity Verlet.
 //
-// Determinism: forces on every particle are summed in one fixed order (pair contacts in which it is
-// the second body, by ascending first body; then its own pair contacts in list order; then its wall
-// contacts; then gravity; then the body-force hook), whatever the number of OpenMP threads. One thread
-// scatters pair forces directly; several threads compute each pair into per-contact storage and then
-// reduce per particle in that same order, so 1 and N threads give bit-identical results.
+// Determinism: the rows of the pair list are cut into a fixed number of blocks (kForceBlocks, not the
+// thread count). Each block scatters its pair forces, row by row, into its own partial-sum buffer; a
+// particle's force is then the sum of the block buffers in block order, plus its wall contacts (in
+// list order), gravity and the body-force hook. Which thread computes a block changes nothing, so
+// 1 and N threads give bit-identical results.
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -71,12 +72,15 @@ struct NeighborList {
   std::vector<std::int32_t> nbr;
   std::vector<Vec3> shear;
   std::vector<Vec3> roll;
-  std::vector<std::int32_t> rev_begin;  // slots where particle p is the second body, by ascending row
-  std::vector<std::int32_t> rev_slot;
-  // Per-slot results for the multi-thread path.
-  std::vector<Vec3> out_f, out_ti, out_tj;
   std::vector<std::uint8_t> touch;
+  // Force blocks (derived from row_begin/nbr by layout_blocks): block b owns rows
+  // [b n / K, (b+1) n / K) and a partial-sum buffer covering particles [lo[b], hi[b]).
+  std::vector<std::size_t> block_lo, block_hi, block_off;
+  std::vector<std::size_t> block_first;  // first block whose buffer reaches into block b
+  std::vector<Vec3> block_f, block_t;
+  void layout_blocks(std::size_t n, std::size_t blocks);
 };
+inline constexpr std::size_t kForceBlocks = 16;
 
 // Wall elements near each particle (CSR by particle, sorted by wall then element), with history.
 struct WallCandidates {
@@ -126,6 +130,15 @@ class World {
   // Mutable access; call mark_changed() after editing positions or radii by hand.
   Particles& particles() { return p_; }
   void mark_changed() { list_dirty_ = true; }
+  // Forgets all tangential/rolling contact history (as when a state is imported without it).
+  void reset_contact_history() {
+    std::fill(nl_.shear.begin(), nl_.shear.end(), Vec3::Zero());
+    std::fill(nl_.roll.begin(), nl_.roll.end(), Vec3::Zero());
+    std::fill(nl_.touch.begin(), nl_.touch.end(), std::uint8_t{0});
+    std::fill(wc_.shear.begin(), wc_.shear.end(), Vec3::Zero());
+    std::fill(wc_.roll.begin(), wc_.roll.end(), Vec3::Zero());
+    std::fill(wc_.touch.begin(), wc_.touch.end(), std::uint8_t{0});
+  }
   const std::vector<Wall>& walls() const { return walls_; }
   Wall& wall(int i) { return walls_.at(static_cast<std::size_t>(i)); }
   const std::vector<Inserter>& inserters() const { return inserters_; }
@@ -136,6 +149,7 @@ class World {
   Energy energy() const;
   std::int64_t rebuild_count() const { return rebuilds_; }
   std::size_t contact_count() const;      // particle-particle contacts touching now
+  std::size_t neighbor_pair_count() const { return nl_.nbr.size(); }  // pairs in the Verlet list
   std::size_t wall_contact_count() const;
   double max_speed_limit() const { return max_speed_; }
 

@@ -25,7 +25,7 @@ struct CoulombHistorySpring {
     const double f2 = ft.squaredNorm();
     if (f2 > limit * limit) {
       ft *= limit / std::sqrt(f2);
-      if (nr.kt > 0.0) shear = ft / -nr.kt;
+      if (nr.kt > 0.0) shear = ft * (-1.0 / nr.kt);
     }
     return ft;
   }

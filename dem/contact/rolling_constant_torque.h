@@ -26,7 +26,7 @@ struct RollingConstantTorque {
     double mag = c.rolling_friction * fn;  // torque per unit lever arm
     const double stop = mag * (k.r_i * k.inv_inertia_i + k.r_j * k.inv_inertia_j) * dt;
     if (stop > w) mag *= w / stop;
-    const Vec3 dir = k.w_rel / w;
+    const Vec3 dir = k.w_rel * (1.0 / w);  // one division, not three
     ti -= (mag * k.r_i) * dir;
     tj += (mag * k.r_j) * dir;
   }
