@@ -12,6 +12,7 @@ void add_estimate(CLI::App& app, Action& action);
 void add_validate(CLI::App& app, Action& action);
 void add_diagnose(CLI::App& app, Action& action);
 void add_synthesize(CLI::App& app, Action& action);
+void add_simulate(CLI::App& app, Action& action);
 
 // The bundled default rig, found next to the source tree this binary was built from.
 std::filesystem::path default_dataset();
