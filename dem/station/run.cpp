@@ -93,6 +93,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
       force += plate.force;
       moment += plate.torque.z();
     }
+    sc.discharge();
     force /= static_cast<double>(steps_per_sample);
     moment /= static_cast<double>(steps_per_sample);
     const double t = w.time();
@@ -127,6 +128,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
   }
   r.simulated_time = w.time();
   r.steps = w.step_count();
+  r.rebuilds = w.rebuild_count();
   r.peak_particles = std::max(r.peak_particles, w.particles().size());
 
   // --- the steady window ---
@@ -240,7 +242,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
 
   // --- mass accounting ---
   r.inserted = w.inserters()[static_cast<std::size_t>(sc.inserter)].inserted_mass;
-  r.discharged = w.sinks()[static_cast<std::size_t>(sc.plate_sink)].removed_mass;
+  r.discharged = sc.discharged + w.sinks()[static_cast<std::size_t>(sc.plate_sink)].removed_mass;
   for (int k : sc.boundary_sinks) r.escaped += w.sinks()[static_cast<std::size_t>(k)].removed_mass;
   for (double m : w.particles().mass) r.in_domain += m;
 
@@ -335,11 +337,11 @@ void write_result_files(const std::string& dir, const StationResult& r) {
     auto f = open_out(d / "run.txt");
     f << fmt::format("condition = {}\nquality = {}\nparticle_diameter_mm = {:.3f}\ndt_s = {:.6g}\n"
                      "collision_time_s = {:.6g}\nrayleigh_time_s = {:.6g}\nsimulated_s = {:.4f}\nsteps = {}\n"
-                     "wall_s = {:.1f}\nearly_stop = {}\npeak_particles = {}\nsteady_found = {}\n"
+                     "rebuilds = {}\nwall_s = {:.1f}\nearly_stop = {}\npeak_particles = {}\nsteady_found = {}\n"
                      "window_start_s = {:.3f}\nwindow_end_s = {:.3f}\nwindow_blocks = {}\n"
                      "inserted_kg = {:.6g}\ndischarged_kg = {:.6g}\nescaped_kg = {:.6g}\nin_domain_kg = {:.6g}\n",
                      r.condition, r.quality, r.diameter * 1e3, r.dt, r.collision_time, r.rayleigh_time,
-                     r.simulated_time, r.steps, r.wall_seconds, r.early_stop, r.peak_particles, r.window.found,
+                     r.simulated_time, r.steps, r.rebuilds, r.wall_seconds, r.early_stop, r.peak_particles, r.window.found,
                      r.window.start, r.window.end, r.window.blocks, r.inserted, r.discharged, r.escaped, r.in_domain);
     for (const auto& n : r.notes) f << "note = " << n << "\n";
   }

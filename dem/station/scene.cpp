@@ -15,17 +15,11 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// A rectangle of a plane: centre, two in-plane unit axes and half-lengths; normal = u x v.
-Wall rectangle(std::string name, const Vec3& centre, const Vec3& u, double half_u, const Vec3& v,
-               double half_v, int material) {
-  Wall w = Wall::plane(std::move(name), centre, u.cross(v), material);
-  auto& p = std::get<Plane>(w.shape);
-  p.axis_u = u;
-  p.axis_v = v;
-  p.half_u = half_u;
-  p.half_v = half_v;
-  w.set_time(0.0);
-  return w;
+// A flat quadrilateral a-b-c-d (in order around it) as a two-triangle mesh. Meshes are thin
+// two-sided sheets: a particle that gets behind one (a rebound under the belt, a particle beside a
+// side panel) is pushed off its back instead of meeting the infinite half-space of a plane wall.
+TriangleMesh quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, std::string source) {
+  return TriangleMesh::from_soup({{a, b, c}, {a, c, d}}, std::move(source));
 }
 
 // One triangle as its own wall, so it can carry its own surface velocity.
@@ -122,14 +116,14 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   const double z_half = 0.5 * std::max({B, st.plate.width, W}) + 0.15;
   Settings ws;
   ws.gravity = Vec3(0.0, -g, 0.0);
-  ws.domain = Box{Vec3(std::min(p_start.x(), -R) - 0.15, sc.sink_y - 0.1, -z_half),
+  ws.domain = Box{Vec3(std::min(p_start.x(), -R) - 0.15, sc.sink_y - 0.12, -z_half),
                   Vec3(x_hi, y_top, z_half)};
   ws.normal = s.contact == ContactLaw::hertz_mindlin ? NormalModel::hertz_mindlin : NormalModel::linear_spring_dashpot;
   ws.tangential = TangentialModel::coulomb_history;
   // Constant directional torque (seed Eq 10), as LIGGGHTS' `rolling_friction cdt` of the rig.
   ws.rolling = RollingModel::constant_torque;
   ws.skin = s.skin_fraction * r;
-  ws.threads = s.threads;
+  ws.threads = effective_threads(s.threads);
   ws.check_every = 10;
   sc.warnings = std::make_shared<std::vector<std::string>>();
   ws.on_warning = [warnings = sc.warnings](const std::string& m) {
@@ -188,11 +182,11 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     b.surface.linear = vb * sc.belt.along;
     w.add_wall(std::move(b));
   } else if (!trough) {
-    // u = along, v = up x along, so that u x v = up: the normal faces the load.
-    const Vec3 centre = sc.belt.tangent_point + (0.5 * sc.belt_start) * sc.belt.along;
-    Wall b = rectangle("belt", centre, sc.belt.along, 0.5 * belt_len, sc.belt.up.cross(sc.belt.along), 0.5 * B, mbelt);
-    b.surface.linear = vb * sc.belt.along;
-    w.add_wall(std::move(b));
+    const Vec3 lat = 0.5 * B * Vec3::UnitZ();
+    const Vec3 a = sc.belt.tangent_point + sc.belt_start * sc.belt.along, b = sc.belt.tangent_point;
+    Wall w_belt = Wall::mesh("belt", quad(a - lat, b - lat, b + lat, a + lat, "generated belt"), mbelt);
+    w_belt.surface.linear = vb * sc.belt.along;
+    w.add_wall(std::move(w_belt));
   } else {
     // Troughed: centre strip and two wings at the idler angle on the carrying run; over the last
     // `trough_transition` before the pulley the wings flatten linearly to zero (a twisted surface
@@ -201,20 +195,17 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     const Vec3 up = sc.belt.up, al = sc.belt.along, T = sc.belt.tangent_point;
     auto on_belt = [&](double s_, double z, double height) { return T + s_ * al + height * up + z * zhat; };
     {
-      const double len = -sc.belt_start;
-      Wall c = rectangle("belt-centre", on_belt(0.5 * sc.belt_start, 0, 0), al, 0.5 * len, up.cross(al), c_half, mbelt);
+      const Vec3 a = on_belt(sc.belt_start, 0, 0), b = on_belt(0, 0, 0), lat = c_half * zhat;
+      Wall c = Wall::mesh("belt-centre", quad(a - lat, b - lat, b + lat, a + lat, "generated trough"), mbelt);
       c.surface.linear = vb * al;
       w.add_wall(std::move(c));
     }
     for (int side : {-1, 1}) {
-      // Carrying run: a rectangle from the belt start to the transition.
+      // Carrying run: a flat wing from the belt start to the transition.
       const Vec3 root0 = on_belt(sc.belt_start, side * c_half, 0), root1 = on_belt(s_tr, side * c_half, 0);
       const Vec3 out_dir = (side * std::cos(lam)) * zhat + std::sin(lam) * up;
-      const Vec3 mid = 0.5 * (root0 + root1) + 0.5 * wing * out_dir;
-      Vec3 v_axis = out_dir;
-      Vec3 u_axis = al;
-      if (u_axis.cross(v_axis).dot(up) < 0) v_axis = -v_axis;  // normal towards the load
-      Wall wr = rectangle(fmt::format("belt-wing{}", side), mid, u_axis, 0.5 * (s_tr - sc.belt_start), v_axis, 0.5 * wing, mbelt);
+      Wall wr = Wall::mesh(fmt::format("belt-wing{}", side),
+                           quad(root0, root1, root1 + wing * out_dir, root0 + wing * out_dir, "generated trough"), mbelt);
       wr.surface.linear = vb * al;
       w.add_wall(std::move(wr));
       // Transition: 8 segments, two triangles each.
@@ -268,11 +259,9 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     sc.plate_wall = w.add_wall(std::move(p));
     sc.notes.push_back("plate from " + *geometry.stl_plate + "; sensors use the dataset's plate position");
   } else {
-    const Vec3 centre = pf.top_edge + 0.5 * pf.height * pf.down;
-    // u = up the face, v = lateral: u x v must point out of the face, towards the stream (-into).
-    Vec3 u = -pf.down, v = zhat;
-    if (u.cross(v).dot(pf.into) > 0) v = -v;
-    Wall p = rectangle("plate", centre, u, 0.5 * pf.height, v, 0.5 * pf.width, mplate);
+    const Vec3 lat = 0.5 * pf.width * Vec3::UnitZ();
+    const Vec3 top = pf.top_edge, bot = pf.bottom_edge();
+    Wall p = Wall::mesh("plate", quad(top - lat, bot - lat, bot + lat, top + lat, "generated plate"), mplate);
     p.load_point = pf.reference;
     sc.plate_wall = w.add_wall(std::move(p));
   }
@@ -281,10 +270,10 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     const double x0 = 0.0, x1 = std::max(pf.top_edge.x(), p_bottom.x());
     const double y0 = p_bottom.y(), y1 = pf.top_edge.y();
     for (int side : {-1, 1}) {
-      const Vec3 centre(0.5 * (x0 + x1), 0.5 * (y0 + y1), side * 0.5 * st.plate.width);
-      Vec3 u = Vec3::UnitX(), v = Vec3::UnitY();
-      if (u.cross(v).dot(Vec3(0, 0, -side)) < 0) v = -v;  // normal inwards
-      w.add_wall(rectangle(fmt::format("side{}", side), centre, u, 0.5 * (x1 - x0), v, 0.5 * (y1 - y0), mside));
+      const double z = side * 0.5 * st.plate.width;
+      w.add_wall(Wall::mesh(fmt::format("side{}", side),
+                            quad(Vec3(x0, y0, z), Vec3(x1, y0, z), Vec3(x1, y1, z), Vec3(x0, y1, z), "generated side panel"),
+                            mside));
     }
   }
   for (const auto& f : geometry.stl_walls) w.add_wall(Wall::mesh(f, read_stl(f, 1e-3), mside));
@@ -300,7 +289,7 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     in.radius_min = in.radius_max = r;
     in.material = mp;
     in.velocity = vb * sc.belt.along + Vec3(0.0, -s.insert_speed_down, 0.0);
-    in.interval = 1e-3;
+    in.interval = s.insert_interval;
     in.seed = s.seed * 0x9e3779b97f4a7c15ULL + 1;
     in.max_attempts = 400;
     sc.inserter = w.add_inserter(in);
@@ -323,15 +312,36 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   }
 
   // --- sinks: the discharge below the plate, and the domain's faces ---
-  sc.plate_sink = w.add_sink(Sink{Vec3(0, sc.sink_y, 0), Vec3::UnitY()});
+  // The discharge is emptied in batches by the run loop (Scene::discharge): every removal from the
+  // World forces a neighbour-list rebuild, and at ~10^4 particles/s a per-step sink would rebuild
+  // at every step. The World's own sink just above the domain's floor only catches what a batch
+  // missed.
   const Box& dom = ws.domain;
   const double in = 0.02;
+  sc.plate_sink = w.add_sink(Sink{Vec3(0, dom.lo.y() + in, 0), Vec3::UnitY()});
   sc.boundary_sinks.push_back(w.add_sink(Sink{Vec3(dom.lo.x() + in, 0, 0), Vec3::UnitX()}));
   sc.boundary_sinks.push_back(w.add_sink(Sink{Vec3(dom.hi.x() - in, 0, 0), -Vec3::UnitX()}));
   sc.boundary_sinks.push_back(w.add_sink(Sink{Vec3(0, dom.hi.y() - in, 0), -Vec3::UnitY()}));
   sc.boundary_sinks.push_back(w.add_sink(Sink{Vec3(0, 0, dom.lo.z() + in), Vec3::UnitZ()}));
   sc.boundary_sinks.push_back(w.add_sink(Sink{Vec3(0, 0, dom.hi.z() - in), -Vec3::UnitZ()}));
   return sc;
+}
+
+double Scene::discharge() {
+  const Particles& p = world->particles();
+  double removed = 0.0;
+  bool any = false;
+  for (std::size_t i = 0; i < p.size() && !any; ++i) any = p.x[i].y() < sink_y;
+  if (!any) return 0.0;
+  std::vector<char> gone(p.size(), 0);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.x[i].y() < sink_y) {
+      gone[i] = 1;
+      removed += p.mass[i];
+    }
+  world->remove_particles_if([&](std::size_t i) { return gone[i] != 0; });
+  discharged += removed;
+  return removed;
 }
 
 }  // namespace chutelab::dem::station

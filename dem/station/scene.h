@@ -32,7 +32,7 @@ struct Scene {
   PlateFrame plate;
   int plate_wall = -1;
   int inserter = -1;
-  int plate_sink = -1;               // the sink below the plate: the discharge
+  int plate_sink = -1;               // the World's sink at the floor (catches what a batch missed)
   std::vector<int> boundary_sinks;   // domain faces: anything there escaped the rig
   double belt_speed = 0.0;           // m/s
   double mass_flow = 0.0;            // kg/s fed
@@ -44,7 +44,10 @@ struct Scene {
   double characteristic_speed = 0.0; // m/s
   double feed_s_begin = 0.0, feed_s_end = 0.0;  // belt coordinates of the insertion face, m
   double belt_start = 0.0;           // belt coordinate of the belt's upstream end, m
-  double sink_y = 0.0;               // m
+  double sink_y = 0.0;               // m: particles below it have left the rig (the discharge)
+  double discharged = 0.0;           // kg removed by discharge()
+  // Removes every particle below sink_y in one batch (one neighbour-list rebuild); returns the mass.
+  double discharge();
   FeederRelaxation feeder;
   FlightForce flight;
   std::vector<std::string> notes;

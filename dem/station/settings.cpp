@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <thread>
 #include <filesystem>
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -68,6 +70,14 @@ RunSettings preset(Quality q) {
   return s;
 }
 
+int effective_threads(int threads) {
+  if (threads > 0) return threads;
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  double load[1] = {0.0};
+  if (getloadavg(load, 1) != 1) return 1;
+  return std::clamp(cores - static_cast<int>(std::lround(load[0])), 1, cores);
+}
+
 namespace {
 
 long line_of(const toml::node& n) { return static_cast<long>(n.source().begin.line); }
@@ -130,6 +140,8 @@ DemTable read_dem_table(const std::string& file) {
       t.min_window = positive_number(node, file, key);
     } else if (kv == "feed_length_mm") {
       t.feed_length = positive_number(node, file, key) * 1e-3;
+    } else if (kv == "skin_fraction") {
+      t.skin_fraction = positive_number(node, file, key);
     } else if (kv == "seed") {
       const auto v = node.value<std::int64_t>();
       if (!v || !node.is_integer() || *v < 0) throw InputError(file, line_of(node), key, "must be a non-negative integer");
@@ -153,7 +165,7 @@ DemTable read_dem_table(const std::string& file) {
     } else {
       throw InputError(file, line_of(node), key,
                        "unknown key (known: quality, particle_diameter_mm, shear_modulus_scale, dt_fraction, "
-                       "contact, seed, max_time_s, min_window_s, feed_length_mm, [dem.stl])");
+                       "contact, seed, max_time_s, min_window_s, feed_length_mm, skin_fraction, [dem.stl])");
     }
   }
   return t;
@@ -168,6 +180,7 @@ void apply(const DemTable& t, RunSettings& s) {
   if (t.max_time) s.max_time = *t.max_time;
   if (t.min_window) s.min_window = *t.min_window;
   if (t.feed_length) s.feed_length = *t.feed_length;
+  if (t.skin_fraction) s.skin_fraction = *t.skin_fraction;
 }
 
 RunSettings resolve(const DemTable& table, const SettingsOverrides& o, Quality fallback) {
@@ -223,6 +236,7 @@ std::string canonical(const RunSettings& s) {
   put("insert_low", s.insert_low);
   put("insert_depth", s.insert_depth);
   put("insert_speed_down", s.insert_speed_down);
+  put("insert_interval", s.insert_interval);
   put("relax_rate", s.relax_rate);
   put("relax_past", s.relax_past);
   put("min_time", s.min_time);

@@ -44,6 +44,7 @@ struct RunSettings {
   double insert_low = 0.030;         // m above the belt: bottom of the insertion box (at least 2.5 d)
   double insert_depth = 0.032;       // m: height of the insertion box (at least 3.5 d)
   double insert_speed_down = 1.0;    // m/s, downward velocity of inserted particles
+  double insert_interval = 0.003;    // s between insertion events (each forces a neighbour rebuild)
   double relax_rate = 50.0;          // 1/s, feeder relaxation of the velocity towards the belt's
   double relax_past = 0.05;          // m past the end of the face where the relaxation stops
 
@@ -58,8 +59,13 @@ struct RunSettings {
   double detect_tail = 0.4;          // s, reference: mean of the last detect_tail
 
   // --- numerics ---
-  double skin_fraction = 0.5;        // Verlet skin as a fraction of the particle radius
-  int threads = 2;                   // OpenMP threads (results do not depend on it)
+  // Verlet skin as a fraction of the particle radius. Measured (bench/STATION.md): 1.0 halves the
+  // rebuilds of 0.5 at the same cost per step; 1.5 gains nothing more.
+  double skin_fraction = 1.0;
+  // OpenMP threads; results do not depend on it (dem/world.h). 0 = automatic: one per core left
+  // free by the 1-minute load average (at least 1). On a shared 2-core machine two threads that
+  // wait for each other in every step's parallel loops ran 2-10x slower than one (bench/STATION.md).
+  int threads = 0;
   std::uint64_t seed = 1;            // insertion random numbers
 
   // --- sensors ---
@@ -70,6 +76,9 @@ struct RunSettings {
 // standard: the dataset's own particles and modulus with the LIGGGHTS rig's feed; paper: the
 // seed's 5.6 mm spheres. Documented value by value in settings.cpp.
 RunSettings preset(Quality q);
+
+// The thread count a run uses: `threads` if > 0, else the automatic choice above.
+int effective_threads(int threads);
 
 // Optional [dem] table of setup.toml (README "DEM"). Every key is optional.
 struct DemTable {
@@ -83,6 +92,7 @@ struct DemTable {
   std::optional<double> max_time;            // s
   std::optional<double> min_window;          // s
   std::optional<double> feed_length;         // m
+  std::optional<double> skin_fraction;       // Verlet skin / particle radius
   // STL meshes (mm, DESIGN.md frame) replacing generated parts; absolute paths after reading.
   std::optional<std::string> stl_plate, stl_belt, stl_pulley;
   std::vector<std::string> stl_walls;        // extra static walls (side panels, skirts, chute)
