@@ -114,7 +114,9 @@ int run_simulate(const SimulateCli& o) {
   std::cout << row("exit velocity V_a", r.exit_velocity, 1, "m/s", 3);
   std::cout << row("layer speed before the pulley", r.layer_speed, 1, "m/s", 3);
   std::cout << row("stream thickness on the belt", r.stream_thickness, 1e3, "mm", 1);
-  std::cout << row("free-stream mass flux", r.mass_flux, 1, "kg/s", 3);
+  std::cout << row("layer: mean centre height", r.layer_height, 1e3, "mm", 1);
+  std::cout << row("free-stream mass flux (x = Z/2)", r.mass_flux, 1, "kg/s", 3);
+  std::cout << row("momentum the stream delivers", r.momentum_balance, 1, "N", 3);
   std::cout << fmt::format("mass: inserted {:.3f} kg = discharged {:.3f} + escaped {:.3f} + in the rig {:.3f} kg\n",
                            r.inserted, r.discharged, r.escaped, r.in_domain);
   for (const auto& n : r.notes) std::cout << "note: " << n << "\n";

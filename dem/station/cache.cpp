@@ -10,7 +10,7 @@
 namespace chutelab::dem::station {
 namespace {
 
-constexpr const char* kMagic = "chutelab-dem-result 1";
+constexpr const char* kMagic = "chutelab-dem-result 2";
 
 std::string num(double v) { return fmt::format("{:.17g}", v); }
 
@@ -60,19 +60,20 @@ std::string to_text(const StationResult& r) {
   put(o, "impact_velocity_fast", r.impact_velocity_fast);
   put(o, "exit_velocity", r.exit_velocity);
   put(o, "layer_speed", r.layer_speed);
+  put(o, "layer_height", r.layer_height);
   put(o, "stream_thickness", r.stream_thickness);
   put(o, "mass_flux", r.mass_flux);
-  put(o, "momentum_flux", r.momentum_flux);
-  put(o, "momentum_flux_in", r.momentum_flux_in);
-  put(o, "momentum_flux_down", r.momentum_flux_down);
+  put(o, "momentum_balance", r.momentum_balance);
   for (const auto& t : r.trajectory)
     o += fmt::format("traj {} {} {} {} {} {} {} {} {} {}\n", num(t.x), num(t.upper.value), num(t.upper.se), t.upper.n,
                      num(t.lower.value), num(t.lower.se), t.lower.n, num(t.centre.value), num(t.centre.se), t.centre.n);
-  for (const auto& f : r.forces) o += fmt::format("force {} {} {} {}\n", num(f.t), num(f.normal), num(f.shear), num(f.moment));
+  for (const auto& f : r.forces)
+    o += fmt::format("force {} {} {} {} {} {} {} {}\n", num(f.t), num(f.normal), num(f.shear), num(f.moment),
+                     num(f.mass_through), num(f.momentum_in), num(f.momentum_floor), num(f.momentum_content));
   for (const auto& s : r.snapshots)
-    o += fmt::format("snap {} {} {} {} {} {} {} {} {} {} {} {} {}\n", num(s.t), s.particles, num(s.vp_sum), s.vp_n,
-                     num(s.vp_fast_sum), s.vp_fast_n, num(s.layer_speed_sum), s.layer_n, num(s.stream_thickness),
-                     num(s.mass_flux), num(s.momentum_flux), num(s.momentum_flux_in), num(s.momentum_flux_down));
+    o += fmt::format("snap {} {} {} {} {} {} {} {} {} {}\n", num(s.t), s.particles, num(s.vp_sum), s.vp_n,
+                     num(s.vp_fast_sum), s.vp_fast_n, num(s.layer_speed_sum), num(s.layer_height_sum), s.layer_n,
+                     num(s.stream_thickness));
   for (const auto& p : r.side_view) o += fmt::format("side {} {} {} {}\n", p.x, p.y, p.z, p.speed);
   for (const auto& n : r.notes) o += "note " + n + "\n";
   return o;
@@ -116,8 +117,8 @@ std::optional<StationResult> from_text(const std::string& text) {
                   : n == "impact_velocity" ? &r.impact_velocity : n == "impact_velocity_fast" ? &r.impact_velocity_fast
                   : n == "exit_velocity" ? &r.exit_velocity : n == "layer_speed" ? &r.layer_speed
                   : n == "stream_thickness" ? &r.stream_thickness : n == "mass_flux" ? &r.mass_flux
-                  : n == "momentum_flux" ? &r.momentum_flux : n == "momentum_flux_in" ? &r.momentum_flux_in
-                  : n == "momentum_flux_down" ? &r.momentum_flux_down : nullptr;
+                  : n == "layer_height" ? &r.layer_height : n == "momentum_balance" ? &r.momentum_balance
+                  : nullptr;
       if (!e || !read_estimate(in, *e)) return std::nullopt;
     } else if (tag == "traj") {
       TrajectoryRow t;
@@ -127,6 +128,7 @@ std::optional<StationResult> from_text(const std::string& text) {
     } else if (tag == "force") {
       ForceSample f;
       f.t = rd(in); f.normal = rd(in); f.shear = rd(in); f.moment = rd(in);
+      f.mass_through = rd(in); f.momentum_in = rd(in); f.momentum_floor = rd(in); f.momentum_content = rd(in);
       r.forces.push_back(f);
     } else if (tag == "snap") {
       SnapshotStats s;
@@ -137,9 +139,9 @@ std::optional<StationResult> from_text(const std::string& text) {
       s.vp_fast_sum = rd(in);
       in >> s.vp_fast_n;
       s.layer_speed_sum = rd(in);
+      s.layer_height_sum = rd(in);
       in >> s.layer_n;
-      s.stream_thickness = rd(in); s.mass_flux = rd(in); s.momentum_flux = rd(in); s.momentum_flux_in = rd(in);
-      s.momentum_flux_down = rd(in);
+      s.stream_thickness = rd(in);
       if (!in) return std::nullopt;
       r.snapshots.push_back(s);
     } else if (tag == "side") {

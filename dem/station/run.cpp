@@ -52,7 +52,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
   const RunSettings& s = o.settings;
   Scene sc = build_scene(st, s, o.geometry, o.external);
   World& w = *sc.world;
-  const Sensors sensors(sc, s.momentum_plane_offset);
+  Sensors sensors(sc, s.momentum_plane_fraction);
   StationResult r;
   r.condition = st.condition;
   r.quality = std::string(name(s.quality));
@@ -101,7 +101,9 @@ StationResult run_station(const Station& st, const RunOptions& o) {
     fn.push_back(force.dot(sc.plate.into));
     fs.push_back(force.dot(sc.plate.down));
     mz.push_back(moment);
-    r.forces.push_back({t, fn.back(), fs.back(), mz.back()});
+    ForceSample sample{t, fn.back(), fs.back(), mz.back()};
+    sensors.count_crossings(w, sample);
+    r.forces.push_back(sample);
     ++sample_index;
     if (sample_index % samples_per_snapshot == 0) {
       r.snapshots.push_back(sensors.measure(w, face));
@@ -169,7 +171,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
   }
 
   // --- snapshot sensors ---
-  std::vector<double> tn, vp, vpw, vpf, vpfw, ls, lsw, th, mf, mom, mom_in, mom_down;
+  std::vector<double> tn, vp, vpw, vpf, vpfw, ls, lh, lsw, th;
   for (const auto& sn : r.snapshots) {
     tn.push_back(sn.t);
     vp.push_back(sn.vp_n ? sn.vp_sum / sn.vp_n : kNaN);
@@ -177,22 +179,30 @@ StationResult run_station(const Station& st, const RunOptions& o) {
     vpf.push_back(sn.vp_fast_n ? sn.vp_fast_sum / sn.vp_fast_n : kNaN);
     vpfw.push_back(sn.vp_fast_n);
     ls.push_back(sn.layer_n ? sn.layer_speed_sum / sn.layer_n : kNaN);
+    lh.push_back(sn.layer_n ? sn.layer_height_sum / sn.layer_n : kNaN);
     lsw.push_back(sn.layer_n);
     th.push_back(sn.stream_thickness);
-    mf.push_back(sn.mass_flux);
-    mom.push_back(sn.momentum_flux);
-    mom_in.push_back(sn.momentum_flux_in);
-    mom_down.push_back(sn.momentum_flux_down);
   }
   const std::vector<double> snap_ones(tn.size(), 1.0);
   r.impact_velocity = block_mean(tn, vp, vpw, a, b, blk);
   r.impact_velocity_fast = block_mean(tn, vpf, vpfw, a, b, blk);
   r.layer_speed = block_mean(tn, ls, lsw, a, b, blk);
+  r.layer_height = block_mean(tn, lh, lsw, a, b, blk);
   r.stream_thickness = block_mean(tn, th, snap_ones, a, b, blk);
-  r.mass_flux = block_mean(tn, mf, snap_ones, a, b, blk);
-  r.momentum_flux = block_mean(tn, mom, snap_ones, a, b, blk);
-  r.momentum_flux_in = block_mean(tn, mom_in, snap_ones, a, b, blk);
-  r.momentum_flux_down = block_mean(tn, mom_down, snap_ones, a, b, blk);
+
+  // --- plane crossings: mass flux and momentum balance, block by block ---
+  {
+    std::vector<double> mass_rate, mom_rate;
+    for (std::size_t k = 0; k < r.forces.size(); ++k) {
+      const ForceSample& f = r.forces[k];
+      mass_rate.push_back(f.mass_through / sample_dt);
+      // Rate of change of the content between samples enters as its difference.
+      const double dp = k > 0 ? f.momentum_content - r.forces[k - 1].momentum_content : 0.0;
+      mom_rate.push_back((f.momentum_in - f.momentum_floor - dp) / sample_dt);
+    }
+    r.mass_flux = block_mean(ts, mass_rate, ones, a, b, blk);
+    r.momentum_balance = block_mean(ts, mom_rate, ones, a, b, blk);
+  }
 
   // V_a: down the face, 30-150 mm below the impact point, once that is known.
   if (r.impact_point_y.ok()) {
@@ -278,21 +288,23 @@ void write_result_files(const std::string& dir, const StationResult& r) {
   const fs::path d(dir);
   {
     auto f = open_out(d / "timeseries.csv");
-    f << "t_s,normal_force_N,shear_force_N,moment_Nm,impact_point_y_mm\n";
+    f << "t_s,normal_force_N,shear_force_N,moment_Nm,impact_point_y_mm,mass_through_kg,momentum_in_Ns,"
+         "momentum_floor_Ns,momentum_content_Ns\n";
     for (const auto& s : r.forces)
-      f << fmt::format("{:.5f},{:.6g},{:.6g},{:.6g},{}\n", s.t, s.normal, s.shear, s.moment,
-                       s.normal > 0.0 ? fmt::format("{:.4g}", -s.moment / s.normal * 1e3) : std::string());
+      f << fmt::format("{:.5f},{:.6g},{:.6g},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g}\n", s.t, s.normal, s.shear, s.moment,
+                       s.normal > 0.0 ? fmt::format("{:.4g}", -s.moment / s.normal * 1e3) : std::string(),
+                       s.mass_through, s.momentum_in, s.momentum_floor, s.momentum_content);
   }
   {
     auto f = open_out(d / "sensors.csv");
-    f << "t_s,particles,impact_velocity_mps,impact_velocity_fast_mps,layer_speed_mps,stream_thickness_mm,"
-         "mass_flux_kgps,momentum_flux_N,momentum_flux_in_N,momentum_flux_down_N\n";
-    auto opt = [](double num, int n) { return n ? fmt::format("{:.5g}", num / n) : std::string(); };
+    f << "t_s,particles,impact_velocity_mps,impact_velocity_fast_mps,layer_speed_mps,layer_height_mm,"
+         "stream_thickness_mm\n";
+    auto opt = [](double num, int n, double scale) { return n ? fmt::format("{:.5g}", num / n * scale) : std::string(); };
     for (const auto& s : r.snapshots)
-      f << fmt::format("{:.5f},{},{},{},{},{},{:.5g},{:.5g},{:.5g},{:.5g}\n", s.t, s.particles, opt(s.vp_sum, s.vp_n),
-                       opt(s.vp_fast_sum, s.vp_fast_n), opt(s.layer_speed_sum, s.layer_n),
-                       std::isfinite(s.stream_thickness) ? fmt::format("{:.4g}", s.stream_thickness * 1e3) : "",
-                       s.mass_flux, s.momentum_flux, s.momentum_flux_in, s.momentum_flux_down);
+      f << fmt::format("{:.5f},{},{},{},{},{},{}\n", s.t, s.particles, opt(s.vp_sum, s.vp_n, 1),
+                       opt(s.vp_fast_sum, s.vp_fast_n, 1), opt(s.layer_speed_sum, s.layer_n, 1),
+                       opt(s.layer_height_sum, s.layer_n, 1e3),
+                       std::isfinite(s.stream_thickness) ? fmt::format("{:.4g}", s.stream_thickness * 1e3) : "");
   }
   {
     auto f = open_out(d / "steady.csv");
@@ -310,11 +322,10 @@ void write_result_files(const std::string& dir, const StationResult& r) {
     row("impact_point_y_mm", r.impact_point_y, 1e3);
     row("impact_velocity_fast_mps", r.impact_velocity_fast, 1);
     row("layer_speed_mps", r.layer_speed, 1);
+    row("layer_height_mm", r.layer_height, 1e3);
     row("stream_thickness_mm", r.stream_thickness, 1e3);
     row("mass_flux_kgps", r.mass_flux, 1);
-    row("momentum_flux_N", r.momentum_flux, 1);
-    row("momentum_flux_in_N", r.momentum_flux_in, 1);
-    row("momentum_flux_down_N", r.momentum_flux_down, 1);
+    row("momentum_balance_N", r.momentum_balance, 1);
   }
   {
     auto f = open_out(d / "trajectory.csv");

@@ -42,8 +42,10 @@ struct StationResult {
   // --- steady means (SI) ---
   Estimate normal_force, shear_force, resultant_force, impact_point_y;
   Estimate impact_velocity, impact_velocity_fast, exit_velocity;
-  Estimate layer_speed, stream_thickness, mass_flux;
-  Estimate momentum_flux, momentum_flux_in, momentum_flux_down;  // control volume in front of the plate
+  Estimate layer_speed, layer_height, stream_thickness, mass_flux;
+  // x-momentum the stream delivers to the control volume in front of the plate, N (vertical plate:
+  // equals R_n in the mean; Sensors::count_crossings).
+  Estimate momentum_balance;
   std::vector<TrajectoryRow> trajectory;
 
   // --- mass at the end, kg ---

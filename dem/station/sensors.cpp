@@ -21,13 +21,13 @@ double percentile(std::vector<double>& v, double p) {
 
 }  // namespace
 
-Sensors::Sensors(const Scene& scene, double momentum_offset) : sc_(&scene) {
+Sensors::Sensors(const Scene& scene, double momentum_plane_fraction) : sc_(&scene) {
   const PlateFrame& pf = scene.plate;
   const double face_min = std::min(pf.top_edge.x(), pf.bottom_edge().x());
   // Trajectory slabs every 10 mm from the pulley to 20 mm before the face (the rig: x_q <= Z - 20 mm).
   for (double x = 0.01; x <= face_min - 0.02 + 1e-9; x += 0.01) xq_.push_back(std::round(x * 1e3) / 1e3);
   x_flux_ = 0.5 * face_min;
-  x_c_ = face_min - momentum_offset;
+  x_c_ = momentum_plane_fraction * face_min;
   y_s_ = pf.bottom_edge().y() - 0.05;
 }
 
@@ -48,13 +48,13 @@ SnapshotStats Sensors::measure(const World& w, std::vector<FaceParticle>& face) 
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec3& x = p.x[i];
     const Vec3& v = p.v[i];
-    const double m = p.mass[i];
     const double sb = bf.s(x);
     // Layer on the belt.
     if (sb <= 0.0) {
       const double h = bf.h(x);
       if (sb >= -0.100 && sb <= -0.020 && h < 0.2) {
         s.layer_speed_sum += v.dot(bf.along);
+        s.layer_height_sum += h;
         ++s.layer_n;
       }
       if (sb >= -0.150 && sb <= -0.050 && h < 0.2) tops.push_back(h + 0.5 * d);
@@ -83,13 +83,6 @@ SnapshotStats Sensors::measure(const World& w, std::vector<FaceParticle>& face) 
         if (std::abs(x.x() - xq_[ki]) < slab_half_) bucket[ki].push_back(x.y());
       }
     }
-    // Fluxes.
-    if (std::abs(x.x() - x_flux_) < 0.5 * w_flux_) s.mass_flux += m * v.x() / w_flux_;
-    if (std::abs(x.x() - x_c_) < 0.5 * w_flux_) {
-      s.momentum_flux += m * v.x() * v.x() / w_flux_;
-      if (v.x() > 0.0) s.momentum_flux_in += m * v.x() * v.x() / w_flux_;
-    }
-    if (x.x() > x_c_ && std::abs(x.y() - y_s_) < 0.5 * w_flux_) s.momentum_flux_down += m * v.x() * (-v.y()) / w_flux_;
   }
   s.stream_thickness = tops.size() >= 5 ? percentile(tops, 0.95) : kNaN;
   s.upper.assign(nq, kNaN);
@@ -105,6 +98,32 @@ SnapshotStats Sensors::measure(const World& w, std::vector<FaceParticle>& face) 
     s.upper[k] = percentile(b, 0.95);
   }
   return s;
+}
+
+void Sensors::count_crossings(const World& w, ForceSample& s) {
+  const Particles& p = w.particles();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto id = static_cast<std::size_t>(p.id[i]);
+    if (id >= prev_x_.size()) {
+      prev_x_.resize(std::max(2 * prev_x_.size(), id + 1), std::numeric_limits<float>::quiet_NaN());
+      prev_y_.resize(prev_x_.size(), std::numeric_limits<float>::quiet_NaN());
+    }
+    const double x = p.x[i].x(), y = p.x[i].y();
+    const double m = p.mass[i], vx = p.v[i].x();
+    const double x0 = prev_x_[id], y0 = prev_y_[id];
+    if (std::isfinite(x0)) {
+      if (x0 < x_flux_ && x >= x_flux_) s.mass_through += m;
+      if (x0 >= x_flux_ && x < x_flux_) s.mass_through -= m;
+      // The control volume: x >= x_c and y >= y_s.
+      const bool was_in = x0 >= x_c_ && y0 >= y_s_, is_in = x >= x_c_ && y >= y_s_;
+      if (!was_in && is_in && y0 >= y_s_) s.momentum_in += m * vx;    // in through the face
+      if (was_in && !is_in && y >= y_s_) s.momentum_in -= m * vx;     // back out through the face
+      if (was_in && !is_in && y < y_s_) s.momentum_floor += m * vx;   // out through the floor
+    }
+    if (x >= x_c_ && y >= y_s_) s.momentum_content += m * vx;
+    prev_x_[id] = static_cast<float>(x);
+    prev_y_[id] = static_cast<float>(y);
+  }
 }
 
 std::vector<SidePoint> Sensors::side_view(const World& w, std::size_t max_points) const {

@@ -14,8 +14,11 @@
 //  - layer on the belt: mean speed along the belt 20-100 mm before the tangent point (does the layer
 //    reach the pulley at belt speed?) and the stream thickness, the 95th percentile of the particle
 //    tops above the belt at s in [-150, -50] mm;
-//  - mass flux of the free stream through x = Z/2, and the x-momentum balance of a control volume
-//    in front of a vertical plate (tests: R_n equals the momentum flux the stream brings).
+//  - particles crossing planes, counted by identity between force samples: the mass flux of the
+//    free stream through x = Z/2, and the x-momentum balance of the control volume in front of a
+//    vertical plate (x > Z/2, above 50 mm below the plate): momentum carried in through its
+//    face minus momentum carried out through its floor minus the growth of its content equals the
+//    force on the plate in the mean (tests: R_n equals the momentum flux the stream brings).
 // Differences from the rig's recipe are listed in README "DEM" (none in the definitions; the DEM's
 // slabs for V_a scale with the DEM particle size d, the V_p slab is fixed in mm like the rig's).
 #include <cstdint>
@@ -31,6 +34,11 @@ struct ForceSample {
   double normal = 0.0;   // R_n, N
   double shear = 0.0;    // R_s, N
   double moment = 0.0;   // M_z about the reference point, N m
+  // Plane crossings since the previous sample (see Sensors::count_crossings).
+  double mass_through = 0.0;      // kg, net, through x = Z/2 towards the plate
+  double momentum_in = 0.0;       // N s, x-momentum carried into the control volume through its face
+  double momentum_floor = 0.0;    // N s, x-momentum carried out through its floor
+  double momentum_content = 0.0;  // N s, x-momentum inside the control volume at t
 };
 
 // What one particle snapshot shows (NaN / zero counts where nothing was there).
@@ -42,11 +50,8 @@ struct SnapshotStats {
   int vp_fast_n = 0;
   double layer_speed_sum = 0.0;
   int layer_n = 0;
+  double layer_height_sum = 0.0;  // sum of particle-centre heights above the belt (layer_n particles)
   double stream_thickness = 0.0;  // m, NaN when no particles in the window
-  double mass_flux = 0.0;         // kg/s through x = Z/2
-  double momentum_flux = 0.0;     // N, x-momentum flux through x = x_c (both directions)
-  double momentum_flux_in = 0.0;  // N, that of particles moving towards the plate
-  double momentum_flux_down = 0.0;  // N, x-momentum leaving downward through y = y_s (x > x_c)
   std::vector<double> upper, lower, centre;  // m, per trajectory station (NaN: too few particles)
   std::size_t particles = 0;
 };
@@ -66,14 +71,17 @@ struct SidePoint {
 
 class Sensors {
  public:
-  Sensors(const Scene& scene, double momentum_offset);
+  Sensors(const Scene& scene, double momentum_plane_fraction);
   const std::vector<double>& stations() const { return xq_; }  // x of the trajectory slabs, m
   double vp_slab_near() const { return 0.010; }
   double vp_slab_far() const { return 0.030; }
   double mass_flux_x() const { return x_flux_; }
   double momentum_plane_x() const { return x_c_; }
+  double momentum_floor_y() const { return y_s_; }
 
   SnapshotStats measure(const World& w, std::vector<FaceParticle>& face) const;
+  // Adds to `s` what crossed the planes since the previous call (particles matched by id).
+  void count_crossings(const World& w, ForceSample& s);
   // Up to max_points particles of the rig downstream of the feed (deterministic subsample).
   std::vector<SidePoint> side_view(const World& w, std::size_t max_points) const;
 
@@ -81,7 +89,8 @@ class Sensors {
   const Scene* sc_;
   std::vector<double> xq_;
   double slab_half_ = 0.005;
-  double x_flux_ = 0.0, x_c_ = 0.0, y_s_ = 0.0, w_flux_ = 0.02;
+  double x_flux_ = 0.0, x_c_ = 0.0, y_s_ = 0.0;
+  std::vector<float> prev_x_, prev_y_;  // by particle id; NaN = not seen
 };
 
 }  // namespace chutelab::dem::station

@@ -248,7 +248,7 @@ std::string canonical(const RunSettings& s) {
   put("mean_block", s.mean_block);
   put("detect_tail", s.detect_tail);
   put("skin_fraction", s.skin_fraction);
-  put("momentum_plane_offset", s.momentum_plane_offset);
+  put("momentum_plane_fraction", s.momentum_plane_fraction);
   // threads are left out on purpose: 1 and N threads give bit-identical results (dem/world.h).
   return o;
 }

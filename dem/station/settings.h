@@ -69,7 +69,10 @@ struct RunSettings {
   std::uint64_t seed = 1;            // insertion random numbers
 
   // --- sensors ---
-  double momentum_plane_offset = 0.06;  // m in front of the plate: control surface of the momentum balance
+  // Face of the control volume of the momentum balance, as a fraction of the way from the pulley to
+  // the plate: mid-flight, upstream of the cushion of slowed particles in front of the plate (both
+  // DEMs show the stream slowing within ~0.1 m of the plate, README "DEM").
+  double momentum_plane_fraction = 0.5;
 };
 
 // The presets. quick: for tests and first looks (13.6 mm spheres, soft, short belt, short time);
