@@ -14,7 +14,7 @@
 namespace chutelab::dem::station {
 
 // Version of the station model: part of every cache key, bumped whenever a change alters results.
-inline constexpr const char* kStationModelVersion = "chutelab-dem-station 1";
+inline constexpr const char* kStationModelVersion = "chutelab-dem-station 2";
 
 struct TrajectoryRow {
   double x = 0.0;  // m

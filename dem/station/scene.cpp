@@ -93,19 +93,24 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   }
 
   // --- feed geometry along the belt ---
-  sc.feed_s_end = -(s.feed_gap + s.feed_gap_per_speed * vb);
-  sc.feed_s_begin = sc.feed_s_end - s.feed_length;
-  sc.belt_start = sc.feed_s_begin - s.belt_upstream;
-  const double belt_len = -sc.belt_start;
   const bool trough = st.belt.trough.troughed();
   const double lam = st.belt.trough.idler_angle;
   const double c_half = 0.5 * st.belt.trough.centre_roll;
   const double wing = 0.5 * B - c_half;
-  const double trough_transition = trough ? std::min(std::max(B, 0.3), 0.8 * belt_len) : 0.0;
   // Rise of the trough's wing at the edge of the load: the insertion box must clear it.
   const double wing_rise = trough ? std::max(0.0, 0.5 * W - c_half) * std::tan(lam) : 0.0;
   const double ins_low = std::max(s.insert_low, 2.5 * d) + wing_rise;
   const double ins_depth = std::max(s.insert_depth, 3.5 * d);
+  // Free fall of a particle inserted at the top of the box onto the bare belt: where the last
+  // inserted particles land, the relaxation must still act (feeder_relaxation.h).
+  const double fall_h = ins_low + ins_depth, v0 = s.insert_speed_down;
+  const double t_land = (-v0 + std::sqrt(v0 * v0 + 2.0 * g * fall_h)) / g;
+  sc.relax_s_end = -s.free_belt;
+  sc.feed_s_end = sc.relax_s_end - s.relax_past - vb * t_land;
+  sc.feed_s_begin = sc.feed_s_end - s.feed_length;
+  sc.belt_start = sc.feed_s_begin - s.belt_upstream;
+  const double belt_len = -sc.belt_start;
+  const double trough_transition = trough ? std::min(std::max(B, 0.3), 0.8 * belt_len) : 0.0;
 
   // --- domain ---
   const Vec3 p_start = sc.belt.tangent_point + sc.belt_start * sc.belt.along;
@@ -297,7 +302,7 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     sc.feeder.belt_speed = vb;
     sc.feeder.rate = s.relax_rate;
     sc.feeder.s_begin = sc.belt_start - 0.05;
-    sc.feeder.s_end = sc.feed_s_end + s.relax_past;
+    sc.feeder.s_end = sc.relax_s_end;
     sc.feeder.h_max = ins_low + ins_depth + 0.05;
   }
   sc.flight.belt = sc.belt;

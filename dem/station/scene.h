@@ -43,6 +43,7 @@ struct Scene {
   double rayleigh_time = 0.0;        // s
   double characteristic_speed = 0.0; // m/s
   double feed_s_begin = 0.0, feed_s_end = 0.0;  // belt coordinates of the insertion face, m
+  double relax_s_end = 0.0;          // belt coordinate where the feeder relaxation ends, m
   double belt_start = 0.0;           // belt coordinate of the belt's upstream end, m
   double sink_y = 0.0;               // m: particles below it have left the rig (the discharge)
   double discharged = 0.0;           // kg removed by discharge()

@@ -52,12 +52,12 @@ SnapshotStats Sensors::measure(const World& w, std::vector<FaceParticle>& face) 
     // Layer on the belt.
     if (sb <= 0.0) {
       const double h = bf.h(x);
-      if (sb >= -0.100 && sb <= -0.020 && h < 0.2) {
+      if (sb >= -0.100 && sb <= -0.020 && h > 0.0 && h < 0.2) {
         s.layer_speed_sum += v.dot(bf.along);
         s.layer_height_sum += h;
         ++s.layer_n;
       }
-      if (sb >= -0.150 && sb <= -0.050 && h < 0.2) tops.push_back(h + 0.5 * d);
+      if (sb >= -0.150 && sb <= -0.050 && h > 0.0 && h < 0.2) tops.push_back(h + 0.5 * d);
       continue;  // upstream of the tangent point: on the belt
     }
     // V_p slab, 10-30 mm in front of the face.
@@ -112,8 +112,9 @@ void Sensors::count_crossings(const World& w, ForceSample& s) {
     const double m = p.mass[i], vx = p.v[i].x();
     const double x0 = prev_x_[id], y0 = prev_y_[id];
     if (std::isfinite(x0)) {
+      // Towards the plate only: particles that rebound off the plate and fall back past x_f are
+      // part of the stream that arrived, not a reduction of it.
       if (x0 < x_flux_ && x >= x_flux_) s.mass_through += m;
-      if (x0 >= x_flux_ && x < x_flux_) s.mass_through -= m;
       // The control volume: x >= x_c and y >= y_s.
       const bool was_in = x0 >= x_c_ && y0 >= y_s_, is_in = x >= x_c_ && y >= y_s_;
       if (!was_in && is_in && y0 >= y_s_) s.momentum_in += m * vx;    // in through the face

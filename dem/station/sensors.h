@@ -35,7 +35,7 @@ struct ForceSample {
   double shear = 0.0;    // R_s, N
   double moment = 0.0;   // M_z about the reference point, N m
   // Plane crossings since the previous sample (see Sensors::count_crossings).
-  double mass_through = 0.0;      // kg, net, through x = Z/2 towards the plate
+  double mass_through = 0.0;      // kg crossing x = Z/2 towards the plate
   double momentum_in = 0.0;       // N s, x-momentum carried into the control volume through its face
   double momentum_floor = 0.0;    // N s, x-momentum carried out through its floor
   double momentum_content = 0.0;  // N s, x-momentum inside the control volume at t

@@ -36,17 +36,19 @@ struct RunSettings {
   double rayleigh_fraction = 0.2;
   ContactLaw contact = ContactLaw::hertz_mindlin;
 
-  // --- feed (the LIGGGHTS rig's recipe, see datasets/liggghts-rig/README.md) ---
+  // --- feed (after the LIGGGHTS rig's recipe, datasets/liggghts-rig/README.md; see feeder_relaxation.h) ---
+  // Along the belt, from upstream: belt_upstream, the insertion face (feed_length), the landing of
+  // the last inserted particles (V_b times their free-fall time) plus relax_past, where the feeder
+  // relaxation ends, then free_belt of belt before the pulley's tangent point.
   double feed_length = 0.40;         // m, length of the insertion face along the belt
-  double feed_gap = 0.15;            // m, the face ends feed_gap + feed_gap_per_speed V_b
-  double feed_gap_per_speed = 0.075; //    upstream of the pulley's tangent point (s per ... m/(m/s))
+  double free_belt = 0.20;           // m of belt without relaxation before the pulley (the rig: 0.2-0.43 m)
   double belt_upstream = 0.025;      // m of belt behind the insertion face
   double insert_low = 0.030;         // m above the belt: bottom of the insertion box (at least 2.5 d)
   double insert_depth = 0.032;       // m: height of the insertion box (at least 3.5 d)
   double insert_speed_down = 1.0;    // m/s, downward velocity of inserted particles
   double insert_interval = 0.003;    // s between insertion events (each forces a neighbour rebuild)
   double relax_rate = 50.0;          // 1/s, feeder relaxation of the velocity towards the belt's
-  double relax_past = 0.05;          // m past the end of the face where the relaxation stops
+  double relax_past = 0.05;          // m past the landing of the last inserted particles
 
   // --- time ---
   double min_time = 0.5;             // s, never stop before
