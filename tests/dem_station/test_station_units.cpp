@@ -11,6 +11,8 @@
 #include "core/input_error.h"
 #include "dem/insertion.h"
 #include "dem/station/cache.h"
+#include "dem/station/run.h"
+#include "dem/walls/stl.h"
 #include "dem/station/scene.h"
 #include "dem/station/settings.h"
 #include "dem/station/steady_state.h"
@@ -210,4 +212,54 @@ BOOST_AUTO_TEST_CASE(effects_map_onto_dem_inputs) {
   const auto cell = validation::dem_effect_inputs(st, fx("load_cell_offset=2"));
   BOOST_TEST(cell.key == validation::dem_effect_inputs(st, {}).key);
   BOOST_TEST(cell.notes.empty());
+}
+
+// A [dem.stl] plate replaces the generated one and is the load cell; its moment reference stays the
+// dataset's plate face at y = 0.
+BOOST_AUTO_TEST_CASE(stl_plate_replaces_the_generated_plate) {
+  const fs::path d = temp_dir("stl");
+  dem::TriangleMesh m = dem::TriangleMesh::from_soup(
+      {{dem::Vec3(350, 250, -300), dem::Vec3(350, -150, -300), dem::Vec3(350, -150, 300)},
+       {dem::Vec3(350, 250, -300), dem::Vec3(350, -150, 300), dem::Vec3(350, 250, 300)}});
+  dem::write_stl_binary((d / "plate.stl").string(), m);  // millimetres, like every STL of a dataset
+  std::ofstream(d / "setup.toml") << "[dem.stl]\nplate = \"plate.stl\"\n";
+  const DemTable t = read_dem_table((d / "setup.toml").string());
+  BOOST_REQUIRE(t.stl_plate.has_value());
+  const Scene sc = build_scene(test::tiny_station(), test::tiny_settings(), t, {});
+  const dem::Wall& plate = sc.world->walls()[static_cast<std::size_t>(sc.plate_wall)];
+  BOOST_TEST(plate.name == "plate");
+  const auto& mesh = std::get<dem::TriangleMesh>(plate.shape);
+  BOOST_TEST(mesh.triangles.size() == 2u);
+  BOOST_TEST(std::abs(mesh.bounds().lo.x() - 0.35) < 1e-9);
+  BOOST_TEST((plate.load_point - dem::Vec3(0.35, 0.0, 0.0)).norm() < 1e-12);
+}
+
+// A troughed belt (wings flattening towards the pulley) under an inclined plate: the scene builds,
+// the plate frame follows DESIGN.md (top edge at (Z, top), leaning towards the pulley), and a short
+// run stays stable.
+BOOST_AUTO_TEST_CASE(troughed_belt_and_inclined_plate) {
+  Station st = test::tiny_station();
+  st.belt.belt_width = 0.30;
+  st.belt.loaded_width = 0.20;
+  st.belt.trough.idler_angle = 20.0 * M_PI / 180.0;
+  st.belt.trough.centre_roll = 0.10;
+  st.belt.trough.surcharge_angle = 20.0 * M_PI / 180.0;
+  st.plate.angle = 15.0 * M_PI / 180.0;
+  RunSettings s = test::tiny_settings();
+  s.max_time = 0.12;
+  s.min_window = 0.05;
+  RunOptions o;
+  o.settings = s;
+  Scene sc = build_scene(st, s, {}, {});
+  const PlateFrame& pf = sc.plate;
+  BOOST_TEST(std::abs(pf.reference.y()) < 1e-12);
+  BOOST_TEST(pf.reference.x() > st.plate_distance);  // the face leans away below its top edge
+  BOOST_TEST(std::abs(pf.into.dot(pf.down)) < 1e-12);
+  BOOST_TEST(std::abs(pf.y_at(pf.up_from_reference(pf.top_edge)) - st.plate_top) < 1e-12);
+  int transition = 0;
+  for (const auto& w : sc.world->walls()) transition += w.name.rfind("belt-transition", 0) == 0;
+  BOOST_TEST(transition == 32);  // 2 wings x 8 segments x 2 triangles
+  const StationResult r = run_station(st, o);
+  BOOST_TEST(r.inserted > 0.1);
+  BOOST_TEST(r.escaped == 0.0);
 }
