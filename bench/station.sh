@@ -24,7 +24,7 @@ awk -F, '$2=="dem" && ($3=="normal_force_N" || $3=="impact_point_y_mm") {printf 
 if [ "${1:-}" = standard ]; then
   /usr/bin/time -f "standard validate x8 (dem, 9 mm): %e s wall, %U s user" \
     $B validate --dataset datasets/liggghts-rig --models korzen,booth-cema,dem --dem-quality standard \
-    --out "$OUT/standard" 2>"$OUT/standard.err" || true
+    --tolerances bench/station-tolerances.toml --out "$OUT/standard" 2>"$OUT/standard.err" || true
   echo "dem vs LIGGGHTS, standard:"
   awk -F, '$2=="dem" && $3 !~ /trajectory/ {printf "  %s %-20s %8.3f %8.3f %+6.1f%%\n", $1, $3, $4, $6, 100*$8}' "$OUT/standard/errors.csv"
 fi
