@@ -9,6 +9,7 @@
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
+#include "validation/models/dem_model.h"
 #include "validation/output_files.h"
 #include "validation/tolerances.h"
 
@@ -19,12 +20,31 @@ struct ValidateCli {
   std::string dataset, out, tolerances, models = "korzen,booth-cema";
   std::vector<std::string> effects;
   bool diagnose = false;
+  std::string dem_quality, dem_cache;
+  std::optional<int> dem_threads;
+  bool no_dem_cache = false;
 };
 
 int run_validate(const ValidateCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.dataset);
   const auto dataset = validation::read_dataset(dir);
+  {
+    // The DEM model ("dem" in --models) reads the dataset's [dem] table, caches its runs and writes
+    // per-condition series, side views and VTK under OUT/dem/.
+    validation::DemModelConfig dc;
+    dc.setup_file = (dir / "setup.toml").string();
+    if (!o.dem_quality.empty()) {
+      dc.overrides.quality = dem::station::parse_quality(o.dem_quality);
+      if (!dc.overrides.quality) throw InputError("", 0, "--dem-quality", "must be quick, standard or paper");
+    }
+    dc.overrides.threads = o.dem_threads;
+    dc.use_cache = !o.no_dem_cache;
+    dc.cache_dir = o.dem_cache;
+    dc.progress = true;
+    dc.output_dir = (fs::path(o.out) / "dem").string();
+    validation::set_dem_model_config(dc);
+  }
   const auto models = validation::make_models(split_list(o.models));
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
 
@@ -40,7 +60,12 @@ int run_validate(const ValidateCli& o) {
   reports::ReportInput report;
   report.dataset = &dataset;
   report.baseline = &baseline;
-  const auto applied = resolve_effects(o.effects, dataset, models, report.effects);
+  // Fits and the diagnosis call the models hundreds of times: they use the cheap ones (an expensive
+  // baseline enters the diagnosis as in DESIGN.md §5, not by re-running it per trial strength).
+  std::vector<validation::ModelPtr> cheap;
+  for (const auto& m : models)
+    if (!m->expensive()) cheap.push_back(m);
+  const auto applied = resolve_effects(o.effects, dataset, cheap, report.effects);
   std::optional<validation::ValidationResult> after;
   if (!applied.effects.empty()) {
     validation::ValidateOptions opts = base_opts;
@@ -55,7 +80,8 @@ int run_validate(const ValidateCli& o) {
   // "What is missing" comes from the models as they are, so the reader sees why an effect was added.
   std::optional<validation::DiagnosisResult> diagnosis;
   if (o.diagnose || !o.effects.empty()) {
-    diagnosis = validation::diagnose(dataset, in_registry_order(models));
+    if (cheap.empty()) throw InputError("", 0, "--diagnose", "the diagnosis needs an analytical model in --models");
+    diagnosis = validation::diagnose(dataset, in_registry_order(cheap));
     report.diagnosis = &*diagnosis;
   }
 
@@ -92,6 +118,11 @@ void add_validate(CLI::App& app, Action& action) {
                   "acceptance tolerances (default: the dataset's tolerances.toml if present)");
   cmd->add_flag("--diagnose", o->diagnose,
                 "also rank the candidate missing effects (always done when --effect is given)");
+  cmd->add_option("--dem-quality", o->dem_quality,
+                  "DEM quality: quick (default; minutes per condition), standard (the dataset's particles), paper");
+  cmd->add_option("--dem-threads", o->dem_threads, "OpenMP threads of the DEM (default 2)");
+  cmd->add_option("--dem-cache", o->dem_cache, "DEM result cache folder (default $XDG_CACHE_HOME/chutelab/dem)");
+  cmd->add_flag("--no-dem-cache", o->no_dem_cache, "run the DEM again even when a cached result exists");
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_validate(*o); }; });
 }

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/input_error.h"
+#include "validation/models/dem_model.h"
 #include "validation/models/models.h"
 
 namespace chutelab::validation {
@@ -16,6 +17,7 @@ const std::vector<std::pair<std::string, std::function<ModelPtr()>>>& registry()
   static const std::vector<std::pair<std::string, std::function<ModelPtr()>>> models = {
       {"booth-cema", make_booth_cema_model},
       {"korzen", make_korzen_model},
+      {"dem", [] { return make_dem_model(); }},
   };
   return models;
 }

@@ -1,0 +1,152 @@
+// `chutelab simulate`: one DEM run of one condition of a dataset, with a progress bar, the steady
+// means and their uncertainties on stdout, and CSV time series, a side view and VTK in --out.
+#include <filesystem>
+#include <fmt/format.h>
+#include <iostream>
+
+#include "app/commands.h"
+#include "core/input_error.h"
+#include "dem/station/cache.h"
+#include "dem/station/progress.h"
+#include "dem/station/run.h"
+#include "dem/world.h"
+#include "effects/registry.h"
+#include "validation/dataset.h"
+#include "validation/models/dem_model.h"
+
+namespace chutelab::app {
+namespace {
+
+namespace st = dem::station;
+
+struct SimulateCli {
+  std::string dataset, condition, out, quality, contact;
+  std::optional<double> diameter_mm, shear_modulus_scale, dt_fraction, max_time, vtk_every;
+  std::optional<int> threads;
+  std::optional<std::uint64_t> seed;
+  std::vector<std::string> effects;
+  bool no_cache = false;
+};
+
+std::string row(const char* label, const st::Estimate& e, double scale, const char* unit, int digits) {
+  if (!e.ok()) return fmt::format("  {:<34} {:>10}\n", label, "-");
+  const std::string se = std::isfinite(e.se) ? fmt::format(" ± {:.{}f}", e.se * scale, digits) : std::string();
+  return fmt::format("  {:<34} {:>10.{}f}{} {}\n", label, e.value * scale, digits, se, unit);
+}
+
+int run_simulate(const SimulateCli& o) {
+  namespace fs = std::filesystem;
+  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
+  const fs::path setup_file = dir / "setup.toml";
+  const Setup setup = validation::read_setup(setup_file);
+  std::vector<validation::SourceLine> lines;
+  const auto stations = validation::read_conditions(dir / "conditions.csv", setup, &lines);
+  const Station* station = nullptr;
+  for (const auto& s : stations)
+    if (s.condition == o.condition) station = &s;
+  if (!station) {
+    std::vector<std::string> names;
+    for (const auto& s : stations) names.push_back(s.condition);
+    throw InputError((dir / "conditions.csv").string(), 0, "--condition",
+                     fmt::format("no condition named '{}' (known: {})", o.condition, fmt::join(names, ", ")));
+  }
+
+  st::SettingsOverrides ov;
+  if (!o.quality.empty()) {
+    ov.quality = st::parse_quality(o.quality);
+    if (!ov.quality) throw InputError("", 0, "--quality", "must be quick, standard or paper");
+  }
+  if (!o.contact.empty()) {
+    ov.contact = st::parse_contact(o.contact);
+    if (!ov.contact) throw InputError("", 0, "--contact", "must be hertz-mindlin or lsd");
+  }
+  if (o.diameter_mm) ov.particle_diameter = *o.diameter_mm * 1e-3;
+  ov.shear_modulus_scale = o.shear_modulus_scale;
+  ov.dt_fraction = o.dt_fraction;
+  ov.threads = o.threads;
+  ov.seed = o.seed;
+  ov.max_time = o.max_time;
+  const st::DemTable table = st::read_dem_table(setup_file.string());
+  const st::RunSettings settings = st::resolve(table, ov);
+
+  std::vector<effects::EffectSetting> fx_settings;
+  for (const auto& e : o.effects) fx_settings.push_back(effects::parse_setting(e, false));
+  const auto fx = validation::dem_effect_inputs(*station, effects::instantiate(fx_settings));
+
+  if (o.vtk_every && !(*o.vtk_every > 0.0)) throw InputError("", 0, "--vtk-every", "must be > 0 s");
+  if (o.vtk_every && o.out.empty()) throw InputError("", 0, "--vtk-every", "needs --out DIR");
+  st::RunOptions ro;
+  ro.settings = settings;
+  ro.geometry = table;
+  ro.external = fx.external;
+  ro.progress = st::ProgressPrinter(fmt::format("dem {}", station->condition));
+  if (!o.out.empty()) {
+    ro.vtk_dir = (fs::path(o.out) / "vtk").string();
+    ro.vtk_every = o.vtk_every.value_or(0.0);
+  }
+  st::StationResult r;
+  try {
+    r = st::run_station(fx.station, ro);
+  } catch (const dem::SimulationError& e) {
+    throw InputError("", 0, "--dt-fraction", fmt::format("the DEM run failed: {}", e.what()));
+  }
+  if (!o.out.empty()) {
+    st::write_result_files(o.out, r);
+    st::write_side_view_vtk((fs::path(o.out) / "side_view.vtk").string(), r.side_view);
+  }
+  if (!o.no_cache) {
+    // Same key as the harness model: a later `validate --models dem` with these settings is instant.
+    st::ResultCache(st::ResultCache::default_dir()).store(validation::dem_cache_key(fx, settings, table), r);
+  }
+
+  std::cout << fmt::format("DEM run of {} / {} ({} quality, {:.1f} mm spheres, dt {:.3g} s)\n", setup.name, station->condition, r.quality, r.diameter * 1e3, r.dt);
+  std::cout << fmt::format("simulated {:.2f} s in {:.0f} s wall ({} steps, up to {} particles){}\n", r.simulated_time,
+                           r.wall_seconds, r.steps, r.peak_particles, r.early_stop ? ", stopped when steady" : "");
+  std::cout << fmt::format("steady window {:.2f}-{:.2f} s ({} blocks of {:.1f} s){}\n", r.window.start, r.window.end,
+                           r.window.blocks, settings.mean_block, r.window.found ? "" : " — NOT steady");
+  std::cout << "steady means ± standard error of the mean:\n";
+  std::cout << row("plate normal force R_n", r.normal_force, 1, "N", 3);
+  std::cout << row("plate shear force R_s", r.shear_force, 1, "N", 3);
+  std::cout << row("resultant R", r.resultant_force, 1, "N", 3);
+  std::cout << row("impact point y_R", r.impact_point_y, 1e3, "mm", 1);
+  std::cout << row("impact velocity V_p (10-30 mm slab)", r.impact_velocity, 1, "m/s", 3);
+  std::cout << row("  free-stream particles only", r.impact_velocity_fast, 1, "m/s", 3);
+  std::cout << row("exit velocity V_a", r.exit_velocity, 1, "m/s", 3);
+  std::cout << row("layer speed before the pulley", r.layer_speed, 1, "m/s", 3);
+  std::cout << row("stream thickness on the belt", r.stream_thickness, 1e3, "mm", 1);
+  std::cout << row("layer: mean centre height", r.layer_height, 1e3, "mm", 1);
+  std::cout << row("free-stream mass flux (x = Z/2)", r.mass_flux, 1, "kg/s", 3);
+  std::cout << row("momentum the stream delivers", r.momentum_balance, 1, "N", 3);
+  std::cout << fmt::format("mass: inserted {:.3f} kg = discharged {:.3f} + escaped {:.3f} + in the rig {:.3f} kg\n",
+                           r.inserted, r.discharged, r.escaped, r.in_domain);
+  for (const auto& n : r.notes) std::cout << "note: " << n << "\n";
+  for (const auto& n : fx.notes) std::cout << "note: " << n << "\n";
+  if (!o.out.empty()) std::cout << fmt::format("files: {}\n", o.out);
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_simulate(CLI::App& app, Action& action) {
+  auto o = std::make_shared<SimulateCli>();
+  auto* cmd = app.add_subcommand("simulate",
+                                 "Run the DEM of one condition of a dataset: progress on stderr, steady means "
+                                 "with uncertainties on stdout, CSV series, side view and VTK in --out.");
+  cmd->add_option("--dataset", o->dataset, "dataset folder (default: the bundled grima2010 rig)");
+  cmd->add_option("--condition", o->condition, "condition (row of conditions.csv)")->required();
+  cmd->add_option("--quality", o->quality, "quick (tests, first looks), standard (the dataset's particles), paper (5.6 mm)");
+  cmd->add_option("--diameter-mm", o->diameter_mm, "particle diameter (scale-up), mm");
+  cmd->add_option("--shear-modulus-scale", o->shear_modulus_scale, "factor on E and G of particles and walls");
+  cmd->add_option("--dt-fraction", o->dt_fraction, "time step as a fraction of the Hertz collision time");
+  cmd->add_option("--contact", o->contact, "hertz-mindlin or lsd");
+  cmd->add_option("--threads", o->threads, "OpenMP threads (results do not depend on it)");
+  cmd->add_option("--seed", o->seed, "seed of the particle feed");
+  cmd->add_option("--max-time", o->max_time, "simulated time limit, s (the run stops earlier when steady)");
+  cmd->add_option("--effect", o->effects, "physical effect NAME=VALUE (those with a DEM counterpart act)");
+  cmd->add_option("--out", o->out, "output folder: CSV series, steady means, side view, VTK");
+  cmd->add_option("--vtk-every", o->vtk_every, "write particle VTK files every this many simulated seconds");
+  cmd->add_flag("--no-cache", o->no_cache, "do not store the result in the DEM cache");
+  cmd->callback([o, &action] { action = [o] { return run_simulate(*o); }; });
+}
+
+}  // namespace chutelab::app

@@ -1,0 +1,207 @@
+#include "dem/station/cache.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+namespace chutelab::dem::station {
+namespace {
+
+constexpr const char* kMagic = "chutelab-dem-result 2";
+
+std::string num(double v) { return fmt::format("{:.17g}", v); }
+
+void put(std::string& o, const char* name, const Estimate& e) {
+  o += fmt::format("scalar {} {} {} {}\n", name, num(e.value), num(e.se), e.n);
+}
+
+bool read_estimate(std::istringstream& in, Estimate& e) {
+  std::string v, s;
+  in >> v >> s >> e.n;
+  if (!in) return false;
+  e.value = std::strtod(v.c_str(), nullptr);
+  e.se = std::strtod(s.c_str(), nullptr);
+  return true;
+}
+
+double rd(std::istringstream& in) {
+  std::string v;
+  in >> v;
+  return std::strtod(v.c_str(), nullptr);
+}
+
+}  // namespace
+
+std::uint64_t fnv1a64(const std::string& s) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+std::string to_text(const StationResult& r) {
+  std::string o;
+  o += fmt::format("condition {}\nquality {}\n", r.condition, r.quality);
+  o += fmt::format("run {} {} {} {} {} {} {} {} {} {}\n", num(r.diameter), num(r.dt), num(r.collision_time),
+                   num(r.rayleigh_time), num(r.simulated_time), r.steps, num(r.wall_seconds), r.early_stop ? 1 : 0,
+                   r.peak_particles, num(r.side_view_time));
+  o += fmt::format("window {} {} {} {}\n", r.window.found ? 1 : 0, num(r.window.start), num(r.window.end), r.window.blocks);
+  o += fmt::format("mass {} {} {} {}\n", num(r.inserted), num(r.discharged), num(r.escaped), num(r.in_domain));
+  put(o, "normal_force", r.normal_force);
+  put(o, "shear_force", r.shear_force);
+  put(o, "resultant_force", r.resultant_force);
+  put(o, "impact_point_y", r.impact_point_y);
+  put(o, "impact_velocity", r.impact_velocity);
+  put(o, "impact_velocity_fast", r.impact_velocity_fast);
+  put(o, "exit_velocity", r.exit_velocity);
+  put(o, "layer_speed", r.layer_speed);
+  put(o, "layer_height", r.layer_height);
+  put(o, "stream_thickness", r.stream_thickness);
+  put(o, "mass_flux", r.mass_flux);
+  put(o, "momentum_balance", r.momentum_balance);
+  for (const auto& t : r.trajectory)
+    o += fmt::format("traj {} {} {} {} {} {} {} {} {} {}\n", num(t.x), num(t.upper.value), num(t.upper.se), t.upper.n,
+                     num(t.lower.value), num(t.lower.se), t.lower.n, num(t.centre.value), num(t.centre.se), t.centre.n);
+  for (const auto& f : r.forces)
+    o += fmt::format("force {} {} {} {} {} {} {} {}\n", num(f.t), num(f.normal), num(f.shear), num(f.moment),
+                     num(f.mass_through), num(f.momentum_in), num(f.momentum_floor), num(f.momentum_content));
+  for (const auto& s : r.snapshots)
+    o += fmt::format("snap {} {} {} {} {} {} {} {} {} {}\n", num(s.t), s.particles, num(s.vp_sum), s.vp_n,
+                     num(s.vp_fast_sum), s.vp_fast_n, num(s.layer_speed_sum), num(s.layer_height_sum), s.layer_n,
+                     num(s.stream_thickness));
+  for (const auto& p : r.side_view) o += fmt::format("side {} {} {} {}\n", p.x, p.y, p.z, p.speed);
+  for (const auto& n : r.notes) o += "note " + n + "\n";
+  return o;
+}
+
+std::optional<StationResult> from_text(const std::string& text) {
+  StationResult r;
+  std::istringstream all(text);
+  std::string line;
+  while (std::getline(all, line)) {
+    if (line.empty()) continue;
+    const auto sp = line.find(' ');
+    const std::string tag = line.substr(0, sp);
+    const std::string rest = sp == std::string::npos ? std::string() : line.substr(sp + 1);
+    std::istringstream in(rest);
+    if (tag == "condition") r.condition = rest;
+    else if (tag == "quality") r.quality = rest;
+    else if (tag == "note") r.notes.push_back(rest);
+    else if (tag == "run") {
+      int early = 0;
+      r.diameter = rd(in); r.dt = rd(in); r.collision_time = rd(in); r.rayleigh_time = rd(in);
+      r.simulated_time = rd(in);
+      in >> r.steps;
+      r.wall_seconds = rd(in);
+      in >> early >> r.peak_particles;
+      r.side_view_time = rd(in);
+      r.early_stop = early != 0;
+    } else if (tag == "window") {
+      int found = 0;
+      in >> found;
+      r.window.start = rd(in); r.window.end = rd(in);
+      in >> r.window.blocks;
+      r.window.found = found != 0;
+    } else if (tag == "mass") {
+      r.inserted = rd(in); r.discharged = rd(in); r.escaped = rd(in); r.in_domain = rd(in);
+    } else if (tag == "scalar") {
+      std::string n;
+      in >> n;
+      Estimate* e = n == "normal_force" ? &r.normal_force : n == "shear_force" ? &r.shear_force
+                  : n == "resultant_force" ? &r.resultant_force : n == "impact_point_y" ? &r.impact_point_y
+                  : n == "impact_velocity" ? &r.impact_velocity : n == "impact_velocity_fast" ? &r.impact_velocity_fast
+                  : n == "exit_velocity" ? &r.exit_velocity : n == "layer_speed" ? &r.layer_speed
+                  : n == "stream_thickness" ? &r.stream_thickness : n == "mass_flux" ? &r.mass_flux
+                  : n == "layer_height" ? &r.layer_height : n == "momentum_balance" ? &r.momentum_balance
+                  : nullptr;
+      if (!e || !read_estimate(in, *e)) return std::nullopt;
+    } else if (tag == "traj") {
+      TrajectoryRow t;
+      t.x = rd(in);
+      if (!read_estimate(in, t.upper) || !read_estimate(in, t.lower) || !read_estimate(in, t.centre)) return std::nullopt;
+      r.trajectory.push_back(t);
+    } else if (tag == "force") {
+      ForceSample f;
+      f.t = rd(in); f.normal = rd(in); f.shear = rd(in); f.moment = rd(in);
+      f.mass_through = rd(in); f.momentum_in = rd(in); f.momentum_floor = rd(in); f.momentum_content = rd(in);
+      r.forces.push_back(f);
+    } else if (tag == "snap") {
+      SnapshotStats s;
+      s.t = rd(in);
+      in >> s.particles;
+      s.vp_sum = rd(in);
+      in >> s.vp_n;
+      s.vp_fast_sum = rd(in);
+      in >> s.vp_fast_n;
+      s.layer_speed_sum = rd(in);
+      s.layer_height_sum = rd(in);
+      in >> s.layer_n;
+      s.stream_thickness = rd(in);
+      if (!in) return std::nullopt;
+      r.snapshots.push_back(s);
+    } else if (tag == "side") {
+      SidePoint p{};
+      in >> p.x >> p.y >> p.z >> p.speed;
+      if (!in) return std::nullopt;
+      r.side_view.push_back(p);
+    } else {
+      return std::nullopt;  // a file of another version: a miss
+    }
+  }
+  return r;
+}
+
+ResultCache::ResultCache(std::string dir) : dir_(std::move(dir)) {}
+
+std::string ResultCache::default_dir() {
+  namespace fs = std::filesystem;
+  if (const char* c = std::getenv("CHUTELAB_DEM_CACHE"); c && *c) return c;
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "chutelab" / "dem").string();
+  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / ".cache" / "chutelab" / "dem").string();
+  return (fs::temp_directory_path() / "chutelab-dem-cache").string();
+}
+
+std::string ResultCache::path_for(const std::string& key) const {
+  return (std::filesystem::path(dir_) / fmt::format("{:016x}.txt", fnv1a64(key))).string();
+}
+
+std::optional<StationResult> ResultCache::load(const std::string& key) const {
+  std::ifstream f(path_for(key));
+  if (!f) return std::nullopt;
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string text = ss.str();
+  // Layout: magic line, "key <bytes>" line, the key, then the result.
+  std::istringstream in(text);
+  std::string magic, head;
+  if (!std::getline(in, magic) || magic != kMagic || !std::getline(in, head) || head.rfind("key ", 0) != 0)
+    return std::nullopt;
+  const std::size_t bytes = std::strtoull(head.c_str() + 4, nullptr, 10);
+  const std::size_t at = static_cast<std::size_t>(in.tellg());
+  if (at + bytes > text.size() || text.compare(at, bytes, key) != 0) return std::nullopt;
+  return from_text(text.substr(at + bytes));
+}
+
+bool ResultCache::store(const std::string& key, const StationResult& r) const {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec) return false;
+  const std::string path = path_for(key);
+  const std::string tmp = path + fmt::format(".tmp{}", static_cast<unsigned long>(fnv1a64(path + std::to_string(r.wall_seconds))));
+  {
+    std::ofstream f(tmp);
+    if (!f) return false;
+    f << kMagic << "\nkey " << key.size() << "\n" << key << to_text(r);
+    if (!f) return false;
+  }
+  fs::rename(tmp, path, ec);
+  return !ec;
+}
+
+}  // namespace chutelab::dem::station

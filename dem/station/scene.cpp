@@ -1,0 +1,352 @@
+#include "dem/station/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "core/input_error.h"
+#include "dem/timestep.h"
+#include "dem/walls/stl.h"
+
+namespace chutelab::dem::station {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// A flat quadrilateral a-b-c-d (in order around it) as a two-triangle mesh. Meshes are thin
+// two-sided sheets: a particle that gets behind one (a rebound under the belt, a particle beside a
+// side panel) is pushed off its back instead of meeting the infinite half-space of a plane wall.
+TriangleMesh quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, std::string source) {
+  return TriangleMesh::from_soup({{a, b, c}, {a, c, d}}, std::move(source));
+}
+
+// One triangle as its own wall, so it can carry its own surface velocity.
+Wall triangle(std::string name, const Vec3& a, const Vec3& b, const Vec3& c, int material) {
+  return Wall::mesh(std::move(name), TriangleMesh::from_soup({{a, b, c}}), material);
+}
+
+// Surface velocity of a belt piece: the belt slides along itself, so on a tilted piece its
+// velocity is V_b along the direction of travel projected into the piece's plane.
+Vec3 belt_velocity_on(const Vec3& normal, const Vec3& along, double vb) {
+  const Vec3 n = normal.normalized();
+  Vec3 t = along - along.dot(n) * n;
+  return vb * t.normalized();
+}
+
+}  // namespace
+
+Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geometry, const ExternalInputs& fx) {
+  check(s);
+  Scene sc;
+  const chutelab::Material& mat = st.material;
+  const double g = st.gravity;
+  const double vb = st.belt_speed;
+  const double R = st.belt.belt_radius();
+  const double d = s.particle_diameter > 0.0 ? s.particle_diameter : mat.particle_diameter;
+  const double r = 0.5 * d;
+  const double B = st.belt.belt_width;
+  const double W = st.belt.loaded_width;
+  if (!(vb > 0.0)) throw InputError("", 0, "belt_speed_mps", "the DEM needs a moving belt (V_b > 0)");
+  if (!(st.mass_flow > 0.0)) throw InputError("", 0, "mass_flow_tph", "the DEM needs a positive mass flow");
+  if (d > 0.25 * W)
+    throw InputError("", 0, "particle_diameter_mm",
+                     fmt::format("DEM particles of {:.1f} mm do not fit a load {:.0f} mm wide (need at least four "
+                                 "across)", d * 1e3, W * 1e3));
+  if (d > 0.25 * st.plate.height || d > 0.25 * st.plate.width)
+    throw InputError("", 0, "particle_diameter_mm",
+                     fmt::format("DEM particles of {:.1f} mm are too large for a {:.0f} x {:.0f} mm plate", d * 1e3,
+                                 st.plate.width * 1e3, st.plate.height * 1e3));
+
+  sc.belt_speed = vb;
+  sc.mass_flow = st.mass_flow;
+  sc.diameter = d;
+  sc.particle_mass = mat.solid_density * pi / 6.0 * d * d * d;
+
+  // --- frames ---
+  const double th = st.belt.incline;
+  sc.belt.radius = R;
+  sc.belt.along = Vec3(std::cos(th), std::sin(th), 0.0);
+  sc.belt.up = Vec3(-std::sin(th), std::cos(th), 0.0);
+  sc.belt.tangent_point = R * sc.belt.up;
+
+  const double beta = st.plate.angle;
+  PlateFrame& pf = sc.plate;
+  pf.angle = beta;
+  pf.height = st.plate.height;
+  pf.width = st.plate.width;
+  pf.top_edge = Vec3(st.plate_distance, st.plate_top, 0.0);
+  pf.into = Vec3(std::cos(beta), std::sin(beta), 0.0);
+  pf.down = Vec3(std::sin(beta), -std::cos(beta), 0.0);
+  pf.reference = pf.top_edge + (st.plate_top / std::cos(beta)) * pf.down;
+  // The plate must clear the pulley by a particle: distance from the axis to the face segment.
+  {
+    const Vec3 a = pf.top_edge, b = pf.bottom_edge();
+    const Vec3 ab = b - a;
+    const double t = std::clamp((-a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    const double clearance = (a + t * ab).norm() - R;
+    if (clearance < d)
+      throw InputError("", 0, "plate_distance_mm",
+                       fmt::format("the plate face passes {:.0f} mm from the pulley surface; the stream needs at "
+                                   "least a particle diameter ({:.1f} mm)", clearance * 1e3, d * 1e3));
+  }
+
+  // --- feed geometry along the belt ---
+  const bool trough = st.belt.trough.troughed();
+  const double lam = st.belt.trough.idler_angle;
+  const double c_half = 0.5 * st.belt.trough.centre_roll;
+  const double wing = 0.5 * B - c_half;
+  // Rise of the trough's wing at the edge of the load: the insertion box must clear it.
+  const double wing_rise = trough ? std::max(0.0, 0.5 * W - c_half) * std::tan(lam) : 0.0;
+  const double ins_low = std::max(s.insert_low, 2.5 * d) + wing_rise;
+  const double ins_depth = std::max(s.insert_depth, 3.5 * d);
+  // Free fall of a particle inserted at the top of the box onto the bare belt: where the last
+  // inserted particles land, the relaxation must still act (feeder_relaxation.h).
+  const double fall_h = ins_low + ins_depth, v0 = s.insert_speed_down;
+  const double t_land = (-v0 + std::sqrt(v0 * v0 + 2.0 * g * fall_h)) / g;
+  sc.relax_s_end = -s.free_belt;
+  sc.feed_s_end = sc.relax_s_end - s.relax_past - vb * t_land;
+  sc.feed_s_begin = sc.feed_s_end - s.feed_length;
+  sc.belt_start = sc.feed_s_begin - s.belt_upstream;
+  const double belt_len = -sc.belt_start;
+  const double trough_transition = trough ? std::min(std::max(B, 0.3), 0.8 * belt_len) : 0.0;
+
+  // --- domain ---
+  const Vec3 p_start = sc.belt.tangent_point + sc.belt_start * sc.belt.along;
+  const Vec3 p_bottom = pf.bottom_edge();
+  sc.sink_y = std::min(p_bottom.y(), -R) - 0.15;  // LIGGGHTS rig: box bottom 150 mm below the plate
+  const double x_hi = std::max(pf.top_edge.x(), p_bottom.x()) + 0.3;
+  const double y_top = std::max({pf.top_edge.y(), p_start.y() + ins_low + ins_depth, R}) + 0.6;
+  const double z_half = 0.5 * std::max({B, st.plate.width, W}) + 0.15;
+  Settings ws;
+  ws.gravity = Vec3(0.0, -g, 0.0);
+  ws.domain = Box{Vec3(std::min(p_start.x(), -R) - 0.15, sc.sink_y - 0.12, -z_half),
+                  Vec3(x_hi, y_top, z_half)};
+  ws.normal = s.contact == ContactLaw::hertz_mindlin ? NormalModel::hertz_mindlin : NormalModel::linear_spring_dashpot;
+  ws.tangential = TangentialModel::coulomb_history;
+  // Constant directional torque (seed Eq 10), as LIGGGHTS' `rolling_friction cdt` of the rig.
+  ws.rolling = RollingModel::constant_torque;
+  ws.skin = s.skin_fraction * r;
+  ws.threads = effective_threads(s.threads);
+  ws.check_every = 10;
+  sc.warnings = std::make_shared<std::vector<std::string>>();
+  ws.on_warning = [warnings = sc.warnings](const std::string& m) {
+    if (warnings->size() < 20) warnings->push_back(m);
+  };
+
+  // --- materials: walls get the particles' modulus, as in the LIGGGHTS rig ---
+  const double E = mat.youngs_modulus * s.shear_modulus_scale;
+  const double nu = mat.poisson_ratio;
+  Material particle{"particle", E, nu, mat.solid_density};
+  Material plate_m{"plate", E, nu, 0.0}, belt_m{"belt", E, nu, 0.0}, side_m{"side", E, nu, 0.0};
+
+  // Characteristic impact speed: the belt speed plus a free fall from the belt to the plate's foot.
+  const double drop = std::max(0.0, R - p_bottom.y());
+  sc.characteristic_speed = vb + std::sqrt(2.0 * g * drop);
+  ws.characteristic_speed = sc.characteristic_speed;
+  const double G = E / (2.0 * (1.0 + nu));
+  sc.rayleigh_time = rayleigh_time(r, mat.solid_density, G, nu);
+  const double e_star = 1.0 / (2.0 * (1.0 - nu * nu) / E);
+  const double m = sc.particle_mass;
+  // Shortest collision: particle on particle (m* = m/2, R* = r/2).
+  const double tc_hertz = hertz_collision_time(0.5 * m, 0.5 * r, e_star, sc.characteristic_speed);
+  // Linear spring-dashpot: the stiffness that gives the same particle-particle collision time.
+  double kn = 0.0;
+  if (s.contact == ContactLaw::linear_spring_dashpot) {
+    const double zeta = damping_ratio_from_restitution(mat.restitution_particle);
+    kn = 0.5 * m * (pi / tc_hertz) * (pi / tc_hertz) / (1.0 - zeta * zeta);
+  }
+  sc.collision_time = tc_hertz;
+  sc.dt = std::min(s.dt_fraction * tc_hertz, s.rayleigh_fraction * sc.rayleigh_time);
+  ws.dt = sc.dt;
+
+  sc.world = std::make_unique<World>(ws);
+  World& w = *sc.world;
+  auto& mt = w.materials();
+  const int mp = mt.add(particle), mplate = mt.add(plate_m), mbelt = mt.add(belt_m), mside = mt.add(side_m);
+  auto interaction = [&](double mu, double mu_r, double e) {
+    Interaction in;
+    in.friction = mu;
+    in.rolling_friction = mu_r;
+    in.restitution = std::clamp(e, 1e-3, 1.0);
+    in.linear_stiffness = kn;
+    return in;
+  };
+  const double mu_plate = fx.plate_friction ? std::max(0.0, *fx.plate_friction) : mat.friction_plate;
+  mt.set_interaction(mp, mp, interaction(mat.friction_particle, mat.rolling_friction_particle, mat.restitution_particle));
+  mt.set_interaction(mp, mplate, interaction(mu_plate, mat.rolling_friction_wall, mat.restitution_plate));
+  mt.set_interaction(mp, mbelt, interaction(mat.friction_belt, mat.rolling_friction_wall, mat.restitution_belt));
+  // Side panels: their own friction (acrylic in the seed), the plate's restitution.
+  mt.set_interaction(mp, mside, interaction(mat.friction_side, mat.rolling_friction_wall, mat.restitution_plate));
+
+  const Vec3 zhat = Vec3::UnitZ();
+  // --- belt ---
+  if (geometry.stl_belt) {
+    Wall b = Wall::mesh("belt", read_stl(*geometry.stl_belt, 1e-3), mbelt);
+    b.surface.linear = vb * sc.belt.along;
+    w.add_wall(std::move(b));
+  } else if (!trough) {
+    const Vec3 lat = 0.5 * B * Vec3::UnitZ();
+    const Vec3 a = sc.belt.tangent_point + sc.belt_start * sc.belt.along, b = sc.belt.tangent_point;
+    Wall w_belt = Wall::mesh("belt", quad(a - lat, b - lat, b + lat, a + lat, "generated belt"), mbelt);
+    w_belt.surface.linear = vb * sc.belt.along;
+    w.add_wall(std::move(w_belt));
+  } else {
+    // Troughed: centre strip and two wings at the idler angle on the carrying run; over the last
+    // `trough_transition` before the pulley the wings flatten linearly to zero (a twisted surface
+    // made of triangles, each sliding along itself at V_b).
+    const double s_tr = -trough_transition;  // transition starts here
+    const Vec3 up = sc.belt.up, al = sc.belt.along, T = sc.belt.tangent_point;
+    auto on_belt = [&](double s_, double z, double height) { return T + s_ * al + height * up + z * zhat; };
+    {
+      const Vec3 a = on_belt(sc.belt_start, 0, 0), b = on_belt(0, 0, 0), lat = c_half * zhat;
+      Wall c = Wall::mesh("belt-centre", quad(a - lat, b - lat, b + lat, a + lat, "generated trough"), mbelt);
+      c.surface.linear = vb * al;
+      w.add_wall(std::move(c));
+    }
+    for (int side : {-1, 1}) {
+      // Carrying run: a flat wing from the belt start to the transition.
+      const Vec3 root0 = on_belt(sc.belt_start, side * c_half, 0), root1 = on_belt(s_tr, side * c_half, 0);
+      const Vec3 out_dir = (side * std::cos(lam)) * zhat + std::sin(lam) * up;
+      Wall wr = Wall::mesh(fmt::format("belt-wing{}", side),
+                           quad(root0, root1, root1 + wing * out_dir, root0 + wing * out_dir, "generated trough"), mbelt);
+      wr.surface.linear = vb * al;
+      w.add_wall(std::move(wr));
+      // Transition: 8 segments, two triangles each.
+      const int n = 8;
+      for (int k = 0; k < n; ++k) {
+        const double s0 = s_tr * (1.0 - double(k) / n), s1 = s_tr * (1.0 - double(k + 1) / n);
+        const double l0 = lam * (1.0 - double(k) / n), l1 = lam * (1.0 - double(k + 1) / n);
+        const Vec3 a = on_belt(s0, side * c_half, 0), b = on_belt(s1, side * c_half, 0);
+        const Vec3 a_out = a + wing * ((side * std::cos(l0)) * zhat + std::sin(l0) * up);
+        const Vec3 b_out = b + wing * ((side * std::cos(l1)) * zhat + std::sin(l1) * up);
+        for (int t = 0; t < 2; ++t) {
+          const Vec3 p0 = a, p1 = t == 0 ? b : b_out, p2 = t == 0 ? b_out : a_out;
+          Wall tw = triangle(fmt::format("belt-transition{}-{}-{}", side, k, t), p0, p1, p2, mbelt);
+          Vec3 nrm = (p1 - p0).cross(p2 - p0);
+          if (nrm.dot(up) < 0) nrm = -nrm;
+          tw.surface.linear = belt_velocity_on(nrm, al, vb);
+          w.add_wall(std::move(tw));
+        }
+      }
+    }
+    sc.notes.push_back(fmt::format("troughed belt: {:.0f} deg wings flatten over the last {:.0f} mm before the pulley",
+                                   lam / pi * 180.0, trough_transition * 1e3));
+  }
+
+  // --- head pulley: the front half of a cylinder (72 facets, as the LIGGGHTS rig), turning with the belt ---
+  if (geometry.stl_pulley) {
+    Wall p = Wall::mesh("pulley", read_stl(*geometry.stl_pulley, 1e-3), mbelt);
+    p.surface.centre = Vec3::Zero();
+    p.surface.omega = Vec3(0, 0, -vb / R);
+    w.add_wall(std::move(p));
+  } else {
+    const int n = 72;
+    std::vector<std::array<Vec3, 3>> soup;
+    const double phi0 = -th;  // angle from the upward vertical, towards +x: the tangent point
+    auto at = [&](double phi, double z) { return Vec3(R * std::sin(phi), R * std::cos(phi), z); };
+    for (int k = 0; k < n; ++k) {
+      const double a0 = phi0 + pi * k / n, a1 = phi0 + pi * (k + 1) / n;
+      soup.push_back({at(a0, -0.5 * B), at(a1, -0.5 * B), at(a1, 0.5 * B)});
+      soup.push_back({at(a0, -0.5 * B), at(a1, 0.5 * B), at(a0, 0.5 * B)});
+    }
+    Wall p = Wall::mesh("pulley", TriangleMesh::from_soup(soup, "generated pulley"), mbelt);
+    p.surface.centre = Vec3::Zero();
+    p.surface.omega = Vec3(0, 0, -vb / R);  // surface speed V_b, moving with the belt over the top
+    w.add_wall(std::move(p));
+  }
+
+  // --- impact plate: the load cell ---
+  if (geometry.stl_plate) {
+    Wall p = Wall::mesh("plate", read_stl(*geometry.stl_plate, 1e-3), mplate);
+    p.load_point = pf.reference;
+    sc.plate_wall = w.add_wall(std::move(p));
+    sc.notes.push_back("plate from " + *geometry.stl_plate + "; sensors use the dataset's plate position");
+  } else {
+    const Vec3 lat = 0.5 * pf.width * Vec3::UnitZ();
+    const Vec3 top = pf.top_edge, bot = pf.bottom_edge();
+    Wall p = Wall::mesh("plate", quad(top - lat, bot - lat, bot + lat, top + lat, "generated plate"), mplate);
+    p.load_point = pf.reference;
+    sc.plate_wall = w.add_wall(std::move(p));
+  }
+  // --- side panels from the pulley to the plate, over the plate's height (LIGGGHTS rig: at +-W_plate/2) ---
+  {
+    const double x0 = 0.0, x1 = std::max(pf.top_edge.x(), p_bottom.x());
+    const double y0 = p_bottom.y(), y1 = pf.top_edge.y();
+    for (int side : {-1, 1}) {
+      const double z = side * 0.5 * st.plate.width;
+      w.add_wall(Wall::mesh(fmt::format("side{}", side),
+                            quad(Vec3(x0, y0, z), Vec3(x1, y0, z), Vec3(x1, y1, z), Vec3(x0, y1, z), "generated side panel"),
+                            mside));
+    }
+  }
+  for (const auto& f : geometry.stl_walls) w.add_wall(Wall::mesh(f, read_stl(f, 1e-3), mside));
+
+  // --- feed ---
+  {
+    const Vec3 a = sc.belt.tangent_point + sc.feed_s_begin * sc.belt.along;
+    const Vec3 b = sc.belt.tangent_point + sc.feed_s_end * sc.belt.along;
+    Inserter in;
+    in.region.lo = Vec3(std::min(a.x(), b.x()), std::max(a.y(), b.y()) + ins_low, -0.5 * W);
+    in.region.hi = Vec3(std::max(a.x(), b.x()), in.region.lo.y() + ins_depth, 0.5 * W);
+    in.mass_rate = st.mass_flow;
+    in.radius_min = in.radius_max = r;
+    in.material = mp;
+    in.velocity = vb * sc.belt.along + Vec3(0.0, -s.insert_speed_down, 0.0);
+    in.interval = s.insert_interval;
+    in.seed = s.seed * 0x9e3779b97f4a7c15ULL + 1;
+    in.max_attempts = 400;
+    sc.inserter = w.add_inserter(in);
+    sc.feeder.belt = sc.belt;
+    sc.feeder.belt_speed = vb;
+    sc.feeder.rate = s.relax_rate;
+    sc.feeder.s_begin = sc.belt_start - 0.05;
+    sc.feeder.s_end = sc.relax_s_end;
+    sc.feeder.h_max = ins_low + ins_depth + 0.05;
+  }
+  sc.flight.belt = sc.belt;
+  sc.flight.acceleration = fx.flight;
+  {
+    const FeederRelaxation feeder = sc.feeder;
+    const FlightForce flight = sc.flight;
+    w.set_body_force([feeder, flight](const Particles& p, double, std::vector<Vec3>& f) {
+      feeder.add(p, f);
+      flight.add(p, f);
+    });
+  }
+
+  // --- sinks: the discharge below the plate, and the domain's faces ---
+  // The discharge is emptied in batches by the run loop (Scene::discharge): every removal from the
+  // World forces a neighbour-list rebuild, and at ~10^4 particles/s a per-step sink would rebuild
+  // at every step. The World's own sink just above the domain's floor only catches what a batch
+  // missed.
+  const Box& dom = ws.domain;
+  const double in = 0.02;
+  sc.plate_sink = w.add_sink(Sink{Vec3(0, dom.lo.y() + in, 0), Vec3::UnitY()});
+  sc.boundary_sinks.push_back(w.add_sink(Sink{Vec3(dom.lo.x() + in, 0, 0), Vec3::UnitX()}));
+  sc.boundary_sinks.push_back(w.add_sink(Sink{Vec3(dom.hi.x() - in, 0, 0), -Vec3::UnitX()}));
+  sc.boundary_sinks.push_back(w.add_sink(Sink{Vec3(0, dom.hi.y() - in, 0), -Vec3::UnitY()}));
+  sc.boundary_sinks.push_back(w.add_sink(Sink{Vec3(0, 0, dom.lo.z() + in), Vec3::UnitZ()}));
+  sc.boundary_sinks.push_back(w.add_sink(Sink{Vec3(0, 0, dom.hi.z() - in), -Vec3::UnitZ()}));
+  return sc;
+}
+
+double Scene::discharge() {
+  const Particles& p = world->particles();
+  double removed = 0.0;
+  bool any = false;
+  for (std::size_t i = 0; i < p.size() && !any; ++i) any = p.x[i].y() < sink_y;
+  if (!any) return 0.0;
+  std::vector<char> gone(p.size(), 0);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.x[i].y() < sink_y) {
+      gone[i] = 1;
+      removed += p.mass[i];
+    }
+  world->remove_particles_if([&](std::size_t i) { return gone[i] != 0; });
+  discharged += removed;
+  return removed;
+}
+
+}  // namespace chutelab::dem::station

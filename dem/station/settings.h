@@ -1,0 +1,135 @@
+#pragma once
+// Every number that shapes a DEM run of the transfer station besides the Station (rig + condition)
+// itself, in one place: the quality presets, the scaling options of the seed's Table 6 and the
+// numerics. Precedence: preset(quality) < the dataset's optional [dem] table < command-line flags.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace chutelab::dem::station {
+
+enum class Quality { quick, standard, paper };
+std::string_view name(Quality q);
+std::optional<Quality> parse_quality(std::string_view s);
+
+enum class ContactLaw { hertz_mindlin, linear_spring_dashpot };
+std::string_view name(ContactLaw c);
+std::optional<ContactLaw> parse_contact(std::string_view s);
+
+struct RunSettings {
+  Quality quality = Quality::quick;
+
+  // --- scaling (seed Table 6) ---
+  // Particle diameter, m; 0 = the dataset's material (particle_diameter_mm). Scaling the diameter
+  // up keeps the mass flow (fewer, heavier particles); the seed found the mean plate force similar
+  // at 9 and 13.6 mm, with larger fluctuations.
+  double particle_diameter = 0.0;
+  // Multiplies Young's modulus (and so the shear modulus G = E / 2(1 + nu)) of particles and walls.
+  // The seed varied G by x10 and /10 with small changes in the mean plate force; a softer material
+  // allows a longer time step (dt ~ E^-2/5).
+  double shear_modulus_scale = 1.0;
+  // dt = dt_fraction * Hertz collision time (seed Eq 11) at the characteristic impact speed; the
+  // seed used 1/10 and tested 1/20. Also capped at rayleigh_fraction of the Rayleigh time.
+  double dt_fraction = 0.1;
+  double rayleigh_fraction = 0.2;
+  ContactLaw contact = ContactLaw::hertz_mindlin;
+
+  // --- feed (after the LIGGGHTS rig's recipe, datasets/liggghts-rig/README.md; see feeder_relaxation.h) ---
+  // Along the belt, from upstream: belt_upstream, the insertion face (feed_length), the landing of
+  // the last inserted particles (V_b times their free-fall time) plus relax_past, where the feeder
+  // relaxation ends, then free_belt of belt before the pulley's tangent point.
+  double feed_length = 0.40;         // m, length of the insertion face along the belt
+  double free_belt = 0.20;           // m of belt without relaxation before the pulley (the rig: 0.2-0.43 m)
+  double belt_upstream = 0.025;      // m of belt behind the insertion face
+  double insert_low = 0.030;         // m above the belt: bottom of the insertion box (at least 2.5 d)
+  double insert_depth = 0.032;       // m: height of the insertion box (at least 3.5 d)
+  double insert_speed_down = 1.0;    // m/s, downward velocity of inserted particles
+  double insert_interval = 0.003;    // s between insertion events (each forces a neighbour rebuild)
+  double relax_rate = 50.0;          // 1/s, feeder relaxation of the velocity towards the belt's
+  double relax_past = 0.05;          // m past the landing of the last inserted particles
+
+  // --- time ---
+  double min_time = 0.5;             // s, never stop before
+  double max_time = 1.3;             // s, always stop here
+  double min_window = 0.5;           // s, steady window needed for an early stop
+  double sample_interval = 0.003;    // s, plate forces averaged over this (LIGGGHTS: 100 steps)
+  double snapshot_interval = 0.010;  // s, particle sensors (LIGGGHTS: 333 steps)
+  double detect_block = 0.05;        // s, blocks compared for the steady-state detection
+  double mean_block = 0.1;           // s, blocks for the standard error of the steady means
+  double detect_tail = 0.4;          // s, reference: mean of the last detect_tail
+
+  // --- numerics ---
+  // Verlet skin as a fraction of the particle radius. Measured (bench/STATION.md): 1.0 halves the
+  // rebuilds of 0.5 at the same cost per step; 1.5 gains nothing more.
+  double skin_fraction = 1.0;
+  // OpenMP threads; results do not depend on it (dem/world.h). 0 = automatic: one per core left
+  // free by the 1-minute load average (at least 1). On a shared 2-core machine two threads that
+  // wait for each other in every step's parallel loops ran 2-10x slower than one (bench/STATION.md).
+  int threads = 0;
+  std::uint64_t seed = 1;            // insertion random numbers
+
+  // --- sensors ---
+  // Face of the control volume of the momentum balance, as a fraction of the way from the pulley to
+  // the plate: mid-flight, upstream of the cushion of slowed particles in front of the plate (both
+  // DEMs show the stream slowing within ~0.1 m of the plate, README "DEM").
+  double momentum_plane_fraction = 0.5;
+};
+
+// The presets. quick: for tests and first looks (13.6 mm spheres, soft, short belt, short time);
+// standard: the dataset's own particles and modulus with the LIGGGHTS rig's feed; paper: the
+// seed's 5.6 mm spheres. Documented value by value in settings.cpp.
+RunSettings preset(Quality q);
+
+// The thread count a run uses: `threads` if > 0, else the automatic choice above.
+int effective_threads(int threads);
+
+// Optional [dem] table of setup.toml (README "DEM"). Every key is optional.
+struct DemTable {
+  std::string file;                          // setup.toml it came from ("" = none)
+  std::optional<Quality> quality;
+  std::optional<double> particle_diameter;   // m
+  std::optional<double> shear_modulus_scale;
+  std::optional<double> dt_fraction;
+  std::optional<ContactLaw> contact;
+  std::optional<std::uint64_t> seed;
+  std::optional<double> max_time;            // s
+  std::optional<double> min_window;          // s
+  std::optional<double> feed_length;         // m
+  std::optional<double> skin_fraction;       // Verlet skin / particle radius
+  // STL meshes (mm, DESIGN.md frame) replacing generated parts; absolute paths after reading.
+  std::optional<std::string> stl_plate, stl_belt, stl_pulley;
+  std::vector<std::string> stl_walls;        // extra static walls (side panels, skirts, chute)
+};
+
+// Reads [dem] from a setup.toml (absent table = all empty). Unknown keys and bad values throw
+// InputError naming the file, line and key.
+DemTable read_dem_table(const std::string& setup_file);
+
+// Overrides a preset with what a [dem] table sets (quality is handled by the caller).
+void apply(const DemTable& t, RunSettings& s);
+
+// What a command line (or a harness configuration) sets explicitly; wins over the [dem] table.
+struct SettingsOverrides {
+  std::optional<Quality> quality;
+  std::optional<double> particle_diameter;  // m
+  std::optional<double> shear_modulus_scale;
+  std::optional<double> dt_fraction;
+  std::optional<ContactLaw> contact;
+  std::optional<std::uint64_t> seed;
+  std::optional<int> threads;
+  std::optional<double> max_time;           // s
+};
+
+// preset(quality) < [dem] table < overrides; the quality itself: overrides, then the table, then
+// `fallback`. Checks the result.
+RunSettings resolve(const DemTable& table, const SettingsOverrides& o, Quality fallback = Quality::quick);
+
+// Checks ranges; throws InputError naming the field.
+void check(const RunSettings& s);
+
+// One line per field, "key = value" with full precision: the settings' share of a cache key.
+std::string canonical(const RunSettings& s);
+
+}  // namespace chutelab::dem::station

@@ -1,0 +1,106 @@
+// `chutelab simulate` and `validate --models dem` as a user runs them, on a tiny dataset whose
+// [dem] table keeps the runs short (0.4 s simulated). The DEM cache goes to a fresh folder, so the
+// tests never depend on a warm cache.
+#define BOOST_TEST_MODULE dem_station_cli
+#include <boost/test/unit_test.hpp>
+
+#include <chrono>
+#include <cstdlib>
+
+#include "../cli/cli_runner.h"
+
+using namespace chutelab::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path tiny_dataset() {
+  static const fs::path d = [] {
+    const fs::path dir = fresh_dir("tiny-dataset");
+    write_file(dir / "setup.toml",
+               "name = \"tiny\"\nsource = \"test\"\n"
+               "[belt]\npulley_diameter_mm = 250.0\nbelt_thickness_mm = 5.0\nbelt_width_mm = 200.0\n"
+               "loaded_width_mm = 120.0\nincline_deg = 0.0\n"
+               "[plate]\nwidth_mm = 600.0\nheight_mm = 400.0\nangle_deg = 0.0\n"
+               "[material]\nparticle_diameter_mm = 9.0\nsolid_density_kgm3 = 1000.0\nbulk_density_kgm3 = 558.0\n"
+               "youngs_modulus_Pa = 2.5e7\npoisson_ratio = 0.38\nfriction_particle = 0.3\nfriction_plate = 0.27\n"
+               "friction_belt = 0.7\nrolling_friction_particle = 0.1\nrestitution_particle = 0.7\n"
+               "restitution_plate = 0.66\n"
+               "[dem]\nmax_time_s = 0.4\nmin_window_s = 0.1\n");
+    write_file(dir / "conditions.csv",
+               "condition,belt_speed_mps,mass_flow_tph,plate_distance_mm,plate_top_mm,stream_thickness_mm\n"
+               "T3,3.0,9.0,350.0,250.0,\n");
+    write_file(dir / "measurements.csv",
+               "condition,quantity,value,uncertainty\nT3,normal_force_N,7.5,0.1\nT3,impact_point_y_mm,90,1\n");
+    return dir;
+  }();
+  return d;
+}
+
+struct FreshCache {
+  FreshCache() { ::setenv("CHUTELAB_DEM_CACHE", fresh_dir("dem-cache").c_str(), 1); }
+};
+
+}  // namespace
+
+BOOST_GLOBAL_FIXTURE(FreshCache);
+
+BOOST_AUTO_TEST_CASE(simulate_help_lists_the_scaling_options) {
+  const auto r = run_chutelab("simulate --help");
+  BOOST_TEST(r.exit_code == 0);
+  for (const char* flag : {"--quality", "--diameter-mm", "--shear-modulus-scale", "--dt-fraction", "--contact",
+                           "--threads", "--seed", "--out", "--vtk-every", "--dataset", "--condition"})
+    BOOST_TEST(r.out.find(flag) != std::string::npos, flag);
+}
+
+BOOST_AUTO_TEST_CASE(bad_input_is_one_line_and_exit_2) {
+  const std::string ds = tiny_dataset().string();
+  for (const std::string& args : {"simulate --dataset " + ds + " --condition nope",
+                                  "simulate --dataset " + ds + " --condition T3 --quality fast",
+                                  "simulate --dataset " + ds + " --condition T3 --contact rubber",
+                                  "simulate --dataset " + ds + " --condition T3 --dt-fraction 3",
+                                  "simulate --dataset " + ds + " --condition T3 --diameter-mm 60"}) {
+    const auto r = run_chutelab(args);
+    BOOST_TEST(r.exit_code == 2, args);
+    BOOST_TEST(count_lines(r.err) == 1, args << ": " << r.err);
+  }
+}
+
+// A run writes the series, the steady means, the side view and VTK, and prints the means.
+BOOST_AUTO_TEST_CASE(simulate_writes_series_means_and_vtk) {
+  const fs::path out = fresh_dir("sim-out");
+  const auto r = run_chutelab("simulate --dataset " + tiny_dataset().string() + " --condition T3 --no-cache --vtk-every 0.2 --out " +
+                              out.string());
+  BOOST_TEST_MESSAGE(r.out);
+  BOOST_REQUIRE(r.exit_code == 0);
+  BOOST_TEST(r.out.find("plate normal force R_n") != std::string::npos);
+  for (const char* f : {"timeseries.csv", "sensors.csv", "steady.csv", "trajectory.csv", "side_view.csv", "run.txt",
+                        "side_view.vtk", "vtk/walls.vtk", "vtk/particles_00001.vtk", "vtk/particles_final.vtk"})
+    BOOST_TEST(fs::exists(out / f), f);
+  BOOST_TEST(read_file(out / "steady.csv").find("normal_force_N,") != std::string::npos);
+  BOOST_TEST(count_lines(read_file(out / "timeseries.csv")) > 100);
+}
+
+// validate --models dem runs the DEM once; the second validate comes from the cache, at once, with
+// the same numbers.
+BOOST_AUTO_TEST_CASE(validate_with_dem_is_cached) {
+  const std::string ds = tiny_dataset().string();
+  const fs::path a = fresh_dir("val-a"), b = fresh_dir("val-b");
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto first = run_chutelab("validate --dataset " + ds + " --models korzen,booth-cema,dem --out " + a.string());
+  const auto t1 = std::chrono::steady_clock::now();
+  const auto second = run_chutelab("validate --dataset " + ds + " --models korzen,booth-cema,dem --out " + b.string());
+  const auto t2 = std::chrono::steady_clock::now();
+  BOOST_TEST_MESSAGE(first.out << first.err);
+  BOOST_REQUIRE(first.exit_code == 0);
+  BOOST_REQUIRE(second.exit_code == 0);
+  const double s1 = std::chrono::duration<double>(t1 - t0).count(), s2 = std::chrono::duration<double>(t2 - t1).count();
+  BOOST_TEST_MESSAGE("first validate " << s1 << " s, second " << s2 << " s");
+  BOOST_TEST(s2 < 2.0);
+  BOOST_TEST(s2 < 0.5 * s1);
+  const std::string p = read_file(a / "predictions.csv");
+  BOOST_TEST(p == read_file(b / "predictions.csv"));
+  BOOST_TEST(p.find(",dem,") != std::string::npos);
+  BOOST_TEST(fs::exists(a / "dem" / "T3" / "timeseries.csv"));
+  BOOST_TEST(fs::exists(b / "dem" / "T3" / "side_view.vtk"));
+}

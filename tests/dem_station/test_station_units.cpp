@@ -1,0 +1,265 @@
+// The DEM station's bookkeeping without running a DEM: steady-state detection and block means on
+// synthetic series, the result cache, the [dem] table and quality presets, impossible geometry,
+// and how the harness's effects map onto DEM inputs.
+#define BOOST_TEST_MODULE dem_station_units
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/input_error.h"
+#include "dem/insertion.h"
+#include "dem/station/cache.h"
+#include "dem/station/run.h"
+#include "dem/walls/stl.h"
+#include "dem/station/scene.h"
+#include "dem/station/settings.h"
+#include "dem/station/steady_state.h"
+#include "effects/registry.h"
+#include "tiny_station.h"
+#include "validation/models/dem_model.h"
+
+using namespace chutelab;
+using namespace chutelab::dem::station;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Gaussian noise from the DEM's own generator (Box-Muller), deterministic.
+struct Noise {
+  std::uint64_t state = 99;
+  double operator()() {
+    const double u1 = std::max(dem::uniform01(state), 1e-300), u2 = dem::uniform01(state);
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+  }
+};
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("chutelab-dem-station-" + std::to_string(::getpid())) / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+}  // namespace
+
+// A force that ramps up for 0.3 s and then fluctuates by 5 % about 30 N: the window starts after
+// the ramp (one detection block later), is a whole number of 0.1 s blocks ending at the end, and
+// its mean is 30 N within three standard errors.
+BOOST_AUTO_TEST_CASE(steady_window_after_a_ramp) {
+  Noise noise;
+  std::vector<double> t, v;
+  for (int k = 1; k <= 400; ++k) {  // 1.2 s at 3 ms
+    const double tk = 0.003 * k;
+    t.push_back(tk);
+    v.push_back(30.0 * std::min(1.0, tk / 0.3) + 1.5 * noise());
+  }
+  const SteadyWindow w = detect_steady(t, v, SteadyParams{});
+  BOOST_TEST(w.found);
+  BOOST_TEST(w.start >= 0.3 - 1e-9);
+  BOOST_TEST(w.start <= 0.5);
+  BOOST_TEST(std::abs((w.end - w.start) / 0.1 - w.blocks) < 1e-9);
+  const Estimate e = block_mean(t, v, std::vector<double>(t.size(), 1.0), w.start, w.end, 0.1);
+  BOOST_TEST(std::abs(e.value - 30.0) < 3.0 * e.se);
+  // White noise: the batch-means standard error is sd / sqrt(samples), within its own scatter.
+  const double expected = 1.5 / std::sqrt(static_cast<double>(e.n));
+  BOOST_TEST(e.se > 0.4 * expected);
+  BOOST_TEST(e.se < 2.0 * expected);
+  BOOST_TEST(!drifting(t, v, w.start, w.end, 0.1));
+}
+
+// A series that keeps rising: the rig's rule alone may accept part of it (its tolerance grows with
+// the scatter of the tail's blocks, and a ramp scatters them), so a window it finds must be flagged
+// as drifting, which stops an early end of the run.
+BOOST_AUTO_TEST_CASE(no_steady_state_in_a_rising_series) {
+  std::vector<double> t, v;
+  for (int k = 1; k <= 300; ++k) {
+    t.push_back(0.003 * k);
+    v.push_back(10.0 + 40.0 * 0.003 * k);  // +40 % per 0.1 s block over the tail's level
+  }
+  const SteadyWindow w = detect_steady(t, v, SteadyParams{});
+  BOOST_TEST((!w.found || drifting(t, v, w.start, w.end, 0.1)));
+  BOOST_TEST(drifting(t, v, 0.4, 0.9, 0.1));
+}
+
+// The cache gives back exactly what was stored, and only for the same key.
+BOOST_AUTO_TEST_CASE(cache_round_trip) {
+  StationResult r;
+  r.condition = "V3-41";
+  r.quality = "quick";
+  r.diameter = 0.0136;
+  r.dt = 7.1e-5;
+  r.simulated_time = 0.7;
+  r.steps = 9876;
+  r.early_stop = true;
+  r.window = {true, 0.4, 0.7, 3};
+  r.normal_force = {35.6874512, 0.356, 101};
+  r.impact_point_y = {0.0559, 0.0009, 101};
+  r.trajectory.push_back({0.1, {0.14, 0.001, 30}, {0.12, 0.001, 30}, {0.13, 0.0005, 30}});
+  r.forces.push_back({0.003, 1.0, 2.0, -0.01, 0.004, 0.01, 0.0, 0.001});
+  r.side_view.push_back({0.1f, 0.12f, -0.02f, 3.0f});
+  r.notes.push_back("a note with spaces, and commas");
+  const auto back = from_text(to_text(r));
+  BOOST_REQUIRE(back.has_value());
+  BOOST_TEST(to_text(*back) == to_text(r));
+  BOOST_TEST(back->normal_force.value == r.normal_force.value);
+
+  const ResultCache cache(temp_dir("cache").string());
+  BOOST_TEST(!cache.load("key A\n").has_value());
+  BOOST_TEST(cache.store("key A\n", r));
+  const auto hit = cache.load("key A\n");
+  BOOST_REQUIRE(hit.has_value());
+  BOOST_TEST(hit->steps == 9876);
+  BOOST_TEST(!cache.load("key B\n").has_value());
+  // A damaged file is a miss, not an error.
+  std::ofstream(cache.path_for("key A\n")) << "garbage";
+  BOOST_TEST(!cache.load("key A\n").has_value());
+}
+
+// [dem] table: values override the preset, command-line overrides beat both; unknown keys and bad
+// values are errors naming the key and line.
+BOOST_AUTO_TEST_CASE(dem_table_and_presets) {
+  const fs::path d = temp_dir("table");
+  std::ofstream(d / "setup.toml") << "name = \"x\"\n[dem]\nquality = \"standard\"\ndt_fraction = 0.05\n"
+                                     "particle_diameter_mm = 11.0\n";
+  const DemTable t = read_dem_table((d / "setup.toml").string());
+  BOOST_TEST((t.quality == Quality::standard));
+  SettingsOverrides o;
+  RunSettings s = resolve(t, o);
+  BOOST_TEST((s.quality == Quality::standard));
+  BOOST_TEST(s.dt_fraction == 0.05);
+  BOOST_TEST(s.particle_diameter == 0.011);
+  o.quality = Quality::quick;
+  o.particle_diameter = 0.02;
+  s = resolve(t, o);
+  BOOST_TEST((s.quality == Quality::quick));
+  BOOST_TEST(s.particle_diameter == 0.02);
+  BOOST_TEST(s.dt_fraction == 0.05);  // the table still applies on top of the quick preset
+  BOOST_TEST(preset(Quality::paper).particle_diameter == 5.6e-3);
+  BOOST_TEST(preset(Quality::standard).particle_diameter == 0.0);  // the dataset's own
+
+  std::ofstream(d / "bad.toml") << "name = \"x\"\n[dem]\nquallity = \"quick\"\n";
+  try {
+    read_dem_table((d / "bad.toml").string());
+    BOOST_FAIL("unknown key accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.field() == "dem.quallity");
+    BOOST_TEST(e.line() == 3);
+  }
+  std::ofstream(d / "bad2.toml") << "[dem]\nquality = \"fast\"\n";
+  BOOST_CHECK_THROW(read_dem_table((d / "bad2.toml").string()), InputError);
+  std::ofstream(d / "bad3.toml") << "[dem.stl]\nplate = \"missing.stl\"\n";
+  BOOST_CHECK_THROW(read_dem_table((d / "bad3.toml").string()), InputError);
+  SettingsOverrides bad;
+  bad.dt_fraction = 2.0;
+  BOOST_CHECK_THROW(resolve(DemTable{}, bad), InputError);
+}
+
+// Impossible geometry is refused before any particle moves.
+BOOST_AUTO_TEST_CASE(impossible_scenes_are_input_errors) {
+  const RunSettings s = test::tiny_settings();
+  Station st = test::tiny_station();
+  st.plate_distance = 0.13;  // the face would cut the pulley (R_b = 130 mm)
+  try {
+    build_scene(st, s, {}, {});
+    BOOST_FAIL("plate through the pulley accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.field() == "plate_distance_mm");
+  }
+  st = test::tiny_station();
+  RunSettings big = s;
+  big.particle_diameter = 0.05;  // 50 mm spheres in a 120 mm load
+  BOOST_CHECK_THROW(build_scene(st, big, {}, {}), InputError);
+  st.mass_flow = 0.0;
+  BOOST_CHECK_THROW(build_scene(st, s, {}, {}), InputError);
+}
+
+// The harness's effects reach the DEM through what they change: the feed rate, the particle-plate
+// friction and a body force in flight; effects without a DEM counterpart leave a note.
+BOOST_AUTO_TEST_CASE(effects_map_onto_dem_inputs) {
+  const Station st = test::tiny_station();
+  auto fx = [](const std::string& s) { return effects::instantiate({effects::parse_setting(s, false)}); };
+  auto joined = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += x + "\n";
+    return s;
+  };
+
+  const auto bias = validation::dem_effect_inputs(st, fx("mass_flow_bias=0.1"));
+  BOOST_TEST(std::abs(bias.station.mass_flow - 2.75) < 1e-12);
+  BOOST_TEST(joined(bias.notes).find("honoured") != std::string::npos);
+
+  const auto fric = validation::dem_effect_inputs(st, fx("plate_friction=0.1"));
+  BOOST_REQUIRE(fric.external.plate_friction.has_value());
+  BOOST_TEST(std::abs(*fric.external.plate_friction - 0.37) < 1e-12);
+
+  const auto drag = validation::dem_effect_inputs(st, fx("air_drag=0.5"));
+  BOOST_REQUIRE(static_cast<bool>(drag.external.flight));
+  // a = -(3 rho_air C_d / (4 rho_s d)) |v| v with the dataset's real particles (9 mm, 1000 kg/m^3)
+  const double k = 3.0 * 1.204 * 0.5 / (4.0 * 1000.0 * 9e-3);
+  const Eigen::Vector2d a = drag.external.flight(Eigen::Vector2d(3.0, -4.0));
+  BOOST_TEST(std::abs(a.x() - (-k * 5.0 * 3.0)) < 1e-12);
+  BOOST_TEST(std::abs(a.y() - (-k * 5.0 * -4.0)) < 1e-12);
+  BOOST_TEST(drag.key != validation::dem_effect_inputs(st, fx("air_drag=0.6")).key);
+
+  for (const char* e : {"belt_slip=0.1", "belt_adhesion=500", "stream_spread=5", "plate_rebound=0.2"}) {
+    const auto ig = validation::dem_effect_inputs(st, fx(e));
+    BOOST_TEST(joined(ig.notes).find("ignored by the DEM") != std::string::npos, e);
+    BOOST_TEST(ig.key == validation::dem_effect_inputs(st, {}).key, e);  // the DEM run is the baseline's
+  }
+  // The instrument effect is the harness's business: no DEM input changes.
+  const auto cell = validation::dem_effect_inputs(st, fx("load_cell_offset=2"));
+  BOOST_TEST(cell.key == validation::dem_effect_inputs(st, {}).key);
+  BOOST_TEST(cell.notes.empty());
+}
+
+// A [dem.stl] plate replaces the generated one and is the load cell; its moment reference stays the
+// dataset's plate face at y = 0.
+BOOST_AUTO_TEST_CASE(stl_plate_replaces_the_generated_plate) {
+  const fs::path d = temp_dir("stl");
+  dem::TriangleMesh m = dem::TriangleMesh::from_soup(
+      {{dem::Vec3(350, 250, -300), dem::Vec3(350, -150, -300), dem::Vec3(350, -150, 300)},
+       {dem::Vec3(350, 250, -300), dem::Vec3(350, -150, 300), dem::Vec3(350, 250, 300)}});
+  dem::write_stl_binary((d / "plate.stl").string(), m);  // millimetres, like every STL of a dataset
+  std::ofstream(d / "setup.toml") << "[dem.stl]\nplate = \"plate.stl\"\n";
+  const DemTable t = read_dem_table((d / "setup.toml").string());
+  BOOST_REQUIRE(t.stl_plate.has_value());
+  const Scene sc = build_scene(test::tiny_station(), test::tiny_settings(), t, {});
+  const dem::Wall& plate = sc.world->walls()[static_cast<std::size_t>(sc.plate_wall)];
+  BOOST_TEST(plate.name == "plate");
+  const auto& mesh = std::get<dem::TriangleMesh>(plate.shape);
+  BOOST_TEST(mesh.triangles.size() == 2u);
+  BOOST_TEST(std::abs(mesh.bounds().lo.x() - 0.35) < 1e-9);
+  BOOST_TEST((plate.load_point - dem::Vec3(0.35, 0.0, 0.0)).norm() < 1e-12);
+}
+
+// A troughed belt (wings flattening towards the pulley) under an inclined plate: the scene builds,
+// the plate frame follows DESIGN.md (top edge at (Z, top), leaning towards the pulley), and a short
+// run stays stable.
+BOOST_AUTO_TEST_CASE(troughed_belt_and_inclined_plate) {
+  Station st = test::tiny_station();
+  st.belt.belt_width = 0.30;
+  st.belt.loaded_width = 0.20;
+  st.belt.trough.idler_angle = 20.0 * M_PI / 180.0;
+  st.belt.trough.centre_roll = 0.10;
+  st.belt.trough.surcharge_angle = 20.0 * M_PI / 180.0;
+  st.plate.angle = 15.0 * M_PI / 180.0;
+  RunSettings s = test::tiny_settings();
+  s.max_time = 0.12;
+  s.min_window = 0.05;
+  RunOptions o;
+  o.settings = s;
+  Scene sc = build_scene(st, s, {}, {});
+  const PlateFrame& pf = sc.plate;
+  BOOST_TEST(std::abs(pf.reference.y()) < 1e-12);
+  BOOST_TEST(pf.reference.x() > st.plate_distance);  // the face leans away below its top edge
+  BOOST_TEST(std::abs(pf.into.dot(pf.down)) < 1e-12);
+  BOOST_TEST(std::abs(pf.y_at(pf.up_from_reference(pf.top_edge)) - st.plate_top) < 1e-12);
+  int transition = 0;
+  for (const auto& w : sc.world->walls()) transition += w.name.rfind("belt-transition", 0) == 0;
+  BOOST_TEST(transition == 32);  // 2 wings x 8 segments x 2 triangles
+  const StationResult r = run_station(st, o);
+  BOOST_TEST(r.inserted > 0.1);
+  BOOST_TEST(r.escaped == 0.0);
+}

@@ -1,0 +1,277 @@
+#include "validation/models/dem_model.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "dem/station/cache.h"
+#include "dem/station/progress.h"
+#include "dem/station/run.h"
+#include "validation/models/models.h"
+
+namespace chutelab::validation {
+namespace {
+
+namespace st = dem::station;
+
+DemModelConfig& config_storage() {
+  static DemModelConfig c;
+  return c;
+}
+
+std::string num(double v) { return fmt::format("{:.17g}", v); }
+
+// File contents enter the key by hash (an edited STL is a different rig).
+std::string file_key(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return fmt::format("{} {:016x}", path, st::fnv1a64(ss.str()));
+}
+
+// Linear interpolation in the DEM's trajectory grid (10 mm apart); none outside it.
+std::optional<double> trajectory_at(const std::vector<st::TrajectoryRow>& rows, Boundary b, double x) {
+  auto pick = [&](const st::TrajectoryRow& r) -> const st::Estimate& {
+    return b == Boundary::upper ? r.upper : b == Boundary::lower ? r.lower : r.centre;
+  };
+  for (std::size_t k = 0; k + 1 < rows.size(); ++k) {
+    const auto &a = rows[k], &c = rows[k + 1];
+    if (x < a.x - 1e-9 || x > c.x + 1e-9) continue;
+    if (c.x - a.x > 0.0105) continue;  // a gap in the grid: no stream there
+    const auto &ya = pick(a), &yc = pick(c);
+    if (!ya.ok() || !yc.ok()) return std::nullopt;
+    const double f = (x - a.x) / (c.x - a.x);
+    return ya.value + f * (yc.value - ya.value);
+  }
+  if (rows.size() == 1 && std::abs(rows[0].x - x) < 1e-9 && pick(rows[0]).ok()) return pick(rows[0]).value;
+  return std::nullopt;
+}
+
+class DemModel final : public Model {
+ public:
+  explicit DemModel(DemModelConfig c) : c_(std::move(c)) {}
+  std::string name() const override { return "dem"; }
+  std::string description() const override {
+    return "DEM of the transfer station (chutelab dem/station): Hertz-Mindlin spheres, sensors as the LIGGGHTS rig's";
+  }
+  bool expensive() const override { return true; }
+
+  ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
+                          const PredictRequest& request) const override {
+    const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file);
+    const st::RunSettings settings = st::resolve(table, c_.overrides);
+    const DemEffectInputs fx = dem_effect_inputs(station, effects);
+
+    const std::string key = dem_cache_key(fx, settings, table);
+
+    const st::ResultCache cache(c_.cache_dir.empty() ? st::ResultCache::default_dir() : c_.cache_dir);
+    std::optional<st::StationResult> cached = c_.use_cache ? cache.load(key) : std::nullopt;
+    st::StationResult r;
+    if (cached) {
+      r = std::move(*cached);
+    } else {
+      st::RunOptions o;
+      o.settings = settings;
+      o.geometry = table;
+      o.external = fx.external;
+      if (c_.progress) o.progress = st::ProgressPrinter(fmt::format("dem {}", station.condition));
+      r = st::run_station(fx.station, o);
+      if (c_.use_cache) cache.store(key, r);
+    }
+    if (!c_.output_dir.empty()) {
+      const auto dir = std::filesystem::path(c_.output_dir) / station.condition;
+      st::write_result_files(dir.string(), r);
+      st::write_side_view_vtk((dir / "side_view.vtk").string(), r.side_view);
+    }
+    return to_prediction(r, fx, request, cached.has_value(), cache.path_for(key));
+  }
+
+ private:
+  static ModelPrediction to_prediction(const st::StationResult& r, const DemEffectInputs& fx,
+                                       const PredictRequest& request, bool from_cache, const std::string& cache_file) {
+    ModelPrediction p;
+    auto set = [&](Quantity q, const st::Estimate& e) {
+      if (!e.ok()) return;
+      p.values[q] = e.value;
+      if (std::isfinite(e.se)) p.uncertainty[q] = e.se;
+    };
+    set(Quantity::normal_force, r.normal_force);
+    set(Quantity::shear_force, r.shear_force);
+    set(Quantity::resultant_force, r.resultant_force);
+    set(Quantity::impact_velocity, r.impact_velocity);
+    set(Quantity::exit_velocity, r.exit_velocity);
+    set(Quantity::impact_point_y, r.impact_point_y);
+    p.trajectory.reserve(request.trajectory.size());
+    for (const auto& q : request.trajectory) p.trajectory.push_back(trajectory_at(r.trajectory, q.boundary, q.x));
+    if (request.curves) {
+      for (Boundary b : {Boundary::upper, Boundary::centre, Boundary::lower}) {
+        Curve c{b == Boundary::upper ? "upper" : b == Boundary::lower ? "lower" : "centre (mean)", {}};
+        for (const auto& row : r.trajectory) {
+          const st::Estimate& e = b == Boundary::upper ? row.upper : b == Boundary::lower ? row.lower : row.centre;
+          if (e.ok()) c.points.emplace_back(row.x, e.value);
+        }
+        if (!c.points.empty()) p.curves.push_back(std::move(c));
+      }
+      // Side view of the steady stream (seed Fig. 9): particle centres (x, y) in "particles" and,
+      // point by point, (speed m/s, z m) in "particles_speed".
+      Curve pts{"particles", {}}, speed{"particles_speed", {}};
+      for (const auto& s : r.side_view) {
+        pts.points.emplace_back(s.x, s.y);
+        speed.points.emplace_back(s.speed, s.z);
+      }
+      if (!pts.points.empty()) {
+        p.curves.push_back(std::move(pts));
+        p.curves.push_back(std::move(speed));
+      }
+    }
+    p.notes = r.notes;
+    if (r.impact_velocity_fast.ok())
+      p.notes.push_back(fmt::format("free-stream particles alone (v_x > V_b/2) arrive at {:.3f} m/s; the V_p slab lies "
+                                    "partly in the layer on the plate", r.impact_velocity_fast.value));
+    for (const auto& n : fx.notes) p.notes.push_back(n);
+    p.notes.push_back(from_cache ? fmt::format("from the DEM cache ({})", cache_file)
+                                 : fmt::format("DEM run of {:.0f} s wall time, cached as {}", r.wall_seconds, cache_file));
+    return p;
+  }
+
+  DemModelConfig c_;
+};
+
+}  // namespace
+
+void set_dem_model_config(const DemModelConfig& c) { config_storage() = c; }
+const DemModelConfig& dem_model_config() { return config_storage(); }
+ModelPtr make_dem_model() { return std::make_shared<DemModel>(config_storage()); }
+ModelPtr make_dem_model(const DemModelConfig& c) { return std::make_shared<DemModel>(c); }
+
+std::string dem_cache_key(const DemEffectInputs& fx, const dem::station::RunSettings& settings,
+                          const dem::station::DemTable& table) {
+  std::string key = std::string(st::kStationModelVersion) + "\n";
+  key += canonical_station(fx.station);
+  key += st::canonical(settings);
+  for (const auto* f : {&table.stl_plate, &table.stl_belt, &table.stl_pulley})
+    if (*f) key += "stl " + file_key(**f) + "\n";
+  for (const auto& f : table.stl_walls) key += "stl-wall " + file_key(f) + "\n";
+  key += fx.key;
+  return key;
+}
+
+std::string canonical_station(const Station& s) {
+  std::string o;
+  auto put = [&](const char* k, double v) { o += fmt::format("{} = {}\n", k, num(v)); };
+  // The condition's name is a label, not an input: equal rigs share a cached run.
+  put("pulley_diameter", s.belt.pulley_diameter);
+  put("belt_thickness", s.belt.belt_thickness);
+  put("belt_width", s.belt.belt_width);
+  put("loaded_width", s.belt.loaded_width);
+  put("belt_incline", s.belt.incline);
+  put("trough_idler_angle", s.belt.trough.idler_angle);
+  put("trough_centre_roll", s.belt.trough.centre_roll);
+  put("trough_surcharge_angle", s.belt.trough.surcharge_angle);
+  put("plate_width", s.plate.width);
+  put("plate_height", s.plate.height);
+  put("plate_angle", s.plate.angle);
+  const auto& m = s.material;
+  put("particle_diameter", m.particle_diameter);
+  put("solid_density", m.solid_density);
+  put("bulk_density", m.bulk_density);
+  put("youngs_modulus", m.youngs_modulus);
+  put("poisson_ratio", m.poisson_ratio);
+  put("friction_particle", m.friction_particle);
+  put("friction_plate", m.friction_plate);
+  put("friction_belt", m.friction_belt);
+  put("rolling_friction_particle", m.rolling_friction_particle);
+  put("rolling_friction_wall", m.rolling_friction_wall);
+  put("restitution_particle", m.restitution_particle);
+  put("restitution_plate", m.restitution_plate);
+  put("restitution_belt", m.restitution_belt);
+  put("friction_side", m.friction_side);
+  put("gravity", s.gravity);
+  put("belt_speed", s.belt_speed);
+  put("mass_flow", s.mass_flow);
+  put("plate_distance", s.plate_distance);
+  put("plate_top", s.plate_top);
+  // stream_thickness is a measurement of the layer, not an input of the DEM: left out.
+  return o;
+}
+
+DemEffectInputs dem_effect_inputs(const Station& station, const analytical::EffectList& effects) {
+  DemEffectInputs out;
+  out.station = station;
+  double friction = station.material.friction_plate;
+  bool friction_changed = false;
+  std::vector<std::shared_ptr<const analytical::Effect>> flight;
+  for (const auto& e : effects) {
+    const std::string n = e->name();
+    std::vector<std::string> honoured, ignored;
+    // Operating point: belt speed and mass flow as the physics sees them.
+    analytical::OperatingPoint op{out.station.belt_speed, out.station.mass_flow};
+    e->adjust_operating_point(op);
+    if (op.belt_speed != out.station.belt_speed || op.mass_flow != out.station.mass_flow) {
+      honoured.push_back(fmt::format("feed {:.4g} kg/s, belt {:.4g} m/s", op.mass_flow, op.belt_speed));
+      out.station.belt_speed = op.belt_speed;
+      out.station.mass_flow = op.mass_flow;
+    }
+    // Plate: the particle-plate friction is the DEM's; the stream restitution is not an input.
+    analytical::PlateInteraction pi{friction, 0.0};
+    e->adjust_plate(pi);
+    if (pi.friction != friction) {
+      honoured.push_back(fmt::format("particle-plate friction {:.4g}", pi.friction));
+      friction = pi.friction;
+      friction_changed = true;
+    }
+    if (pi.rebound != 0.0)
+      ignored.push_back("the stream's rebound follows from the particle-plate restitution in a DEM");
+    // Flight.
+    if (e->has_flight_force()) {
+      flight.push_back(e);
+      honoured.push_back("body force on particles in flight");
+    }
+    // Discharge and release: analytical constructions without a DEM input.
+    analytical::DischargeInput di{station.belt.belt_radius(), station.belt_speed, station.belt.incline,
+                                  station.gravity, 0.0, 1.0};
+    const analytical::DischargeInput di0 = di;
+    e->adjust_discharge(di, station);
+    if (di.radius != di0.radius || di.speed != di0.speed || di.incline != di0.incline ||
+        di.gravity != di0.gravity || di.holding_accel != di0.holding_accel)
+      ignored.push_back("it changes the analytical discharge from the pulley; in the DEM the discharge follows "
+                        "from belt friction and contact forces");
+    for (Boundary b : {Boundary::upper, Boundary::lower}) {
+      Eigen::Vector2d v(1.0, 0.0);
+      e->adjust_release(b, v);
+      if (v != Eigen::Vector2d(1.0, 0.0)) {
+        ignored.push_back("it turns the analytical release velocity; the DEM stream spreads by itself");
+        break;
+      }
+    }
+    if (!honoured.empty()) out.notes.push_back(fmt::format("effect {} honoured by the DEM: {}", n, fmt::join(honoured, "; ")));
+    if (!ignored.empty()) out.notes.push_back(fmt::format("effect {} ignored by the DEM: {}", n, fmt::join(ignored, "; ")));
+  }
+  if (friction_changed) out.external.plate_friction = friction;
+  if (!flight.empty()) {
+    const analytical::FlightContext ctx{station.material.particle_diameter, station.material.solid_density};
+    out.external.flight = [flight, ctx](const Eigen::Vector2d& v) {
+      Eigen::Vector2d a = Eigen::Vector2d::Zero();
+      for (const auto& e : flight) a += e->flight_acceleration(v, ctx);
+      return a;
+    };
+    // The key samples the acceleration: equal samples, equal physics for the effects we have.
+    std::string k = "flight";
+    for (const Eigen::Vector2d& v : {Eigen::Vector2d(1, 0), Eigen::Vector2d(3, -1), Eigen::Vector2d(5, -3),
+                                    Eigen::Vector2d(0, -2), Eigen::Vector2d(-1, 0.5)}) {
+      const Eigen::Vector2d a = out.external.flight(v);
+      k += fmt::format(" {} {}", num(a.x()), num(a.y()));
+    }
+    out.external.flight_key = k;
+  }
+  out.key = fmt::format("effective_belt_speed = {}\neffective_mass_flow = {}\n", num(out.station.belt_speed),
+                        num(out.station.mass_flow));
+  if (out.external.plate_friction) out.key += fmt::format("plate_friction = {}\n", num(*out.external.plate_friction));
+  if (!out.external.flight_key.empty()) out.key += out.external.flight_key + "\n";
+  return out;
+}
+
+}  // namespace chutelab::validation

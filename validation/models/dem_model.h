@@ -1,0 +1,58 @@
+#pragma once
+// The DEM of the transfer station (dem/station) as a harness model, "dem" in --models.
+//
+// Each condition is one DEM run (minutes), so results are cached by every input that matters
+// (dem/station/cache.h); a repeated validate is instant. Effects the DEM honours act on its inputs:
+// the operating point (mass_flow_bias: feed rate), the plate interaction's friction
+// (plate_friction: particle-plate sliding friction) and forces in flight (air_drag: a body force);
+// measurement effects (load_cell_offset) are applied by the harness to every model. Effects that
+// change the analytical discharge or release (belt_slip, belt_adhesion, stream_spread) or the
+// stream restitution (plate_rebound: in a DEM rebound follows from the particle-plate restitution)
+// have no DEM counterpart and are ignored with a note in the prediction.
+//
+// Effects are recognised by what they do, not by name: each is asked what it changes in a probe
+// of every analytical stage, so a new effect with a flight force or an operating-point change is
+// honoured by the DEM without code here.
+#include <optional>
+#include <string>
+
+#include "analytical/effect.h"
+#include "dem/station/scene.h"
+#include "dem/station/settings.h"
+#include "validation/model.h"
+
+namespace chutelab::validation {
+
+struct DemModelConfig {
+  dem::station::SettingsOverrides overrides;  // e.g. --dem-quality; beats the dataset's [dem]
+  std::string setup_file;    // the dataset's setup.toml, for its optional [dem] table
+  bool use_cache = true;
+  std::string cache_dir;     // "" = dem::station::ResultCache::default_dir()
+  bool progress = false;     // progress on stderr
+  std::string output_dir;    // "" = none; else per condition: CSV series, side view, VTK
+};
+
+// The configuration the registry's "dem" model is made with (set by the command line).
+void set_dem_model_config(const DemModelConfig& c);
+const DemModelConfig& dem_model_config();
+ModelPtr make_dem_model();
+ModelPtr make_dem_model(const DemModelConfig& c);
+
+// What a list of effects changes in a DEM run of a station.
+struct DemEffectInputs {
+  Station station;                           // operating point after the effects
+  dem::station::ExternalInputs external;     // plate friction, flight acceleration
+  std::vector<std::string> notes;            // honoured / ignored, effect by effect
+  std::string key;                           // canonical text of what the DEM sees
+};
+DemEffectInputs dem_effect_inputs(const Station& st, const analytical::EffectList& effects);
+
+// The cache key of a DEM run: kStationModelVersion, the station after effects, the resolved
+// settings, the contents of STL files and the effect inputs.
+std::string dem_cache_key(const DemEffectInputs& fx, const dem::station::RunSettings& settings,
+                          const dem::station::DemTable& table);
+
+// Canonical text of a station (every field, full precision), for cache keys.
+std::string canonical_station(const Station& st);
+
+}  // namespace chutelab::validation
