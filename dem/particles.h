@@ -21,6 +21,11 @@ struct Particles {
   std::vector<double> inv_inertia;  // 1/(kg m^2), solid sphere I = 2/5 m R^2
   std::vector<std::int32_t> material;
   std::vector<std::int64_t> id;
+  // Rigid multi-sphere particles (dem/clump_bodies.h): the body a sphere belongs to (-1: a free sphere)
+  // and its centre in the body's principal frame. A member's x, v, w are set from its body every step;
+  // its mass is its share of the body's mass (so sums over spheres give the right totals).
+  std::vector<std::int32_t> clump;
+  std::vector<Vec3> body_offset;
 
   std::size_t size() const { return x.size(); }
 
@@ -37,6 +42,8 @@ struct Particles {
     inv_inertia.push_back(1.0 / (0.4 * m * r * r));
     material.push_back(mat);
     id.push_back(ident);
+    clump.push_back(-1);
+    body_offset.push_back(Vec3::Zero());
   }
 
   // Applies f(old) for every array: out[k] = in[order[k]].
@@ -52,6 +59,8 @@ struct Particles {
     gather(inv_inertia, order);
     gather(material, order);
     gather(id, order);
+    gather(clump, order);
+    gather(body_offset, order);
   }
 
  private:
