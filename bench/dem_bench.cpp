@@ -30,6 +30,8 @@ struct Params {
   int threads = 1;
   std::int64_t steps = 2000;
   std::string in, out, data;
+  RollingModel rolling = RollingModel::constant_torque;
+  TangentialModel tangential = TangentialModel::coulomb_history;
 };
 
 World make_world(const Params& P, bool add_particles) {
@@ -39,8 +41,8 @@ World make_world(const Params& P, bool add_particles) {
   s.threads = P.threads;
   s.gravity = Vec3(0, 0, -9.81);
   s.normal = NormalModel::hertz_mindlin;
-  s.tangential = TangentialModel::coulomb_history;
-  s.rolling = RollingModel::constant_torque;
+  s.tangential = P.tangential;
+  s.rolling = P.rolling;
   s.domain = Box{Vec3(-0.01, -0.01, -0.01), Vec3(P.box + 0.01, P.box + 0.01, 2.0)};
   World w(s);
   // Seed study material (polyethylene pellets, LIGGGHTS rig modulus) and steel walls.
@@ -118,6 +120,8 @@ int main(int argc, char** argv) {
     else if (k == "--in") P.in = v;
     else if (k == "--out") P.out = v;
     else if (k == "--data") P.data = v;
+    else if (k == "--rolling") P.rolling = v == "none" ? RollingModel::none : v == "epsd" ? RollingModel::epsd : RollingModel::constant_torque;
+    else if (k == "--tangential") P.tangential = v == "none" ? TangentialModel::frictionless : TangentialModel::coulomb_history;
     else { std::fprintf(stderr, "unknown option %s\n", k.c_str()); return 2; }
   }
   if (mode == "settle") {

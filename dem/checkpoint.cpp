@@ -140,6 +140,7 @@ void World::load_checkpoint(const std::string& path) {
   r.vec(x_ref_, "reference positions"); r.vec(wall_time_ref_, "wall times"); r.vec(index_map_, "index map");
   if (nl_.row_begin.size() != n + 1 || wc_.begin.size() != n + 1 || x_ref_.size() != n)
     throw InputError(path, 0, "neighbour list", "sizes do not match the particle count");
+  wc_.index_owners();
   const std::size_t slots = nl_.nbr.size();
   nl_.out_f.resize(slots); nl_.out_ti.resize(slots); nl_.out_tj.resize(slots);
   for (auto& wl : walls_) {

@@ -47,6 +47,109 @@ bool cylinder_contact(const Cylinder& c, const Vec3& x, double r, WallGeom& g) {
   return true;
 }
 
+// Raw views of the arrays the pair loop reads. Kept as plain restrict pointers copied into locals, so
+// the compiler holds them in registers (a lambda capturing by reference reloads them per contact).
+struct PairArrays {
+  const Vec3* x;
+  const Vec3* v;
+  const Vec3* w;
+  const double* rad;
+  const double* mass;
+  const double* inv_inertia;
+  const std::int32_t* mat;
+  const std::int32_t* row;
+  const std::int32_t* nbr;
+  Vec3* shear;
+  Vec3* roll;
+  std::uint8_t* touch;
+  const PairCoeffs* coeffs;
+  std::size_t nmat;
+  double dt;
+};
+
+// Pair contacts of rows [i0, i1). Scatter == true adds the forces to f/t directly (one thread; rows in
+// ascending order); otherwise every touching slot's force and torques go to per-slot storage.
+template <class Model, bool Scatter>
+void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __restrict f, Vec3* __restrict t,
+               Vec3* __restrict of, Vec3* __restrict oti, Vec3* __restrict otj) {
+  const Vec3* __restrict x = a.x;
+  const Vec3* __restrict v = a.v;
+  const Vec3* __restrict w = a.w;
+  const double* __restrict rad = a.rad;
+  const double* __restrict mass = a.mass;
+  const double* __restrict inv_i = a.inv_inertia;
+  const std::int32_t* __restrict mat = a.mat;
+  const std::int32_t* __restrict row = a.row;
+  const std::int32_t* __restrict nbr = a.nbr;
+  Vec3* __restrict shear = a.shear;
+  Vec3* __restrict roll = a.roll;
+  std::uint8_t* __restrict touch = a.touch;
+  const PairCoeffs* __restrict coeffs = a.coeffs;
+  const std::size_t nmat = a.nmat;
+  const double dt = a.dt;
+  for (std::size_t i = i0; i < i1; ++i) {
+    const Vec3 xi = x[i];
+    const double ri = rad[i];
+    const std::int32_t s0 = row[i], s1 = row[i + 1];
+    if (s0 == s1) continue;
+    const Vec3 vi = v[i], wi = w[i];
+    const double mi = mass[i], inv_ii = inv_i[i];
+    const PairCoeffs* ci = coeffs + static_cast<std::size_t>(mat[i]) * nmat;
+    Vec3 fi = Vec3::Zero(), ti = Vec3::Zero();
+    if constexpr (Scatter) {
+      fi = f[i];
+      ti = t[i];
+    }
+    for (std::int32_t s = s0; s < s1; ++s) {
+      const auto j = static_cast<std::size_t>(nbr[s]);
+      const Vec3 d = x[j] - xi;
+      const double r2 = d.squaredNorm();
+      const double rj = rad[j];
+      const double rs = ri + rj;
+      if (r2 >= rs * rs) {
+        if (touch[s]) {
+          touch[s] = 0;
+          shear[s].setZero();
+          if constexpr (Model::rolling_history) roll[s].setZero();
+        }
+        continue;
+      }
+      touch[s] = 1;
+      const double dist = std::sqrt(r2);
+      const double inv_dist = 1.0 / dist;
+      const double mj = mass[j];
+      ContactKinematics k;
+      k.n = d * inv_dist;
+      k.delta = rs - dist;
+      k.r_i = ri;
+      k.r_j = rj;
+      k.v_rel = (vi - v[j]) + (ri * wi + rj * w[j]).cross(k.n);
+      k.w_rel = wi - w[j];
+      k.r_eff = ri * rj / rs;
+      k.m_eff = mi * mj / (mi + mj);
+      k.inv_inertia_i = inv_ii;
+      k.inv_inertia_j = inv_i[j];
+      k.m_i = mi;
+      k.m_j = mj;
+      const ContactForce cf = Model::compute(ci[mat[j]], k, shear[s], roll + s, dt);
+      if constexpr (Scatter) {
+        fi += cf.force;
+        ti += cf.torque_i;
+        f[j] -= cf.force;
+        t[j] += cf.torque_j;
+      } else {
+        of[s] = cf.force;
+        oti[s] = cf.torque_i;
+        otj[s] = cf.torque_j;
+      }
+    }
+    if constexpr (Scatter) {
+      f[i] = fi;
+      t[i] = ti;
+    }
+  }
+}
+
 }  // namespace
 
 template <class Model>
@@ -69,39 +172,8 @@ void World::compute_forces_impl() {
   std::uint8_t* touch = nl_.touch.data();
   const MaterialTable& mt = materials_;
 
-  // One pair: returns false when the spheres do not touch (history reset).
-  auto pair = [&](std::size_t i, std::size_t s, ContactForce& out) -> bool {
-    const auto j = static_cast<std::size_t>(nbr[s]);
-    const Vec3 d = x[j] - x[i];
-    const double r2 = d.squaredNorm();
-    const double rs = rad[i] + rad[j];
-    if (r2 >= rs * rs) {
-      if (touch[s]) {
-        touch[s] = 0;
-        shear[s].setZero();
-        if constexpr (Model::rolling_history) roll[s].setZero();
-      }
-      return false;
-    }
-    touch[s] = 1;
-    const double dist = std::sqrt(r2);
-    ContactKinematics k;
-    k.n = d / dist;
-    k.delta = rs - dist;
-    k.r_i = rad[i];
-    k.r_j = rad[j];
-    k.v_rel = (v[i] - v[j]) + (rad[i] * w[i] + rad[j] * w[j]).cross(k.n);
-    k.w_rel = w[i] - w[j];
-    k.r_eff = rad[i] * rad[j] / rs;
-    k.m_eff = mass[i] * mass[j] / (mass[i] + mass[j]);
-    k.inv_inertia_i = inv_i[i];
-    k.inv_inertia_j = inv_i[j];
-    k.m_i = mass[i];
-    k.m_j = mass[j];
-    out = Model::compute(mt.pair(mat[i], mat[j]), k, shear[s], roll + s, dt);
-    return true;
-  };
-
+  PairArrays arrays{x, v, w, rad, mass, inv_i, mat, row, nbr, shear, roll, touch, mt.coeff_table(),
+                    static_cast<std::size_t>(mt.size()), dt};
   // Wall contacts of one particle, into per-entry storage. Within one mesh, face contacts win over
   // edge contacts and edges over vertices, so a sphere on a flat or convex seam touches once.
   auto walls_of = [&](std::size_t i) {
@@ -222,56 +294,42 @@ void World::compute_forces_impl() {
     }
   };
 
-  auto finish_particle = [&](std::size_t i, Vec3& fi, Vec3& ti) {
-    for (auto q = wc_.begin[i]; q < wc_.begin[i + 1]; ++q) {
-      const auto qs = static_cast<std::size_t>(q);
-      if (!wc_.touch[qs]) continue;
-      fi += wc_.out_f[qs];
-      ti += wc_.out_t[qs];
+  const std::int32_t* wb = wc_.begin.data();
+  const std::uint8_t* wtouch = wc_.touch.data();
+  const Vec3* wof = wc_.out_f.data();
+  const Vec3* wot = wc_.out_t.data();
+  const std::int32_t* owners = wc_.owners.data();
+  const std::size_t n_owners = wc_.owners.size();
+  auto finish_particle = [=](std::size_t i, Vec3& fi, Vec3& ti) {
+    for (auto q = wb[i]; q < wb[i + 1]; ++q) {
+      if (!wtouch[q]) continue;
+      fi += wof[q];
+      ti += wot[q];
     }
     fi += mass[i] * g;
   };
 
   if (nt == 1) {
-    for (std::size_t i = 0; i < n; ++i) walls_of(i);
-    Vec3* f = p_.f.data();
-    Vec3* t = p_.t.data();
+    for (std::size_t k = 0; k < n_owners; ++k) walls_of(static_cast<std::size_t>(owners[k]));
     std::fill(p_.f.begin(), p_.f.end(), Vec3::Zero());
     std::fill(p_.t.begin(), p_.t.end(), Vec3::Zero());
-    for (std::size_t i = 0; i < n; ++i) {
-      Vec3 fi = f[i], ti = t[i];
-      for (auto s = row[i]; s < row[i + 1]; ++s) {
-        ContactForce cf;
-        if (!pair(i, static_cast<std::size_t>(s), cf)) continue;
-        const auto j = static_cast<std::size_t>(nbr[s]);
-        fi += cf.force;
-        ti += cf.torque_i;
-        f[j] -= cf.force;
-        t[j] += cf.torque_j;
-      }
-      f[i] = fi;
-      t[i] = ti;
-    }
-    for (std::size_t i = 0; i < n; ++i) finish_particle(i, f[i], t[i]);
+    pair_rows<Model, true>(arrays, 0, n, p_.f.data(), p_.t.data(), nullptr, nullptr, nullptr);
+    for (std::size_t i = 0; i < n; ++i) finish_particle(i, p_.f[i], p_.t[i]);
   } else {
     Vec3* of = nl_.out_f.data();
     Vec3* oti = nl_.out_ti.data();
     Vec3* otj = nl_.out_tj.data();
     const std::int32_t* rb = nl_.rev_begin.data();
     const std::int32_t* rs = nl_.rev_slot.data();
+    constexpr std::size_t chunk = 256;
+    const std::size_t nchunks = (n + chunk - 1) / chunk;
 #pragma omp parallel num_threads(nt)
     {
-#pragma omp for schedule(dynamic, 256) nowait
-      for (std::size_t i = 0; i < n; ++i) walls_of(i);
-#pragma omp for schedule(dynamic, 256)
-      for (std::size_t i = 0; i < n; ++i)
-        for (auto s = row[i]; s < row[i + 1]; ++s) {
-          ContactForce cf;
-          if (!pair(i, static_cast<std::size_t>(s), cf)) continue;
-          of[s] = cf.force;
-          oti[s] = cf.torque_i;
-          otj[s] = cf.torque_j;
-        }
+#pragma omp for schedule(dynamic, 64) nowait
+      for (std::size_t k = 0; k < n_owners; ++k) walls_of(static_cast<std::size_t>(owners[k]));
+#pragma omp for schedule(dynamic, 1)
+      for (std::size_t c = 0; c < nchunks; ++c)
+        pair_rows<Model, false>(arrays, c * chunk, std::min(n, (c + 1) * chunk), nullptr, nullptr, of, oti, otj);
       // Same order as the one-thread scatter: as second body by ascending row, then own row.
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
@@ -300,19 +358,18 @@ void World::compute_forces_impl() {
     wl.torque.setZero();
     std::fill(wl.element_force.begin(), wl.element_force.end(), Vec3::Zero());
   }
-  for (std::size_t i = 0; i < n; ++i)
-    for (auto q = wc_.begin[i]; q < wc_.begin[i + 1]; ++q) {
-      const auto qs = static_cast<std::size_t>(q);
-      if (!wc_.touch[qs]) continue;
-      Wall& wl = walls_[static_cast<std::size_t>(wc_.wall[qs])];
-      const Vec3 fw = -wc_.out_f[qs];
-      const Vec3 c = wc_.out_point[qs];
-      const Vec3 lever = rad[i] * (c - x[i]).normalized();
-      const Vec3 rolling_couple = wc_.out_t[qs] - lever.cross(wc_.out_f[qs]);  // on the particle
-      wl.force += fw;
-      wl.element_force[static_cast<std::size_t>(wc_.element[qs])] += fw;
-      wl.torque += (c - wl.to_world(wl.load_point)).cross(fw) - rolling_couple;
-    }
+  for (std::size_t q = 0; q < wc_.touch.size(); ++q) {
+    if (!wtouch[q]) continue;
+    const auto i = static_cast<std::size_t>(wc_.owner[q]);
+    Wall& wl = walls_[static_cast<std::size_t>(wc_.wall[q])];
+    const Vec3 fw = -wof[q];
+    const Vec3 c = wc_.out_point[q];
+    const Vec3 lever = rad[i] * (c - x[i]).normalized();
+    const Vec3 rolling_couple = wot[q] - lever.cross(wof[q]);  // on the particle
+    wl.force += fw;
+    wl.element_force[static_cast<std::size_t>(wc_.element[q])] += fw;
+    wl.torque += (c - wl.to_world(wl.load_point)).cross(fw) - rolling_couple;
+  }
   if (body_force_) body_force_(p_, time_, p_.f);
 }
 

@@ -87,6 +87,7 @@ void MaterialTable::derive(int a, int b) {
   // Seed §3 (Tsuji-type damping of Hertz): F_d = 2 sqrt(5/6) beta sqrt(S_n m*) v_n. With the tensile
   // tail of the force allowed this reproduces e exactly for any impact speed (checked by the tests).
   c.hertz_damping = 2.0 * std::sqrt(5.0 / 6.0) * beta;
+  c.hertz_tangential_ratio = std::sqrt(4.0 * c.g_star / c.e_star);
   c.linear_kn = in.linear_stiffness;
   c.linear_kt = in.linear_stiffness * in.linear_tangential_ratio;
   c.linear_damping = 2.0 * beta;

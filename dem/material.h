@@ -35,6 +35,7 @@ struct PairCoeffs {
   double rolling_friction = 0.0;
   double restitution = 1.0;
   double hertz_damping = 0.0;  // 2 sqrt(5/6) beta, beta = -ln e / sqrt(ln^2 e + pi^2) (seed §3)
+  double hertz_tangential_ratio = 0.0;  // sqrt(S_t / S_n) = sqrt(4 G* / E*)
   double linear_kn = 0.0;      // N/m
   double linear_kt = 0.0;      // N/m
   double linear_damping = 0.0; // 2 zeta, zeta = -ln e / sqrt(ln^2 e + pi^2) (exact for Eq 8)
@@ -55,6 +56,8 @@ class MaterialTable {
     return coeffs_[static_cast<std::size_t>(a) * materials_.size() + static_cast<std::size_t>(b)];
   }
   double shear_modulus(int i) const;
+  // Row-major n x n table for the contact loop: pair(a, b) == coeff_table()[a * size() + b].
+  const PairCoeffs* coeff_table() const { return coeffs_.data(); }
 
  private:
   void derive(int a, int b);

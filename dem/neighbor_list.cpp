@@ -124,40 +124,57 @@ void World::rebuild() {
     cell_members = order;
   }
 
-  // --- pair half list: count, prefix, fill (parallel, each row written by one thread) ---
+  // --- pair half list: one pass, each thread fills a contiguous block of rows into its own buffer ---
+  // With particles sorted by cell, cells of lower linear index hold only lower indices, so the half
+  // list (j > i) needs just the own cell and the 13 "forward" neighbours of the 27-cell stencil.
+  const bool sorted = settings_.sort_particles;
   nl_.row_begin.assign(n + 1, 0);
-  auto visit_row = [&](std::size_t i, auto&& emit) {
+  std::vector<std::int32_t> local_start(n);
+  auto visit_row = [&](std::size_t i, std::vector<std::int32_t>& out) {
     const Vec3 xi = p_.x[i];
     const double ri = p_.radius[i] + skin_;
     const std::int64_t cx = cell_coord(xi, 0), cy = cell_coord(xi, 1), cz = cell_coord(xi, 2);
+    const std::int64_t own = (cz * dim[1] + cy) * dim[0] + cx;
     for (std::int64_t z = std::max<std::int64_t>(cz - 1, 0); z <= std::min(cz + 1, dim[2] - 1); ++z)
       for (std::int64_t y = std::max<std::int64_t>(cy - 1, 0); y <= std::min(cy + 1, dim[1] - 1); ++y)
         for (std::int64_t x = std::max<std::int64_t>(cx - 1, 0); x <= std::min(cx + 1, dim[0] - 1); ++x) {
-          const std::size_t c = static_cast<std::size_t>((z * dim[1] + y) * dim[0] + x);
+          const std::int64_t cl = (z * dim[1] + y) * dim[0] + x;
+          if (sorted && cl < own) continue;
+          const std::size_t c = static_cast<std::size_t>(cl);
           for (std::int32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
             const std::int32_t j = cell_members[static_cast<std::size_t>(k)];
             if (j <= static_cast<std::int32_t>(i)) continue;
             const double cut = ri + p_.radius[static_cast<std::size_t>(j)];
-            if ((p_.x[static_cast<std::size_t>(j)] - xi).squaredNorm() < cut * cut) emit(j);
+            if ((p_.x[static_cast<std::size_t>(j)] - xi).squaredNorm() < cut * cut) out.push_back(j);
           }
         }
+    if (!sorted) std::sort(out.begin() + local_start[i], out.end());
   };
-#pragma omp parallel for num_threads(nt) schedule(dynamic, 512)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::int32_t count = 0;
-    visit_row(i, [&](std::int32_t) { ++count; });
-    nl_.row_begin[i + 1] = count;
+  std::vector<std::vector<std::int32_t>> buf(static_cast<std::size_t>(nt));
+  std::vector<std::size_t> block(static_cast<std::size_t>(nt) + 1, 0);
+#pragma omp parallel num_threads(nt)
+  {
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto nth = static_cast<std::size_t>(omp_get_num_threads());
+    const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
+    auto& out = buf[t];
+    out.reserve((hi - lo) * 8);
+    for (std::size_t i = lo; i < hi; ++i) {
+      local_start[i] = static_cast<std::int32_t>(out.size());
+      visit_row(i, out);
+    }
+    block[t + 1] = out.size();
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::size_t k = 0; k < nth; ++k) block[k + 1] += block[k];
+      nl_.nbr.resize(block[nth]);
+    }
+    for (std::size_t i = lo; i < hi; ++i) nl_.row_begin[i] = static_cast<std::int32_t>(block[t]) + local_start[i];
+    std::copy(out.begin(), out.end(), nl_.nbr.begin() + static_cast<std::ptrdiff_t>(block[t]));
   }
-  for (std::size_t i = 0; i < n; ++i) nl_.row_begin[i + 1] += nl_.row_begin[i];
-  const std::size_t nslots = static_cast<std::size_t>(nl_.row_begin[n]);
-  nl_.nbr.resize(nslots);
-#pragma omp parallel for num_threads(nt) schedule(dynamic, 512)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::int32_t s = nl_.row_begin[i];
-    visit_row(i, [&](std::int32_t j) { nl_.nbr[static_cast<std::size_t>(s++)] = j; });
-    if (!settings_.sort_particles)
-      std::sort(nl_.nbr.begin() + nl_.row_begin[i], nl_.nbr.begin() + nl_.row_begin[i + 1]);
-  }
+  nl_.row_begin[n] = static_cast<std::int32_t>(nl_.nbr.size());
+  const std::size_t nslots = nl_.nbr.size();
   nl_.shear.assign(nslots, Vec3::Zero());
   nl_.roll.assign(nslots, Vec3::Zero());
   nl_.touch.assign(nslots, 0);
@@ -239,6 +256,7 @@ void World::rebuild() {
   wc_.out_f.resize(cands.size());
   wc_.out_t.resize(cands.size());
   wc_.out_point.resize(cands.size());
+  wc_.index_owners();
 
   // --- carry contact history over ---
   for (std::size_t io = 0; io + 1 < old_nl.row_begin.size(); ++io) {

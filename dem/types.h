@@ -3,6 +3,10 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+// Contact laws are tiny functions called from one hot loop; the loop is too large for GCC's inliner
+// budget, so they are forced inline.
+#define CHUTELAB_INLINE [[gnu::always_inline]] inline
+
 namespace chutelab::dem {
 
 using Vec3 = Eigen::Vector3d;

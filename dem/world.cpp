@@ -280,14 +280,26 @@ void World::step(std::int64_t n) {
     const double dt = dt_;
     const std::size_t np = p_.size();
     double maxd2 = max_disp_ * max_disp_;
-    // Velocity Verlet: half kick with the forces of the last evaluation, then drift.
+    {
+      Vec3* __restrict x = p_.x.data();
+      Vec3* __restrict v = p_.v.data();
+      Vec3* __restrict w = p_.w.data();
+      const Vec3* __restrict f = p_.f.data();
+      const Vec3* __restrict t = p_.t.data();
+      const double* __restrict im = p_.inv_mass.data();
+      const double* __restrict ii = p_.inv_inertia.data();
+      const Vec3* __restrict xr = x_ref_.data();
+      const double h = 0.5 * dt;
+      // Velocity Verlet: half kick with the forces of the last evaluation, then drift.
 #pragma omp parallel for num_threads(nt) schedule(static) reduction(max : maxd2)
-    for (std::size_t i = 0; i < np; ++i) {
-      p_.v[i] += (0.5 * dt * p_.inv_mass[i]) * p_.f[i];
-      p_.w[i] += (0.5 * dt * p_.inv_inertia[i]) * p_.t[i];
-      p_.x[i] += dt * p_.v[i];
-      const double d2 = (p_.x[i] - x_ref_[i]).squaredNorm();
-      maxd2 = std::max(maxd2, d2);
+      for (std::size_t i = 0; i < np; ++i) {
+        const Vec3 vi = v[i] + (h * im[i]) * f[i];
+        v[i] = vi;
+        w[i] += (h * ii[i]) * t[i];
+        const Vec3 xi = x[i] + dt * vi;
+        x[i] = xi;
+        maxd2 = std::max(maxd2, (xi - xr[i]).squaredNorm());
+      }
     }
     max_disp_ = std::sqrt(maxd2);
     time_ = static_cast<double>(step_ + 1) * dt;  // no accumulated round-off in time
@@ -297,29 +309,45 @@ void World::step(std::int64_t n) {
     if (needs_rebuild()) rebuild();
     compute_forces();
     const std::size_t np2 = p_.size();
-#pragma omp parallel for num_threads(nt) schedule(static)
-    for (std::size_t i = 0; i < np2; ++i) {
-      p_.v[i] += (0.5 * dt * p_.inv_mass[i]) * p_.f[i];
-      p_.w[i] += (0.5 * dt * p_.inv_inertia[i]) * p_.t[i];
+    const bool check = (step_ + 1) % settings_.check_every == 0;
+    const double vlim2 = max_speed_ * max_speed_;
+    const Box dom = settings_.domain;
+    std::size_t first_bad = np2;  // min is exact, so the reported particle is thread-count independent
+    {
+      const Vec3* __restrict x = p_.x.data();
+      Vec3* __restrict v = p_.v.data();
+      Vec3* __restrict w = p_.w.data();
+      const Vec3* __restrict f = p_.f.data();
+      const Vec3* __restrict t = p_.t.data();
+      const double* __restrict im = p_.inv_mass.data();
+      const double* __restrict ii = p_.inv_inertia.data();
+      const double h = 0.5 * dt;
+#pragma omp parallel for num_threads(nt) schedule(static) reduction(min : first_bad)
+      for (std::size_t i = 0; i < np2; ++i) {
+        const Vec3 vi = v[i] + (h * im[i]) * f[i];
+        const Vec3 wi = w[i] + (h * ii[i]) * t[i];
+        v[i] = vi;
+        w[i] = wi;
+        // NaN fails every comparison, so one chain of && catches non-finite states too.
+        if (check && !(vi.squaredNorm() <= vlim2 && wi.squaredNorm() < 1e300 && x[i].x() >= dom.lo.x() &&
+                       x[i].x() <= dom.hi.x() && x[i].y() >= dom.lo.y() && x[i].y() <= dom.hi.y() &&
+                       x[i].z() >= dom.lo.z() && x[i].z() <= dom.hi.z()))
+          first_bad = std::min(first_bad, i);
+      }
     }
     ++step_;
-    if (step_ % settings_.check_every == 0) check_state();
+    if (first_bad < np2) report_bad(first_bad);
   }
 }
 
 void World::check_state() const {
   const std::size_t np = p_.size();
   const double vlim2 = max_speed_ * max_speed_;
-  std::size_t bad = np;
-  for (std::size_t i = 0; i < np; ++i) {
-    const double v2 = p_.v[i].squaredNorm();
-    if (!(v2 <= vlim2) || !p_.x[i].allFinite() || !p_.w[i].allFinite() || !settings_.domain.contains(p_.x[i])) {
-      bad = i;
-      break;
-    }
-  }
-  if (bad == np) return;
-  const std::size_t i = bad;
+  for (std::size_t i = 0; i < np; ++i)
+    if (!(p_.v[i].squaredNorm() <= vlim2 && p_.w[i].allFinite() && settings_.domain.contains(p_.x[i]))) report_bad(i);
+}
+
+void World::report_bad(std::size_t i) const {
   const std::string where = fmt::format("DEM stopped at step {} (t = {:.6g} s): particle id {} ", step_, time_, p_.id[i]);
   const TimeStepEstimate est = time_step_estimate();
   const std::string hint = fmt::format(
@@ -328,7 +356,7 @@ void World::check_state() const {
   if (!p_.x[i].allFinite() || !p_.v[i].allFinite() || !p_.w[i].allFinite())
     throw SimulationError(where + fmt::format("has a non-finite state (x = {}, v = {}): the integration blew up.",
                                               vec_str(p_.x[i]), vec_str(p_.v[i])) + hint);
-  if (p_.v[i].squaredNorm() > vlim2)
+  if (p_.v[i].squaredNorm() > max_speed_ * max_speed_)
     throw SimulationError(where + fmt::format("moves at {:.4g} m/s, faster than physically possible here "
                                               "({:.4g} m/s): the contacts are unstable (overlap too deep).",
                                               p_.v[i].norm(), max_speed_) + hint);

@@ -85,6 +85,16 @@ struct WallCandidates {
   std::vector<Vec3> shear, roll;
   std::vector<Vec3> out_f, out_t, out_point;
   std::vector<std::uint8_t> touch;
+  std::vector<std::int32_t> owners;  // particles with at least one candidate, ascending (derived)
+  std::vector<std::int32_t> owner;   // particle of each entry (derived)
+  void index_owners() {
+    owners.clear();
+    owner.resize(wall.size());
+    for (std::size_t i = 0; i + 1 < begin.size(); ++i) {
+      if (begin[i] != begin[i + 1]) owners.push_back(static_cast<std::int32_t>(i));
+      for (auto e = begin[i]; e < begin[i + 1]; ++e) owner[static_cast<std::size_t>(e)] = static_cast<std::int32_t>(i);
+    }
+  }
 };
 
 class World {
@@ -142,6 +152,7 @@ class World {
   bool needs_rebuild() const;
   void insert_and_delete();
   void check_state() const;
+  [[noreturn]] void report_bad(std::size_t i) const;
   void warn(const std::string& msg);
   int thread_count() const;
   double wall_displacement_since_rebuild(const Wall& w) const;

@@ -119,7 +119,10 @@ void what_is_missing(Doc& d, const Context& c) {
   d.table(ranking_table(g));
 
   if (const auto* best = g.best()) {
-    d.h(3, "missing-physics", fmt::format("The recommended effect: {}", best->label()));
+    d.h(3, "missing-physics",
+        g.convincing ? fmt::format("The recommended effect: {}", best->label())
+                     : fmt::format("The best candidate, which does not explain the misfit well: {}",
+                                   best->label()));
     for (std::size_t i = 0; i < best->effects.size(); ++i) {
       const auto& nm = best->effects[i];
       std::string fit;

@@ -289,7 +289,8 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
       at_bound = at_bound || b.estimate[i] <= info->lower + 1e-3 * span ||
                  b.estimate[i] >= info->upper - 1e-3 * span;
     }
-    if (b.explained_fraction >= 0.7 && !at_bound) {
+    out.convincing = b.explained_fraction >= 0.7 && !at_bound;
+    if (out.convincing) {
       out.verdict = fmt::format(
           "Missing effect: {} ({}). It lowers chi^2 from {:.1f} to {:.1f} for {} data, explains {:.0f} % "
           "of the excess misfit, delta BIC {:.1f}{}.",

@@ -51,6 +51,7 @@ struct DiagnosisResult {
   std::vector<EffectFit> singles;         // ranked, best first
   std::vector<EffectFit> pairs;           // only pairs that beat every single by a clear margin
   bool any_significant = false;
+  bool convincing = false;                // the best fit explains >= 70 % and is inside its range
   std::vector<std::string> indistinguishable;  // effects about as good as the best
   std::vector<std::string> discriminators;     // which measurement would tell them apart
   std::vector<std::string> caveats;

@@ -5,10 +5,11 @@
 #include <numbers>
 
 #include "dem/material.h"
+#include "dem/types.h"
 
 namespace chutelab::dem {
 
-inline double cohesion_sjkr(const PairCoeffs& c, double delta, double r_eff) {
+CHUTELAB_INLINE double cohesion_sjkr(const PairCoeffs& c, double delta, double r_eff) {
   return c.cohesion * std::numbers::pi * r_eff * delta;
 }
 

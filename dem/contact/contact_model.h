@@ -17,7 +17,7 @@ struct ContactModel {
   static constexpr bool rolling_history = Rolling::has_history;
 
   // shear and roll are the contact's history (roll is unused unless rolling_history).
-  static ContactForce compute(const PairCoeffs& c, const ContactKinematics& k, Vec3& shear, Vec3* roll,
+  CHUTELAB_INLINE static ContactForce compute(const PairCoeffs& c, const ContactKinematics& k, Vec3& shear, Vec3* roll,
                               double dt) {
     const double vn = k.v_rel.dot(k.n);  // = d(delta)/dt
     NormalResult nr = Normal::normal(c, k.delta, vn, k.r_eff, k.m_eff);

@@ -11,7 +11,7 @@
 namespace chutelab::dem {
 
 struct CoulombHistorySpring {
-  static Vec3 force(const PairCoeffs& c, const NormalResult& nr, const Vec3& n, const Vec3& vt,
+  CHUTELAB_INLINE static Vec3 force(const PairCoeffs& c, const NormalResult& nr, const Vec3& n, const Vec3& vt,
                     Vec3& shear, double dt) {
     const double s2 = shear.squaredNorm();
     if (s2 > 0.0) {
@@ -33,7 +33,7 @@ struct CoulombHistorySpring {
 
 // Frictionless contacts (used by verification tests that isolate the normal law).
 struct NoTangential {
-  static Vec3 force(const PairCoeffs&, const NormalResult&, const Vec3&, const Vec3&, Vec3& shear,
+  CHUTELAB_INLINE static Vec3 force(const PairCoeffs&, const NormalResult&, const Vec3&, const Vec3&, Vec3& shear,
                     double) {
     shear.setZero();
     return Vec3::Zero();

@@ -10,7 +10,7 @@
 namespace chutelab::dem {
 
 struct LinearSpringDashpot {
-  static NormalResult normal(const PairCoeffs& c, double delta, double delta_dot, double /*r_eff*/,
+  CHUTELAB_INLINE static NormalResult normal(const PairCoeffs& c, double delta, double delta_dot, double /*r_eff*/,
                              double m_eff) {
     const double damping = c.linear_damping * std::sqrt(c.linear_kn * m_eff) * delta_dot;
     return {c.linear_kn * delta + damping, c.linear_kn, c.linear_kt,

@@ -16,7 +16,7 @@ namespace chutelab::dem {
 struct RollingConstantTorque {
   static constexpr bool has_history = false;
   static constexpr double kRestSpin = 1e-9;  // rad/s
-  static void torque(const PairCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
+  CHUTELAB_INLINE static void torque(const PairCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
                      Vec3* /*history*/, double dt, Vec3& ti, Vec3& tj) {
     const double fn = std::max(nr.force, 0.0);
     if (c.rolling_friction <= 0.0 || fn <= 0.0) return;
@@ -34,7 +34,7 @@ struct RollingConstantTorque {
 
 struct NoRolling {
   static constexpr bool has_history = false;
-  static void torque(const PairCoeffs&, const NormalResult&, const ContactKinematics&, Vec3*, double,
+  CHUTELAB_INLINE static void torque(const PairCoeffs&, const NormalResult&, const ContactKinematics&, Vec3*, double,
                      Vec3&, Vec3&) {}
 };
 

@@ -13,7 +13,7 @@ namespace chutelab::dem {
 
 struct RollingEpsd {
   static constexpr bool has_history = true;
-  static void torque(const PairCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
+  CHUTELAB_INLINE static void torque(const PairCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
                      Vec3* history, double dt, Vec3& ti, Vec3& tj) {
     Vec3& m = *history;
     const double fn = std::max(nr.force, 0.0);
