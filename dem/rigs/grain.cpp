@@ -48,8 +48,19 @@ std::int64_t add_grain(World& w, const Grain& g, const Vec3& position, const Qua
     s.density = density;
     return w.add_particle(s);
   }
-  (void)q;
-  throw InputError("", 0, "shape", "clumps are not yet supported by this World");
+  // One registered shape per World and grain size (a rig adds grains of one kind).
+  int shape = -1;
+  for (std::size_t k = 0; k < w.clumps().shapes.size(); ++k)
+    if (w.clumps().shapes[k].name == g.clump.name && w.clumps().shapes[k].volume == g.clump.volume) shape = static_cast<int>(k);
+  if (shape < 0) shape = w.add_clump_shape(g.clump);
+  ClumpSpec c;
+  c.shape = shape;
+  c.position = position;
+  c.orientation = q;
+  c.material = material;
+  c.density = density;
+  w.add_clump(c);
+  return w.particles().id.back() - static_cast<std::int64_t>(g.clump.spheres.size()) + 1;
 }
 
 RigMaterials add_rig_materials(World& w, const chutelab::Material& m, double density, double modulus_scale,
