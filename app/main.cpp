@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   app::add_validate(app, action);
   app::add_diagnose(app, action);
   app::add_synthesize(app, action);
+  app::add_calibrate(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
