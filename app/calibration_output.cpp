@@ -297,7 +297,7 @@ std::string calibration_html(const CalibrationContext& c, const CalibrationStudy
   return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>chutelab calibration</title>"
          "<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}"
          "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}"
-         "th{background:#f3f3f3}pre{background:#f6f6f6;padding:8px}p.item{margin:0.3em 0 0.3em 1em}</style></head><body>\n" +
+         "th{background:#f3f3f3}pre{background:#f6f6f6;padding:8px}p.item{margin:0.3em 0 0.3em 1em}svg{max-width:100%;height:auto}</style></head><body>\n" +
          body + "</body></html>\n";
 }
 

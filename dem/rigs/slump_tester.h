@@ -52,7 +52,7 @@ struct SlumpSettings {
 };
 
 enum class RigQuality { quick, standard };
-// quick: 30 mm fill (~500 spheres of 5.6 mm), Young's modulus / 100; standard: 60 mm fill, modulus / 10.
+// quick: 45 mm fill (~800 spheres of 5.6 mm), Young's modulus / 100; standard: 60 mm fill, modulus / 10.
 SlumpSettings slump_preset(RigQuality q);
 
 struct ProfilePoint {
