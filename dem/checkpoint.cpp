@@ -91,7 +91,7 @@ void World::save_checkpoint(const std::string& path) const {
   }
   for (const auto& s : sinks_) { w.pod(s.removed_mass); w.pod(s.removed_count); }
   // Clumps: member links and body state (shapes belong to the scene and are checked by count).
-  w.vec(p_.clump); w.vec(p_.body_offset);
+  w.vec(p_.clump); w.vec(p_.body_offset); w.vec(p_.contact_mass);
   w.pod(static_cast<std::uint64_t>(clumps_.shapes.size()));
   w.pod(next_clump_id_);
   const ClumpBodies& b = clumps_;
@@ -167,8 +167,8 @@ void World::load_checkpoint(const std::string& path) {
     in.warned_full = warned != 0;
   }
   for (auto& s : sinks_) { r.pod(s.removed_mass, "sink"); r.pod(s.removed_count, "sink"); }
-  r.vec(p_.clump, "clump links"); r.vec(p_.body_offset, "clump links");
-  if (p_.clump.size() != n || p_.body_offset.size() != n) throw InputError(path, 0, "clumps", "clump link arrays have the wrong length");
+  r.vec(p_.clump, "clump links"); r.vec(p_.body_offset, "clump links"); r.vec(p_.contact_mass, "clump links");
+  if (p_.clump.size() != n || p_.body_offset.size() != n || p_.contact_mass.size() != n) throw InputError(path, 0, "clumps", "clump link arrays have the wrong length");
   std::uint64_t nshapes;
   r.pod(nshapes, "clump shapes");
   if (nshapes != clumps_.shapes.size()) mismatch("clump shapes", nshapes, clumps_.shapes.size());

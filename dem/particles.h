@@ -26,6 +26,7 @@ struct Particles {
   // its mass is its share of the body's mass (so sums over spheres give the right totals).
   std::vector<std::int32_t> clump;
   std::vector<Vec3> body_offset;
+  std::vector<double> contact_mass;  // kg the contact laws use: the sphere's mass, or its clump's
 
   std::size_t size() const { return x.size(); }
 
@@ -44,6 +45,7 @@ struct Particles {
     id.push_back(ident);
     clump.push_back(-1);
     body_offset.push_back(Vec3::Zero());
+    contact_mass.push_back(m);
   }
 
   // Applies f(old) for every array: out[k] = in[order[k]].
@@ -61,6 +63,7 @@ struct Particles {
     gather(id, order);
     gather(clump, order);
     gather(body_offset, order);
+    gather(contact_mass, order);
   }
 
  private:

@@ -45,6 +45,7 @@ std::int64_t World::add_clump(const ClumpSpec& s) {
     p_.clump.back() = c;
     p_.body_offset.back() = shape.spheres[k].offset;
     p_.inv_inertia.back() = inv_i;
+    p_.contact_mass.back() = clumps_.mass[cs];
   }
   list_dirty_ = true;
   return body_id;

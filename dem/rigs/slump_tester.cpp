@@ -143,6 +143,7 @@ SlumpResult run_slump_test(const chutelab::Material& m, double solid_density, do
     for (std::size_t i = 0; i < p.size(); ++i) {
       p.inv_mass[i] = 0.0;  // glued: infinite mass and inertia, never moves
       p.inv_inertia[i] = 0.0;
+      p.contact_mass[i] = 1e6 * p.mass[i];  // a grain hitting it meets a fixed body, as at a wall (m* = m)
     }
   }
 
