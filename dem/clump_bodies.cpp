@@ -52,6 +52,13 @@ void ClumpBodies::kick(double half_dt) {
   }
 }
 
+void ClumpBodies::kick_momenta(double half_dt) {
+  for (std::size_t c = 0; c < size(); ++c) {
+    v[c] += (half_dt / mass[c]) * f[c];
+    L[c] += half_dt * t[c];
+  }
+}
+
 void ClumpBodies::drift(double dt) {
   for (std::size_t c = 0; c < size(); ++c) {
     x[c] += dt * v[c];

@@ -48,6 +48,7 @@ struct ClumpBodies {
   double member_mass(int shape_index, std::size_t k, double density) const;
 
   void kick(double half_dt);
+  void kick_momenta(double half_dt);  // the same without refreshing w (drift() refreshes it next)
   void drift(double dt);
   // Sets x, v, w of every member from its body; returns the largest distance a member moved.
   double place_members(Particles& p) const;

@@ -52,7 +52,7 @@ std::int64_t World::add_clump(const ClumpSpec& s) {
 }
 
 void World::clumps_after_drift(double dt, double& maxd2) {
-  clumps_.kick(0.5 * dt);
+  clumps_.kick_momenta(0.5 * dt);
   clumps_.drift(dt);
   clumps_.place_members(p_);
   for (std::size_t i = 0; i < p_.size(); ++i)
