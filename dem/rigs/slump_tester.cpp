@@ -287,7 +287,7 @@ SlumpResult run_slump_test(const chutelab::Material& m, double solid_density, do
     double top = z_bed;
     for (std::size_t i = 0; i < p.size(); ++i)
       if (is_sample(i) && std::hypot(p.x[i].x(), p.x[i].y()) < 2.0 * d) top = std::max(top, p.x[i].z() + p.radius[i]);
-    res.pile_height = top - z_bed;
+    res.peak_height = top - z_bed;
     const double cell = 1.5 * d;
     const auto cells = surface_cells(p, cell, [&](std::size_t i) { return is_sample(i) && p.x[i].z() > 0.0; });
     const int nbins = static_cast<int>(std::ceil(rp / cell));
@@ -318,7 +318,7 @@ SlumpResult run_slump_test(const chutelab::Material& m, double solid_density, do
     double sr = 0, sh = 0, srr = 0, srh = 0;
     int n = 0;
     for (const auto& pp : res.profile)
-      if (pp.h >= 0.2 * res.pile_height && pp.h <= 0.8 * res.pile_height) {
+      if (pp.h >= 0.2 * res.peak_height && pp.h <= 0.8 * res.peak_height) {
         sr += pp.r;
         sh += pp.h;
         srr += pp.r * pp.r;
@@ -329,8 +329,10 @@ SlumpResult run_slump_test(const chutelab::Material& m, double solid_density, do
     if (n >= 3 && den > 0.0) {
       const double slope = (n * srh - sr * sh) / den;
       res.repose_angle_deg = std::atan(-slope) * 180.0 / pi;
+      res.pile_height = (sh - slope * sr) / n;  // the flank line at r = 0: the cone's apex
     } else {
       res.repose_angle_deg = kNaN;
+      res.pile_height = res.peak_height;
     }
   }
   res.steps = w.step_count();

@@ -32,7 +32,7 @@ chutelab::Material pellets() {
 
 SlumpSettings small() {
   SlumpSettings s = slump_preset(RigQuality::quick);
-  s.fill_height = 0.024;  // ~400 spheres of 5.6 mm
+  s.fill_height = 0.030;  // ~540 spheres of 5.6 mm
   s.threads = 1;
   return s;
 }
@@ -42,7 +42,7 @@ SlumpSettings small() {
 // Loose packing: solid fraction rho_bulk / rho_s between 0.50 and 0.64 (random loose packing of
 // frictional spheres is ~0.55-0.60, random close packing 0.64; a tube only ~11 diameters wide loosens
 // the packing near its wall). The pile: its height is measurable (more than two grains, less than the
-// fill, since the material spreads) and its flank gives an angle of repose between 10 and 40 degrees
+// fill, since the column spreads out) and its flank gives an angle of repose between 10 and 40 degrees
 // (spheres with mu_r = 0.1 and mu = 0.3 pile at roughly 20-30 degrees).
 BOOST_AUTO_TEST_CASE(slump_test_gives_loose_packing_and_a_measurable_pile) {
   const SlumpResult r = run_slump_test(pellets(), 1000.0, 0.1, Grain::sphere(5.6e-3), small());
