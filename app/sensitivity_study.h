@@ -58,7 +58,9 @@ struct Table6Verdict {
   bool fluctuation_grows = false;   // fluctuation of R increases with particle diameter
   std::vector<std::pair<double, double>> size_fluctuation;  // (d in m, sd of R in N), ascending d
   double size_mean_spread = 0.0;    // %, largest |change| among the size variants
-  bool reproduced() const { return mean_insensitive && fluctuation_grows; }
+  bool mean_tested = false;         // at least one contact/shape/dt/G variant ran
+  bool size_tested = false;         // at least two particle sizes ran
+  bool reproduced() const { return mean_tested && size_tested && mean_insensitive && fluctuation_grows; }
   std::string text;                 // one paragraph, with the numbers
 };
 

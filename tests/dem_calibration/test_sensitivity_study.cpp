@@ -65,6 +65,11 @@ BOOST_AUTO_TEST_CASE(verdict_follows_the_numbers) {
   const SensitivityStudy flat = made_up(104.0, 25.0);  // 9 mm fluctuates more than 13.6 mm
   BOOST_TEST(!flat.verdict.fluctuation_grows);
   BOOST_TEST(flat.verdict.text.find("NOT reproduced") != std::string::npos);
+  SensitivityStudy part = made_up(104.0, 12.0);  // only the base and LSD: not a verdict
+  part.rows.resize(2);
+  evaluate(part);
+  BOOST_TEST(!part.verdict.reproduced());
+  BOOST_TEST(part.verdict.text.find("NOT FULLY TESTED") != std::string::npos);
   const std::string csv = sensitivity_csv(ok), md = sensitivity_md(ok), html = sensitivity_html(ok);
   BOOST_TEST(std::count(csv.begin(), csv.end(), '\n') == 9);
   BOOST_TEST(md.find("| LSD |") != std::string::npos);
