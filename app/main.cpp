@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   app::add_diagnose(app, action);
   app::add_synthesize(app, action);
   app::add_simulate(app, action);
+  app::add_calibrate(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

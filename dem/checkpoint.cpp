@@ -14,7 +14,7 @@ namespace chutelab::dem {
 namespace {
 
 constexpr char kMagic[8] = {'C', 'H', 'L', 'D', 'E', 'M', 'C', 'K'};
-constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersion = 3;  // 2: block force layout; 3: clumps
 
 struct Writer {
   std::ofstream out;
@@ -90,6 +90,16 @@ void World::save_checkpoint(const std::string& path) const {
     w.pod(static_cast<std::uint8_t>(in.warned_full));
   }
   for (const auto& s : sinks_) { w.pod(s.removed_mass); w.pod(s.removed_count); }
+  // Clumps: member links and body state (shapes belong to the scene and are checked by count).
+  w.vec(p_.clump); w.vec(p_.body_offset); w.vec(p_.contact_mass);
+  w.pod(static_cast<std::uint64_t>(clumps_.shapes.size()));
+  w.pod(next_clump_id_);
+  const ClumpBodies& b = clumps_;
+  std::vector<Vec3> q3;  // quaternion as (x, y, z) + w, stored as two arrays of trivially copyable data
+  std::vector<double> qw;
+  for (const auto& q : b.q) { q3.emplace_back(q.x(), q.y(), q.z()); qw.push_back(q.w()); }
+  w.vec(b.x); w.vec(b.v); w.vec(q3); w.vec(qw); w.vec(b.L); w.vec(b.w); w.vec(b.f); w.vec(b.t);
+  w.vec(b.mass); w.vec(b.inv_inertia); w.vec(b.member_moment); w.vec(b.shape); w.vec(b.members); w.vec(b.id);
   if (!w.out) throw InputError(path, 0, "", "error while writing checkpoint");
 }
 
@@ -161,6 +171,32 @@ void World::load_checkpoint(const std::string& path) {
     in.warned_full = warned != 0;
   }
   for (auto& s : sinks_) { r.pod(s.removed_mass, "sink"); r.pod(s.removed_count, "sink"); }
+  r.vec(p_.clump, "clump links"); r.vec(p_.body_offset, "clump links"); r.vec(p_.contact_mass, "clump links");
+  if (p_.clump.size() != n || p_.body_offset.size() != n || p_.contact_mass.size() != n) throw InputError(path, 0, "clumps", "clump link arrays have the wrong length");
+  std::uint64_t nshapes;
+  r.pod(nshapes, "clump shapes");
+  if (nshapes != clumps_.shapes.size()) mismatch("clump shapes", nshapes, clumps_.shapes.size());
+  r.pod(next_clump_id_, "clumps");
+  ClumpBodies& b = clumps_;
+  std::vector<Vec3> q3;
+  std::vector<double> qw;
+  r.vec(b.x, "clumps"); r.vec(b.v, "clumps"); r.vec(q3, "clumps"); r.vec(qw, "clumps"); r.vec(b.L, "clumps");
+  r.vec(b.w, "clumps"); r.vec(b.f, "clumps"); r.vec(b.t, "clumps"); r.vec(b.mass, "clumps");
+  r.vec(b.inv_inertia, "clumps"); r.vec(b.member_moment, "clumps"); r.vec(b.shape, "clumps");
+  r.vec(b.members, "clumps"); r.vec(b.id, "clumps");
+  const std::size_t nb = b.x.size();
+  if (b.v.size() != nb || q3.size() != nb || qw.size() != nb || b.L.size() != nb || b.w.size() != nb ||
+      b.f.size() != nb || b.t.size() != nb || b.mass.size() != nb || b.inv_inertia.size() != nb ||
+      b.member_moment.size() != nb || b.shape.size() != nb || b.members.size() != nb || b.id.size() != nb)
+    throw InputError(path, 0, "clumps", "clump arrays have different lengths");
+  for (auto c : p_.clump)
+    if (c < -1 || c >= static_cast<std::int32_t>(nb)) throw InputError(path, 0, "clumps", "clump index out of range");
+  b.q.clear();
+  b.rot.clear();
+  for (std::size_t c = 0; c < nb; ++c) {
+    b.q.emplace_back(qw[c], q3[c].x(), q3[c].y(), q3[c].z());
+    b.rot.push_back(b.q.back().toRotationMatrix());
+  }
   if (settings_.dt > 0.0 && settings_.dt != dt_)
     warn(fmt::format("checkpoint {} uses dt = {:.6g} s; the scene's dt {:.6g} s is ignored", path, dt_, settings_.dt));
   initialised_ = init != 0;

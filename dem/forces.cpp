@@ -148,7 +148,10 @@ void World::compute_forces_impl() {
   const Vec3* v = p_.v.data();
   const Vec3* w = p_.w.data();
   const double* rad = p_.radius.data();
-  const double* mass = p_.mass.data();
+  // Contact laws see a clump sphere's whole body mass (its damping and time scale are those of the body);
+  // gravity uses each sphere's share. For free spheres the two are the same number.
+  const double* mass = p_.contact_mass.data();
+  const double* share = p_.mass.data();
   const double* inv_i = p_.inv_inertia.data();
   const std::int32_t* mat = p_.material.data();
   const std::int32_t* row = nl_.row_begin.data();
@@ -303,7 +306,7 @@ void World::compute_forces_impl() {
       fi += wof[q];
       ti += wot[q];
     }
-    fi += mass[i] * g;
+    fi += share[i] * g;
   };
 
   // Pair forces into fixed blocks of rows (see world.h), then one pass per particle that adds the

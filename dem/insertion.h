@@ -20,6 +20,9 @@ struct Inserter {
   double interval = 1e-3;     // s between insertion events (mass accumulates in between)
   std::uint64_t seed = 1;
   int max_attempts = 200;     // random placements tried per particle before giving up for this event
+  // >= 0: insert clumps of this shape (World::add_clump_shape) in random orientations instead of spheres,
+  // scaled so that their largest sphere has the drawn radius.
+  int clump_shape = -1;
 
   // --- state, maintained by World ---
   std::uint64_t rng_state = 0;

@@ -159,6 +159,7 @@ void World::rebuild() {
   auto visit_row = [&](std::size_t i, std::vector<std::int32_t>& out) {
     const Vec3 xi = p_.x[i];
     const double ri = p_.radius[i] + skin_;
+    const std::int32_t body_i = p_.clump[i];  // spheres of one clump never contact each other
     const std::int64_t cx = cell_coord(xi, 0), cy = cell_coord(xi, 1), cz = cell_coord(xi, 2);
     const std::int64_t own = (cz * dim[1] + cy) * dim[0] + cx;
     for (std::int64_t z = std::max<std::int64_t>(cz - 1, 0); z <= std::min(cz + 1, dim[2] - 1); ++z)
@@ -170,6 +171,7 @@ void World::rebuild() {
           for (std::int32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
             const std::int32_t j = cell_members[static_cast<std::size_t>(k)];
             if (j <= static_cast<std::int32_t>(i)) continue;
+            if (body_i >= 0 && p_.clump[static_cast<std::size_t>(j)] == body_i) continue;
             const double cut = ri + p_.radius[static_cast<std::size_t>(j)];
             if ((p_.x[static_cast<std::size_t>(j)] - xi).squaredNorm() < cut * cut) out.push_back(j);
           }

@@ -21,6 +21,12 @@ struct Particles {
   std::vector<double> inv_inertia;  // 1/(kg m^2), solid sphere I = 2/5 m R^2
   std::vector<std::int32_t> material;
   std::vector<std::int64_t> id;
+  // Rigid multi-sphere particles (dem/clump_bodies.h): the body a sphere belongs to (-1: a free sphere)
+  // and its centre in the body's principal frame. A member's x, v, w are set from its body every step;
+  // its mass is its share of the body's mass (so sums over spheres give the right totals).
+  std::vector<std::int32_t> clump;
+  std::vector<Vec3> body_offset;
+  std::vector<double> contact_mass;  // kg the contact laws use: the sphere's mass, or its clump's
 
   std::size_t size() const { return x.size(); }
 
@@ -37,6 +43,9 @@ struct Particles {
     inv_inertia.push_back(1.0 / (0.4 * m * r * r));
     material.push_back(mat);
     id.push_back(ident);
+    clump.push_back(-1);
+    body_offset.push_back(Vec3::Zero());
+    contact_mass.push_back(m);
   }
 
   // Reorders every array: out[k] = in[order[k]] (order may also drop entries). threads > 1 gathers
@@ -53,6 +62,9 @@ struct Particles {
     gather(inv_inertia, order, threads);
     gather(material, order, threads);
     gather(id, order, threads);
+    gather(clump, order, threads);
+    gather(body_offset, order, threads);
+    gather(contact_mass, order, threads);
   }
 
  private:

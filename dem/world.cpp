@@ -102,8 +102,17 @@ int World::add_inserter(Inserter in) {
   if (in.material < 0 || in.material >= materials_.size()) throw InputError("", 0, field, "unknown material index");
   if (!(materials_.material(in.material).density > 0.0)) throw InputError("", 0, field, "material density must be > 0");
   if (!(in.interval > 0.0)) throw InputError("", 0, field, "interval must be > 0 s");
+  double reach = in.radius_max;
+  if (in.clump_shape >= 0) {
+    if (in.clump_shape >= static_cast<int>(clumps_.shapes.size())) throw InputError("", 0, field, "unknown clump shape index");
+    if (in.radius_min != in.radius_max)
+      throw InputError("", 0, field, "clumps are inserted at one size: give radius_min = radius_max");
+    const ClumpShape& base = clumps_.shapes[static_cast<std::size_t>(in.clump_shape)];
+    in.clump_shape = add_clump_shape(base.scaled(in.radius_max / base.largest_sphere_radius()));
+    reach = clumps_.shapes[static_cast<std::size_t>(in.clump_shape)].bounding_radius;
+  }
   const Vec3 size = in.region.hi - in.region.lo;
-  if (size.minCoeff() < 2.0 * in.radius_max)
+  if (size.minCoeff() < 2.0 * reach)
     throw InputError("", 0, field, "insertion region is narrower than one particle diameter");
   in.rng_state = in.seed;
   in.next_time = in.start_time;
@@ -120,11 +129,14 @@ int World::add_sink(Sink s) {
 
 void World::remove_particles_if(const std::function<bool(std::size_t)>& pred) {
   const std::size_t n = p_.size();
+  std::vector<char> gone(n, 0);
+  for (std::size_t i = 0; i < n; ++i) gone[i] = pred(i) ? 1 : 0;
+  if (clumps_.size() > 0) remove_whole_clumps(gone);
   std::vector<std::int32_t> keep;
   std::vector<std::int32_t> remap(n, -1);
   keep.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
-    if (!pred(i)) {
+    if (!gone[i]) {
       remap[i] = static_cast<std::int32_t>(keep.size());
       keep.push_back(static_cast<std::int32_t>(i));
     }
@@ -255,6 +267,7 @@ void World::initialise() {
   for (auto& w : walls_) w.set_time(time_);
   rebuild();
   compute_forces();
+  if (clumps_.size() > 0) clumps_.gather(p_, settings_.gravity);
   check_state();
 }
 
@@ -305,6 +318,7 @@ void World::step(std::int64_t n) {
         maxd2 = std::max(maxd2, (xi - xr[i]).squaredNorm());
       }
     }
+    if (clumps_.size() > 0) clumps_after_drift(dt, maxd2);
     max_disp_ = std::sqrt(maxd2);
     time_ = static_cast<double>(step_ + 1) * dt;  // no accumulated round-off in time
     for (auto& w : walls_)
@@ -339,6 +353,7 @@ void World::step(std::int64_t n) {
           first_bad = std::min(first_bad, i);
       }
     }
+    if (clumps_.size() > 0) clumps_after_forces(dt);
     ++step_;
     if (first_bad < np2) report_bad(first_bad);
   }
@@ -377,16 +392,27 @@ void World::insert_and_delete() {
       for (const auto& s : sinks_)
         if ((p_.x[i] - s.point).dot(s.normal) < 0.0) any = true;
     if (any) {
-      std::vector<char> gone(p_.size(), 0);
+      std::vector<int> sink_of(p_.size(), -1);
       for (std::size_t i = 0; i < p_.size(); ++i)
-        for (auto& s : sinks_)
-          if ((p_.x[i] - s.point).dot(s.normal) < 0.0) {
-            gone[i] = 1;
-            s.removed_mass += p_.mass[i];
-            ++s.removed_count;
+        for (std::size_t k = 0; k < sinks_.size(); ++k)
+          if ((p_.x[i] - sinks_[k].point).dot(sinks_[k].normal) < 0.0) {
+            sink_of[i] = static_cast<int>(k);
             break;
           }
-      remove_particles_if([&](std::size_t i) { return gone[i] != 0; });
+      if (clumps_.size() > 0) {  // a clump goes whole, to the sink that caught its first sphere
+        std::vector<int> body_sink(clumps_.size(), -1);
+        for (std::size_t i = 0; i < p_.size(); ++i)
+          if (p_.clump[i] >= 0 && sink_of[i] >= 0 && body_sink[static_cast<std::size_t>(p_.clump[i])] < 0)
+            body_sink[static_cast<std::size_t>(p_.clump[i])] = sink_of[i];
+        for (std::size_t i = 0; i < p_.size(); ++i)
+          if (p_.clump[i] >= 0) sink_of[i] = body_sink[static_cast<std::size_t>(p_.clump[i])];
+      }
+      for (std::size_t i = 0; i < p_.size(); ++i)
+        if (sink_of[i] >= 0) {
+          sinks_[static_cast<std::size_t>(sink_of[i])].removed_mass += p_.mass[i];
+          ++sinks_[static_cast<std::size_t>(sink_of[i])].removed_count;
+        }
+      remove_particles_if([&](std::size_t i) { return sink_of[i] >= 0; });
     }
   }
   for (auto& in : inserters_) {
@@ -405,9 +431,10 @@ void World::insert_and_delete() {
     for (std::size_t i = 0; i < p_.size(); ++i)
       if (grow.contains(p_.x[i])) near.push_back(i);
     while (in.pending_mass > 0.0) {
-      const double r = in.radius_min + (in.radius_max - in.radius_min) * uniform01(in.rng_state);
       bool placed = false;
-      for (int attempt = 0; attempt < in.max_attempts && !placed; ++attempt) {
+      const double r = in.clump_shape >= 0 ? 0.0 : in.radius_min + (in.radius_max - in.radius_min) * uniform01(in.rng_state);
+      if (in.clump_shape >= 0) placed = try_insert_clump(in, near);
+      for (int attempt = 0; in.clump_shape < 0 && attempt < in.max_attempts && !placed; ++attempt) {
         Vec3 pos;
         for (int d = 0; d < 3; ++d)
           pos[d] = in.region.lo[d] + r + (in.region.hi[d] - in.region.lo[d] - 2.0 * r) * uniform01(in.rng_state);
@@ -459,7 +486,11 @@ std::size_t World::wall_contact_count() const {
 
 Energy World::energy() const {
   Energy e;
+  e.translational = clumps_.translational_energy();
+  e.rotational = clumps_.rotational_energy();
+  for (std::size_t c = 0; c < clumps_.size(); ++c) e.gravitational -= clumps_.mass[c] * settings_.gravity.dot(clumps_.x[c]);
   for (std::size_t i = 0; i < p_.size(); ++i) {
+    if (p_.clump[i] >= 0) continue;  // counted with its body
     e.translational += 0.5 * p_.mass[i] * p_.v[i].squaredNorm();
     e.rotational += 0.5 / p_.inv_inertia[i] * p_.w[i].squaredNorm();
     e.gravitational -= p_.mass[i] * settings_.gravity.dot(p_.x[i]);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "dem/clump_bodies.h"
 #include "dem/contact/contact_model.h"
 #include "dem/insertion.h"
 #include "dem/material.h"
@@ -44,6 +45,18 @@ struct ParticleSpec {
   Vec3 velocity = Vec3::Zero();
   Vec3 omega = Vec3::Zero();
   double radius = 0.0;
+  int material = 0;
+  double density = 0.0;  // kg/m^3; 0 -> the material's density
+};
+
+// A rigid multi-sphere particle (dem/clump.h): a shape registered with World::add_clump_shape, placed
+// with its centre of mass at `position` and its principal frame turned by `orientation`.
+struct ClumpSpec {
+  int shape = 0;
+  Vec3 position = Vec3::Zero();
+  Quat orientation = Quat::Identity();
+  Vec3 velocity = Vec3::Zero();
+  Vec3 omega = Vec3::Zero();
   int material = 0;
   double density = 0.0;  // kg/m^3; 0 -> the material's density
 };
@@ -110,11 +123,17 @@ class World {
 
   // Returns the particle's persistent id. Throws InputError for impossible values.
   std::int64_t add_particle(const ParticleSpec& spec);
+  // Clumps: register a shape once, then add bodies; returns the body's persistent id. Its member spheres
+  // become particles (ids of their own) that move rigidly with the body.
+  int add_clump_shape(const ClumpShape& shape);
+  std::int64_t add_clump(const ClumpSpec& spec);
+  const ClumpBodies& clumps() const { return clumps_; }
   int add_wall(Wall wall);
   int add_inserter(Inserter inserter);
   int add_sink(Sink sink);
   void set_body_force(BodyForceHook hook) { body_force_ = std::move(hook); }
-  // Removes particles for which pred(index) is true (e.g. by id or region).
+  // Removes particles for which pred(index) is true (e.g. by id or region); a clump goes as a whole
+  // when any of its spheres is selected.
   void remove_particles_if(const std::function<bool(std::size_t)>& pred);
 
   // Advances n steps. Throws SimulationError on blow-up or a lost particle.
@@ -167,6 +186,13 @@ class World {
   void insert_and_delete();
   void check_state() const;
   [[noreturn]] void report_bad(std::size_t i) const;
+  // Clumps (dem/world_clumps.cpp): body half kick + drift + member placement (raises maxd2 to the
+  // members' displacement since the last rebuild); gather + half kick + member velocities; removal of
+  // whole bodies; insertion of one body by an inserter.
+  void clumps_after_drift(double dt, double& maxd2);
+  void clumps_after_forces(double dt);
+  void remove_whole_clumps(std::vector<char>& gone);
+  bool try_insert_clump(Inserter& in, std::vector<std::size_t>& near);
   void warn(const std::string& msg);
   int thread_count() const;
   double wall_displacement_since_rebuild(const Wall& w) const;
@@ -178,6 +204,8 @@ class World {
   std::vector<Inserter> inserters_;
   std::vector<Sink> sinks_;
   BodyForceHook body_force_;
+  ClumpBodies clumps_;
+  std::int64_t next_clump_id_ = 0;
   NeighborList nl_;
   WallCandidates wc_;
   std::vector<Vec3> x_ref_;              // positions at the last rebuild

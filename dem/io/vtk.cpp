@@ -21,6 +21,8 @@ void write_vtk_particles(const std::string& path, const Particles& p) {
   f << fmt::format("POINT_DATA {}\n", n);
   f << "SCALARS id double 1\nLOOKUP_TABLE default\n";
   for (auto id : p.id) f << id << '\n';
+  f << "SCALARS clump double 1\nLOOKUP_TABLE default\n";  // body index of a clump's spheres, -1 for free spheres
+  for (auto c : p.clump) f << c << '\n';
   f << "SCALARS radius double 1\nLOOKUP_TABLE default\n";
   for (double r : p.radius) f << fmt::format("{:.9g}\n", r);
   auto vectors = [&](const char* name, const std::vector<Vec3>& a) {

@@ -1,0 +1,324 @@
+#include "app/calibration_output.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "core/units.h"
+#include "reports/svg.h"
+#include "validation/output_files.h"
+
+namespace chutelab::app {
+namespace {
+
+using dem::rigs::CalibrationRow;
+using dem::rigs::CalibrationStudy;
+using dem::rigs::GrainKind;
+using validation::csv_number;
+
+std::string grain_label(const CalibrationStudy& s, GrainKind k) {
+  return k == GrainKind::sphere ? s.plan.sphere.label() : s.plan.clump.label();
+}
+
+std::string num(double v, int decimals) { return std::isfinite(v) ? reports::fixed(v, decimals) : "–"; }
+
+// The row the material is written from: the closest one, else the first.
+const CalibrationRow& chosen(const CalibrationStudy& s) {
+  return s.rows.at(s.closest >= 0 ? static_cast<std::size_t>(s.closest) : 0);
+}
+
+// Plain-language trends of the sweep, computed from the rows (what the seed's §5 reads off Table 3).
+std::vector<std::string> findings(const CalibrationStudy& s) {
+  std::vector<std::string> out;
+  for (GrainKind k : s.plan.shapes)
+    for (double rho : s.plan.density) {
+      const CalibrationRow *lo = nullptr, *hi = nullptr;
+      for (const auto& r : s.rows)
+        if (r.shape == k && r.solid_density == rho) {
+          if (!lo || r.rolling_friction < lo->rolling_friction) lo = &r;
+          if (!hi || r.rolling_friction > hi->rolling_friction) hi = &r;
+        }
+      if (!lo || lo == hi) continue;
+      out.push_back(fmt::format(
+          "{}, rho_s = {:g} kg/m^3: raising mu_r from {:g} to {:g} changes the pile height from {:.1f} to {:.1f} mm "
+          "({:+.0f} %) and the bulk density from {:.0f} to {:.0f} kg/m^3 ({:+.1f} %).",
+          grain_label(s, k), rho, lo->rolling_friction, hi->rolling_friction, lo->slump.pile_height * 1e3,
+          hi->slump.pile_height * 1e3, 100.0 * (hi->slump.pile_height / lo->slump.pile_height - 1.0),
+          lo->slump.bulk_density, hi->slump.bulk_density, 100.0 * (hi->slump.bulk_density / lo->slump.bulk_density - 1.0)));
+    }
+  // Shape at equal rolling friction and density: packing (solid fraction).
+  if (s.plan.shapes.size() == 2) {
+    double sum_s = 0, sum_c = 0;
+    int n = 0;
+    for (const auto& a : s.rows)
+      for (const auto& b : s.rows)
+        if (a.shape == GrainKind::sphere && b.shape == GrainKind::clump && a.rolling_friction == b.rolling_friction &&
+            a.solid_density == b.solid_density) {
+          sum_s += a.slump.bulk_density / a.solid_density;
+          sum_c += b.slump.bulk_density / b.solid_density;
+          ++n;
+        }
+    if (n > 0)
+      out.push_back(fmt::format("Mean solid fraction (bulk / solid density): spheres {:.3f}, clumps {:.3f} — the "
+                                "shaped particles pack {} (seed §5: \"the smaller shaped particles pack more "
+                                "efficiently ... and achieve a higher loose-poured bulk density\").",
+                                sum_s / n, sum_c / n, sum_c > sum_s ? "more densely, as in the seed" : "less densely, unlike the seed"));
+  }
+  // Density at equal shape and rolling friction: pile height sensitivity.
+  if (s.plan.density.size() >= 2) {
+    double worst = 0.0;
+    for (const auto& a : s.rows)
+      for (const auto& b : s.rows)
+        if (a.shape == b.shape && a.rolling_friction == b.rolling_friction && a.solid_density < b.solid_density)
+          worst = std::max(worst, std::abs(b.slump.pile_height / a.slump.pile_height - 1.0));
+    out.push_back(fmt::format("Solid density changes the pile height by at most {:.0f} % at equal shape and mu_r "
+                              "(seed: \"the sensitivity of the solid density on the height of pile formed is minor\").",
+                              100.0 * worst));
+  }
+  return out;
+}
+
+std::string targets_text(const CalibrationStudy& s) {
+  std::vector<std::string> t;
+  if (s.plan.targets.bulk_density) t.push_back(fmt::format("bulk density {:.0f} kg/m^3", *s.plan.targets.bulk_density));
+  if (s.plan.targets.pile_height) t.push_back(fmt::format("pile height {:.1f} mm", *s.plan.targets.pile_height * 1e3));
+  if (t.empty()) return "none (no combination is marked)";
+  return fmt::format("{}", fmt::join(t, ", "));
+}
+
+std::string rig_text(const CalibrationStudy& s) {
+  const auto& st = s.plan.settings;
+  return fmt::format(
+      "Swing-arm slump tester (seed Fig. 5): {:.0f} mm I.D. split tube on a bed of glued grains of the same "
+      "material filling a {:.0f} mm pipe; sample poured to about {:.0f} mm, settled (no grain faster than {:g} m/s), "
+      "tube halves moved apart at {:g} m/s; Young's modulus x {:g} (a shorter run; the seed found mean flow "
+      "results insensitive to G x10 and /10). Bulk density: mass per volume of the settled column's core; angle of "
+      "repose: line fit of the pile's surface profile over its flank (20-80 % of the peak); pile height: that line at "
+      "the axis (the fitted cone's apex; a single pour scatters by ~0.6 % in bulk density and ~3 % in this height, "
+      "5 seeds).",
+      st.tube_diameter * 1e3, st.pipe_diameter * 1e3, st.fill_height * 1e3, st.settle_speed, st.open_speed,
+      st.modulus_scale);
+}
+
+}  // namespace
+
+std::string calibration_csv(const CalibrationStudy& s) {
+  std::string out =
+      "shape,grain,rolling_friction,solid_density_kgm3,bulk_density_kgm3,pile_height_mm,repose_angle_deg,"
+      "peak_height_mm,fill_height_mm,particles,settled,run_seconds,target_distance,closest\n";
+  for (std::size_t k = 0; k < s.rows.size(); ++k) {
+    const auto& r = s.rows[k];
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", name(r.shape), grain_label(s, r.shape),
+                       csv_number(r.rolling_friction), csv_number(r.solid_density), csv_number(r.slump.bulk_density),
+                       csv_number(r.slump.pile_height * 1e3), csv_number(r.slump.repose_angle_deg),
+                       csv_number(r.slump.peak_height * 1e3), csv_number(r.slump.fill_height * 1e3), r.slump.particles, r.slump.settled ? 1 : 0,
+                       csv_number(r.slump.wall_seconds),
+                       std::isfinite(r.distance) ? csv_number(r.distance) : std::string(),
+                       static_cast<int>(k) == s.closest ? 1 : 0);
+  }
+  return out;
+}
+
+std::string incline_csv(const CalibrationStudy& s) {
+  std::string out = "rolling_friction_wall,friction_wall,onset_deg,predicted_deg,motion,predicted_motion\n";
+  for (const auto& r : s.incline)
+    out += fmt::format("{},{},{},{},{},{}\n", csv_number(r.rolling_friction), csv_number(r.wall_friction),
+                       csv_number(r.result.onset_deg), csv_number(r.result.predicted.onset_deg),
+                       dem::rigs::name(r.result.motion), dem::rigs::name(r.result.predicted.motion));
+  return out;
+}
+
+std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& s) {
+  std::string md = "# Slump-test calibration (seed Table 3)\n\n";
+  md += fmt::format("Dataset `{}`, quality `{}`; {} slump tests in {:.0f} s.\n\n", reports::md_esc(c.dataset), c.quality,
+                    s.rows.size(), s.wall_seconds);
+  md += rig_text(s) + "\n\n";
+  md += fmt::format("Held constant from the dataset: mu_s = {:g} (particle-particle), e = {:g}, E = {:g} MPa, nu = {:g}.\n\n",
+                    c.setup.material.friction_particle, c.setup.material.restitution_particle,
+                    c.setup.material.youngs_modulus / 1e6, c.setup.material.poisson_ratio);
+  md += fmt::format("Target (measured): {}.\n\n", targets_text(s));
+  md += "| particle | rolling friction mu_r | solid density (kg/m^3) | bulk density (kg/m^3) | pile height (mm) | "
+        "angle of repose (deg) | grains | run (s) | distance to target |\n";
+  md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (std::size_t k = 0; k < s.rows.size(); ++k) {
+    const auto& r = s.rows[k];
+    const bool best = static_cast<int>(k) == s.closest;
+    const std::string b = best ? "**" : "";
+    md += fmt::format("| {b}{}{b}{} | {b}{:g}{b} | {b}{:g}{b} | {b}{:.0f}{b} | {b}{:.1f}{b} | {} | {} | {:.1f} | {} |\n",
+                      grain_label(s, r.shape), best ? " ◀ closest" : "", r.rolling_friction, r.solid_density,
+                      r.slump.bulk_density, r.slump.pile_height * 1e3, num(r.slump.repose_angle_deg, 1),
+                      r.slump.particles, r.slump.wall_seconds,
+                      std::isfinite(r.distance) ? fmt::format("{:.1f} %", 100.0 * r.distance) : "–",
+                      fmt::arg("b", b));
+  }
+  if (s.plan.targets.any())
+    md += fmt::format("| experiment (target) | | | {} | {} | | | | |\n",
+                      s.plan.targets.bulk_density ? fmt::format("{:.0f}", *s.plan.targets.bulk_density) : "–",
+                      s.plan.targets.pile_height ? fmt::format("{:.1f}", *s.plan.targets.pile_height * 1e3) : "–");
+  bool unsettled = false;
+  for (const auto& r : s.rows) unsettled = unsettled || !r.slump.settled;
+  if (unsettled) md += "\nSome runs reached their time limit before every grain came to rest (settled = 0 in the CSV).\n";
+  md += "\n## What the sweep shows\n\n";
+  for (const auto& f : findings(s)) md += "- " + f + "\n";
+  if (!s.incline.empty()) {
+    md += "\n## Inclined-plane rig (particle-wall rolling friction)\n\n";
+    md += "A sphere of the scaled size on the plate material, tilted in steps (bisection to 0.05 deg); onset = the "
+          "first angle at which it accelerates down the slope. Seed Eq 10 (constant rolling torque mu_r F_n R) with "
+          "Coulomb friction predicts tan(theta) = min(mu_r, mu_s): rolling when mu_r < mu_s, sliding otherwise.\n\n";
+    md += "| mu_r (wall) | mu_s (wall) | onset, DEM (deg) | Eq 10 (deg) | motion | predicted |\n|---:|---:|---:|---:|---|---|\n";
+    for (const auto& r : s.incline)
+      md += fmt::format("| {:g} | {:g} | {} | {:.2f} | {} | {} |\n", r.rolling_friction, r.wall_friction,
+                        num(r.result.onset_deg, 2), r.result.predicted.onset_deg, dem::rigs::name(r.result.motion),
+                        dem::rigs::name(r.result.predicted.motion));
+  }
+  md += "\n## Chosen material\n\n";
+  const auto& ch = chosen(s);
+  md += fmt::format("{} `material.toml`: {}, mu_r = {:g}, rho_s = {:g} kg/m^3.\n\n",
+                    s.closest >= 0 ? "Closest to the target, written to" : "No target given; the first row is written to",
+                    grain_label(s, ch.shape), ch.rolling_friction, ch.solid_density);
+  md += "```toml\n" + material_toml(c, s) + "```\n";
+  md += "\nThe seed's own Table 3 values are not legible in the available text, so no comparison with its numbers is "
+        "made; its findings are checked in the list above.\n";
+  return md;
+}
+
+std::string calibration_html(const CalibrationContext& c, const CalibrationStudy& s) {
+  using namespace reports;
+  // Two panels against mu_r: pile height and bulk density, one line per (shape, density).
+  const std::vector<std::string> palette = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+  struct Series {
+    std::string label, colour;
+    Shape shape;
+    std::vector<std::pair<double, double>> height, bulk;
+  };
+  std::vector<Series> series;
+  for (GrainKind k : s.plan.shapes)
+    for (double rho : s.plan.density) {
+      Series se{fmt::format("{}, rho_s {:g}", grain_label(s, k), rho), palette[series.size() % palette.size()],
+                k == GrainKind::sphere ? Shape::circle : Shape::square, {}, {}};
+      for (const auto& r : s.rows)
+        if (r.shape == k && r.solid_density == rho) {
+          se.height.emplace_back(r.rolling_friction, r.slump.pile_height * 1e3);
+          se.bulk.emplace_back(r.rolling_friction, r.slump.bulk_density);
+        }
+      series.push_back(se);
+    }
+  double rlo = 1e300, rhi = -1e300, hmax = 0, blo = 1e300, bhi = -1e300;
+  for (const auto& r : s.rows) {
+    rlo = std::min(rlo, r.rolling_friction);
+    rhi = std::max(rhi, r.rolling_friction);
+    hmax = std::max(hmax, r.slump.pile_height * 1e3);
+    blo = std::min(blo, r.slump.bulk_density);
+    bhi = std::max(bhi, r.slump.bulk_density);
+  }
+  if (s.plan.targets.pile_height) hmax = std::max(hmax, *s.plan.targets.pile_height * 1e3);
+  if (s.plan.targets.bulk_density) {
+    blo = std::min(blo, *s.plan.targets.bulk_density);
+    bhi = std::max(bhi, *s.plan.targets.bulk_density);
+  }
+  if (rhi <= rlo) rhi = rlo + 0.1;
+  std::vector<LegendEntry> legend;
+  for (const auto& se : series) legend.push_back({LegendEntry::Kind::marker, se.label, se.colour, "", se.shape});
+  if (s.plan.targets.any()) legend.push_back({LegendEntry::Kind::line, "target (measured)", "#000", "5,4"});
+  const double W = 960, lh = legend_height(W - 40, legend);
+  Svg svg(W, 80 + lh + 300, "plot calibration", "calibration-sweep", "Pile height and bulk density against rolling friction");
+  svg.title("Slump tests: pile height and loose-poured bulk density against rolling friction");
+  svg.legend(20, 28, W - 40, legend);
+  auto panel = [&](double left, const std::string& ylabel, double ylo, double yhi, bool height,
+                   std::optional<double> target) {
+    Frame f{left, 40 + lh + 10, 380, 250};
+    const Ticks xt = nice_ticks(rlo, rhi, 5), yt = nice_ticks(ylo, yhi, 6);
+    const Scale x{xt.lo, xt.hi, f.left, f.right()}, y{yt.lo, yt.hi, f.bottom(), f.top};
+    svg.axes(f, x, xt, y, yt, "rolling friction mu_r", ylabel);
+    if (target)
+      svg.line(f.left, y(*target), f.right(), y(*target), "stroke=\"#000\" stroke-dasharray=\"5,4\"");
+    for (const auto& se : series) {
+      const auto& pts = height ? se.height : se.bulk;
+      std::vector<std::pair<double, double>> px;
+      for (const auto& [a, b] : pts) px.emplace_back(x(a), y(b));
+      svg.polyline(px, fmt::format("fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"", se.colour));
+      for (const auto& [a, b] : pts)
+        svg.marker(se.shape, x(a), y(b), 7, se.colour, true,
+                   fmt::format("{}: mu_r {:g}, {} {:.1f}", se.label, a, height ? "pile height (mm)" : "bulk density (kg/m^3)", b));
+    }
+  };
+  panel(80, "pile height (mm)", 0.0, hmax * 1.1, true,
+        s.plan.targets.pile_height ? std::optional<double>(*s.plan.targets.pile_height * 1e3) : std::nullopt);
+  panel(560, "bulk density (kg/m^3)", blo - 0.03 * blo, bhi + 0.03 * bhi, false, s.plan.targets.bulk_density);
+
+  // The Markdown tables, rendered simply: the page has no script and no external asset.
+  const std::string md = calibration_md(c, s);
+  std::string body;
+  bool in_table = false, in_code = false;
+  std::size_t pos = 0;
+  while (pos < md.size()) {
+    const auto end = md.find('\n', pos);
+    std::string line = md.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+    pos = end == std::string::npos ? md.size() : end + 1;
+    if (line.rfind("```", 0) == 0) {
+      body += in_code ? "</pre>\n" : "<pre>";
+      in_code = !in_code;
+      continue;
+    }
+    if (in_code) {
+      body += esc(line) + "\n";
+      continue;
+    }
+    if (!line.empty() && line[0] == '|') {
+      if (line.find("---") != std::string::npos) continue;
+      std::string row = "<tr>";
+      std::size_t a = 1;
+      while (a < line.size()) {
+        const auto b = line.find('|', a);
+        if (b == std::string::npos) break;
+        std::string cell = line.substr(a, b - a);
+        const bool bold = cell.find("**") != std::string::npos;
+        std::string plain;
+        for (std::size_t i = 0; i < cell.size(); ++i)
+          if (!(cell[i] == '*' && i + 1 < cell.size() && cell[i + 1] == '*')) plain += cell[i]; else ++i;
+        row += fmt::format("<{0}>{1}</{0}>", in_table ? "td" : "th", bold ? "<b>" + esc(plain) + "</b>" : esc(plain));
+        a = b + 1;
+      }
+      body += (in_table ? "" : "<table>") + row + "</tr>\n";
+      in_table = true;
+      continue;
+    }
+    if (in_table) {
+      body += "</table>\n";
+      in_table = false;
+    }
+    if (line.rfind("# ", 0) == 0) body += "<h1>" + esc(line.substr(2)) + "</h1>\n" + svg.finish() + "\n";
+    else if (line.rfind("## ", 0) == 0) body += "<h2>" + esc(line.substr(3)) + "</h2>\n";
+    else if (line.rfind("- ", 0) == 0) body += "<p class=\"item\">• " + esc(line.substr(2)) + "</p>\n";
+    else if (!line.empty()) body += "<p>" + esc(line) + "</p>\n";
+  }
+  if (in_table) body += "</table>\n";
+  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>chutelab calibration</title>"
+         "<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}"
+         "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}"
+         "th{background:#f3f3f3}pre{background:#f6f6f6;padding:8px}p.item{margin:0.3em 0 0.3em 1em}svg{max-width:100%;height:auto}</style></head><body>\n" +
+         body + "</body></html>\n";
+}
+
+std::string material_toml(const CalibrationContext& c, const CalibrationStudy& s) {
+  const auto& ch = chosen(s);
+  Setup setup = c.setup;
+  setup.material.solid_density = ch.solid_density;
+  setup.material.rolling_friction_particle = ch.rolling_friction;
+  std::string out = fmt::format(
+      "# chutelab calibrate: slump tests ({} quality) on {}; {} {}.\n"
+      "# Calibrated for DEM {}: solid_density_kgm3 and rolling_friction_particle are the DEM values for that\n"
+      "# particle; every other value is the dataset's.\n[material]\n",
+      c.quality, c.dataset, s.closest >= 0 ? "closest to the target" : "no target given, first combination",
+      targets_text(s), grain_label(s, ch.shape));
+  for (const auto& f : rig_fields()) {
+    if (f.section != "material") continue;
+    const double v = f.ref(setup) / f.to_si;
+    out += fmt::format("{} = {}\n", f.key, csv_number(v));
+  }
+  return out;
+}
+
+}  // namespace chutelab::app

@@ -1,0 +1,157 @@
+// `chutelab calibrate`: the seed's slump-test calibration (§5, Table 3) as one command: sweeps the
+// particle-particle rolling friction, the solid density and the particle shape over the swing-arm
+// slump tester, prints and writes Table 3, marks the combination closest to the measured bulk density
+// (and pile height), and writes it as a [material] block.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "app/calibration_output.h"
+#include "app/commands.h"
+#include "core/input_error.h"
+#include "dem/rigs/calibration.h"
+#include "validation/dataset.h"
+#include "validation/output_files.h"
+
+namespace chutelab::app {
+namespace {
+
+struct CalibrateCli {
+  std::string dataset, out, quality = "quick", rolling = "0.05,0.1,0.2", density = "925,1000", shape = "sphere,clump";
+  double sphere_diameter_mm = 5.6, clump_diameter_mm = 4.4;
+  std::optional<double> target_bulk, target_pile_mm;
+  bool no_target = false, no_incline = false;
+  // One thread per run: a slump test has only a few hundred grains, and OpenMP threads on a shared
+  // 2-core machine spend more time waiting at barriers than computing (measured: 4 s vs 15-100 s).
+  int threads = 1;
+  std::uint64_t seed = 1;
+};
+
+std::vector<double> numbers(const std::string& list, const char* flag) {
+  std::vector<double> out;
+  for (const auto& item : split_list(list)) {
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !std::isfinite(v))
+      throw InputError("", 0, flag, fmt::format("'{}' is not a number (give a comma list, e.g. 0.05,0.1)", item));
+    out.push_back(v);
+  }
+  if (out.empty()) throw InputError("", 0, flag, "the list is empty");
+  return out;
+}
+
+int run_calibrate(const CalibrateCli& o) {
+  namespace fs = std::filesystem;
+  using namespace dem::rigs;
+  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
+  CalibrationContext ctx;
+  ctx.dataset = dir.string();
+  ctx.quality = o.quality;
+  ctx.setup = validation::read_setup(dir / "setup.toml");
+
+  CalibrationPlan plan;
+  plan.rolling = numbers(o.rolling, "--rolling");
+  plan.density = numbers(o.density, "--density");
+  for (const auto& s : split_list(o.shape)) {
+    if (s == "sphere") plan.shapes.push_back(GrainKind::sphere);
+    else if (s == "clump") plan.shapes.push_back(GrainKind::clump);
+    else throw InputError("", 0, "--shape", fmt::format("unknown shape '{}' (sphere, clump)", s));
+  }
+  if (plan.shapes.empty()) throw InputError("", 0, "--shape", "the list is empty");
+  if (!(o.sphere_diameter_mm > 0.0) || !(o.clump_diameter_mm > 0.0))
+    throw InputError("", 0, "--sphere-diameter", "particle diameters must be > 0 mm");
+  plan.sphere = Grain::sphere(o.sphere_diameter_mm * 1e-3);
+  plan.clump = Grain::seed_clump(o.clump_diameter_mm * 1e-3);
+  plan.settings = slump_preset(o.quality == "standard" ? RigQuality::standard : RigQuality::quick);
+  plan.settings.threads = o.threads;
+  plan.settings.seed = o.seed;
+  if (!o.no_target) {
+    // Default target: the dataset's measured loose-poured bulk density.
+    plan.targets.bulk_density = o.target_bulk ? *o.target_bulk : ctx.setup.material.bulk_density;
+    if (o.target_pile_mm) plan.targets.pile_height = *o.target_pile_mm * 1e-3;
+  }
+  plan.incline = !o.no_incline;
+
+  const int count = static_cast<int>(plan.shapes.size() * plan.rolling.size() * plan.density.size());
+  std::cout << fmt::format("calibrate: {} slump tests ({} quality) on {}\n", count, o.quality, ctx.dataset) << std::flush;
+  const bool tty = isatty(fileno(stderr)) != 0;
+  auto progress = [&](const CalibrationProgress& p) {
+    if (p.done) {
+      const auto& r = *p.done;
+      if (tty) std::cerr << "\r\033[K";
+      std::cout << fmt::format("[{:>2}/{}] {:<16} mu_r {:<5g} rho_s {:<5g}: bulk {:4.0f} kg/m^3, pile {:5.1f} mm, "
+                               "repose {:4.1f} deg, {} grains ({:.1f} s)\n",
+                               p.index, p.count, r.shape == GrainKind::sphere ? plan.sphere.label() : plan.clump.label(),
+                               r.rolling_friction, r.solid_density, r.slump.bulk_density, r.slump.pile_height * 1e3,
+                               r.slump.repose_angle_deg, r.slump.particles, r.slump.wall_seconds)
+                << std::flush;
+    } else if (tty) {
+      std::cerr << fmt::format("\r\033[K[{:>2}/{}] {} {:.2f}/{:.2f} s", p.index, p.count, p.slump.phase, p.slump.time,
+                               p.slump.max_time)
+                << std::flush;
+    }
+  };
+  const CalibrationStudy study = run_calibration(ctx.setup.material, plan, progress);
+  if (!study.incline.empty()) {
+    std::cout << "inclined-plane rig (particle-wall, sphere on the plate material):\n";
+    for (const auto& r : study.incline)
+      std::cout << fmt::format("  mu_r {:<5g} mu_s {:<5g}: onset {:.2f} deg ({}); Eq 10 {:.2f} deg ({})\n", r.rolling_friction,
+                               r.wall_friction, r.result.onset_deg, name(r.result.motion), r.result.predicted.onset_deg,
+                               name(r.result.predicted.motion));
+  }
+  validation::write_outputs(o.out, {{"calibration.csv", calibration_csv(study)},
+                                    {"incline.csv", incline_csv(study)},
+                                    {"calibration.md", calibration_md(ctx, study)},
+                                    {"calibration.html", calibration_html(ctx, study)},
+                                    {"material.toml", material_toml(ctx, study)}});
+  if (study.closest >= 0) {
+    const auto& b = study.rows[static_cast<std::size_t>(study.closest)];
+    std::cout << fmt::format("closest to the target: {} mu_r = {:g}, rho_s = {:g} kg/m^3 (bulk {:.0f} kg/m^3, pile {:.1f} mm; "
+                             "{:.1f} % from the target)\n",
+                             b.shape == GrainKind::sphere ? plan.sphere.label() : plan.clump.label(), b.rolling_friction,
+                             b.solid_density, b.slump.bulk_density, b.slump.pile_height * 1e3, 100.0 * b.distance);
+  }
+  std::cout << fmt::format("{:.0f} s; written: {}\n", study.wall_seconds,
+                           (fs::path(o.out) / "calibration.md").string());
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_calibrate(CLI::App& app, Action& action) {
+  auto o = std::make_shared<CalibrateCli>();
+  auto* cmd = app.add_subcommand(
+      "calibrate",
+      "Slump-test calibration (seed §5, Table 3): rolling friction x solid density x shape over the swing-arm "
+      "slump tester; writes calibration.csv/.md/.html, incline.csv and material.toml to --out.");
+  cmd->add_option("--dataset", o->dataset, "dataset whose [material] to calibrate (default: bundled grima2010)");
+  cmd->add_option("--quality", o->quality, "quick (~500 spheres, soft) or standard")
+      ->check(CLI::IsMember({"quick", "standard"}))
+      ->capture_default_str();
+  cmd->add_option("--rolling", o->rolling, "particle-particle rolling friction coefficients")->capture_default_str();
+  cmd->add_option("--density", o->density, "solid densities, kg/m^3")->capture_default_str();
+  cmd->add_option("--shape", o->shape, "particle shapes: sphere (seed Fig. 4b), clump (2 overlapping spheres, Fig. 4c)")
+      ->capture_default_str();
+  cmd->add_option("--sphere-diameter", o->sphere_diameter_mm, "sphere diameter, mm")->capture_default_str();
+  cmd->add_option("--clump-diameter", o->clump_diameter_mm, "diameter of the clump's spheres, mm")->capture_default_str();
+  cmd->add_option("--target-bulk-density", o->target_bulk,
+                  "measured loose-poured bulk density, kg/m^3 (default: the dataset's bulk_density_kgm3)");
+  cmd->add_option("--target-pile-height", o->target_pile_mm, "measured pile height, mm");
+  cmd->add_flag("--no-target", o->no_target, "mark no combination (and write the first one)");
+  cmd->add_flag("--no-incline", o->no_incline, "skip the inclined-plane rig");
+  cmd->add_option("--threads", o->threads, "OpenMP threads per run")->check(CLI::Range(1, 256))->capture_default_str();
+  cmd->add_option("--seed", o->seed, "random seed of the pour")->capture_default_str();
+  cmd->add_option("--out", o->out, "output folder")->required();
+  cmd->callback([o, &action] { action = [o] { return run_calibrate(*o); }; });
+}
+
+}  // namespace chutelab::app

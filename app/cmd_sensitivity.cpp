@@ -1,0 +1,178 @@
+// `chutelab sensitivity`: the seed's Table 6 (§6.1) as one command at one condition. The transfer-
+// station DEM (dem/station) runs once per variant — LSD vs Hertz-Mindlin, sphere vs two-sphere clump,
+// dt = t_c/10 vs t_c/20, G x10 and /10, three particle sizes — and the table of R_n, R_s, R with
+// standard errors, their fluctuation, the change against the base and the run time is printed and
+// written (sensitivity.csv/.md/.html), with the verdict on the seed's conclusion.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "app/commands.h"
+#include "app/sensitivity_study.h"
+#include "core/input_error.h"
+#include "dem/station/progress.h"
+#include "dem/station/run.h"
+#include "validation/dataset.h"
+#include "validation/output_files.h"
+
+namespace chutelab::app {
+namespace {
+
+namespace st = dem::station;
+
+struct SensitivityCli {
+  std::string dataset, condition = "V3-41", quality = "quick", out, only;
+  std::optional<int> threads;
+  std::optional<std::uint64_t> seed;
+  double limit = 10.0;
+};
+
+// Standard deviation of the load-cell samples inside the steady window: the force fluctuation.
+void fluctuations(const st::StationResult& r, VariantOutcome& o) {
+  double sn = 0, sn2 = 0, ss = 0, ss2 = 0, sr = 0, sr2 = 0;
+  int n = 0;
+  for (const auto& f : r.forces) {
+    if (f.t <= r.window.start || f.t > r.window.end + 1e-12) continue;
+    const double R = std::hypot(f.normal, f.shear);
+    sn += f.normal, sn2 += f.normal * f.normal;
+    ss += f.shear, ss2 += f.shear * f.shear;
+    sr += R, sr2 += R * R;
+    ++n;
+  }
+  if (n < 2) return;
+  auto sd = [n](double s, double s2) { return std::sqrt(std::max(0.0, (s2 - s * s / n) / (n - 1))); };
+  o.fluct_normal = sd(sn, sn2);
+  o.fluct_shear = sd(ss, ss2);
+  o.fluct_resultant = sd(sr, sr2);
+}
+
+Stat stat(const st::Estimate& e) { return {e.ok() ? e.value : std::nan(""), std::isfinite(e.se) ? e.se : 0.0}; }
+
+int run_sensitivity(const SensitivityCli& o) {
+  namespace fs = std::filesystem;
+  const auto t0 = std::chrono::steady_clock::now();
+  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
+  const fs::path setup_file = dir / "setup.toml";
+  const Setup setup = validation::read_setup(setup_file);
+  const auto stations = validation::read_conditions(dir / "conditions.csv", setup);
+  const Station* station = nullptr;
+  for (const auto& s : stations)
+    if (s.condition == o.condition) station = &s;
+  if (!station) {
+    std::vector<std::string> names;
+    for (const auto& s : stations) names.push_back(s.condition);
+    throw InputError((dir / "conditions.csv").string(), 0, "--condition",
+                     fmt::format("no condition named '{}' (known: {})", o.condition, fmt::join(names, ", ")));
+  }
+  st::SettingsOverrides ov;
+  ov.quality = st::parse_quality(o.quality);
+  if (!ov.quality) throw InputError("", 0, "--quality", "must be quick, standard or paper");
+  ov.threads = o.threads;
+  ov.seed = o.seed;
+  const st::DemTable table = st::read_dem_table(setup_file.string());
+  const st::RunSettings base = st::resolve(table, ov);
+  const double base_d = base.particle_diameter > 0.0 ? base.particle_diameter : station->material.particle_diameter;
+
+  std::vector<SensitivityVariant> variants = table6_variants(base_d);
+  if (!o.only.empty()) {  // a subset (always with the base), e.g. for a quick look
+    std::vector<SensitivityVariant> keep{variants[0]};
+    for (const auto& key : split_list(o.only)) {
+      bool found = false;
+      for (std::size_t k = 1; k < variants.size(); ++k)
+        if (variants[k].key == key) {
+          keep.push_back(variants[k]);
+          found = true;
+        }
+      if (!found) {
+        std::vector<std::string> names;
+        for (const auto& v : variants) names.push_back(v.key);
+        throw InputError("", 0, "--only", fmt::format("unknown variant '{}' (known: {})", key, fmt::join(names, ", ")));
+      }
+    }
+    variants = keep;
+  }
+
+  SensitivityStudy study;
+  study.dataset = dir.string();
+  study.condition = station->condition;
+  study.quality = o.quality;
+  study.belt_speed = station->belt_speed;
+  study.mass_flow = station->mass_flow;
+  study.limit_percent = o.limit;
+  std::cout << fmt::format("sensitivity: {} DEM runs of {} ({} quality), base {}\n", variants.size(), station->condition,
+                           o.quality, variants[0].label)
+            << std::flush;
+  for (std::size_t k = 0; k < variants.size(); ++k) {
+    const SensitivityVariant& v = variants[k];
+    st::RunSettings s = base;
+    s.contact = v.contact == "lsd" ? st::ContactLaw::linear_spring_dashpot : st::ContactLaw::hertz_mindlin;
+    s.particle_diameter = v.diameter;
+    s.particle_shape = v.shape == "clump" ? st::ParticleShape::clump : st::ParticleShape::sphere;
+    s.dt_fraction = v.dt_fraction;
+    s.rayleigh_fraction = v.rayleigh_fraction;
+    s.shear_modulus_scale = base.shear_modulus_scale * v.modulus_scale;
+    st::RunOptions ro;
+    ro.settings = s;
+    ro.geometry = table;
+    ro.progress = st::ProgressPrinter(fmt::format("[{}/{}] {}", k + 1, variants.size(), v.key));
+    const st::StationResult r = st::run_station(*station, ro);
+    SensitivityRow row;
+    row.variant = v;
+    VariantOutcome& out = row.outcome;
+    out.normal = stat(r.normal_force);
+    out.shear = stat(r.shear_force);
+    out.resultant = stat(r.resultant_force);
+    fluctuations(r, out);
+    out.diameter = r.diameter;
+    out.dt = r.dt;
+    out.collision_time = r.collision_time;
+    out.simulated = r.simulated_time;
+    out.wall_seconds = r.wall_seconds;
+    out.steps = r.steps;
+    out.particles = r.peak_particles;
+    out.steady = r.window.found;
+    out.notes = r.notes;
+    study.rows.push_back(row);
+    std::cout << fmt::format("[{}/{}] {:<9} R_n {:7.1f} ± {:4.1f} N, R_s {:6.1f} ± {:4.1f} N, R {:7.1f} ± {:4.1f} N, "
+                             "sd(R) {:5.1f} N, dt {:.2f} us, {:.0f} s\n",
+                             k + 1, variants.size(), v.key, out.normal.value, out.normal.se, out.shear.value, out.shear.se,
+                             out.resultant.value, out.resultant.se, out.fluct_resultant, out.dt * 1e6, out.wall_seconds)
+              << std::flush;
+  }
+  evaluate(study);
+  study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  validation::write_outputs(o.out, {{"sensitivity.csv", sensitivity_csv(study)},
+                                    {"sensitivity.md", sensitivity_md(study)},
+                                    {"sensitivity.html", sensitivity_html(study)}});
+  std::cout << study.verdict.text << "\n";
+  std::cout << fmt::format("{:.0f} s; written: {}\n", study.wall_seconds, (fs::path(o.out) / "sensitivity.html").string());
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_sensitivity(CLI::App& app, Action& action) {
+  auto o = std::make_shared<SensitivityCli>();
+  auto* cmd = app.add_subcommand(
+      "sensitivity",
+      "The seed's Table 6 at one condition: the station DEM with LSD vs Hertz-Mindlin, sphere vs clump, dt/20, "
+      "G x10 and /10, three particle sizes; writes sensitivity.csv/.md/.html to --out and says whether the seed's "
+      "conclusion is reproduced.");
+  cmd->add_option("--dataset", o->dataset, "dataset (default: bundled grima2010)");
+  cmd->add_option("--condition", o->condition, "condition of the dataset (seed Table 6: V_b = 3 m/s, 41 t/h)")
+      ->capture_default_str();
+  cmd->add_option("--quality", o->quality, "quick, standard or paper (the base run's preset)")->capture_default_str();
+  cmd->add_option("--only", o->only, "run only these variants besides the base (comma list of keys)");
+  cmd->add_option("--limit", o->limit, "'changes little' means |change of mean R| <= this, %")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "OpenMP threads per run (default: the station's choice)");
+  cmd->add_option("--seed", o->seed, "feed random seed");
+  cmd->add_option("--out", o->out, "output folder")->required();
+  cmd->callback([o, &action] { action = [o] { return run_sensitivity(*o); }; });
+}
+
+}  // namespace chutelab::app

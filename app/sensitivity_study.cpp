@@ -1,0 +1,293 @@
+#include "app/sensitivity_study.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "reports/svg.h"
+#include "validation/output_files.h"
+
+namespace chutelab::app {
+namespace {
+
+using validation::csv_number;
+
+std::string mm(double m) { return fmt::format("{:g}", std::round(m * 1e4) / 10.0); }
+
+}  // namespace
+
+std::string_view name(VariantGroup g) {
+  switch (g) {
+    case VariantGroup::base: return "base";
+    case VariantGroup::contact: return "contact model";
+    case VariantGroup::shape: return "particle shape";
+    case VariantGroup::time_step: return "time step";
+    case VariantGroup::modulus: return "shear modulus";
+    case VariantGroup::size: return "particle size";
+  }
+  return "?";
+}
+
+std::vector<SensitivityVariant> table6_variants(double base_d) {
+  std::vector<SensitivityVariant> v;
+  SensitivityVariant base;
+  base.key = "base";
+  base.label = fmt::format("Hertz-Mindlin, spheres d = {} mm, dt = t_c/10, G as the dataset", mm(base_d));
+  base.diameter = base_d;
+  v.push_back(base);
+  auto variant = [&](std::string key, std::string label, VariantGroup g) {
+    SensitivityVariant x = base;
+    x.key = std::move(key);
+    x.label = std::move(label);
+    x.group = g;
+    return x;
+  };
+  auto lsd = variant("LSD", "linear spring-dashpot (seed Eq 8), same collision time", VariantGroup::contact);
+  lsd.contact = "lsd";
+  v.push_back(lsd);
+  auto clump = variant("clump", "", VariantGroup::shape);
+  clump.shape = "clump";
+  clump.diameter = base_d * 4.4 / 5.6;
+  clump.label = fmt::format("two-sphere clump (Fig. 4c), spheres d = {} mm (the seed's 4.4 vs 5.6 mm)", mm(clump.diameter));
+  v.push_back(clump);
+  auto dt = variant("dt/20", "dt = t_c/20 (and 0.1 of the Rayleigh time): half the base step", VariantGroup::time_step);
+  dt.dt_fraction = 0.05;
+  dt.rayleigh_fraction = 0.1;
+  v.push_back(dt);
+  auto g10 = variant("Gx10", "shear modulus G x 10 (Young's modulus x 10)", VariantGroup::modulus);
+  g10.modulus_scale = 10.0;
+  v.push_back(g10);
+  auto g01 = variant("G/10", "shear modulus G / 10", VariantGroup::modulus);
+  g01.modulus_scale = 0.1;
+  v.push_back(g01);
+  for (double d : {5.6e-3, 9e-3, 13.6e-3}) {
+    if (std::abs(d - base_d) < 1e-6) continue;
+    auto s = variant(fmt::format("d={}mm", mm(d)), fmt::format("spheres d = {} mm (mass flow kept: fewer, heavier grains "
+                                                             "when larger)", mm(d)),
+                     VariantGroup::size);
+    s.diameter = d;
+    v.push_back(s);
+  }
+  return v;
+}
+
+void evaluate(SensitivityStudy& s) {
+  if (s.rows.empty()) return;
+  const VariantOutcome& b = s.rows[0].outcome;
+  for (auto& r : s.rows) {
+    const VariantOutcome& o = r.outcome;
+    if (!(b.resultant.value > 0.0) || !(o.resultant.value > 0.0)) {
+      r.change = {std::nan(""), std::nan("")};
+      continue;
+    }
+    const double q = o.resultant.value / b.resultant.value;
+    r.change.value = 100.0 * (q - 1.0);
+    r.change.se = &r == &s.rows[0] ? 0.0
+                                   : 100.0 * q *
+                                         std::hypot(o.resultant.se / o.resultant.value, b.resultant.se / b.resultant.value);
+  }
+  Table6Verdict v;
+  v.mean_insensitive = true;
+  for (const auto& r : s.rows) {
+    const auto g = r.variant.group;
+    if (g == VariantGroup::contact || g == VariantGroup::shape || g == VariantGroup::time_step ||
+        g == VariantGroup::modulus) {
+      v.mean_tested = true;
+      if (!std::isfinite(r.change.value) || std::abs(r.change.value) > s.limit_percent) v.mean_insensitive = false;
+      if (std::isfinite(r.change.value) && std::abs(r.change.value) >= std::abs(v.worst_change)) {
+        v.worst_change = r.change.value;
+        v.worst_variant = r.variant.key;
+      }
+    }
+    if (g == VariantGroup::base || g == VariantGroup::size) {
+      v.size_fluctuation.emplace_back(r.outcome.diameter, r.outcome.fluct_resultant);
+      if (g == VariantGroup::size && std::isfinite(r.change.value))
+        v.size_mean_spread = std::max(v.size_mean_spread, std::abs(r.change.value));
+    }
+  }
+  std::sort(v.size_fluctuation.begin(), v.size_fluctuation.end());
+  v.size_tested = v.size_fluctuation.size() >= 2;
+  v.fluctuation_grows = v.size_tested;
+  for (std::size_t k = 1; k < v.size_fluctuation.size(); ++k)
+    v.fluctuation_grows = v.fluctuation_grows && v.size_fluctuation[k].second > v.size_fluctuation[k - 1].second;
+  std::vector<std::string> fl;
+  for (const auto& [d, f] : v.size_fluctuation) fl.push_back(fmt::format("{:.1f} N at {} mm", f, mm(d)));
+  const std::string head = !(v.mean_tested && v.size_tested) ? "Seed Table 6 conclusion NOT FULLY TESTED (a subset of the variants ran)"
+                           : v.reproduced()                      ? "Seed Table 6 conclusion REPRODUCED"
+                                                                 : "Seed Table 6 conclusion NOT reproduced";
+  const std::string mean_part =
+      v.mean_tested ? fmt::format("contact model, shape, time step and shear modulus change it by at most {:+.1f} % ({}; "
+                                  "limit ±{:g} %) — {}",
+                                  v.worst_change, v.worst_variant, s.limit_percent,
+                                  v.mean_insensitive ? "small, as in the seed" : "larger than the seed found")
+                    : std::string("no contact/shape/dt/G variant ran");
+  const std::string size_part =
+      v.size_tested ? fmt::format("{} — {}", fmt::join(fl, ", "),
+                                  v.fluctuation_grows ? "it grows with d, as in the seed" : "it does not grow steadily with d")
+                    : std::string("fewer than two sizes ran");
+  v.text = fmt::format(
+      "{}. Mean resultant plate force against the base: {}. Fluctuation (standard deviation of the sampled R) with "
+      "particle size: {}. The size variants change the mean by up to {:.1f} %.",
+      head, mean_part, size_part, v.size_mean_spread);
+  s.verdict = v;
+}
+
+std::string sensitivity_csv(const SensitivityStudy& s) {
+  std::string out =
+      "variant,group,contact,shape,diameter_mm,dt_s,dt_fraction,collision_time_s,modulus_scale,"
+      "normal_force_N,normal_force_se_N,shear_force_N,shear_force_se_N,resultant_force_N,resultant_force_se_N,"
+      "fluctuation_normal_N,fluctuation_shear_N,fluctuation_resultant_N,change_resultant_pct,change_se_pct,"
+      "run_seconds,simulated_s,steps,peak_particles,steady\n";
+  for (const auto& r : s.rows) {
+    const auto& v = r.variant;
+    const auto& o = r.outcome;
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", v.key, name(v.group),
+                       v.contact, v.shape, csv_number(o.diameter * 1e3), csv_number(o.dt), csv_number(v.dt_fraction),
+                       csv_number(o.collision_time), csv_number(v.modulus_scale), csv_number(o.normal.value),
+                       csv_number(o.normal.se), csv_number(o.shear.value), csv_number(o.shear.se),
+                       csv_number(o.resultant.value), csv_number(o.resultant.se), csv_number(o.fluct_normal),
+                       csv_number(o.fluct_shear), csv_number(o.fluct_resultant), csv_number(r.change.value),
+                       csv_number(r.change.se), csv_number(o.wall_seconds), csv_number(o.simulated), o.steps, o.particles,
+                       o.steady ? 1 : 0);
+  }
+  return out;
+}
+
+std::string sensitivity_md(const SensitivityStudy& s) {
+  std::string md = "# Sensitivity of the plate force (seed Table 6)\n\n";
+  md += fmt::format("Dataset `{}`, condition `{}` (V_b = {:g} m/s, {:.1f} t/h), quality `{}`; {} DEM runs in {:.0f} s.\n\n",
+                    reports::md_esc(s.dataset), reports::md_esc(s.condition), s.belt_speed, s.mass_flow * 3.6,
+                    s.quality, s.rows.size(), s.wall_seconds);
+  md += s.verdict.text + "\n\n";
+  md += "| variant | what changes | d (mm) | dt (µs) | R_n (N) | R_s (N) | R (N) | sd R_n (N) | sd R_s (N) | sd R (N) | "
+        "change of R vs base (%) | run (s) |\n";
+  md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const auto& r : s.rows) {
+    const auto& o = r.outcome;
+    md += fmt::format("| {} | {} | {} | {:.2f} | {:.1f} ± {:.1f} | {:.1f} ± {:.1f} | {:.1f} ± {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} | {:.0f} |\n",
+                      r.variant.key, reports::md_esc(r.variant.label), mm(o.diameter), o.dt * 1e6, o.normal.value,
+                      o.normal.se, o.shear.value, o.shear.se, o.resultant.value, o.resultant.se, o.fluct_normal,
+                      o.fluct_shear, o.fluct_resultant,
+                      &r == &s.rows[0] ? std::string("—") : fmt::format("{:+.1f} ± {:.1f}", r.change.value, r.change.se),
+                      o.wall_seconds);
+  }
+  md += "\nMeans are over the steady window of the plate load cell with block standard errors (±); sd is the "
+        "standard deviation of the load-cell samples in that window (the fluctuation); change = R / R_base - 1.\n";
+  std::vector<std::string> notes;
+  for (const auto& r : s.rows) {
+    if (!r.outcome.steady) notes.push_back(fmt::format("{}: no steady window within the time limit (means uncertain)", r.variant.key));
+    for (const auto& n : r.outcome.notes) notes.push_back(fmt::format("{}: {}", r.variant.key, n));
+  }
+  if (!notes.empty()) {
+    md += "\n## Notes\n\n";
+    for (const auto& n : notes) md += "- " + reports::md_esc(n) + "\n";
+  }
+  return md;
+}
+
+std::string sensitivity_html(const SensitivityStudy& s) {
+  using namespace reports;
+  const std::size_t n = s.rows.size();
+  double rmax = 0.0, fmax = 0.0;
+  for (const auto& r : s.rows) {
+    rmax = std::max(rmax, r.outcome.resultant.value + r.outcome.resultant.se);
+    fmax = std::max(fmax, r.outcome.fluct_resultant);
+  }
+  auto colour = [](VariantGroup g) {
+    switch (g) {
+      case VariantGroup::base: return "#555555";
+      case VariantGroup::contact: return "#1f77b4";
+      case VariantGroup::shape: return "#2ca02c";
+      case VariantGroup::time_step: return "#9467bd";
+      case VariantGroup::modulus: return "#ff7f0e";
+      case VariantGroup::size: return "#d62728";
+    }
+    return "#000000";
+  };
+  std::vector<LegendEntry> legend;
+  for (VariantGroup g : {VariantGroup::base, VariantGroup::contact, VariantGroup::shape, VariantGroup::time_step,
+                         VariantGroup::modulus, VariantGroup::size})
+    legend.push_back({LegendEntry::Kind::box, std::string(name(g)), colour(g)});
+  const double W = 960, lh = legend_height(W - 40, legend);
+  Svg svg(W, 70 + lh + 330, "plot sensitivity", "sensitivity-chart", "Mean resultant plate force and its fluctuation per variant");
+  svg.title("Plate force per variant: mean R (± 1 standard error) and its fluctuation (sd of R)");
+  svg.legend(20, 28, W - 40, legend);
+  auto panel = [&](double left, double top_value, const std::string& ylabel, bool mean) {
+    Frame f{left, 40 + lh + 10, 370, 250};
+    const Ticks yt = nice_ticks(0.0, top_value > 0.0 ? top_value * 1.08 : 1.0, 6);
+    const Scale y{0.0, yt.hi, f.bottom(), f.top};
+    svg.y_axis(f, y, yt, ylabel);
+    svg.line(f.left, f.bottom(), f.right(), f.bottom(), "stroke=\"#444\"");
+    const double gw = f.width / static_cast<double>(std::max<std::size_t>(n, 1));
+    if (mean && n > 0) {
+      const double yb = y(s.rows[0].outcome.resultant.value);
+      svg.line(f.left, yb, f.right(), yb, "stroke=\"#555\" stroke-dasharray=\"4,3\"");
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& r = s.rows[k];
+      const double v = mean ? r.outcome.resultant.value : r.outcome.fluct_resultant;
+      const double cx = f.left + gw * (static_cast<double>(k) + 0.5), bw = std::min(30.0, 0.6 * gw);
+      const double yv = y(std::max(0.0, v));
+      svg.rect(cx - bw / 2, yv, bw, f.bottom() - yv, fmt::format("fill=\"{}\" class=\"bar\"", colour(r.variant.group)),
+               mean ? fmt::format("{}: R = {:.1f} ± {:.1f} N ({})", r.variant.key, v, r.outcome.resultant.se,
+                                  k == 0 ? std::string("base") : fmt::format("{:+.1f} %", r.change.value))
+                    : fmt::format("{}: sd of R = {:.1f} N", r.variant.key, v));
+      if (mean && r.outcome.resultant.se > 0.0) {
+        const double y1 = y(v + r.outcome.resultant.se), y2 = y(std::max(0.0, v - r.outcome.resultant.se));
+        const std::string st = "stroke=\"#000\" stroke-width=\"1.2\"";
+        svg.line(cx, y1, cx, y2, st);
+        svg.line(cx - 4, y1, cx + 4, y1, st);
+        svg.line(cx - 4, y2, cx + 4, y2, st);
+      }
+      svg.text(cx, f.bottom() + 14, r.variant.key, "end",
+               fmt::format("font-size=\"11\" transform=\"rotate(-35 {} {})\"", px(cx), px(f.bottom() + 14)));
+    }
+  };
+  panel(70, rmax, "mean resultant R (N)", true);
+  panel(560, fmax, "fluctuation: sd of R (N)", false);
+
+  // Page: verdict, chart, table (the Markdown's table rendered), notes.
+  const std::string md = sensitivity_md(s);
+  std::string body = "<h1>Sensitivity of the plate force (seed Table 6)</h1>\n";
+  body += fmt::format("<p>Dataset <code>{}</code>, condition <code>{}</code> (V<sub>b</sub> = {:g} m/s, {:.1f} t/h), "
+                      "quality <code>{}</code>; {} DEM runs in {:.0f} s.</p>\n",
+                      esc(s.dataset), esc(s.condition), s.belt_speed, s.mass_flow * 3.6, esc(s.quality), n, s.wall_seconds);
+  body += fmt::format("<p class=\"verdict {}\">{}</p>\n", s.verdict.reproduced() ? "ok" : "not", esc(s.verdict.text));
+  body += svg.finish() + "\n<table>\n";
+  std::size_t pos = 0;
+  bool header = true;
+  std::string tail;
+  while (pos < md.size()) {
+    const auto end = md.find('\n', pos);
+    const std::string line = md.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+    pos = end == std::string::npos ? md.size() : end + 1;
+    if (line.empty() || line[0] != '|') {
+      if (!header && line.rfind("- ", 0) == 0) tail += "<p class=\"item\">• " + esc(line.substr(2)) + "</p>\n";
+      else if (!header && line.rfind("Means are", 0) == 0) tail += "<p>" + esc(line) + "</p>\n";
+      else if (line.rfind("## ", 0) == 0) tail += "<h2>" + esc(line.substr(3)) + "</h2>\n";
+      continue;
+    }
+    if (line.find("|---") == 0) continue;
+    std::string row = "<tr>";
+    std::size_t a = 1;
+    while (a < line.size()) {
+      const auto b = line.find('|', a);
+      if (b == std::string::npos) break;
+      row += fmt::format("<{0}>{1}</{0}>", header ? "th" : "td", esc(line.substr(a, b - a)));
+      a = b + 1;
+    }
+    body += row + "</tr>\n";
+    header = false;
+  }
+  body += "</table>\n" + tail;
+  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>chutelab sensitivity</title>"
+         "<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}"
+         "table{border-collapse:collapse;margin:1em 0;font-size:13px}td,th{border:1px solid #ccc;padding:3px 6px;"
+         "text-align:right}th{background:#f3f3f3}td:nth-child(2){text-align:left}p.verdict{padding:8px;border-left:4px solid}"
+         "p.ok{border-color:#2e7d32;background:#eef7ee}p.not{border-color:#c62828;background:#fbeeee}"
+         "p.item{margin:0.3em 0 0.3em 1em}svg{max-width:100%;height:auto}</style></head><body>\n" +
+         body + "</body></html>\n";
+}
+
+}  // namespace chutelab::app
