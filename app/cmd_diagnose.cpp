@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "app/dem_options.h"
 #include "app/effect_options.h"
 #include "core/input_error.h"
 #include "validation/diagnosis.h"
@@ -15,6 +16,7 @@ struct DiagnoseCli {
   std::string dataset, out, models = "booth-cema,korzen";
   double alpha = 0.01;
   bool no_pairs = false;
+  DemCli dem;
 };
 
 int run_diagnose(const DiagnoseCli& o) {
@@ -25,17 +27,11 @@ int run_diagnose(const DiagnoseCli& o) {
   validation::DiagnoseOptions opt;
   opt.alpha = o.alpha;
   opt.pairs = !o.no_pairs;
-  // The fits call every model hundreds of times: an expensive model (the DEM) is left out here; its
-  // baseline enters a diagnosis as DESIGN.md §5 describes, through validate's DEM predictions.
-  std::vector<validation::ModelPtr> models;
-  for (const auto& m : validation::make_models(names)) {
-    if (m->expensive())
-      std::cerr << fmt::format("diagnose: {} is left out (too slow to refit; the diagnosis uses the analytical models)\n",
-                               m->name());
-    else
-      models.push_back(m);
-  }
-  if (models.empty()) throw InputError("", 0, "--models", "the diagnosis needs an analytical model (korzen, booth-cema)");
+  // An expensive model (the DEM) runs once per condition; effect signatures come from the analytical
+  // models and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
+  configure_dem_model(o.dem, o.dataset, "");
+  const auto models = validation::make_models(names);
+  if (models.empty()) throw InputError("", 0, "--models", "no model given");
   const auto r = validation::diagnose(d, models, opt);
   const std::string md = validation::diagnosis_markdown(r);
   validation::write_outputs(o.out, {{"diagnosis.csv", validation::diagnosis_csv(r)}, {"diagnosis.md", md}});
@@ -59,6 +55,7 @@ void add_diagnose(CLI::App& app, Action& action) {
       ->check(CLI::Range(1e-6, 0.5))
       ->capture_default_str();
   cmd->add_flag("--no-pairs", o->no_pairs, "do not fit pairs of effects");
+  add_dem_options(*cmd, o->dem);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_diagnose(*o); }; });
 }

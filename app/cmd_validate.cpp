@@ -3,13 +3,13 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "app/dem_options.h"
 #include "app/effect_options.h"
 #include "core/input_error.h"
 #include "reports/report.h"
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
-#include "validation/models/dem_model.h"
 #include "validation/output_files.h"
 #include "validation/tolerances.h"
 
@@ -20,31 +20,15 @@ struct ValidateCli {
   std::string dataset, out, tolerances, models = "korzen,booth-cema";
   std::vector<std::string> effects;
   bool diagnose = false;
-  std::string dem_quality, dem_cache;
-  std::optional<int> dem_threads;
-  bool no_dem_cache = false;
+  DemCli dem;
 };
 
 int run_validate(const ValidateCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.dataset);
   const auto dataset = validation::read_dataset(dir);
-  {
-    // The DEM model ("dem" in --models) reads the dataset's [dem] table, caches its runs and writes
-    // per-condition series, side views and VTK under OUT/dem/.
-    validation::DemModelConfig dc;
-    dc.setup_file = (dir / "setup.toml").string();
-    if (!o.dem_quality.empty()) {
-      dc.overrides.quality = dem::station::parse_quality(o.dem_quality);
-      if (!dc.overrides.quality) throw InputError("", 0, "--dem-quality", "must be quick, standard or paper");
-    }
-    dc.overrides.threads = o.dem_threads;
-    dc.use_cache = !o.no_dem_cache;
-    dc.cache_dir = o.dem_cache;
-    dc.progress = true;
-    dc.output_dir = (fs::path(o.out) / "dem").string();
-    validation::set_dem_model_config(dc);
-  }
+  // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.
+  configure_dem_model(o.dem, o.dataset, o.out);
   const auto models = validation::make_models(split_list(o.models));
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
 
@@ -60,6 +44,8 @@ int run_validate(const ValidateCli& o) {
   reports::ReportInput report;
   report.dataset = &dataset;
   report.baseline = &baseline;
+  const auto findings = validation::check_seed_findings(dataset, baseline);
+  report.findings = &findings;
   // Fits and the diagnosis call the models hundreds of times: they use the cheap ones (an expensive
   // baseline enters the diagnosis as in DESIGN.md §5, not by re-running it per trial strength).
   std::vector<validation::ModelPtr> cheap;
@@ -118,11 +104,7 @@ void add_validate(CLI::App& app, Action& action) {
                   "acceptance tolerances (default: the dataset's tolerances.toml if present)");
   cmd->add_flag("--diagnose", o->diagnose,
                 "also rank the candidate missing effects (always done when --effect is given)");
-  cmd->add_option("--dem-quality", o->dem_quality,
-                  "DEM quality: quick (default; minutes per condition), standard (the dataset's particles), paper");
-  cmd->add_option("--dem-threads", o->dem_threads, "OpenMP threads of the DEM (default 2)");
-  cmd->add_option("--dem-cache", o->dem_cache, "DEM result cache folder (default $XDG_CACHE_HOME/chutelab/dem)");
-  cmd->add_flag("--no-dem-cache", o->no_dem_cache, "run the DEM again even when a cached result exists");
+  add_dem_options(*cmd, o->dem);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_validate(*o); }; });
 }

@@ -259,6 +259,11 @@ Doc assemble(const ReportInput& in) {
     d.table(trend_table(c, *v.result, "trends-" + v.suffix));
   }
 
+  if (in.findings && !in.findings->empty()) {
+    d.h(2, "findings", "The seed's findings");
+    d.table(findings_table(*in.findings));
+  }
+
   // ---- Provenance of the numbers ----
   const Table notes = model_notes_table(c, in.with_effects ? *in.with_effects : *in.baseline, "model-notes");
   if (!notes.rows.empty()) {

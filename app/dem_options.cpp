@@ -1,0 +1,35 @@
+#include "app/dem_options.h"
+
+#include <filesystem>
+
+#include "core/input_error.h"
+#include "validation/models/dem_model.h"
+
+namespace chutelab::app {
+
+void add_dem_options(CLI::App& cmd, DemCli& o) {
+  cmd.add_option("--dem-quality", o.quality,
+                 "DEM quality: quick (default; seconds to minutes per condition), standard (the dataset's "
+                 "particles), paper");
+  cmd.add_option("--dem-threads", o.threads, "OpenMP threads of the DEM (default: one per idle core)");
+  cmd.add_option("--dem-cache", o.cache, "DEM result cache folder (default $XDG_CACHE_HOME/chutelab/dem)");
+  cmd.add_flag("--no-dem-cache", o.no_cache, "run the DEM again even when a cached result exists");
+}
+
+void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& out_dir) {
+  namespace fs = std::filesystem;
+  validation::DemModelConfig dc;
+  dc.setup_file = (fs::path(dataset_dir) / "setup.toml").string();
+  if (!o.quality.empty()) {
+    dc.overrides.quality = dem::station::parse_quality(o.quality);
+    if (!dc.overrides.quality) throw InputError("", 0, "--dem-quality", "must be quick, standard or paper");
+  }
+  dc.overrides.threads = o.threads;
+  dc.use_cache = !o.no_cache;
+  dc.cache_dir = o.cache;
+  dc.progress = true;
+  if (!out_dir.empty()) dc.output_dir = (fs::path(out_dir) / "dem").string();
+  validation::set_dem_model_config(dc);
+}
+
+}  // namespace chutelab::app

@@ -1,0 +1,36 @@
+#pragma once
+// The seed's qualitative findings (Grima & Wypych 2010; list in ../shared/reference/README.md),
+// checked on a validation result rather than asserted: each is split into the claims a dataset can
+// test, each claim is decided from the numbers with a stated criterion, and a finding is
+// "reproduced" only when every testable claim holds. Claims need particular models (korzen,
+// booth-cema, dem) and measured quantities; what a dataset cannot test is said, not guessed.
+#include <string>
+#include <vector>
+
+#include "validation/dataset.h"
+#include "validation/harness.h"
+
+namespace chutelab::validation {
+
+enum class FindingStatus { reproduced, partly, not_reproduced, not_testable };
+std::string_view name(FindingStatus s);
+
+struct FindingClaim {
+  std::string text;       // what is claimed
+  bool testable = false;  // the models and measurements it needs are present
+  bool holds = false;
+  std::string evidence;   // the numbers and the criterion (or why it cannot be tested)
+};
+
+struct SeedFinding {
+  int number = 0;             // as in the reference list
+  std::string statement;      // the seed's finding
+  std::vector<FindingClaim> claims;
+  FindingStatus status = FindingStatus::not_testable;
+};
+
+// Findings 1-5 (model behaviour and model-vs-measurement patterns). Finding 6, the sensitivity
+// study, needs its own runs (`chutelab sensitivity`) and is judged there.
+std::vector<SeedFinding> check_seed_findings(const Dataset& d, const ValidationResult& r);
+
+}  // namespace chutelab::validation
