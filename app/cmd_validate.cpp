@@ -28,7 +28,8 @@ int run_validate(const ValidateCli& o) {
   const fs::path dir(o.dataset);
   const auto dataset = validation::read_dataset(dir);
   // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.
-  configure_dem_model(o.dem, o.dataset, o.out);
+  DemOutputStage dem_files(o.out);
+  configure_dem_model(o.dem, o.dataset, dem_files.staging());
   const auto models = validation::make_models(split_list(o.models));
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
 
@@ -82,6 +83,7 @@ int run_validate(const ValidateCli& o) {
     files.emplace_back("diagnosis.md", validation::diagnosis_markdown(*diagnosis));
   }
   validation::write_outputs(o.out, files);
+  dem_files.commit();
   if (after) std::cout << "before: " << baseline.brief() << "\nafter:  " << after->brief() << "\n";
   else std::cout << baseline.brief() << "\n";
   if (diagnosis) std::cout << diagnosis->verdict << "\n";

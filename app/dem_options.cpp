@@ -16,7 +16,7 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
   cmd.add_flag("--no-dem-cache", o.no_cache, "run the DEM again even when a cached result exists");
 }
 
-void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& out_dir) {
+void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir) {
   namespace fs = std::filesystem;
   validation::DemModelConfig dc;
   dc.setup_file = (fs::path(dataset_dir) / "setup.toml").string();
@@ -28,8 +28,28 @@ void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const 
   dc.use_cache = !o.no_cache;
   dc.cache_dir = o.cache;
   dc.progress = true;
-  if (!out_dir.empty()) dc.output_dir = (fs::path(out_dir) / "dem").string();
+  dc.output_dir = output_dir;
   validation::set_dem_model_config(dc);
+}
+
+DemOutputStage::DemOutputStage(const std::string& out)
+    : staging_(std::filesystem::path(out) / ".dem.partial"), final_(std::filesystem::path(out) / "dem") {
+  std::error_code ec;
+  std::filesystem::remove_all(staging_, ec);  // left by a run that was killed
+}
+
+DemOutputStage::~DemOutputStage() {
+  if (committed_) return;
+  std::error_code ec;
+  std::filesystem::remove_all(staging_, ec);
+}
+
+void DemOutputStage::commit() {
+  namespace fs = std::filesystem;
+  committed_ = true;
+  if (!fs::exists(staging_)) return;
+  fs::remove_all(final_);
+  fs::rename(staging_, final_);
 }
 
 }  // namespace chutelab::app

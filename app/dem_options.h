@@ -2,6 +2,7 @@
 // The DEM flags that validate and diagnose share (--dem-quality, --dem-threads, --dem-cache,
 // --no-dem-cache): both may run "dem" from --models, and a diagnosis after a validate must find
 // the validate's runs in the same cache.
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -18,7 +19,24 @@ struct DemCli {
 void add_dem_options(CLI::App& cmd, DemCli& o);
 
 // Configures the registry's "dem" model for a dataset folder; per-condition output (series, side
-// views, VTK) goes under out_dir/dem when out_dir is not empty.
-void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& out_dir);
+// views, VTK) goes to `output_dir` when it is not empty.
+void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir);
+
+// The DEM's per-condition files are written while the models run, long before the tables: they go
+// to a hidden folder beside OUT/dem that becomes OUT/dem only after every other output was written,
+// so a failed validate leaves the previous OUT/dem (or none), never a mix.
+class DemOutputStage {
+ public:
+  explicit DemOutputStage(const std::string& out);
+  ~DemOutputStage();
+  DemOutputStage(const DemOutputStage&) = delete;
+  DemOutputStage& operator=(const DemOutputStage&) = delete;
+  std::string staging() const { return staging_.string(); }
+  void commit();  // replaces OUT/dem with what the run wrote (nothing when the DEM did not run)
+
+ private:
+  std::filesystem::path staging_, final_;
+  bool committed_ = false;
+};
 
 }  // namespace chutelab::app
