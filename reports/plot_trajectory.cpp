@@ -23,6 +23,52 @@ Shape boundary_shape(Boundary b) {
   return Shape::circle;
 }
 
+// Point clouds (a DEM's particles) are coloured by their value in bins of a perceptually uniform
+// ramp (viridis, dark = slow), one shared scale over all panels so that the colours compare.
+constexpr std::array<std::string_view, 8> kRamp = {"#440154", "#46327e", "#365c8d", "#277f8e",
+                                                   "#1fa187", "#4ac16d", "#a0da39", "#fde725"};
+
+struct ValueScale {
+  double lo = 0.0, hi = 0.0;
+  std::string label;
+  bool valid() const { return hi > lo; }
+  std::size_t bin(double v) const {
+    const double t = valid() ? (v - lo) / (hi - lo) : 0.5;
+    return static_cast<std::size_t>(std::clamp(t * kRamp.size(), 0.0, kRamp.size() - 1.0));
+  }
+};
+
+// The cloud as one path per colour bin of zero-length round-capped segments: a dot per particle at
+// a fraction of the bytes of one element each.
+void draw_cloud(Svg& svg, const validation::Curve& cv, const Scale& X, const Scale& Y, const ValueScale& vs,
+                std::string_view fallback, const std::string& tip) {
+  std::array<std::string, kRamp.size()> paths;
+  const bool coloured = vs.valid() && cv.value.size() == cv.points.size();
+  for (std::size_t i = 0; i < cv.points.size(); ++i) {
+    const auto& q = cv.points[i];
+    paths[coloured ? vs.bin(cv.value[i]) : 0] += fmt::format("M{} {}h0", px(X(q.x() * 1e3)), px(Y(q.y() * 1e3)));
+  }
+  svg.raw(fmt::format("<g class=\"cloud\" opacity=\"0.75\"><title>{}</title>\n", esc(tip)));
+  for (std::size_t b = 0; b < paths.size(); ++b)
+    if (!paths[b].empty())
+      svg.raw(fmt::format("<path d=\"{}\" stroke=\"{}\" stroke-width=\"2.2\" stroke-linecap=\"round\" fill=\"none\"/>\n",
+                          paths[b], coloured ? kRamp[b] : fallback));
+  svg.raw("</g>\n");
+}
+
+// A horizontal colour bar for the legend figure.
+void draw_colour_bar(Svg& svg, double x, double y, const ValueScale& vs, std::string_view what) {
+  const double w = 24.0, h = 10.0;
+  svg.text(x, y + 9, std::string(what), "start", "font-size=\"12\"");
+  x += text_width(what, 12) + 8;
+  svg.text(x, y + 9, fmt::format("{:.2f}", vs.lo), "start", "font-size=\"11\"");
+  x += text_width(fmt::format("{:.2f}", vs.lo), 11) + 4;
+  for (std::size_t b = 0; b < kRamp.size(); ++b)
+    svg.raw(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\"/>\n", px(x + b * w), px(y),
+                        px(w), px(h), kRamp[b]));
+  svg.text(x + kRamp.size() * w + 4, y + 9, fmt::format("{:.2f} {}", vs.hi, vs.label), "start", "font-size=\"11\"");
+}
+
 struct Geometry {
   double x0, x1, y0, y1;  // mm
 };
@@ -141,9 +187,37 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
   for (const auto& row : c.conditions)
     any_impact_measured = any_impact_measured || find_measurement(*c.in.dataset, row.name, Quantity::impact_point_y);
 
+  // One colour scale for every point cloud of every panel.
+  ValueScale vs;
+  std::string cloud_name;
+  bool first_value = true;
+  for (const auto& p : r.predictions)
+    for (const auto& cv : p.prediction.curves)
+      if (cv.kind == validation::Curve::Kind::points && cv.value.size() == cv.points.size() && !cv.value.empty()) {
+        const auto [lo, hi] = std::minmax_element(cv.value.begin(), cv.value.end());
+        vs.lo = first_value ? *lo : std::min(vs.lo, *lo);
+        vs.hi = first_value ? *hi : std::max(vs.hi, *hi);
+        vs.label = cv.value_label;
+        cloud_name = fmt::format("{}: {}", p.model, cv.name);
+        first_value = false;
+      }
+  auto is_cloud = [&](const std::string& model, const std::string& curve) {
+    for (const auto& p : r.predictions)
+      if (p.model == model)
+        for (const auto& cv : p.prediction.curves)
+          if (cv.name == curve) return cv.kind == validation::Curve::Kind::points;
+    return false;
+  };
+
   std::vector<LegendEntry> legend;
-  for (const auto& [m, cv] : model_curves)
-    legend.push_back({LegendEntry::Kind::line, fmt::format("{}: {}", m, cv), c.colour(m), dash(cv)});
+  for (const auto& [m, cv] : model_curves) {
+    if (is_cloud(m, cv))
+      legend.push_back({LegendEntry::Kind::marker, fmt::format("{}: {} (coloured by {})", m, cv,
+                                                               vs.valid() ? vs.label : "model"),
+                        vs.valid() ? std::string(kRamp[kRamp.size() / 2]) : c.colour(m), "", Shape::circle, true});
+    else
+      legend.push_back({LegendEntry::Kind::line, fmt::format("{}: {}", m, cv), c.colour(m), dash(cv)});
+  }
   for (Boundary b : boundaries)
     legend.push_back({LegendEntry::Kind::marker, fmt::format("measured {} boundary", name(b)),
                       std::string(kMeasuredColour), "", boundary_shape(b), true});
@@ -160,9 +234,11 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
   {
     const double W = 980.0;
     const double lh = legend_height(W - 20, legend);
-    Svg leg(W, lh + 30.0, "plot traj-legend", fmt::format("{}-legend", id), "Legend of the stream pictures");
+    const double bar = vs.valid() ? 22.0 : 0.0;
+    Svg leg(W, lh + 30.0 + bar, "plot traj-legend", fmt::format("{}-legend", id), "Legend of the stream pictures");
     leg.title("Stream trajectories per condition: x, y from the head-pulley centre (mm)");
     leg.legend(10.0, 26.0, W - 20, legend);
+    if (vs.valid()) draw_colour_bar(leg, 10.0, 26.0 + lh + 4.0, vs, cloud_name);
     o += leg.finish();
   }
   o += "<div class=\"traj-grid\">\n";
@@ -210,7 +286,7 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
     for (const auto& m : r.models)
       if (const auto* p = r.prediction(row.name, m))
         for (const auto& cv : p->prediction.curves) {
-          if (cv.points.empty()) continue;
+          if (cv.points.empty() || cv.kind == validation::Curve::Kind::points) continue;
           const auto& e = cv.points.back();
           if (std::abs(e.x() * 1e3 - face_x(*s, e.y()) * 1e3) < 5.0) {
             note_low(e.y() * 1e3);
@@ -273,9 +349,17 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
                         px(X(Z)), px(Y(T)), px(X(Z + Hp * std::sin(s->plate.angle))), px(Y(plate_bottom)), Z, T,
                         Hp, s->plate.angle * 180.0 / M_PI));
 
+    for (const auto& m : r.models)  // clouds under the lines
+      if (const auto* p = r.prediction(row.name, m))
+        for (const auto& cv : p->prediction.curves)
+          if (cv.kind == validation::Curve::Kind::points)
+            draw_cloud(svg, cv, X, Y, vs, c.colour(m),
+                       fmt::format("{}: {} ({} shown{})", m, cv.name, cv.points.size(),
+                                   vs.valid() ? fmt::format(", colour: {}", vs.label) : ""));
     for (const auto& m : r.models)
       if (const auto* p = r.prediction(row.name, m))
         for (const auto& cv : p->prediction.curves) {
+          if (cv.kind == validation::Curve::Kind::points) continue;
           std::vector<std::pair<double, double>> pts;
           for (const auto& q : cv.points) pts.emplace_back(X(q.x() * 1e3), Y(q.y() * 1e3));
           const std::string d = dash(cv.name);

@@ -19,10 +19,15 @@ struct TrajectoryQuery {
   double x = 0.0;  // m
 };
 
-// A named polyline in the x-y plane for pictures (streamlines, stream limits), m.
+// Something a model draws in the x-y plane (m): a polyline (streamlines, stream limits) or a cloud
+// of points (a DEM's particles), optionally with one value per point that pictures map to colour.
 struct Curve {
-  std::string name;
-  std::vector<Eigen::Vector2d> points;
+  enum class Kind { line, points };
+  std::string name{};
+  std::vector<Eigen::Vector2d> points{};
+  Kind kind = Kind::line;
+  std::vector<double> value{};  // empty, or one per point
+  std::string value_label{};    // e.g. "speed (m/s)"
 };
 
 // What a caller wants besides the quantities.

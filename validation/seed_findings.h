@@ -16,16 +16,16 @@ enum class FindingStatus { reproduced, partly, not_reproduced, not_testable };
 std::string_view name(FindingStatus s);
 
 struct FindingClaim {
-  std::string text;       // what is claimed
+  std::string text{};     // what is claimed
   bool testable = false;  // the models and measurements it needs are present
   bool holds = false;
-  std::string evidence;   // the numbers and the criterion (or why it cannot be tested)
+  std::string evidence{}; // the numbers and the criterion (or why it cannot be tested)
 };
 
 struct SeedFinding {
   int number = 0;             // as in the reference list
-  std::string statement;      // the seed's finding
-  std::vector<FindingClaim> claims;
+  std::string statement{};    // the seed's finding
+  std::vector<FindingClaim> claims{};
   FindingStatus status = FindingStatus::not_testable;
 };
 

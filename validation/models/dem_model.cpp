@@ -115,17 +115,13 @@ class DemModel final : public Model {
         }
         if (!c.points.empty()) p.curves.push_back(std::move(c));
       }
-      // Side view of the steady stream (seed Fig. 9): particle centres (x, y) in "particles" and,
-      // point by point, (speed m/s, z m) in "particles_speed".
-      Curve pts{"particles", {}}, speed{"particles_speed", {}};
+      // Side view of the steady stream (seed Fig. 9): particle centres coloured by speed.
+      Curve pts{"particles", {}, Curve::Kind::points, {}, "speed (m/s)"};
       for (const auto& s : r.side_view) {
         pts.points.emplace_back(s.x, s.y);
-        speed.points.emplace_back(s.speed, s.z);
+        pts.value.push_back(s.speed);
       }
-      if (!pts.points.empty()) {
-        p.curves.push_back(std::move(pts));
-        p.curves.push_back(std::move(speed));
-      }
+      if (!pts.points.empty()) p.curves.push_back(std::move(pts));
     }
     p.notes = r.notes;
     if (r.impact_velocity_fast.ok())
