@@ -263,6 +263,33 @@ BOOST_FIXTURE_TEST_CASE(before_after_and_diagnosis_sections, Fixture) {
   BOOST_TEST(md.find("only the library's effects were tried") != std::string::npos);
 }
 
+// A point cloud (a DEM's particles) is dots coloured on one scale shared by every panel, never a
+// polyline through 3000 particles; the seed's findings appear when given.
+BOOST_FIXTURE_TEST_CASE(point_clouds_are_dots_with_a_colour_bar, Fixture) {
+  validation::Curve cloud{"particles", {}, validation::Curve::Kind::points, {}, "speed (m/s)"};
+  for (int i = 0; i < 50; ++i) {
+    cloud.points.emplace_back(0.005 * i, 0.15 - 0.001 * i);
+    cloud.value.push_back(0.1 * i);
+  }
+  for (auto& p : r.predictions)
+    if (p.model == "m1") p.prediction.curves.push_back(cloud);
+  std::vector<validation::SeedFinding> findings(1);
+  findings[0].number = 1;
+  findings[0].statement = "a finding";
+  findings[0].status = validation::FindingStatus::partly;
+  findings[0].claims = {{"claim one", true, true, "numbers one"}, {"claim two", true, false, "numbers two"}};
+  auto i = in();
+  i.findings = &findings;
+  const std::string html = reports::report_html(i), md = reports::report_markdown(i);
+  BOOST_TEST(html.find("class=\"cloud\"") != std::string::npos);
+  BOOST_TEST(html.find("<title>m1: particles</title>") == std::string::npos);  // not drawn as a line
+  BOOST_TEST(html.find("4.90 speed (m/s)") != std::string::npos);               // colour bar to the max
+  BOOST_TEST(html.find("#fde725") != std::string::npos);                        // fastest bin used
+  BOOST_TEST(md.find("The seed's findings") != std::string::npos);
+  BOOST_TEST(md.find("partly reproduced") != std::string::npos);
+  BOOST_TEST(md.find("numbers two") != std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(nice_ticks_land_on_round_numbers) {
   const auto t = reports::nice_ticks(0.0, 63.3, 6);
   BOOST_TEST(t.step == 10.0);
