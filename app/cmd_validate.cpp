@@ -6,6 +6,7 @@
 #include "app/effect_options.h"
 #include "core/input_error.h"
 #include "reports/report.h"
+#include "reports/studies.h"
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
@@ -23,12 +24,15 @@ struct ValidateCli {
   std::string dem_quality, dem_cache;
   std::optional<int> dem_threads;
   bool no_dem_cache = false;
+  std::vector<std::string> studies;
 };
 
 int run_validate(const ValidateCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.dataset);
   const auto dataset = validation::read_dataset(dir);
+  // Read before any model runs: a bad study file ends the command before anything is written.
+  const auto studies = reports::read_studies({o.studies.begin(), o.studies.end()});
   {
     // The DEM model ("dem" in --models) reads the dataset's [dem] table, caches its runs and writes
     // per-condition series, side views and VTK under OUT/dem/.
@@ -60,6 +64,7 @@ int run_validate(const ValidateCli& o) {
   reports::ReportInput report;
   report.dataset = &dataset;
   report.baseline = &baseline;
+  report.studies = &studies;
   // Fits and the diagnosis call the models hundreds of times: they use the cheap ones (an expensive
   // baseline enters the diagnosis as in DESIGN.md §5, not by re-running it per trial strength).
   std::vector<validation::ModelPtr> cheap;
@@ -123,6 +128,10 @@ void add_validate(CLI::App& app, Action& action) {
   cmd->add_option("--dem-threads", o->dem_threads, "OpenMP threads of the DEM (default 2)");
   cmd->add_option("--dem-cache", o->dem_cache, "DEM result cache folder (default $XDG_CACHE_HOME/chutelab/dem)");
   cmd->add_flag("--no-dem-cache", o->no_dem_cache, "run the DEM again even when a cached result exists");
+  cmd->add_option("--studies", o->studies,
+                  "folders of `chutelab calibrate` / `sensitivity` runs (comma list or repeated): their tables "
+                  "and charts become report sections")
+      ->delimiter(',');
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_validate(*o); }; });
 }

@@ -18,6 +18,8 @@ struct EffectDescription {
   bool fitted = false;
 };
 
+struct StudySection;  // reports/studies.h
+
 struct ReportInput {
   const validation::Dataset* dataset = nullptr;             // required
   const validation::ValidationResult* baseline = nullptr;   // required: models as they are
@@ -25,6 +27,7 @@ struct ReportInput {
   std::vector<EffectDescription> effects;                   // what with_effects added
   const validation::DiagnosisResult* diagnosis = nullptr;   // optional: "What is missing"
   std::vector<std::string> notes;                           // provenance of numbers, warnings
+  const std::vector<StudySection>* studies = nullptr;       // optional: calibrate / sensitivity sections
 };
 
 std::string report_markdown(const ReportInput& in);
