@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/units.h"
+#include "reports/studies.h"
 #include "reports/svg.h"
 #include "validation/output_files.h"
 
@@ -186,67 +187,22 @@ std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& 
 
 std::string calibration_html(const CalibrationContext& c, const CalibrationStudy& s) {
   using namespace reports;
-  // Two panels against mu_r: pile height and bulk density, one line per (shape, density).
-  const std::vector<std::string> palette = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
-  struct Series {
-    std::string label, colour;
-    Shape shape;
-    std::vector<std::pair<double, double>> height, bulk;
-  };
-  std::vector<Series> series;
-  for (GrainKind k : s.plan.shapes)
-    for (double rho : s.plan.density) {
-      Series se{fmt::format("{}, rho_s {:g}", grain_label(s, k), rho), palette[series.size() % palette.size()],
-                k == GrainKind::sphere ? Shape::circle : Shape::square, {}, {}};
-      for (const auto& r : s.rows)
-        if (r.shape == k && r.solid_density == rho) {
-          se.height.emplace_back(r.rolling_friction, r.slump.pile_height * 1e3);
-          se.bulk.emplace_back(r.rolling_friction, r.slump.bulk_density);
-        }
-      series.push_back(se);
-    }
-  double rlo = 1e300, rhi = -1e300, hmax = 0, blo = 1e300, bhi = -1e300;
-  for (const auto& r : s.rows) {
-    rlo = std::min(rlo, r.rolling_friction);
-    rhi = std::max(rhi, r.rolling_friction);
-    hmax = std::max(hmax, r.slump.pile_height * 1e3);
-    blo = std::min(blo, r.slump.bulk_density);
-    bhi = std::max(bhi, r.slump.bulk_density);
+  // The chart is the report's (reports/plot_calibration.cpp), drawn from the rows as calibration.csv has them.
+  std::vector<CalibrationPoint> points;
+  for (std::size_t k = 0; k < s.rows.size(); ++k) {
+    const auto& r = s.rows[k];
+    CalibrationPoint p;
+    p.shape = std::string(name(r.shape));
+    p.grain = grain_label(s, r.shape);
+    p.rolling_friction = r.rolling_friction;
+    p.solid_density = r.solid_density;
+    p.bulk_density = r.slump.bulk_density;
+    p.pile_height = r.slump.pile_height;
+    p.closest = static_cast<int>(k) == s.closest;
+    points.push_back(p);
   }
-  if (s.plan.targets.pile_height) hmax = std::max(hmax, *s.plan.targets.pile_height * 1e3);
-  if (s.plan.targets.bulk_density) {
-    blo = std::min(blo, *s.plan.targets.bulk_density);
-    bhi = std::max(bhi, *s.plan.targets.bulk_density);
-  }
-  if (rhi <= rlo) rhi = rlo + 0.1;
-  std::vector<LegendEntry> legend;
-  for (const auto& se : series) legend.push_back({LegendEntry::Kind::marker, se.label, se.colour, "", se.shape});
-  if (s.plan.targets.any()) legend.push_back({LegendEntry::Kind::line, "target (measured)", "#000", "5,4"});
-  const double W = 960, lh = legend_height(W - 40, legend);
-  Svg svg(W, 80 + lh + 300, "plot calibration", "calibration-sweep", "Pile height and bulk density against rolling friction");
-  svg.title("Slump tests: pile height and loose-poured bulk density against rolling friction");
-  svg.legend(20, 28, W - 40, legend);
-  auto panel = [&](double left, const std::string& ylabel, double ylo, double yhi, bool height,
-                   std::optional<double> target) {
-    Frame f{left, 40 + lh + 10, 380, 250};
-    const Ticks xt = nice_ticks(rlo, rhi, 5), yt = nice_ticks(ylo, yhi, 6);
-    const Scale x{xt.lo, xt.hi, f.left, f.right()}, y{yt.lo, yt.hi, f.bottom(), f.top};
-    svg.axes(f, x, xt, y, yt, "rolling friction mu_r", ylabel);
-    if (target)
-      svg.line(f.left, y(*target), f.right(), y(*target), "stroke=\"#000\" stroke-dasharray=\"5,4\"");
-    for (const auto& se : series) {
-      const auto& pts = height ? se.height : se.bulk;
-      std::vector<std::pair<double, double>> px;
-      for (const auto& [a, b] : pts) px.emplace_back(x(a), y(b));
-      svg.polyline(px, fmt::format("fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"", se.colour));
-      for (const auto& [a, b] : pts)
-        svg.marker(se.shape, x(a), y(b), 7, se.colour, true,
-                   fmt::format("{}: mu_r {:g}, {} {:.1f}", se.label, a, height ? "pile height (mm)" : "bulk density (kg/m^3)", b));
-    }
-  };
-  panel(80, "pile height (mm)", 0.0, hmax * 1.1, true,
-        s.plan.targets.pile_height ? std::optional<double>(*s.plan.targets.pile_height * 1e3) : std::nullopt);
-  panel(560, "bulk density (kg/m^3)", blo - 0.03 * blo, bhi + 0.03 * bhi, false, s.plan.targets.bulk_density);
+  const std::string chart = calibration_chart(points, {s.plan.targets.bulk_density, s.plan.targets.pile_height},
+                                              "calibration-sweep");
 
   // The Markdown tables, rendered simply: the page has no script and no external asset.
   const std::string md = calibration_md(c, s);
@@ -289,7 +245,7 @@ std::string calibration_html(const CalibrationContext& c, const CalibrationStudy
       body += "</table>\n";
       in_table = false;
     }
-    if (line.rfind("# ", 0) == 0) body += "<h1>" + esc(line.substr(2)) + "</h1>\n" + svg.finish() + "\n";
+    if (line.rfind("# ", 0) == 0) body += "<h1>" + esc(line.substr(2)) + "</h1>\n" + chart + "\n";
     else if (line.rfind("## ", 0) == 0) body += "<h2>" + esc(line.substr(3)) + "</h2>\n";
     else if (line.rfind("- ", 0) == 0) body += "<p class=\"item\">• " + esc(line.substr(2)) + "</p>\n";
     else if (!line.empty()) body += "<p>" + esc(line) + "</p>\n";

@@ -20,7 +20,7 @@ namespace {
 namespace st = dem::station;
 
 struct SimulateCli {
-  std::string dataset, condition, out, quality, contact;
+  std::string dataset, condition, out, quality, contact, shape;
   std::optional<double> diameter_mm, shear_modulus_scale, dt_fraction, max_time, vtk_every;
   std::optional<int> threads;
   std::optional<std::uint64_t> seed;
@@ -59,6 +59,10 @@ int run_simulate(const SimulateCli& o) {
   if (!o.contact.empty()) {
     ov.contact = st::parse_contact(o.contact);
     if (!ov.contact) throw InputError("", 0, "--contact", "must be hertz-mindlin or lsd");
+  }
+  if (!o.shape.empty()) {
+    ov.shape = st::parse_shape(o.shape);
+    if (!ov.shape) throw InputError("", 0, "--shape", "must be sphere or clump");
   }
   if (o.diameter_mm) ov.particle_diameter = *o.diameter_mm * 1e-3;
   ov.shear_modulus_scale = o.shear_modulus_scale;
@@ -99,7 +103,8 @@ int run_simulate(const SimulateCli& o) {
     st::ResultCache(st::ResultCache::default_dir()).store(validation::dem_cache_key(fx, settings, table), r);
   }
 
-  std::cout << fmt::format("DEM run of {} / {} ({} quality, {:.1f} mm spheres, dt {:.3g} s)\n", setup.name, station->condition, r.quality, r.diameter * 1e3, r.dt);
+  std::cout << fmt::format("DEM run of {} / {} ({} quality, {:.1f} mm {}s, dt {:.3g} s)\n", setup.name, station->condition,
+                           r.quality, r.diameter * 1e3, r.shape == "clump" ? "two-sphere clump" : "sphere", r.dt);
   std::cout << fmt::format("simulated {:.2f} s in {:.0f} s wall ({} steps, up to {} particles){}\n", r.simulated_time,
                            r.wall_seconds, r.steps, r.peak_particles, r.early_stop ? ", stopped when steady" : "");
   std::cout << fmt::format("steady window {:.2f}-{:.2f} s ({} blocks of {:.1f} s){}\n", r.window.start, r.window.end,
@@ -139,6 +144,7 @@ void add_simulate(CLI::App& app, Action& action) {
   cmd->add_option("--shear-modulus-scale", o->shear_modulus_scale, "factor on E and G of particles and walls");
   cmd->add_option("--dt-fraction", o->dt_fraction, "time step as a fraction of the Hertz collision time");
   cmd->add_option("--contact", o->contact, "hertz-mindlin or lsd");
+  cmd->add_option("--shape", o->shape, "sphere, or clump (the seed's two-sphere pellet, Fig. 4c; --diameter-mm is its spheres')");
   cmd->add_option("--threads", o->threads, "OpenMP threads (results do not depend on it)");
   cmd->add_option("--seed", o->seed, "seed of the particle feed");
   cmd->add_option("--max-time", o->max_time, "simulated time limit, s (the run stops earlier when steady)");

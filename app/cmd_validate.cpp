@@ -7,6 +7,7 @@
 #include "app/effect_options.h"
 #include "core/input_error.h"
 #include "reports/report.h"
+#include "reports/studies.h"
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
@@ -21,12 +22,15 @@ struct ValidateCli {
   std::vector<std::string> effects;
   bool diagnose = false;
   DemCli dem;
+  std::vector<std::string> studies;
 };
 
 int run_validate(const ValidateCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.dataset);
   const auto dataset = validation::read_dataset(dir);
+  // Read before any model runs: a bad study file ends the command before anything is written.
+  const auto studies = reports::read_studies({o.studies.begin(), o.studies.end()});
   // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.
   DemOutputStage dem_files(o.out);
   configure_dem_model(o.dem, o.dataset, dem_files.staging());
@@ -47,6 +51,7 @@ int run_validate(const ValidateCli& o) {
   report.baseline = &baseline;
   const auto findings = validation::check_seed_findings(dataset, baseline);
   report.findings = &findings;
+  report.studies = &studies;
   // Fits and the diagnosis call the models hundreds of times: they use the cheap ones (an expensive
   // baseline enters the diagnosis as in DESIGN.md §5, not by re-running it per trial strength).
   std::vector<validation::ModelPtr> cheap;
@@ -107,6 +112,10 @@ void add_validate(CLI::App& app, Action& action) {
   cmd->add_flag("--diagnose", o->diagnose,
                 "also rank the candidate missing effects (always done when --effect is given)");
   add_dem_options(*cmd, o->dem);
+  cmd->add_option("--studies", o->studies,
+                  "folders of `chutelab calibrate` / `sensitivity` runs (comma list or repeated): their tables "
+                  "and charts become report sections")
+      ->delimiter(',');
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_validate(*o); }; });
 }

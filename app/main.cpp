@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   app::add_synthesize(app, action);
   app::add_simulate(app, action);
   app::add_calibrate(app, action);
+  app::add_sensitivity(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "reports/common.h"
+#include "reports/studies.h"
 
 namespace chutelab::reports {
 namespace {
@@ -269,6 +270,14 @@ Doc assemble(const ReportInput& in) {
   if (!notes.rows.empty()) {
     d.h(2, "provenance", "How the numbers were obtained");
     d.table(notes);
+  }
+  // ---- Studies run beside the validation (reports/studies.h) ----
+  for (const auto& s : in.studies ? *in.studies : std::vector<StudySection>{}) {
+    d.h(2, s.id, s.title);
+    if (!s.verdict.empty()) d.verdict(s.verdict);
+    for (const auto& p : s.paragraphs) d.p(p);
+    d.table(s.table);
+    if (!s.chart_svg.empty()) d.figure(s.chart_svg, s.caption);
   }
   return d;
 }

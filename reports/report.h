@@ -19,6 +19,8 @@ struct EffectDescription {
   bool fitted = false;
 };
 
+struct StudySection;  // reports/studies.h
+
 struct ReportInput {
   const validation::Dataset* dataset = nullptr;             // required
   const validation::ValidationResult* baseline = nullptr;   // required: models as they are
@@ -27,6 +29,7 @@ struct ReportInput {
   const validation::DiagnosisResult* diagnosis = nullptr;   // optional: "What is missing"
   const std::vector<validation::SeedFinding>* findings = nullptr;  // optional: the seed's findings checked
   std::vector<std::string> notes;                           // provenance of numbers, warnings
+  const std::vector<StudySection>* studies = nullptr;       // optional: calibrate / sensitivity sections
 };
 
 std::string report_markdown(const ReportInput& in);

@@ -47,6 +47,7 @@ std::uint64_t fnv1a64(const std::string& s) {
 std::string to_text(const StationResult& r) {
   std::string o;
   o += fmt::format("condition {}\nquality {}\n", r.condition, r.quality);
+  if (r.shape != "sphere") o += fmt::format("shape {}\n", r.shape);
   o += fmt::format("run {} {} {} {} {} {} {} {} {} {}\n", num(r.diameter), num(r.dt), num(r.collision_time),
                    num(r.rayleigh_time), num(r.simulated_time), r.steps, num(r.wall_seconds), r.early_stop ? 1 : 0,
                    r.peak_particles, num(r.side_view_time));
@@ -91,6 +92,7 @@ std::optional<StationResult> from_text(const std::string& text) {
     std::istringstream in(rest);
     if (tag == "condition") r.condition = rest;
     else if (tag == "quality") r.quality = rest;
+    else if (tag == "shape") r.shape = rest;
     else if (tag == "note") r.notes.push_back(rest);
     else if (tag == "run") {
       int early = 0;

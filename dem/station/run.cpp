@@ -57,6 +57,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
   r.condition = st.condition;
   r.quality = std::string(name(s.quality));
   r.diameter = sc.diameter;
+  r.shape = std::string(name(sc.shape));
   r.dt = sc.dt;
   r.collision_time = sc.collision_time;
   r.rayleigh_time = sc.rayleigh_time;
@@ -83,6 +84,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
   double next_progress = 0.0;
   const double progress_step = 0.01 * s.max_time;
   long long sample_index = 0;
+  std::size_t peak_bodies = 0;  // clumps (peak_particles counts their spheres)
 
   while (w.step_count() < max_steps) {
     Vec3 force = Vec3::Zero();
@@ -108,6 +110,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
     if (sample_index % samples_per_snapshot == 0) {
       r.snapshots.push_back(sensors.measure(w, face));
       r.peak_particles = std::max(r.peak_particles, w.particles().size());
+      peak_bodies = std::max(peak_bodies, w.clumps().size());
     }
     if (t + 1e-12 >= next_vtk) {
       write_vtk_particles((fs_::path(o.vtk_dir) / fmt::format("particles_{:05d}.vtk", vtk_index++)).string(),
@@ -263,9 +266,14 @@ StationResult run_station(const Station& st, const RunOptions& o) {
 
   // --- notes ---
   r.notes.push_back(fmt::format(
-      "DEM {}: {:.1f} mm spheres, dt {:.3g} s ({:.2f} of the collision time {:.3g} s, {:.2f} of the Rayleigh time), "
+      "DEM {}: {}, dt {:.3g} s ({:.2f} of the collision time {:.3g} s, {:.2f} of the Rayleigh time), "
       "{:.2f} s simulated{}, steady window {:.2f}-{:.2f} s ({} blocks of {:.1f} s)",
-      r.quality, r.diameter * 1e3, r.dt, r.dt / r.collision_time, r.collision_time, r.dt / r.rayleigh_time,
+      r.quality,
+      sc.shape == ParticleShape::clump
+          ? fmt::format("two-sphere clumps (seed Fig. 4c) of {:.1f} mm spheres, {} bodies at the peak", r.diameter * 1e3,
+                        peak_bodies)
+          : fmt::format("{:.1f} mm spheres", r.diameter * 1e3),
+      r.dt, r.dt / r.collision_time, r.collision_time, r.dt / r.rayleigh_time,
       r.simulated_time, r.early_stop ? " (stopped when steady)" : "", a, b, r.window.blocks, blk));
   if (r.layer_speed.ok() && std::abs(r.layer_speed.value / sc.belt_speed - 1.0) > 0.02)
     r.notes.push_back(fmt::format("the layer reaches the pulley at {:.3f} m/s, not at belt speed {:.3f} m/s",
@@ -346,12 +354,12 @@ void write_result_files(const std::string& dir, const StationResult& r) {
   }
   {
     auto f = open_out(d / "run.txt");
-    f << fmt::format("condition = {}\nquality = {}\nparticle_diameter_mm = {:.3f}\ndt_s = {:.6g}\n"
+    f << fmt::format("condition = {}\nquality = {}\nshape = {}\nparticle_diameter_mm = {:.3f}\ndt_s = {:.6g}\n"
                      "collision_time_s = {:.6g}\nrayleigh_time_s = {:.6g}\nsimulated_s = {:.4f}\nsteps = {}\n"
                      "rebuilds = {}\nwall_s = {:.1f}\nearly_stop = {}\npeak_particles = {}\nsteady_found = {}\n"
                      "window_start_s = {:.3f}\nwindow_end_s = {:.3f}\nwindow_blocks = {}\n"
                      "inserted_kg = {:.6g}\ndischarged_kg = {:.6g}\nescaped_kg = {:.6g}\nin_domain_kg = {:.6g}\n",
-                     r.condition, r.quality, r.diameter * 1e3, r.dt, r.collision_time, r.rayleigh_time,
+                     r.condition, r.quality, r.shape, r.diameter * 1e3, r.dt, r.collision_time, r.rayleigh_time,
                      r.simulated_time, r.steps, r.rebuilds, r.wall_seconds, r.early_stop, r.peak_particles, r.window.found,
                      r.window.start, r.window.end, r.window.blocks, r.inserted, r.discharged, r.escaped, r.in_domain);
     for (const auto& n : r.notes) f << "note = " << n << "\n";

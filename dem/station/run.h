@@ -25,7 +25,8 @@ struct StationResult {
   // --- what ran ---
   std::string condition;
   std::string quality;
-  double diameter = 0.0;        // m
+  double diameter = 0.0;        // m (a clump's spheres)
+  std::string shape = "sphere"; // sphere | clump (settings.h ParticleShape)
   double dt = 0.0;              // s
   double collision_time = 0.0;  // s
   double rayleigh_time = 0.0;   // s

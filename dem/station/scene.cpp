@@ -62,6 +62,9 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   sc.belt_speed = vb;
   sc.mass_flow = st.mass_flow;
   sc.diameter = d;
+  sc.shape = s.particle_shape;
+  // A sphere of diameter d; also what sets the collision time of clumps: their contacts are sphere
+  // contacts with the body's (larger) mass, so the sphere's t_c is the shorter, safe one.
   sc.particle_mass = mat.solid_density * pi / 6.0 * d * d * d;
 
   // --- frames ---
@@ -293,6 +296,12 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     in.mass_rate = st.mass_flow;
     in.radius_min = in.radius_max = r;
     in.material = mp;
+    if (s.particle_shape == ParticleShape::clump) {
+      // The seed's pellet (Fig. 4c), the same definition `chutelab calibrate` uses
+      // (rigs::Grain::seed_clump); the inserter scales it so that its spheres have diameter d and
+      // turns each body at random. It owes the feed mass, not a count, so the mass flow is kept.
+      in.clump_shape = w.add_clump_shape(ClumpShape::seed_pellet());
+    }
     in.velocity = vb * sc.belt.along + Vec3(0.0, -s.insert_speed_down, 0.0);
     in.interval = s.insert_interval;
     in.seed = s.seed * 0x9e3779b97f4a7c15ULL + 1;
@@ -334,16 +343,22 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
 
 double Scene::discharge() {
   const Particles& p = world->particles();
-  double removed = 0.0;
   bool any = false;
   for (std::size_t i = 0; i < p.size() && !any; ++i) any = p.x[i].y() < sink_y;
   if (!any) return 0.0;
-  std::vector<char> gone(p.size(), 0);
+  // A clump goes whole once any of its spheres is below the sink (World::remove_particles_if), so
+  // its other spheres count as discharged too.
+  std::vector<char> gone(p.size(), 0), body_gone(world->clumps().size(), 0);
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.x[i].y() < sink_y) {
       gone[i] = 1;
-      removed += p.mass[i];
+      if (p.clump[i] >= 0) body_gone[static_cast<std::size_t>(p.clump[i])] = 1;
     }
+  double removed = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.clump[i] >= 0 && body_gone[static_cast<std::size_t>(p.clump[i])]) gone[i] = 1;
+    if (gone[i]) removed += p.mass[i];
+  }
   world->remove_particles_if([&](std::size_t i) { return gone[i] != 0; });
   discharged += removed;
   return removed;

@@ -36,7 +36,8 @@ struct Scene {
   std::vector<int> boundary_sinks;   // domain faces: anything there escaped the rig
   double belt_speed = 0.0;           // m/s
   double mass_flow = 0.0;            // kg/s fed
-  double diameter = 0.0;             // m, DEM particle diameter
+  double diameter = 0.0;             // m, DEM particle diameter (a clump's spheres)
+  ParticleShape shape = ParticleShape::sphere;
   double particle_mass = 0.0;        // kg
   double dt = 0.0;                   // s
   double collision_time = 0.0;       // s, shortest Hertz (or LSD) collision at the characteristic speed

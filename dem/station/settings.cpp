@@ -37,6 +37,14 @@ std::optional<ContactLaw> parse_contact(std::string_view s) {
   return std::nullopt;
 }
 
+std::string_view name(ParticleShape p) { return p == ParticleShape::sphere ? "sphere" : "clump"; }
+
+std::optional<ParticleShape> parse_shape(std::string_view s) {
+  if (s == "sphere") return ParticleShape::sphere;
+  if (s == "clump") return ParticleShape::clump;
+  return std::nullopt;
+}
+
 RunSettings preset(Quality q) {
   RunSettings s;  // the defaults of settings.h are the standard preset
   s.quality = q;
@@ -126,6 +134,11 @@ DemTable read_dem_table(const std::string& file) {
       const auto c = v ? parse_contact(*v) : std::nullopt;
       if (!c) throw InputError(file, line_of(node), key, "must be \"hertz-mindlin\" or \"lsd\"");
       t.contact = c;
+    } else if (kv == "shape") {
+      const auto v = node.value<std::string>();
+      const auto p = v ? parse_shape(*v) : std::nullopt;
+      if (!p) throw InputError(file, line_of(node), key, "must be \"sphere\" or \"clump\"");
+      t.shape = p;
     } else if (kv == "particle_diameter_mm") {
       t.particle_diameter = positive_number(node, file, key) * 1e-3;
     } else if (kv == "shear_modulus_scale") {
@@ -163,7 +176,7 @@ DemTable read_dem_table(const std::string& file) {
     } else {
       throw InputError(file, line_of(node), key,
                        "unknown key (known: quality, particle_diameter_mm, shear_modulus_scale, dt_fraction, "
-                       "contact, seed, max_time_s, min_window_s, feed_length_mm, skin_fraction, [dem.stl])");
+                       "contact, shape, seed, max_time_s, min_window_s, feed_length_mm, skin_fraction, [dem.stl])");
     }
   }
   return t;
@@ -174,6 +187,7 @@ void apply(const DemTable& t, RunSettings& s) {
   if (t.shear_modulus_scale) s.shear_modulus_scale = *t.shear_modulus_scale;
   if (t.dt_fraction) s.dt_fraction = *t.dt_fraction;
   if (t.contact) s.contact = *t.contact;
+  if (t.shape) s.particle_shape = *t.shape;
   if (t.seed) s.seed = *t.seed;
   if (t.max_time) s.max_time = *t.max_time;
   if (t.min_window) s.min_window = *t.min_window;
@@ -189,6 +203,7 @@ RunSettings resolve(const DemTable& table, const SettingsOverrides& o, Quality f
   if (o.shear_modulus_scale) s.shear_modulus_scale = *o.shear_modulus_scale;
   if (o.dt_fraction) s.dt_fraction = *o.dt_fraction;
   if (o.contact) s.contact = *o.contact;
+  if (o.shape) s.particle_shape = *o.shape;
   if (o.seed) s.seed = *o.seed;
   if (o.threads) s.threads = *o.threads;
   if (o.max_time) {
@@ -210,6 +225,8 @@ void check(const RunSettings& s) {
        fmt::format("must be in (0, 1000], got {}", s.shear_modulus_scale));
   need(s.dt_fraction > 0.0 && s.dt_fraction <= 0.5, "--dt-fraction",
        fmt::format("must be in (0, 0.5] of the collision time, got {}", s.dt_fraction));
+  need(s.particle_shape == ParticleShape::sphere || s.particle_shape == ParticleShape::clump, "shape",
+       "must be sphere or clump");
   need(s.threads >= 0 && s.threads <= 256, "--threads", "must be between 0 (all) and 256");
   need(s.max_time > 0.0 && s.max_time <= 100.0, "max_time_s", fmt::format("must be in (0, 100] s, got {}", s.max_time));
   need(s.min_window > 0.0 && s.min_window < s.max_time, "min_window_s",
@@ -223,6 +240,8 @@ std::string canonical(const RunSettings& s) {
   std::string o;
   auto put = [&](const char* k, double v) { o += fmt::format("{} = {:.17g}\n", k, v); };
   o += fmt::format("quality = {}\ncontact = {}\nseed = {}\n", name(s.quality), name(s.contact), s.seed);
+  // Spheres keep the key they had before shapes existed, so cached sphere runs stay valid.
+  if (s.particle_shape != ParticleShape::sphere) o += fmt::format("shape = {}\n", name(s.particle_shape));
   put("particle_diameter", s.particle_diameter);
   put("shear_modulus_scale", s.shear_modulus_scale);
   put("dt_fraction", s.dt_fraction);

@@ -18,6 +18,12 @@ enum class ContactLaw { hertz_mindlin, linear_spring_dashpot };
 std::string_view name(ContactLaw c);
 std::optional<ContactLaw> parse_contact(std::string_view s);
 
+// Particle representation (seed Fig. 4): single spheres (4b) or the two-overlapping-sphere clump of
+// the seed's shaped pellet (4c).
+enum class ParticleShape { sphere, clump };
+std::string_view name(ParticleShape p);
+std::optional<ParticleShape> parse_shape(std::string_view s);
+
 struct RunSettings {
   Quality quality = Quality::quick;
 
@@ -35,6 +41,10 @@ struct RunSettings {
   double dt_fraction = 0.1;
   double rayleigh_fraction = 0.2;
   ContactLaw contact = ContactLaw::hertz_mindlin;
+  // clump: the feed inserts the seed's pellet (dem::ClumpShape::seed_pellet, the shape `chutelab
+  // calibrate` uses) with spheres of diameter `particle_diameter`, in random orientations, at the
+  // condition's mass flow (fewer bodies than spheres of that size: each weighs ~1.1 spheres).
+  ParticleShape particle_shape = ParticleShape::sphere;
 
   // --- feed (after the LIGGGHTS rig's recipe, datasets/liggghts-rig/README.md; see feeder_relaxation.h) ---
   // Along the belt, from upstream: belt_upstream, the insertion face (feed_length), the landing of
@@ -93,6 +103,7 @@ struct DemTable {
   std::optional<double> shear_modulus_scale;
   std::optional<double> dt_fraction;
   std::optional<ContactLaw> contact;
+  std::optional<ParticleShape> shape;
   std::optional<std::uint64_t> seed;
   std::optional<double> max_time;            // s
   std::optional<double> min_window;          // s
@@ -117,6 +128,7 @@ struct SettingsOverrides {
   std::optional<double> shear_modulus_scale;
   std::optional<double> dt_fraction;
   std::optional<ContactLaw> contact;
+  std::optional<ParticleShape> shape;
   std::optional<std::uint64_t> seed;
   std::optional<int> threads;
   std::optional<double> max_time;           // s

@@ -4,13 +4,14 @@
 // plate, the change against the base case, and the check of the seed's conclusion: "mean plate force
 // changes little with contact model, shape, dt and G; its fluctuation grows with particle size".
 // Independent of how a variant is run (the command plugs in the station DEM), so it can be tested on
-// made-up numbers.
+// made-up numbers; the report reads the CSV back (reports/studies.h).
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace chutelab::app {
+namespace chutelab::reports {
 
 enum class VariantGroup { base, contact, shape, time_step, modulus, size };
 std::string_view name(VariantGroup g);
@@ -75,14 +76,19 @@ struct SensitivityStudy {
 
 // The seed's variants around a base run of diameter `base_d`: LSD, a two-sphere clump whose spheres
 // are base_d x 4.4/5.6 (the seed's 4.4 mm clump against its 5.6 mm spheres), dt = t_c/20, G x10, G/10,
-// and the sizes of {5.6, 9, 13.6} mm that differ from base_d.
+// and two larger spheres, base_d x 9/5.6 and x 13.6/5.6 (the seed's 5.6 -> 9 and 13.6 mm scale-up).
 std::vector<SensitivityVariant> table6_variants(double base_d);
 
 // Fills change and the verdict from the rows.
 void evaluate(SensitivityStudy& s);
 
 std::string sensitivity_csv(const SensitivityStudy& s);
+// Reads back what sensitivity_csv wrote (the report's "Sensitivity" section) and evaluates it again;
+// bad or missing columns and values throw InputError naming the file, line and column.
+SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file);
+// The chart of sensitivity_html: mean R with its standard error and the fluctuation, per variant.
+std::string sensitivity_chart(const SensitivityStudy& s, std::string_view id);
 std::string sensitivity_md(const SensitivityStudy& s);
 std::string sensitivity_html(const SensitivityStudy& s);
 
-}  // namespace chutelab::app
+}  // namespace chutelab::reports

@@ -1,14 +1,16 @@
-#include "app/sensitivity_study.h"
+#include "reports/sensitivity_study.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
+#include "core/input_error.h"
 #include "reports/svg.h"
+#include "validation/csv_table.h"
 #include "validation/output_files.h"
 
-namespace chutelab::app {
+namespace chutelab::reports {
 namespace {
 
 using validation::csv_number;
@@ -61,10 +63,14 @@ std::vector<SensitivityVariant> table6_variants(double base_d) {
   auto g01 = variant("G/10", "shear modulus G / 10", VariantGroup::modulus);
   g01.modulus_scale = 0.1;
   v.push_back(g01);
-  for (double d : {5.6e-3, 9e-3, 13.6e-3}) {
-    if (std::abs(d - base_d) < 1e-6) continue;
-    auto s = variant(fmt::format("d={}mm", mm(d)), fmt::format("spheres d = {} mm (mass flow kept: fewer, heavier grains "
-                                                             "when larger)", mm(d)),
+  // The seed scaled its 5.6 mm spheres up to 9 and 13.6 mm: factors 1.61 and 2.43 of its base. The
+  // same factors of this base keep the study's shape at any quality (at `paper`, 5.6 mm, they are the
+  // seed's sizes) and make the extra sizes cheaper than the base, not 35x dearer.
+  for (double f : {9.0 / 5.6, 13.6 / 5.6}) {
+    const double d = base_d * f;
+    auto s = variant(fmt::format("d={}mm", mm(d)),
+                     fmt::format("spheres d = {} mm = {:.2f} x base (the seed's {:g} mm / 5.6 mm); mass flow kept: "
+                                 "fewer, heavier grains", mm(d), f, f * 5.6),
                      VariantGroup::size);
     s.diameter = d;
     v.push_back(s);
@@ -133,23 +139,103 @@ void evaluate(SensitivityStudy& s) {
   s.verdict = v;
 }
 
+SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
+  using validation::CsvTable;
+  const CsvTable t = CsvTable::read(
+      file, {"variant", "group", "contact", "shape", "diameter_mm", "dt_s", "dt_fraction", "collision_time_s",
+             "modulus_scale", "normal_force_N", "normal_force_se_N", "shear_force_N", "shear_force_se_N",
+             "resultant_force_N", "resultant_force_se_N", "fluctuation_normal_N", "fluctuation_shear_N",
+             "fluctuation_resultant_N", "run_seconds", "simulated_s", "steps", "peak_particles", "steady", "condition",
+             "belt_speed_mps", "mass_flow_tph", "quality", "change_limit_pct"});
+  const std::string f = file.string();
+  if (t.rows().empty()) throw InputError(f, 0, "variant", "no variants in the file (a header only)");
+  auto col = [&](std::string_view c) { return t.require(c); };
+  auto num = [&](const validation::CsvRow& r, std::string_view c) { return t.number(r, col(c)); };
+  // Empty = not measured (a run without a steady mean): NaN, as the command wrote it.
+  auto opt = [&](const validation::CsvRow& r, std::string_view c) {
+    return t.optional_number(r, col(c)).value_or(std::nan(""));
+  };
+  SensitivityStudy s;
+  s.dataset = file.parent_path().string();
+  const auto& first = t.rows().front();
+  s.condition = t.text(first, col("condition"));
+  s.quality = t.text(first, col("quality"));
+  s.belt_speed = num(first, "belt_speed_mps");
+  s.mass_flow = num(first, "mass_flow_tph") / 3.6;
+  s.limit_percent = num(first, "change_limit_pct");
+  for (const auto& r : t.rows()) {
+    SensitivityRow row;
+    SensitivityVariant& v = row.variant;
+    v.key = t.text(r, col("variant"));
+    const std::string g = t.text(r, col("group"));
+    bool known = false;
+    for (VariantGroup k : {VariantGroup::base, VariantGroup::contact, VariantGroup::shape, VariantGroup::time_step,
+                           VariantGroup::modulus, VariantGroup::size})
+      if (name(k) == g) {
+        v.group = k;
+        known = true;
+      }
+    if (!known)
+      throw InputError(f, r.line, "group",
+                       fmt::format("unknown group '{}' (base, contact model, particle shape, time step, shear modulus, "
+                                   "particle size)", g));
+    if ((&r == &first) != (v.group == VariantGroup::base))
+      throw InputError(f, r.line, "group", "the first row, and only it, must be the base run");
+    v.contact = t.text(r, col("contact"));
+    v.shape = t.text(r, col("shape"));
+    v.dt_fraction = num(r, "dt_fraction");
+    v.modulus_scale = num(r, "modulus_scale");
+    VariantOutcome& o = row.outcome;
+    o.diameter = num(r, "diameter_mm") * 1e-3;
+    v.diameter = o.diameter;
+    if (!(o.diameter > 0.0)) throw InputError(f, r.line, "diameter_mm", "must be > 0");
+    o.dt = num(r, "dt_s");
+    o.collision_time = num(r, "collision_time_s");
+    auto se = [&](std::string_view c) { return t.optional_number(r, col(c)).value_or(0.0); };
+    o.normal = {opt(r, "normal_force_N"), se("normal_force_se_N")};
+    o.shear = {opt(r, "shear_force_N"), se("shear_force_se_N")};
+    o.resultant = {opt(r, "resultant_force_N"), se("resultant_force_se_N")};
+    o.fluct_normal = opt(r, "fluctuation_normal_N");
+    o.fluct_shear = opt(r, "fluctuation_shear_N");
+    o.fluct_resultant = opt(r, "fluctuation_resultant_N");
+    o.wall_seconds = num(r, "run_seconds");
+    o.simulated = num(r, "simulated_s");
+    o.steps = static_cast<long long>(num(r, "steps"));
+    o.particles = static_cast<std::size_t>(num(r, "peak_particles"));
+    o.steady = num(r, "steady") != 0.0;
+    s.wall_seconds += o.wall_seconds;
+    s.rows.push_back(row);
+  }
+  // Labels are not stored (they hold commas); the variants of the base's size give them back.
+  for (const auto& known : table6_variants(s.rows.front().outcome.diameter))
+    for (auto& row : s.rows)
+      if (row.variant.key == known.key) row.variant.label = known.label;
+  for (auto& row : s.rows)
+    if (row.variant.label.empty()) row.variant.label = row.variant.key;
+  evaluate(s);
+  return s;
+}
+
 std::string sensitivity_csv(const SensitivityStudy& s) {
   std::string out =
       "variant,group,contact,shape,diameter_mm,dt_s,dt_fraction,collision_time_s,modulus_scale,"
       "normal_force_N,normal_force_se_N,shear_force_N,shear_force_se_N,resultant_force_N,resultant_force_se_N,"
       "fluctuation_normal_N,fluctuation_shear_N,fluctuation_resultant_N,change_resultant_pct,change_se_pct,"
-      "run_seconds,simulated_s,steps,peak_particles,steady\n";
+      "run_seconds,simulated_s,steps,peak_particles,steady,condition,belt_speed_mps,mass_flow_tph,quality,"
+      "change_limit_pct\n";
   for (const auto& r : s.rows) {
     const auto& v = r.variant;
     const auto& o = r.outcome;
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", v.key, name(v.group),
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                       v.key, name(v.group),
                        v.contact, v.shape, csv_number(o.diameter * 1e3), csv_number(o.dt), csv_number(v.dt_fraction),
                        csv_number(o.collision_time), csv_number(v.modulus_scale), csv_number(o.normal.value),
                        csv_number(o.normal.se), csv_number(o.shear.value), csv_number(o.shear.se),
                        csv_number(o.resultant.value), csv_number(o.resultant.se), csv_number(o.fluct_normal),
                        csv_number(o.fluct_shear), csv_number(o.fluct_resultant), csv_number(r.change.value),
                        csv_number(r.change.se), csv_number(o.wall_seconds), csv_number(o.simulated), o.steps, o.particles,
-                       o.steady ? 1 : 0);
+                       o.steady ? 1 : 0, s.condition, csv_number(s.belt_speed), csv_number(s.mass_flow * 3.6), s.quality,
+                       csv_number(s.limit_percent));
   }
   return out;
 }
@@ -157,7 +243,7 @@ std::string sensitivity_csv(const SensitivityStudy& s) {
 std::string sensitivity_md(const SensitivityStudy& s) {
   std::string md = "# Sensitivity of the plate force (seed Table 6)\n\n";
   md += fmt::format("Dataset `{}`, condition `{}` (V_b = {:g} m/s, {:.1f} t/h), quality `{}`; {} DEM runs in {:.0f} s.\n\n",
-                    reports::md_esc(s.dataset), reports::md_esc(s.condition), s.belt_speed, s.mass_flow * 3.6,
+                    md_esc(s.dataset), md_esc(s.condition), s.belt_speed, s.mass_flow * 3.6,
                     s.quality, s.rows.size(), s.wall_seconds);
   md += s.verdict.text + "\n\n";
   md += "| variant | what changes | d (mm) | dt (µs) | R_n (N) | R_s (N) | R (N) | sd R_n (N) | sd R_s (N) | sd R (N) | "
@@ -166,7 +252,7 @@ std::string sensitivity_md(const SensitivityStudy& s) {
   for (const auto& r : s.rows) {
     const auto& o = r.outcome;
     md += fmt::format("| {} | {} | {} | {:.2f} | {:.1f} ± {:.1f} | {:.1f} ± {:.1f} | {:.1f} ± {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} | {:.0f} |\n",
-                      r.variant.key, reports::md_esc(r.variant.label), mm(o.diameter), o.dt * 1e6, o.normal.value,
+                      r.variant.key, md_esc(r.variant.label), mm(o.diameter), o.dt * 1e6, o.normal.value,
                       o.normal.se, o.shear.value, o.shear.se, o.resultant.value, o.resultant.se, o.fluct_normal,
                       o.fluct_shear, o.fluct_resultant,
                       &r == &s.rows[0] ? std::string("—") : fmt::format("{:+.1f} ± {:.1f}", r.change.value, r.change.se),
@@ -181,13 +267,12 @@ std::string sensitivity_md(const SensitivityStudy& s) {
   }
   if (!notes.empty()) {
     md += "\n## Notes\n\n";
-    for (const auto& n : notes) md += "- " + reports::md_esc(n) + "\n";
+    for (const auto& n : notes) md += "- " + md_esc(n) + "\n";
   }
   return md;
 }
 
-std::string sensitivity_html(const SensitivityStudy& s) {
-  using namespace reports;
+std::string sensitivity_chart(const SensitivityStudy& s, std::string_view id) {
   const std::size_t n = s.rows.size();
   double rmax = 0.0, fmax = 0.0;
   for (const auto& r : s.rows) {
@@ -210,7 +295,7 @@ std::string sensitivity_html(const SensitivityStudy& s) {
                          VariantGroup::modulus, VariantGroup::size})
     legend.push_back({LegendEntry::Kind::box, std::string(name(g)), colour(g)});
   const double W = 960, lh = legend_height(W - 40, legend);
-  Svg svg(W, 70 + lh + 330, "plot sensitivity", "sensitivity-chart", "Mean resultant plate force and its fluctuation per variant");
+  Svg svg(W, 70 + lh + 330, "plot sensitivity", id, "Mean resultant plate force and its fluctuation per variant");
   svg.title("Plate force per variant: mean R (± 1 standard error) and its fluctuation (sd of R)");
   svg.legend(20, 28, W - 40, legend);
   auto panel = [&](double left, double top_value, const std::string& ylabel, bool mean) {
@@ -246,6 +331,11 @@ std::string sensitivity_html(const SensitivityStudy& s) {
   };
   panel(70, rmax, "mean resultant R (N)", true);
   panel(560, fmax, "fluctuation: sd of R (N)", false);
+  return svg.finish();
+}
+
+std::string sensitivity_html(const SensitivityStudy& s) {
+  const std::size_t n = s.rows.size();
 
   // Page: verdict, chart, table (the Markdown's table rendered), notes.
   const std::string md = sensitivity_md(s);
@@ -254,7 +344,7 @@ std::string sensitivity_html(const SensitivityStudy& s) {
                       "quality <code>{}</code>; {} DEM runs in {:.0f} s.</p>\n",
                       esc(s.dataset), esc(s.condition), s.belt_speed, s.mass_flow * 3.6, esc(s.quality), n, s.wall_seconds);
   body += fmt::format("<p class=\"verdict {}\">{}</p>\n", s.verdict.reproduced() ? "ok" : "not", esc(s.verdict.text));
-  body += svg.finish() + "\n<table>\n";
+  body += sensitivity_chart(s, "sensitivity-chart") + "\n<table>\n";
   std::size_t pos = 0;
   bool header = true;
   std::string tail;
@@ -290,4 +380,4 @@ std::string sensitivity_html(const SensitivityStudy& s) {
          body + "</body></html>\n";
 }
 
-}  // namespace chutelab::app
+}  // namespace chutelab::reports

@@ -1,0 +1,177 @@
+#include "reports/studies.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/input_error.h"
+#include "reports/sensitivity_study.h"
+#include "validation/csv_table.h"
+
+namespace chutelab::reports {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string num(double v, int decimals) { return std::isfinite(v) ? fixed(v, decimals) : std::string(kDash); }
+
+Cell text_cell(std::string s, bool strong = false) { return {std::move(s), "", false, "", true, strong}; }
+Cell num_cell(std::string s, bool strong = false) { return {std::move(s), "", false, "", false, strong}; }
+
+}  // namespace
+
+std::vector<CalibrationPoint> read_calibration_csv(const fs::path& file) {
+  using validation::CsvTable;
+  const CsvTable t = CsvTable::read(file, {"shape", "grain", "rolling_friction", "solid_density_kgm3",
+                                           "bulk_density_kgm3", "pile_height_mm", "repose_angle_deg", "particles",
+                                           "settled", "run_seconds", "target_distance", "closest"});
+  if (t.rows().empty()) throw InputError(file.string(), 0, "shape", "no slump tests in the file (a header only)");
+  auto col = [&](std::string_view c) { return t.require(c); };
+  std::vector<CalibrationPoint> out;
+  for (const auto& r : t.rows()) {
+    CalibrationPoint p;
+    p.shape = t.text(r, col("shape"));
+    if (p.shape != "sphere" && p.shape != "clump")
+      throw InputError(file.string(), r.line, "shape", fmt::format("must be sphere or clump, got '{}'", p.shape));
+    p.grain = t.text(r, col("grain"));
+    p.rolling_friction = t.number(r, col("rolling_friction"));
+    p.solid_density = t.number(r, col("solid_density_kgm3"));
+    p.bulk_density = t.number(r, col("bulk_density_kgm3"));
+    p.pile_height = t.number(r, col("pile_height_mm")) * 1e-3;
+    p.repose_angle_deg = t.optional_number(r, col("repose_angle_deg")).value_or(std::nan(""));
+    p.particles = static_cast<long>(t.number(r, col("particles")));
+    p.settled = t.number(r, col("settled")) != 0.0;
+    p.run_seconds = t.number(r, col("run_seconds"));
+    p.distance = t.optional_number(r, col("target_distance"));
+    p.closest = t.number(r, col("closest")) != 0.0;
+    if (!(p.solid_density > 0.0)) throw InputError(file.string(), r.line, "solid_density_kgm3", "must be > 0");
+    out.push_back(p);
+  }
+  return out;
+}
+
+StudySection calibration_section(const fs::path& csv_file, std::string_view suffix) {
+  const std::vector<CalibrationPoint> pts = read_calibration_csv(csv_file);
+  StudySection s;
+  s.id = fmt::format("calibration{}", suffix);
+  s.title = "Calibration (seed Table 3)";
+  double seconds = 0.0;
+  const CalibrationPoint* best = nullptr;
+  for (const auto& p : pts) {
+    seconds += p.run_seconds;
+    if (p.closest) best = &p;
+  }
+  s.paragraphs.push_back(fmt::format(
+      "Swing-arm slump tests (seed Fig. 5) over particle-particle rolling friction, solid density and particle "
+      "shape, from {} ({} tests, {:.0f} s of DEM). Loose-poured bulk density and pile height as the seed's Table 3.",
+      csv_file.string(), pts.size(), seconds));
+  if (best)
+    s.verdict = fmt::format("Closest to the measured target: {}, mu_r = {:g}, rho_s = {:g} kg/m^3 (bulk density {:.0f} "
+                            "kg/m^3, pile height {:.1f} mm; {:.1f} % from the target).",
+                            best->grain, best->rolling_friction, best->solid_density, best->bulk_density,
+                            best->pile_height * 1e3, best->distance ? 100.0 * *best->distance : std::nan(""));
+  else
+    s.paragraphs.push_back("No target was given to the calibration, so no combination is marked.");
+  Table& t = s.table;
+  t.id = s.id + "-table";
+  t.caption = "Slump-test calibration: rolling friction × solid density × shape";
+  t.columns = {{"", "particle", "", true},
+               {"", "rolling friction μ_r", "", false},
+               {"", "solid density (kg/m³)", "", false},
+               {"", "bulk density (kg/m³)", "", false},
+               {"", "pile height (mm)", "", false},
+               {"", "angle of repose (°)", "", false},
+               {"", "grains", "", false},
+               {"", "distance to target (%)", "", false}};
+  bool unsettled = false;
+  for (const auto& p : pts) {
+    unsettled = unsettled || !p.settled;
+    t.rows.push_back({text_cell(p.grain + (p.closest ? " ◀ closest" : ""), p.closest),
+                      num_cell(fmt::format("{:g}", p.rolling_friction), p.closest),
+                      num_cell(fmt::format("{:g}", p.solid_density), p.closest),
+                      num_cell(num(p.bulk_density, 0), p.closest), num_cell(num(p.pile_height * 1e3, 1), p.closest),
+                      num_cell(num(p.repose_angle_deg, 1)), num_cell(fmt::format("{}", p.particles)),
+                      num_cell(p.distance ? num(100.0 * *p.distance, 1) : std::string(kDash))});
+  }
+  if (unsettled) t.notes.push_back("Some slump tests reached their time limit before every grain came to rest.");
+  t.notes.push_back("Pile height: apex of the cone fitted to the pile's flank; bulk density: the settled column's core.");
+  s.chart_svg = calibration_chart(pts, {}, s.id + "-chart");
+  s.caption = "Pile height and loose-poured bulk density against rolling friction, per particle and solid density.";
+  return s;
+}
+
+StudySection sensitivity_section(const fs::path& csv_file, std::string_view suffix) {
+  const SensitivityStudy st = read_sensitivity_csv(csv_file);
+  StudySection s;
+  s.id = fmt::format("sensitivity{}", suffix);
+  s.title = "Sensitivity (seed Table 6)";
+  s.verdict = st.verdict.text;
+  s.paragraphs.push_back(fmt::format(
+      "The transfer-station DEM at condition {} (V_b = {:g} m/s, {:.1f} t/h, {} quality) with one modelling shortcut "
+      "changed at a time, from {} ({} runs, {:.0f} s of DEM). Means over the steady window with block standard "
+      "errors; fluctuation = standard deviation of the load-cell samples in that window; change = R / R_base − 1.",
+      st.condition, st.belt_speed, st.mass_flow * 3.6, st.quality, csv_file.string(), st.rows.size(), st.wall_seconds));
+  Table& t = s.table;
+  t.id = s.id + "-table";
+  t.caption = "Plate force per variant";
+  t.columns = {{"", "variant", "", true},           {"", "what changes", "", true},
+               {"", "d (mm)", "", false},           {"", "dt (µs)", "", false},
+               {"mean (N)", "R_n", "", false},      {"mean (N)", "R_s", "", false},
+               {"mean (N)", "R", "", false},        {"fluctuation, sd (N)", "R_n", "", false},
+               {"fluctuation, sd (N)", "R_s", "", false}, {"fluctuation, sd (N)", "R", "", false},
+               {"", "change of R vs base (%)", "", false}, {"", "run (s)", "", false}};
+  auto pm = [](const Stat& x) { return std::isfinite(x.value) ? fmt::format("{:.1f} ± {:.1f}", x.value, x.se) : std::string(kDash); };
+  for (std::size_t k = 0; k < st.rows.size(); ++k) {
+    const auto& r = st.rows[k];
+    const auto& o = r.outcome;
+    t.rows.push_back({text_cell(r.variant.key, k == 0), text_cell(r.variant.label),
+                      num_cell(fmt::format("{:g}", std::round(o.diameter * 1e4) / 10.0)), num_cell(num(o.dt * 1e6, 2)),
+                      num_cell(pm(o.normal)), num_cell(pm(o.shear)), num_cell(pm(o.resultant)),
+                      num_cell(num(o.fluct_normal, 1)), num_cell(num(o.fluct_shear, 1)), num_cell(num(o.fluct_resultant, 1)),
+                      num_cell(k == 0 ? std::string(kDash)
+                                      : std::isfinite(r.change.value) ? fmt::format("{:+.1f} ± {:.1f}", r.change.value, r.change.se)
+                                                                       : std::string(kDash)),
+                      num_cell(num(o.wall_seconds, 0))});
+  }
+  for (const auto& r : st.rows)
+    if (!r.outcome.steady) t.notes.push_back(r.variant.key + ": no steady window within the time limit (means uncertain).");
+  s.chart_svg = sensitivity_chart(st, s.id + "-chart");
+  s.caption = "Mean resultant plate force (± 1 standard error; dashed: the base) and its fluctuation per variant.";
+  return s;
+}
+
+std::vector<StudySection> read_studies(const std::vector<fs::path>& paths) {
+  std::vector<StudySection> out;
+  int calibrations = 0, sensitivities = 0;
+  // The second study of a kind gets "-2" on its anchors: ids are unique in the page.
+  auto add_cal = [&](const fs::path& f) {
+    ++calibrations;
+    out.push_back(calibration_section(f, calibrations > 1 ? fmt::format("-{}", calibrations) : std::string()));
+  };
+  auto add_sens = [&](const fs::path& f) {
+    ++sensitivities;
+    out.push_back(sensitivity_section(f, sensitivities > 1 ? fmt::format("-{}", sensitivities) : std::string()));
+  };
+  for (const auto& path : paths) {
+    if (fs::is_regular_file(path)) {
+      const std::string f = path.filename().string();
+      if (f == "calibration.csv") add_cal(path);
+      else if (f == "sensitivity.csv") add_sens(path);
+      else
+        throw InputError(path.string(), 0, "--studies",
+                         "not a study file (give the folder of a calibrate or sensitivity run, or its calibration.csv "
+                         "/ sensitivity.csv)");
+      continue;
+    }
+    if (!fs::is_directory(path))
+      throw InputError(path.string(), 0, "--studies", "no such folder (the --out of chutelab calibrate or sensitivity)");
+    const bool cal = fs::exists(path / "calibration.csv"), sens = fs::exists(path / "sensitivity.csv");
+    if (!cal && !sens) throw InputError(path.string(), 0, "--studies", "holds neither calibration.csv nor sensitivity.csv");
+    if (cal) add_cal(path / "calibration.csv");
+    if (sens) add_sens(path / "sensitivity.csv");
+  }
+  return out;
+}
+
+}  // namespace chutelab::reports

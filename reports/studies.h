@@ -1,0 +1,64 @@
+#pragma once
+// Studies run beside a validation — `chutelab calibrate` (seed Table 3) and `chutelab sensitivity`
+// (seed Table 6) — read back from their output folders and turned into report sections: a verdict or
+// finding, a table and a chart. The report draws them like its own sections (report.cpp) and knows
+// nothing of how they were made: the CSV files are the interface.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "reports/common.h"
+
+namespace chutelab::reports {
+
+struct StudySection {
+  std::string id;                    // anchor, unique in the page
+  std::string title;                 // "Calibration (seed Table 3)"
+  std::string verdict;               // highlighted conclusion ("" = none)
+  std::vector<std::string> paragraphs;
+  Table table;
+  std::string chart_svg;             // inline SVG ("" = none)
+  std::string caption;
+};
+
+// One slump test of a calibration sweep (a row of calibration.csv).
+struct CalibrationPoint {
+  std::string shape;                 // sphere | clump
+  std::string grain;                 // "sphere d=5.6mm"
+  double rolling_friction = 0.0;
+  double solid_density = 0.0;        // kg/m^3
+  double bulk_density = 0.0;         // kg/m^3
+  double pile_height = 0.0;          // m
+  double repose_angle_deg = 0.0;     // NaN when the flank had too few grains
+  long particles = 0;
+  bool settled = true;
+  double run_seconds = 0.0;
+  std::optional<double> distance;    // relative distance to the target
+  bool closest = false;
+};
+
+struct CalibrationTargetsView {
+  std::optional<double> bulk_density;  // kg/m^3
+  std::optional<double> pile_height;   // m
+};
+
+// Pile height and bulk density against rolling friction, one line per (grain, solid density); the
+// targets as dashed lines. Shared by `chutelab calibrate`'s page and the report.
+std::string calibration_chart(const std::vector<CalibrationPoint>& points, const CalibrationTargetsView& targets,
+                              std::string_view id);
+
+// Reads calibration.csv (as `chutelab calibrate` writes it). Throws InputError naming the file, line
+// and column for a missing column, a bad number or an empty table.
+std::vector<CalibrationPoint> read_calibration_csv(const std::filesystem::path& file);
+
+// A section from one CSV file; `suffix` makes its anchors unique when a kind occurs twice.
+StudySection calibration_section(const std::filesystem::path& csv_file, std::string_view suffix = {});
+StudySection sensitivity_section(const std::filesystem::path& csv_file, std::string_view suffix = {});
+
+// Each path is a study folder holding calibration.csv and/or sensitivity.csv, or one of those files.
+// Throws InputError when a path is missing or holds neither file, or a file is bad.
+std::vector<StudySection> read_studies(const std::vector<std::filesystem::path>& paths);
+
+}  // namespace chutelab::reports
