@@ -7,6 +7,7 @@
 #include "app/effect_options.h"
 #include "core/input_error.h"
 #include "reports/report.h"
+#include "reports/sensitivity_study.h"
 #include "reports/studies.h"
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
@@ -31,6 +32,11 @@ int run_validate(const ValidateCli& o) {
   const auto dataset = validation::read_dataset(dir);
   // Read before any model runs: a bad study file ends the command before anything is written.
   const auto studies = reports::read_studies({o.studies.begin(), o.studies.end()});
+  std::optional<reports::SensitivityStudy> sensitivity;  // the seed's finding 6, when one was run
+  for (const auto& s : o.studies) {
+    const fs::path f = fs::is_directory(s) ? fs::path(s) / "sensitivity.csv" : fs::path(s);
+    if (f.filename() == "sensitivity.csv" && fs::exists(f)) sensitivity = reports::read_sensitivity_csv(f);
+  }
   // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.
   DemOutputStage dem_files(o.out);
   configure_dem_model(o.dem, o.dataset, dem_files.staging());
@@ -49,7 +55,8 @@ int run_validate(const ValidateCli& o) {
   reports::ReportInput report;
   report.dataset = &dataset;
   report.baseline = &baseline;
-  const auto findings = validation::check_seed_findings(dataset, baseline);
+  auto findings = validation::check_seed_findings(dataset, baseline);
+  findings.push_back(reports::sensitivity_finding(sensitivity ? &*sensitivity : nullptr));
   report.findings = &findings;
   report.studies = &studies;
   // Fits and the diagnosis call the models hundreds of times: they use the cheap ones (an expensive

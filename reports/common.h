@@ -119,6 +119,7 @@ Table model_notes_table(const Context& c, const validation::ValidationResult& r,
 // findings.cpp
 Table findings_table(const std::vector<validation::SeedFinding>& findings);
 
+
 // plot_bars.cpp
 std::string force_bar_chart(const Context& c, const validation::ValidationResult& r, std::string_view id);
 std::string rms_bar_chart(const Context& c, const validation::ValidationResult& before,

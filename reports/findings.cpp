@@ -3,8 +3,46 @@
 #include <fmt/format.h>
 
 #include "reports/common.h"
+#include "reports/sensitivity_study.h"
 
 namespace chutelab::reports {
+
+namespace {
+const char* kTable6 =
+    "Sensitivity (seed Table 6): LSD vs Hertz-Mindlin, sphere vs two-sphere clump, dt = t_c/10 vs t_c/20 and "
+    "shear modulus x10 or /10 change the mean plate force little; larger particles give a similar mean force "
+    "with larger fluctuations.";
+const char* kMeanClaim = "contact model, shape, time step and G change the mean R by no more than the limit";
+const char* kSizeClaim = "the fluctuation of R grows with the particle diameter";
+}  // namespace
+
+validation::SeedFinding sensitivity_finding(const SensitivityStudy* s) {
+  validation::SeedFinding f{6, kTable6};
+  if (!s) {
+    const std::string why = "no sensitivity study given (chutelab sensitivity, then validate --studies DIR)";
+    f.claims = {{kMeanClaim, false, false, why}, {kSizeClaim, false, false, why}};
+  } else {
+    const auto& v = s->verdict;
+    f.claims.push_back({kMeanClaim, v.mean_tested, v.mean_tested && v.mean_insensitive,
+                        v.mean_tested ? fmt::format("{}, {} quality: largest change {:+.1f} % ({}), limit ±{:g} %", s->condition,
+                                                    s->quality, v.worst_change, v.worst_variant, s->limit_percent)
+                                      : "no contact, shape, dt or G variant ran"});
+    std::vector<std::string> fl;
+    for (const auto& [d, sd] : v.size_fluctuation) fl.push_back(fmt::format("{:.1f} N at {:.1f} mm", sd, d * 1e3));
+    f.claims.push_back({kSizeClaim, v.size_tested, v.size_tested && v.fluctuation_grows,
+                        v.size_tested ? fmt::format("sd of R: {}; the sizes move the mean by up to {:.1f} %",
+                                                    fmt::join(fl, ", "), v.size_mean_spread)
+                                      : "fewer than two particle sizes ran"});
+  }
+  int tested = 0, held = 0;
+  for (const auto& c : f.claims)
+    if (c.testable) ++tested, held += c.holds ? 1 : 0;
+  f.status = tested == 0      ? validation::FindingStatus::not_testable
+             : held == tested ? validation::FindingStatus::reproduced
+             : held == 0      ? validation::FindingStatus::not_reproduced
+                              : validation::FindingStatus::partly;
+  return f;
+}
 
 Table findings_table(const std::vector<validation::SeedFinding>& findings) {
   Table t;
@@ -31,7 +69,7 @@ Table findings_table(const std::vector<validation::SeedFinding>& findings) {
   t.notes.push_back("A finding is reproduced when every testable claim holds, partly reproduced when some do. "
                     "Agreement means |E| ≤ 2 u_val (or 5 % where no uncertainty is known); \"varies\" means a chi-square "
                     "test rejects a constant ratio at p < 0.01 (or a spread above 5 % without uncertainties). Finding 6 "
-                    "(sensitivity, seed Table 6) needs its own runs: chutelab sensitivity.");
+                    "comes from a sensitivity study (chutelab sensitivity) given with --studies.");
   return t;
 }
 

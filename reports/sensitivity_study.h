@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "validation/seed_findings.h"
+
 namespace chutelab::reports {
 
 enum class VariantGroup { base, contact, shape, time_step, modulus, size };
@@ -81,6 +83,9 @@ std::vector<SensitivityVariant> table6_variants(double base_d);
 
 // Fills change and the verdict from the rows.
 void evaluate(SensitivityStudy& s);
+
+// The seed's finding 6 (validation/seed_findings.h) from a study; not testable without one.
+validation::SeedFinding sensitivity_finding(const SensitivityStudy* study);
 
 std::string sensitivity_csv(const SensitivityStudy& s);
 // Reads back what sensitivity_csv wrote (the report's "Sensitivity" section) and evaluates it again;
