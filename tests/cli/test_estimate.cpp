@@ -59,6 +59,7 @@ BOOST_AUTO_TEST_CASE(bad_input_gives_one_line_and_exit_2) {
   BOOST_TEST(toml.err.find("bad.toml:2") != std::string::npos);  // names file and line
   const auto missing = run_chutelab("estimate --condition V2-26 --belt-speed 2 --plate-distance 3000");
   BOOST_TEST(missing.err.find("misses the plate") != std::string::npos);
+  BOOST_TEST(missing.err.find("plate_distance_mm:") != std::string::npos, missing.err);
   const auto behind = run_chutelab("estimate --belt-speed 2 --mass-flow 26 --plate-distance 0.001");
   BOOST_TEST(behind.err.find("behind") != std::string::npos);
 }
