@@ -42,6 +42,35 @@ void check_station(const Station& s) {
     bad("stream_thickness_mm", "must be positive when given");
 }
 
+// The largest plate distance at which both centre lines still meet the plate above its foot, with
+// the plate's top, angle and height kept; nullopt when none does. Only the error path uses it, to
+// tell the user how far the stream reaches.
+std::optional<double> farthest_plate_distance(const TransferAnalysis& a, double plate_top) {
+  auto reaches = [&](double z) {
+    PlateLine p = a.plate;
+    p.top = {z, plate_top};
+    for (Streamline c : {Streamline::cema_centroid, Streamline::korzen_centroid}) {
+      const auto& l = a.line(c);
+      if (p.signed_distance(l.release.position) >= 0.0) return false;
+      const auto h = l.trajectory.hit(p);
+      if (!h || h->along > p.height) return false;
+    }
+    return true;
+  };
+  double near = 0.0, far = a.plate.top.x();
+  for (Streamline c : {Streamline::cema_centroid, Streamline::korzen_centroid})
+    near = std::max(near, a.line(c).release.position.x());
+  near += 1e-3;
+  if (!(near < far) || !reaches(near)) return std::nullopt;
+  // Past its apex the stream only falls, so where it crosses the plate line sinks as the plate
+  // moves away: the edge between reaching and missing is one point, found by bisection.
+  for (int i = 0; i < 40 && far - near > 1e-4; ++i) {
+    const double mid = 0.5 * (near + far);
+    (reaches(mid) ? near : far) = mid;
+  }
+  return near;
+}
+
 }  // namespace
 
 TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects) {
@@ -117,16 +146,34 @@ TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects) 
 
   for (Streamline centre : {Streamline::cema_centroid, Streamline::korzen_centroid}) {
     const auto& hit = a.line(centre).hit;
-    if (!hit || !hit->on_plate) {
-      const std::string where =
-          hit ? fmt::format("passes the plate line at y = {:.0f} mm, outside the plate "
-                            "(top {:.0f} mm, {:.0f} mm high)",
-                            hit->point.position.y() * 1e3, st.plate_top * 1e3, st.plate.height * 1e3)
-              : std::string("never reaches the plate");
+    if (hit && hit->on_plate) continue;
+    // Name the field whose change puts the plate in the stream: passing above the top edge asks
+    // for a higher plate; falling past the foot (or never arriving) for a nearer one, which is how
+    // a too-distant plate shows, unless no distance would do because the plate hangs above the
+    // stream.
+    if (hit && hit->along < 0.0)
       throw InputError("", 0, "plate_top_mm",
-                       fmt::format("the stream misses the plate: its centre line ({}) {}",
+                       fmt::format("the stream misses the plate: its centre line ({}) passes the plate "
+                                   "line at y = {:.0f} mm, above the plate's top edge (y = {:.0f} mm); "
+                                   "raise plate_top_mm or move the plate farther (plate_distance_mm)",
+                                   name(centre), hit->point.position.y() * 1e3, st.plate_top * 1e3));
+    const std::string where =
+        hit ? fmt::format("passes the plate line at y = {:.0f} mm, below the plate's foot "
+                          "({:.0f} mm under its top at y = {:.0f} mm)",
+                          hit->point.position.y() * 1e3, st.plate.height * 1e3, st.plate_top * 1e3)
+            : std::string("never reaches the plate line");
+    const auto reach = farthest_plate_distance(a, st.plate_top);
+    if (!reach)
+      throw InputError("", 0, "plate_top_mm",
+                       fmt::format("the stream misses the plate: its centre line ({}) {}; no plate "
+                                   "distance reaches the stream with the plate this high: lower "
+                                   "plate_top_mm or lengthen plate_height_mm",
                                    name(centre), where));
-    }
+    throw InputError("", 0, "plate_distance_mm",
+                     fmt::format("the stream misses the plate: its centre line ({}) {}; the plate is "
+                                 "too far: bring it within x = {:.0f} mm (plate_distance_mm), or lower "
+                                 "plate_top_mm or lengthen plate_height_mm",
+                                 name(centre), where, std::floor(*reach * 1e3)));
   }
 
   a.plate_interaction = {st.material.friction_plate, 0.0};

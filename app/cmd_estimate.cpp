@@ -51,6 +51,9 @@ Station resolve_station(const EstimateOptions& o) {
       throw InputError("", 0, name, fmt::format("must be a positive number, got {}", v));
     return v;
   };
+  // A row's stream_thickness was measured at the row's flow and speed; with another operating
+  // point it no longer describes the layer, so h_b comes from continuity unless given.
+  const bool operating_point_changed = o.mass_flow || o.belt_speed;
   Station st = validation::make_station(
       setup, base ? base->condition : "cli",
       positive(need(o.belt_speed, "--belt-speed", base ? base->belt_speed : 0), "--belt-speed"),
@@ -61,7 +64,7 @@ Station resolve_station(const EstimateOptions& o) {
       (o.plate_top ? *o.plate_top : base ? base->plate_top / units::mm : 250.0) * units::mm,
       o.stream_thickness
           ? std::optional<double>(positive(*o.stream_thickness, "--stream-thickness") * units::mm)
-          : (base ? base->stream_thickness : std::nullopt));
+          : (base && !operating_point_changed ? base->stream_thickness : std::nullopt));
   if (base) {  // per-condition overrides of the dataset row carry over
     st.belt = base->belt;
     st.plate = base->plate;
@@ -107,7 +110,9 @@ void add_estimate(CLI::App& app, Action& action) {
   cmd->add_option("--plate-distance", o->plate_distance, "x of the plate face (top edge), mm");
   cmd->add_option("--plate-top", o->plate_top, "y of the plate's top edge, mm (default 250)");
   cmd->add_option("--stream-thickness", o->stream_thickness,
-                  "stream thickness h_b, mm (default: from continuity)");
+                  "stream thickness h_b, mm (default: the --condition row's stream_thickness_mm, "
+                  "else from continuity; --mass-flow or --belt-speed drops the row's value, so h_b "
+                  "then comes from continuity)");
   cmd->add_option("--effect", o->effects, "add a physical effect: NAME=VALUE (repeatable)");
   cmd->add_option("--format", o->format, "output format")
       ->check(CLI::IsMember({"table", "csv", "json"}));

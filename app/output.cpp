@@ -144,6 +144,8 @@ std::string estimate_csv(const analytical::TransferAnalysis& a, const ModelValue
     o += fmt::format("{},analysis,{},{:.10g}\n", a.station.condition, n, v);
   o += fmt::format("{},analysis,stationary_flow,{}\n", a.station.condition,
                    a.korzen.stationary_flow ? 1 : 0);
+  o += fmt::format("{},analysis,stream_thickness_from_continuity,{}\n", a.station.condition,
+                   a.thickness_from_continuity ? 1 : 0);
   o += fmt::format("{},analysis,discharge_high_speed,{}\n", a.station.condition,
                    a.line(Streamline::cema_centroid).release.high_speed ? 1 : 0);
   for (const auto& [m, vals] : models)

@@ -37,4 +37,8 @@ std::optional<Boundary> parse_boundary(std::string_view n) {
   return std::nullopt;
 }
 
+std::string trajectory_quantity(Boundary b) {
+  return "trajectory_" + std::string(name(b)) + "_y_mm";
+}
+
 }  // namespace chutelab

@@ -41,6 +41,9 @@ inline constexpr std::array<Boundary, 3> kAllBoundaries = {Boundary::upper, Boun
                                                            Boundary::centre};
 std::string_view name(Boundary b);
 std::optional<Boundary> parse_boundary(std::string_view name);
+// Compared stream points travel under "trajectory_<boundary>_y_mm" (predictions.csv, errors.csv,
+// tolerances.toml), so that they sit in one long table with the quantities above.
+std::string trajectory_quantity(Boundary b);
 
 // A model's (or a measurement set's) values for one condition, SI. Absent = not predicted.
 struct QuantityValues {

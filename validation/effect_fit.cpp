@@ -48,7 +48,7 @@ Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::Effec
       ++left_out_;
       continue;
     }
-    points_.push_back({ci, "trajectory_" + std::string(name(p.boundary)) + "_y_mm", std::nullopt, qi,
+    points_.push_back({ci, trajectory_quantity(p.boundary), std::nullopt, qi,
                        *by, p.y, *p.uncertainty});
   }
 }

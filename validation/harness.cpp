@@ -112,8 +112,6 @@ void apply_measurement_effects(const analytical::EffectList& effects, std::span<
 
 namespace {
 
-std::string trajectory_quantity(Boundary b) { return fmt::format("trajectory_{}_y_mm", name(b)); }
-
 void check_tolerance(Comparison& c, const Tolerances& tol) {
   const Tolerance* t = tol.find(c.model, c.quantity);
   if (!t || !c.predicted) return;

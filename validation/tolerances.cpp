@@ -1,12 +1,45 @@
 #include "validation/tolerances.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <toml++/toml.h>
+#include <vector>
 
 #include "core/input_error.h"
 #include "core/quantity.h"
+#include "validation/model.h"
 
 namespace chutelab::validation {
+namespace {
+
+// A tolerance that matches no comparison is never checked, so a misspelt name would let acceptance
+// pass without testing anything: every name must be one the harness compares under.
+std::vector<std::string> tolerance_models() {
+  auto m = model_names();
+  m.emplace_back("*");
+  return m;
+}
+
+std::vector<std::string> tolerance_quantities() {
+  std::vector<std::string> q;
+  for (Quantity k : kAllQuantities) q.emplace_back(name(k));
+  for (Boundary b : kAllBoundaries) q.push_back(trajectory_quantity(b));
+  return q;
+}
+
+bool contains(const std::vector<std::string>& v, std::string_view s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+// Keys carry their own position; a table's node may have none when toml++ made it implicitly
+// (e.g. `[korzen.normal_force_N]` without `[korzen]`).
+long line_of(const toml::key& k, const toml::node& n) {
+  if (k.source().begin.line > 0) return static_cast<long>(k.source().begin.line);
+  return static_cast<long>(n.source().begin.line);
+}
+
+}  // namespace
 
 Tolerances Tolerances::read(const std::filesystem::path& path) {
   Tolerances t;
@@ -19,38 +52,50 @@ Tolerances Tolerances::read(const std::filesystem::path& path) {
     throw InputError(t.file_, static_cast<long>(e.source().begin.line), "",
                      fmt::format("malformed TOML: {}", e.description()));
   }
+  const auto models = tolerance_models();
+  const auto known_quantities = tolerance_quantities();
   for (const auto& [model, node] : doc) {
+    const std::string mn(model.str());
+    const long mline = line_of(model, node);
+    if (!contains(models, mn))
+      throw InputError(t.file_, mline, mn,
+                       fmt::format("unknown model '{}' (known: {}; \"*\" for every model)", mn,
+                                   fmt::join(model_names(), ", ")));
     const toml::table* quantities = node.as_table();
-    const long mline = static_cast<long>(node.source().begin.line);
     if (!quantities)
-      throw InputError(t.file_, mline, std::string(model.str()),
-                       "expected a table per model, e.g. [korzen]");
+      throw InputError(t.file_, mline, mn, "expected a table per model, e.g. [korzen]");
     for (const auto& [quantity, limits] : *quantities) {
-      const std::string field = fmt::format("{}.{}", model.str(), quantity.str());
-      const long line = static_cast<long>(limits.source().begin.line);
       const std::string qn(quantity.str());
-      const bool trajectory = qn.rfind("trajectory_", 0) == 0;
-      if (!parse_quantity(qn) && !trajectory)
-        throw InputError(t.file_, line, field, fmt::format("unknown quantity '{}'", qn));
+      const std::string field = fmt::format("{}.{}", mn, qn);
+      const long line = line_of(quantity, limits);
+      if (!contains(known_quantities, qn))
+        throw InputError(t.file_, line, field,
+                         fmt::format("unknown quantity '{}' (known: {})", qn, fmt::join(known_quantities, ", ")));
       const toml::table* lt = limits.as_table();
       if (!lt)
-        throw InputError(t.file_, line, field,
-                         "expected an inline table, e.g. { relative = 0.15 }");
+        throw InputError(t.file_, line, field, "expected an inline table, e.g. { relative = 0.15 }");
       Tolerance tol;
       for (const auto& [kind, value] : *lt) {
+        const std::string kfield = fmt::format("{}.{}", field, kind.str());
+        const long vline = line_of(kind, value);
+        std::optional<double>* slot = kind == "relative"     ? &tol.relative
+                                      : kind == "normalised" ? &tol.normalised
+                                      : kind == "absolute"   ? &tol.absolute
+                                                             : nullptr;
+        if (!slot)
+          throw InputError(t.file_, vline, kfield,
+                           fmt::format("unknown limit '{}' (use relative, normalised or absolute)", kind.str()));
         const auto v = value.value<double>();
-        const long vline = static_cast<long>(value.source().begin.line);
-        if (!v || !value.is_number() || !(*v > 0.0))
-          throw InputError(t.file_, vline, fmt::format("{}.{}", field, kind.str()),
-                           "must be a positive number");
-        if (kind == "relative") tol.relative = v;
-        else if (kind == "normalised") tol.normalised = v;
-        else if (kind == "absolute") tol.absolute = v;
-        else
-          throw InputError(t.file_, vline, fmt::format("{}.{}", field, kind.str()),
-                           "unknown limit (use relative, normalised or absolute)");
+        // Zero could only be met exactly, and inf checks nothing: neither is a limit.
+        if (!value.is_number() || !v || !std::isfinite(*v) || !(*v > 0.0))
+          throw InputError(t.file_, vline, kfield,
+                           v ? fmt::format("must be a positive finite number, got {}", *v)
+                             : std::string("must be a positive finite number"));
+        *slot = v;
       }
-      t.table_[{std::string(model.str()), qn}] = tol;
+      if (lt->empty())
+        throw InputError(t.file_, line, field, "no limit given (use relative, normalised or absolute)");
+      t.table_[{mn, qn}] = tol;
     }
   }
   return t;

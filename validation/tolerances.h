@@ -6,6 +6,11 @@
 //   [korzen]
 //   normal_force_N = { relative = 0.15 }
 //   impact_point_y_mm = { absolute = 10.0, normalised = 3.0 }   # absolute in the quantity's unit
+//
+// A limit that matches no comparison would let acceptance pass unchecked, so read() throws
+// InputError (file, line, field) for a model that is neither registered nor "*", a quantity outside
+// the vocabulary (DESIGN.md §2 and trajectory_<upper|lower|centre>_y_mm), an unknown limit key, an
+// empty limit table, or a limit that is not a positive finite number.
 #include <filesystem>
 #include <map>
 #include <optional>

@@ -2,6 +2,8 @@
 #include <filesystem>
 
 #include "../cli/cli_runner.h"
+#include "validation/model.h"
+#include "validation/tolerances.h"
 
 using namespace chutelab::test;
 namespace fs = std::filesystem;
@@ -58,6 +60,75 @@ BOOST_AUTO_TEST_CASE(tolerances_pass_and_fail_as_written) {
                                 (dir / "bad.toml").string() + "' --out '" + (dir / "b").string() + "'");
   BOOST_TEST(bad.exit_code == 2);
   BOOST_TEST(bad.err.find("bad.toml:2: korzen.normal_force_N.relativ") != std::string::npos, bad.err);
+}
+
+BOOST_AUTO_TEST_CASE(tolerance_names_and_limits_that_check_nothing_are_bad_input) {
+  // Each of these once let acceptance pass without checking the value it was meant for.
+  struct Case {
+    const char* label;
+    std::string text;
+    std::string expect;  // file:line: field
+  };
+  const std::vector<Case> cases = {
+      {"misspelt model", "# limits\n[korzn]\nnormal_force_N = { relative = 0.05 }\n",
+       "t0.toml:2: korzn: unknown model"},
+      {"unknown quantity", "[korzen]\nnormal_force_N = { relative = 0.05 }\nnormal_force = { relative = 0.05 }\n",
+       "t1.toml:3: korzen.normal_force: unknown quantity"},
+      {"unknown trajectory boundary", "[\"*\"]\ntrajectory_top_y_mm = { absolute = 5.0 }\n",
+       "t2.toml:2: *.trajectory_top_y_mm: unknown quantity"},
+      {"unknown limit key", "[booth-cema]\n\nimpact_point_y_mm = { absolute = 5.0, maximum = 9.0 }\n",
+       "t3.toml:3: booth-cema.impact_point_y_mm.maximum: unknown limit"},
+      {"negative limit", "[korzen]\nshear_force_N = { relative = -0.15 }\n",
+       "t4.toml:2: korzen.shear_force_N.relative: must be a positive finite number"},
+      {"NaN limit", "[korzen]\nshear_force_N = { normalised = nan }\n",
+       "t5.toml:2: korzen.shear_force_N.normalised: must be a positive finite number"},
+      {"limit table without a limit", "[korzen]\nexit_velocity_mps = {}\n",
+       "t6.toml:2: korzen.exit_velocity_mps: no limit given"},
+      {"quantity outside a model table", "normal_force_N = { relative = 0.05 }\n",
+       "t7.toml:1: normal_force_N: unknown model"},
+  };
+  const fs::path dir = fresh_dir("tol-bad");
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    BOOST_TEST_CONTEXT(cases[i].label) {
+      const fs::path file = dir / ("t" + std::to_string(i) + ".toml");
+      const fs::path out = dir / ("out" + std::to_string(i));
+      write_file(file, cases[i].text);
+      const auto r = run_chutelab("validate --dataset '" + kReference + "' --tolerances '" + file.string() +
+                                  "' --out '" + out.string() + "'");
+      BOOST_TEST(r.exit_code == 2);
+      BOOST_TEST(count_lines(r.err) == 1);
+      BOOST_TEST(r.err.find(file.string() + cases[i].expect.substr(cases[i].expect.find(':'))) != std::string::npos,
+                 r.err);
+      BOOST_TEST(!fs::exists(out));  // nothing written, not even the folder
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(every_model_quantity_and_the_repository_tolerance_files_are_accepted) {
+  using chutelab::validation::Tolerances;
+  const fs::path dir = fresh_dir("tol-good");
+  std::string text = "[\"*\"]\nimpact_point_y_mm = { absolute = 10 }\n";
+  const char* quantities[] = {"normal_force_N",    "shear_force_N",         "resultant_force_N",
+                              "impact_velocity_mps", "exit_velocity_mps",   "impact_point_y_mm",
+                              "trajectory_upper_y_mm", "trajectory_lower_y_mm", "trajectory_centre_y_mm"};
+  for (const auto& m : chutelab::validation::model_names()) {
+    text += "[" + m + "]\n";
+    for (const char* q : quantities) text += std::string(q) + " = { relative = 0.1, normalised = 2, absolute = 3 }\n";
+  }
+  write_file(dir / "all.toml", text);
+  const auto all = Tolerances::read(dir / "all.toml");
+  for (const auto& m : chutelab::validation::model_names())
+    for (const char* q : quantities) {
+      const auto* t = all.find(m, q);
+      BOOST_TEST_REQUIRE(t != nullptr, m << " " << q);
+      BOOST_TEST(t->relative.value_or(0) == 0.1);
+      BOOST_TEST(t->normalised.value_or(0) == 2.0);  // integers are numbers too
+      BOOST_TEST(t->absolute.value_or(0) == 3.0);
+    }
+  const auto station = Tolerances::read(fs::path(CHUTELAB_SOURCE_DIR) / "bench" / "station-tolerances.toml");
+  BOOST_TEST_REQUIRE(station.find("dem", "normal_force_N") != nullptr);
+  BOOST_TEST(station.find("dem", "normal_force_N")->relative.value_or(0) == 0.15);
+  BOOST_TEST(station.find("dem", "impact_point_y_mm")->absolute.value_or(0) == 10.0);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "../cli/cli_runner.h"
 
@@ -86,14 +87,52 @@ BOOST_AUTO_TEST_CASE(each_error_class_names_file_line_field_and_writes_nothing) 
 }
 
 BOOST_AUTO_TEST_CASE(plate_that_the_stream_misses_is_reported_at_its_condition_line) {
-  // A plate 1.5 m away at 2 m/s: the stream falls below it. Found after parsing, still located.
+  // A plate 1.5 m away at 2 m/s: the stream falls below it. Found after parsing, still located, and
+  // blamed on the distance, with how near the plate must come (the centre line falls ~0.4 m to the
+  // plate's foot in ~0.28 s, ~0.57 m at 2 m/s).
   const fs::path d = dataset_with("miss", "conditions.csv",
                                   replace_line("conditions.csv", 2, "V2-26,2.0,26.0,1500.0,250.0,34.2"));
   const auto r = run_chutelab("validate --dataset '" + d.string() + "' --out '" + (d / "out").string() + "'");
   BOOST_TEST(r.exit_code == 2);
-  BOOST_TEST(r.err.find("conditions.csv:2: plate_top_mm") != std::string::npos, r.err);
+  BOOST_TEST(count_lines(r.err) == 1);
+  BOOST_TEST(r.err.find("conditions.csv:2: plate_distance_mm") != std::string::npos, r.err);
   BOOST_TEST(r.err.find("misses the plate") != std::string::npos);
+  BOOST_TEST(r.err.find("below the plate's foot") != std::string::npos, r.err);
+  const auto at = r.err.find("bring it within x = ");
+  BOOST_TEST_REQUIRE(at != std::string::npos, r.err);
+  const double reach = std::stod(r.err.substr(at + 20));
+  BOOST_TEST(reach > 500.0);
+  BOOST_TEST(reach < 650.0);
   BOOST_TEST(!fs::exists(d / "out"));
+
+  // The suggested distance is one at which the stream does meet the plate.
+  const fs::path ok = dataset_with("miss-fixed", "conditions.csv",
+                                   replace_line("conditions.csv", 2,
+                                                "V2-26,2.0,26.0," + std::to_string(reach) + ",250.0,34.2"));
+  const auto fixed = run_chutelab("validate --dataset '" + ok.string() + "' --out '" + (ok / "out").string() + "'");
+  BOOST_TEST(fixed.exit_code == 0, fixed.err);
+}
+
+BOOST_AUTO_TEST_CASE(plate_below_or_above_the_stream_is_blamed_on_its_height) {
+  // At 300 mm the stream passes y ~ 40 mm: a plate topped at -200 mm is under it, one whose foot is
+  // at +1000 mm over it, and no distance helps the second.
+  const struct {
+    const char* row;
+    const char* expect;
+  } cases[] = {{"V2-26,2.0,26.0,300.0,-200.0,34.2", "above the plate's top edge"},
+               {"V2-26,2.0,26.0,300.0,1500.0,34.2", "no plate distance reaches the stream"}};
+  int n = 0;
+  for (const auto& c : cases) {
+    BOOST_TEST_CONTEXT(c.row) {
+      const fs::path d = dataset_with("miss-height" + std::to_string(n++), "conditions.csv",
+                                      replace_line("conditions.csv", 2, c.row));
+      const auto r = run_chutelab("validate --dataset '" + d.string() + "' --out '" + (d / "out").string() + "'");
+      BOOST_TEST(r.exit_code == 2);
+      BOOST_TEST(r.err.find("conditions.csv:2: plate_top_mm") != std::string::npos, r.err);
+      BOOST_TEST(r.err.find(c.expect) != std::string::npos, r.err);
+      BOOST_TEST(!fs::exists(d / "out"));
+    }
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()
