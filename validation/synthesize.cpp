@@ -5,6 +5,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/input_error.h"
 #include "validation/harness.h"
@@ -47,6 +48,23 @@ double default_uncertainty(Quantity q, double value) {
     case Quantity::impact_point_y: return 2.5e-3;
   }
   return 0.0;
+}
+
+// One reading of a value with noise of standard deviation sigma. A magnitude (a speed, R) is read
+// by an instrument that never reports it below zero, and the dataset reader refuses it negative,
+// so its noise is the normal truncated at -truth: resample until the reading is >= 0. This leaves
+// well-measured values alone (a value 4 sigma above zero is resampled with probability 3e-5) and
+// keeps every row; a value within about 2 sigma of zero comes out biased upwards, by at most
+// 0.8 sigma (the half-normal mean, truth = 0), as a real speed reading near zero is. Omitting such
+// rows was rejected: the choice would be made on the noise-free value, so a missing row would
+// itself tell the diagnosis that the hidden truth is near zero. Resampling draws from the same
+// stream, so the dataset stays a function of the seed.
+double reading(Quantity q, double truth, double sigma, NormalStream& noise) {
+  if (!info(q).magnitude || sigma <= 0.0) return truth + sigma * noise.next();
+  if (truth < 0.0)
+    throw std::logic_error(fmt::format("model predicts a negative {} ({})", name(q), truth));
+  for (;;)
+    if (const double v = truth + sigma * noise.next(); v >= 0.0) return v;
 }
 
 std::string slurp(const std::filesystem::path& p) {
@@ -96,7 +114,7 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       auto it = given_u.find({st.condition, q});
       const double u = (it != given_u.end() ? it->second : default_uncertainty(q, *truth)) * opt.noise_scale;
       const double s = info(q).to_boundary;
-      const double value = *truth + u * noise.next();
+      const double value = reading(q, *truth, u, noise);
       meas += fmt::format("{},{},{:.4f},{:.4f}\n", st.condition, name(q), value * s, u * s);
     }
     for (std::size_t k = 0; k < queries.size(); ++k) {
@@ -115,8 +133,9 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       "Made by `chutelab synthesize` from the rig and conditions of `{}` (copied unchanged as\n"
       "`setup.toml` and `conditions.csv`), random seed {}. `measurements.csv` and `trajectory.csv` hold\n"
       "values computed by chutelab's analytical models with Gaussian noise of one stated uncertainty\n"
-      "added to each. What else went into the generating model is deliberately not recorded here, so\n"
-      "the dataset can serve as a blind test of `chutelab diagnose`.\n",
+      "added to each; magnitudes (R, V_p, V_a) never read below zero, their noise is the normal\n"
+      "truncated there. What else went into the generating model is deliberately not recorded here,\n"
+      "so the dataset can serve as a blind test of `chutelab diagnose`.\n",
       src.setup.name.empty() ? src.dir.filename().string() : src.setup.name, opt.seed);
   return {{"setup.toml", slurp(src.dir / "setup.toml")},
           {"conditions.csv", slurp(src.dir / "conditions.csv")},
