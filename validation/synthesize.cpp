@@ -1,5 +1,6 @@
 #include "validation/synthesize.h"
 
+#include <charconv>
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
@@ -38,6 +39,8 @@ double NormalStream::next() {
 
 namespace {
 
+// The instrument's one-sigma uncertainty for a reading (or, to draw the noise, for the true value):
+// 2 % of a force with a floor of 0.2 N, constants for speeds and the impact point.
 double default_uncertainty(Quantity q, double value) {
   switch (q) {
     case Quantity::normal_force:
@@ -48,6 +51,17 @@ double default_uncertainty(Quantity q, double value) {
     case Quantity::impact_point_y: return 2.5e-3;
   }
   return 0.0;
+}
+
+// Uncertainties are quoted to two significant figures ("0.30", "0.040", "2.5"), as a lab quotes
+// them; more digits would only carry the digits of whatever the uncertainty was computed from.
+std::string two_significant(double u) {
+  if (!(u > 0.0) || !std::isfinite(u)) return "0";
+  const double step = std::pow(10.0, std::floor(std::log10(u)) - 1.0);
+  const double rounded = std::round(u / step) * step;
+  // Decimals from the rounded value, so 0.0996 is written 0.10, not 0.100.
+  const int decimals = std::max(0, 1 - static_cast<int>(std::floor(std::log10(rounded))));
+  return fmt::format("{:.{}f}", rounded, decimals);
 }
 
 // One reading of a value with noise of standard deviation sigma. A magnitude (a speed, R) is read
@@ -111,11 +125,21 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       for (const auto& s : same)
         if (!truth && s.prediction.values[q]) truth = s.prediction.values[q];
       if (!truth) continue;
+      // The noise follows the true value (a load cell's error scales with the load it carries),
+      // but the stated uncertainty is computed from the reading, as a lab computes it: one
+      // computed from the noise-free value would carry that value, effect included, past the
+      // noise (u / 0.02 of a force would be its noise-free value).
       auto it = given_u.find({st.condition, q});
-      const double u = (it != given_u.end() ? it->second : default_uncertainty(q, *truth)) * opt.noise_scale;
+      const bool given = it != given_u.end();
+      const double sigma = (given ? it->second : default_uncertainty(q, *truth)) * opt.noise_scale;
       const double s = info(q).to_boundary;
-      const double value = reading(q, *truth, u, noise);
-      meas += fmt::format("{},{},{:.4f},{:.4f}\n", st.condition, name(q), value * s, u * s);
+      const std::string value = fmt::format("{:.4f}", reading(q, *truth, sigma, noise) * s);
+      double written = 0.0;  // what the reader will see: the uncertainty is a function of it alone
+      std::from_chars(value.data(), value.data() + value.size(), written);
+      written /= s;
+      const std::string u = two_significant(
+          (given ? it->second : default_uncertainty(q, written)) * opt.noise_scale * s);
+      meas += fmt::format("{},{},{},{}\n", st.condition, name(q), value, u);
     }
     for (std::size_t k = 0; k < queries.size(); ++k) {
       std::optional<double> truth;
@@ -134,8 +158,9 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       "`setup.toml` and `conditions.csv`), random seed {}. `measurements.csv` and `trajectory.csv` hold\n"
       "values computed by chutelab's analytical models with Gaussian noise of one stated uncertainty\n"
       "added to each; magnitudes (R, V_p, V_a) never read below zero, their noise is the normal\n"
-      "truncated there. What else went into the generating model is deliberately not recorded here,\n"
-      "so the dataset can serve as a blind test of `chutelab diagnose`.\n",
+      "truncated there. Each uncertainty is computed from the written value (two significant\n"
+      "figures). What else went into the generating model is deliberately not recorded here, so\n"
+      "the dataset can serve as a blind test of `chutelab diagnose`.\n",
       src.setup.name.empty() ? src.dir.filename().string() : src.setup.name, opt.seed);
   return {{"setup.toml", slurp(src.dir / "setup.toml")},
           {"conditions.csv", slurp(src.dir / "conditions.csv")},
