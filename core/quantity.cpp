@@ -5,12 +5,12 @@
 namespace chutelab {
 namespace {
 constexpr std::array<QuantityInfo, kQuantityCount> kInfo = {{
-    {Quantity::normal_force, "normal_force_N", "R_n", "plate normal force", "N", 1.0},
-    {Quantity::shear_force, "shear_force_N", "R_s", "plate shear force", "N", 1.0},
-    {Quantity::resultant_force, "resultant_force_N", "R", "plate resultant force", "N", 1.0},
-    {Quantity::impact_velocity, "impact_velocity_mps", "V_p", "impact velocity", "m/s", 1.0},
-    {Quantity::exit_velocity, "exit_velocity_mps", "V_a", "exit velocity", "m/s", 1.0},
-    {Quantity::impact_point_y, "impact_point_y_mm", "y_R", "impact point height", "mm", 1e3},
+    {Quantity::normal_force, "normal_force_N", "R_n", "plate normal force", "N", 1.0, false},
+    {Quantity::shear_force, "shear_force_N", "R_s", "plate shear force", "N", 1.0, false},
+    {Quantity::resultant_force, "resultant_force_N", "R", "plate resultant force", "N", 1.0, true},
+    {Quantity::impact_velocity, "impact_velocity_mps", "V_p", "impact velocity", "m/s", 1.0, true},
+    {Quantity::exit_velocity, "exit_velocity_mps", "V_a", "exit velocity", "m/s", 1.0, true},
+    {Quantity::impact_point_y, "impact_point_y_mm", "y_R", "impact point height", "mm", 1e3, false},
 }};
 }  // namespace
 

@@ -29,6 +29,9 @@ struct QuantityInfo {
   std::string_view label;    // words for reports
   std::string_view unit;     // boundary unit
   double to_boundary;        // SI value * to_boundary = boundary value
+  // A magnitude (a speed, the resultant) cannot be negative: the dataset reader refuses it and the
+  // synthesizer's noise must respect it. R_n and R_s are signed components, y_R a coordinate.
+  bool magnitude;
 };
 
 const QuantityInfo& info(Quantity q);

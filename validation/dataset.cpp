@@ -237,9 +237,7 @@ std::vector<Measurement> read_measurements(const fs::path& path, const Dataset& 
     m.quantity = *q;
     const double scale = 1.0 / info(*q).to_boundary;
     const double v = t.number(row, c_v);
-    const bool magnitude = *q == Quantity::resultant_force || *q == Quantity::impact_velocity ||
-                           *q == Quantity::exit_velocity;
-    if (magnitude && v < 0.0)
+    if (info(*q).magnitude && v < 0.0)
       throw InputError(t.file(), row.line, "value",
                        fmt::format("{} is a magnitude and cannot be negative, got {}", name(*q), v));
     m.value = v * scale;

@@ -1,10 +1,12 @@
 #include "validation/synthesize.h"
 
+#include <charconv>
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/input_error.h"
 #include "validation/harness.h"
@@ -37,6 +39,8 @@ double NormalStream::next() {
 
 namespace {
 
+// The instrument's one-sigma uncertainty for a reading (or, to draw the noise, for the true value):
+// 2 % of a force with a floor of 0.2 N, constants for speeds and the impact point.
 double default_uncertainty(Quantity q, double value) {
   switch (q) {
     case Quantity::normal_force:
@@ -47,6 +51,34 @@ double default_uncertainty(Quantity q, double value) {
     case Quantity::impact_point_y: return 2.5e-3;
   }
   return 0.0;
+}
+
+// Uncertainties are quoted to two significant figures ("0.30", "0.040", "2.5"), as a lab quotes
+// them; more digits would only carry the digits of whatever the uncertainty was computed from.
+std::string two_significant(double u) {
+  if (!(u > 0.0) || !std::isfinite(u)) return "0";
+  const double step = std::pow(10.0, std::floor(std::log10(u)) - 1.0);
+  const double rounded = std::round(u / step) * step;
+  // Decimals from the rounded value, so 0.0996 is written 0.10, not 0.100.
+  const int decimals = std::max(0, 1 - static_cast<int>(std::floor(std::log10(rounded))));
+  return fmt::format("{:.{}f}", rounded, decimals);
+}
+
+// One reading of a value with noise of standard deviation sigma. A magnitude (a speed, R) is read
+// by an instrument that never reports it below zero, and the dataset reader refuses it negative,
+// so its noise is the normal truncated at -truth: resample until the reading is >= 0. This leaves
+// well-measured values alone (a value 4 sigma above zero is resampled with probability 3e-5) and
+// keeps every row; a value within about 2 sigma of zero comes out biased upwards, by at most
+// 0.8 sigma (the half-normal mean, truth = 0), as a real speed reading near zero is. Omitting such
+// rows was rejected: the choice would be made on the noise-free value, so a missing row would
+// itself tell the diagnosis that the hidden truth is near zero. Resampling draws from the same
+// stream, so the dataset stays a function of the seed.
+double reading(Quantity q, double truth, double sigma, NormalStream& noise) {
+  if (!info(q).magnitude || sigma <= 0.0) return truth + sigma * noise.next();
+  if (truth < 0.0)
+    throw std::logic_error(fmt::format("model predicts a negative {} ({})", name(q), truth));
+  for (;;)
+    if (const double v = truth + sigma * noise.next(); v >= 0.0) return v;
 }
 
 std::string slurp(const std::filesystem::path& p) {
@@ -93,11 +125,21 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       for (const auto& s : same)
         if (!truth && s.prediction.values[q]) truth = s.prediction.values[q];
       if (!truth) continue;
+      // The noise follows the true value (a load cell's error scales with the load it carries),
+      // but the stated uncertainty is computed from the reading, as a lab computes it: one
+      // computed from the noise-free value would carry that value, effect included, past the
+      // noise (u / 0.02 of a force would be its noise-free value).
       auto it = given_u.find({st.condition, q});
-      const double u = (it != given_u.end() ? it->second : default_uncertainty(q, *truth)) * opt.noise_scale;
+      const bool given = it != given_u.end();
+      const double sigma = (given ? it->second : default_uncertainty(q, *truth)) * opt.noise_scale;
       const double s = info(q).to_boundary;
-      const double value = *truth + u * noise.next();
-      meas += fmt::format("{},{},{:.4f},{:.4f}\n", st.condition, name(q), value * s, u * s);
+      const std::string value = fmt::format("{:.4f}", reading(q, *truth, sigma, noise) * s);
+      double written = 0.0;  // what the reader will see: the uncertainty is a function of it alone
+      std::from_chars(value.data(), value.data() + value.size(), written);
+      written /= s;
+      const std::string u = two_significant(
+          (given ? it->second : default_uncertainty(q, written)) * opt.noise_scale * s);
+      meas += fmt::format("{},{},{},{}\n", st.condition, name(q), value, u);
     }
     for (std::size_t k = 0; k < queries.size(); ++k) {
       std::optional<double> truth;
@@ -115,7 +157,9 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       "Made by `chutelab synthesize` from the rig and conditions of `{}` (copied unchanged as\n"
       "`setup.toml` and `conditions.csv`), random seed {}. `measurements.csv` and `trajectory.csv` hold\n"
       "values computed by chutelab's analytical models with Gaussian noise of one stated uncertainty\n"
-      "added to each. What else went into the generating model is deliberately not recorded here, so\n"
+      "added to each; magnitudes (R, V_p, V_a) never read below zero, their noise is the normal\n"
+      "truncated there. Each uncertainty is computed from the written value (two significant\n"
+      "figures). What else went into the generating model is deliberately not recorded here, so\n"
       "the dataset can serve as a blind test of `chutelab diagnose`.\n",
       src.setup.name.empty() ? src.dir.filename().string() : src.setup.name, opt.seed);
   return {{"setup.toml", slurp(src.dir / "setup.toml")},

@@ -20,7 +20,10 @@ struct SynthesizeOptions {
 // Uncertainties: those of the source dataset's measurements where it has them; otherwise 2 % of
 // each force (at least 0.2 N), 0.04 m/s for speeds, 2.5 mm for the impact point and 2 mm for
 // stream limits (upper, lower, centre every 50 mm from x = 100 mm to 50 mm before the plate).
-// Each quantity comes from the first model (in the order given) that predicts it.
+// The noise is drawn with the uncertainty of the true value; the stated uncertainty is that of the
+// written value, to two significant figures, so it says nothing the value does not. Magnitudes
+// (QuantityInfo::magnitude) get noise truncated at zero. Each quantity comes from the first model
+// (in the order given) that predicts it.
 std::vector<OutputFile> synthesize(const Dataset& source, const std::vector<ModelPtr>& models,
                                    const SynthesizeOptions& options);
 

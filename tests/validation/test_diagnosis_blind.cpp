@@ -2,7 +2,9 @@
 // library a dataset is generated on the bundled rig with the effect at its typical strength and the
 // noise of the stated uncertainties, `diagnose` runs without being told, and the winner is added
 // with `validate --effect <winner>=fit`. Seeds 7100-7199 are reserved for this test and were never
-// used while developing or tuning the diagnosis (development used 5, 7 and 20261122).
+// used while developing or tuning the diagnosis (development used 5, 7 and 20261122): 7100-7149 one
+// per effect, 7150-7153 effect-free. That the stated uncertainties carry no trace of the effect is
+// checked in test_synthesize.cpp.
 #include <boost/test/unit_test.hpp>
 #include <filesystem>
 #include <fmt/format.h>
@@ -51,6 +53,8 @@ double combined_after(const std::string& stdout_text) {
 BOOST_AUTO_TEST_SUITE(diagnosis_blind)
 
 BOOST_AUTO_TEST_CASE(true_effect_ranked_first_and_error_falls_to_noise) {
+  // One seed per effect from 7100, below the effect-free seeds at 7150.
+  BOOST_REQUIRE(effects::library().size() <= 50);
   int first = 0, total = 0;
   std::uint64_t seed = 7100;
   for (const auto& e : effects::library()) {
@@ -80,8 +84,10 @@ BOOST_AUTO_TEST_CASE(true_effect_ranked_first_and_error_falls_to_noise) {
     }
   }
   BOOST_TEST_MESSAGE(fmt::format("true effect ranked first for {} of {}", first, total));
-  BOOST_TEST(total == 8);
-  BOOST_TEST(first >= 7);
+  // Every registered effect was tried, and at most one may lose first place (8 effects: >= 7).
+  BOOST_TEST(total == static_cast<int>(effects::library().size()));
+  BOOST_TEST(total >= 8);  // the eight of DESIGN.md section 4 at least
+  BOOST_TEST(first >= total - 1);
 }
 
 BOOST_AUTO_TEST_CASE(effect_free_data_gives_no_significant_effect) {

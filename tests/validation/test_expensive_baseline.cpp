@@ -47,7 +47,7 @@ BOOST_AUTO_TEST_CASE(expensive_model_runs_once_per_condition_plus_confirmation) 
   // asked about the expensive model alone, as `--models dem` would.
   SynthesizeOptions so;
   so.effects = {chutelab::effects::find("air_drag")->make(0.6)};
-  so.seed = 7190;
+  so.seed = 6190;  // outside 7100-7199, which the blind acceptance test reserves
   const auto dir = test::fresh_dir("expensive");
   write_outputs(dir, synthesize(rig, {slow}, so));
   const auto d = read_dataset(dir);
