@@ -17,16 +17,16 @@ struct ContactModel {
   static constexpr bool rolling_history = Rolling::has_history;
 
   // shear and roll are the contact's history (roll is unused unless rolling_history).
-  CHUTELAB_INLINE static ContactForce compute(const PairCoeffs& c, const ContactKinematics& k, Vec3& shear, Vec3* roll,
-                              double dt) {
+  CHUTELAB_INLINE static ContactForce compute(const PairCoeffs& c, const ContactKinematics& k, LaneVec& shear,
+                                              LaneVec* roll, double dt) {
     const double vn = k.v_rel.dot(k.n);  // = d(delta)/dt
     NormalResult nr = Normal::normal(c, k.delta, vn, k.r_eff, k.m_eff);
-    if (c.cohesion > 0.0) nr.force -= cohesion_sjkr(c, k.delta, k.r_eff);
-    const Vec3 vt = k.v_rel - vn * k.n;
-    const Vec3 ft = Tangential::force(c, nr, k.n, vt, shear, dt);
+    nr.force -= cohesion_sjkr(c, k.delta, k.r_eff);  // zero without cohesion; no branch in the pair loop
+    const LaneVec vt = k.v_rel - vn * k.n;
+    const LaneVec ft = Tangential::force(c, nr, k.n, vt, shear, dt);
     ContactForce out;
     out.force = ft - nr.force * k.n;
-    const Vec3 nxft = k.n.cross(ft);
+    const LaneVec nxft = k.n.cross(ft);
     out.torque_i = k.r_i * nxft;  // contact point at +R_i n from i
     out.torque_j = k.r_j * nxft;  // at -R_j n from j, force -ft
     Rolling::torque(c, nr, k, roll, dt, out.torque_i, out.torque_j);

@@ -11,32 +11,34 @@
 namespace chutelab::dem {
 
 struct CoulombHistorySpring {
-  CHUTELAB_INLINE static Vec3 force(const PairCoeffs& c, const NormalResult& nr, const Vec3& n, const Vec3& vt,
-                    Vec3& shear, double dt) {
-    const double s2 = shear.squaredNorm();
-    if (s2 > 0.0) {
-      shear -= shear.dot(n) * n;
-      const double p2 = shear.squaredNorm();
-      if (p2 > 0.0) shear *= std::sqrt(s2 / p2);
-    }
-    shear += vt * dt;
-    Vec3 ft = -nr.kt * shear - nr.ct * vt;
+  // Written with selects instead of branches so that the pair loop vectorises across contacts; each
+  // select gives what the branch would.
+  CHUTELAB_INLINE static LaneVec force(const PairCoeffs& c, const NormalResult& nr, const LaneVec& n,
+                                       const LaneVec& vt, LaneVec& shear, double dt) {
+    const double s2 = shear.squared_norm();
+    const LaneVec in_plane = shear - shear.dot(n) * n;
+    const double p2 = in_plane.squared_norm();
+    // p2 == 0: the history was zero or along n, and nothing is left to turn.
+    const double keep = p2 > 0.0 ? std::sqrt(s2 / (p2 > 0.0 ? p2 : 1.0)) : 0.0;
+    const LaneVec spring = in_plane * keep + vt * dt;
+    LaneVec ft = -nr.kt * spring - nr.ct * vt;
     const double limit = c.friction * std::max(nr.force, 0.0);
-    const double f2 = ft.squaredNorm();
-    if (f2 > limit * limit) {
-      ft *= limit / std::sqrt(f2);
-      if (nr.kt > 0.0) shear = ft * (-1.0 / nr.kt);
-    }
+    const double f2 = ft.squared_norm();
+    const bool sliding = f2 > limit * limit;
+    ft *= sliding ? limit / std::sqrt(sliding ? f2 : 1.0) : 1.0;
+    // While sliding the spring holds exactly the Coulomb force.
+    const bool reset = sliding && nr.kt > 0.0;
+    shear = select(reset, ft * (-1.0 / (reset ? nr.kt : 1.0)), spring);
     return ft;
   }
 };
 
 // Frictionless contacts (used by verification tests that isolate the normal law).
 struct NoTangential {
-  CHUTELAB_INLINE static Vec3 force(const PairCoeffs&, const NormalResult&, const Vec3&, const Vec3&, Vec3& shear,
-                    double) {
-    shear.setZero();
-    return Vec3::Zero();
+  CHUTELAB_INLINE static LaneVec force(const PairCoeffs&, const NormalResult&, const LaneVec&, const LaneVec&,
+                                       LaneVec& shear, double) {
+    shear = LaneVec::zero();
+    return LaneVec::zero();
   }
 };
 

@@ -2,16 +2,17 @@
 // What every contact law sees: the geometry and relative motion of one contact, and what it returns.
 // Convention: body i is a sphere; body j is a sphere or a wall. n is the unit normal from i towards j,
 // delta > 0 the overlap, v_rel the velocity of i's surface point at the contact relative to j's.
+#include "dem/contact/lane_vec.h"
 #include "dem/material.h"
 #include "dem/types.h"
 
 namespace chutelab::dem {
 
 struct ContactKinematics {
-  Vec3 n;
+  LaneVec n;
   double delta;
-  Vec3 v_rel;   // (v_i + w_i x R_i n) - (v_j + w_j x (-R_j n))
-  Vec3 w_rel;   // w_i - w_j
+  LaneVec v_rel;   // (v_i + w_i x R_i n) - (v_j + w_j x (-R_j n))
+  LaneVec w_rel;   // w_i - w_j
   double r_i;   // lever arm of i (its radius)
   double r_j;   // lever arm of j (0 for a wall)
   double r_eff; // R* = R_i R_j / (R_i + R_j); R_i for a wall
@@ -33,9 +34,9 @@ struct NormalResult {
 
 // Force on i (the force on j is its negative) and torques on i and j about their centres.
 struct ContactForce {
-  Vec3 force;
-  Vec3 torque_i;
-  Vec3 torque_j;
+  LaneVec force;
+  LaneVec torque_i;
+  LaneVec torque_j;
 };
 
 }  // namespace chutelab::dem

@@ -16,26 +16,27 @@ namespace chutelab::dem {
 struct RollingConstantTorque {
   static constexpr bool has_history = false;
   static constexpr double kRestSpin = 1e-9;  // rad/s
+  // Selects instead of branches, so the pair loop vectorises across contacts: an inactive contact
+  // adds a zero torque.
   CHUTELAB_INLINE static void torque(const PairCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
-                     Vec3* /*history*/, double dt, Vec3& ti, Vec3& tj) {
+                                     LaneVec* /*history*/, double dt, LaneVec& ti, LaneVec& tj) {
     const double fn = std::max(nr.force, 0.0);
-    if (c.rolling_friction <= 0.0 || fn <= 0.0) return;
-    const double w2 = k.w_rel.squaredNorm();
-    if (w2 <= kRestSpin * kRestSpin) return;
-    const double w = std::sqrt(w2);
-    double mag = c.rolling_friction * fn;  // torque per unit lever arm
+    const double w2 = k.w_rel.squared_norm();
+    const bool active = c.rolling_friction > 0.0 && fn > 0.0 && w2 > kRestSpin * kRestSpin;
+    const double w = std::sqrt(active ? w2 : 1.0);
+    const double mag = c.rolling_friction * fn;  // torque per unit lever arm
     const double stop = mag * (k.r_i * k.inv_inertia_i + k.r_j * k.inv_inertia_j) * dt;
-    if (stop > w) mag *= w / stop;
-    const Vec3 dir = k.w_rel * (1.0 / w);  // one division, not three
-    ti -= (mag * k.r_i) * dir;
-    tj += (mag * k.r_j) * dir;
+    const double capped = stop > w ? mag * (w / stop) : mag;
+    const LaneVec dir = k.w_rel * ((active ? capped : 0.0) / w);  // one division, not three
+    ti -= k.r_i * dir;
+    tj += k.r_j * dir;
   }
 };
 
 struct NoRolling {
   static constexpr bool has_history = false;
-  CHUTELAB_INLINE static void torque(const PairCoeffs&, const NormalResult&, const ContactKinematics&, Vec3*, double,
-                     Vec3&, Vec3&) {}
+  CHUTELAB_INLINE static void torque(const PairCoeffs&, const NormalResult&, const ContactKinematics&, LaneVec*,
+                                     double, LaneVec&, LaneVec&) {}
 };
 
 }  // namespace chutelab::dem

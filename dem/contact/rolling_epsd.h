@@ -14,25 +14,25 @@ namespace chutelab::dem {
 struct RollingEpsd {
   static constexpr bool has_history = true;
   CHUTELAB_INLINE static void torque(const PairCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
-                     Vec3* history, double dt, Vec3& ti, Vec3& tj) {
-    Vec3& m = *history;
+                     LaneVec* history, double dt, LaneVec& ti, LaneVec& tj) {
+    LaneVec& m = *history;
     const double fn = std::max(nr.force, 0.0);
     if (c.rolling_friction <= 0.0 || fn <= 0.0) {
-      m.setZero();
+      m = LaneVec::zero();
       return;
     }
-    const Vec3 wr = k.w_rel - k.w_rel.dot(k.n) * k.n;
-    const double m2 = m.squaredNorm();
+    const LaneVec wr = k.w_rel - k.w_rel.dot(k.n) * k.n;
+    const double m2 = m.squared_norm();
     if (m2 > 0.0) {
       m -= m.dot(k.n) * k.n;
-      const double p2 = m.squaredNorm();
+      const double p2 = m.squared_norm();
       if (p2 > 0.0) m *= std::sqrt(m2 / p2);
     }
     const double kr = 2.25 * nr.kn * c.rolling_friction * c.rolling_friction * k.r_eff * k.r_eff;
     m -= kr * dt * wr;
     const double limit = c.rolling_friction * k.r_eff * fn;
-    const double s2 = m.squaredNorm();
-    Vec3 total = m;
+    const double s2 = m.squared_norm();
+    LaneVec total = m;
     if (s2 > limit * limit) {
       m *= limit / std::sqrt(s2);
       total = m;

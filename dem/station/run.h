@@ -14,7 +14,7 @@
 namespace chutelab::dem::station {
 
 // Version of the station model: part of every cache key, bumped whenever a change alters results.
-inline constexpr const char* kStationModelVersion = "chutelab-dem-station 2";
+inline constexpr const char* kStationModelVersion = "chutelab-dem-station 3";  // 3: vectorised contact laws (round-off)
 
 struct TrajectoryRow {
   double x = 0.0;  // m

@@ -105,15 +105,18 @@ BOOST_AUTO_TEST_CASE(verlet_list_finds_every_contact) {
 // 0.555 for frictional spheres at vanishing gravity; poured beds of frictional spheres reach ~0.58-0.61;
 // random close packing 0.64 would mean friction is not working). Measured in the bed's interior, 2.5
 // diameters from the walls, floor and free surface. Kinetic energy must decay by 4 orders of magnitude
-// from its peak and no particle may escape.
+// from its peak and no particle may escape. Settling time 0.6 s: at 0.5 s the kinetic energy is still
+// falling through 1e-4 of its peak, where the chaotic pour puts it on either side of the bound
+// depending on round-off (a change of summation order moved it from below to 1.06e-4).
 BOOST_AUTO_TEST_CASE(poured_bed_settles_to_random_loose_packing) {
+  constexpr double kSettle = 0.6;  // s
   const double r = 2.5e-3;
   const int n = 2000;
   World w = pour_scene(0, RollingModel::constant_torque, n, r);
   w.initialise();
   double ke_peak = 0.0, ke = 0.0;
   const int chunks = 50;
-  const auto steps = static_cast<std::int64_t>(std::llround(0.5 / w.dt() / chunks));
+  const auto steps = static_cast<std::int64_t>(std::llround(kSettle / w.dt() / chunks));
   for (int c = 0; c < chunks; ++c) {
     w.step(steps);
     ke = w.energy().translational;
