@@ -178,7 +178,8 @@ BOOST_AUTO_TEST_CASE(impossible_scenes_are_input_errors) {
 }
 
 // The harness's effects reach the DEM through what they change: the feed rate, the particle-plate
-// friction and a body force in flight; effects without a DEM counterpart leave a note.
+// friction, a body force in flight and the belt's adhesion; effects without a DEM counterpart leave
+// a note.
 BOOST_AUTO_TEST_CASE(effects_map_onto_dem_inputs) {
   const Station st = test::tiny_station();
   auto fx = [](const std::string& s) { return effects::instantiate({effects::parse_setting(s, false)}); };
@@ -205,7 +206,20 @@ BOOST_AUTO_TEST_CASE(effects_map_onto_dem_inputs) {
   BOOST_TEST(std::abs(a.y() - (-k * 5.0 * -4.0)) < 1e-12);
   BOOST_TEST(drag.key != validation::dem_effect_inputs(st, fx("air_drag=0.6")).key);
 
-  for (const char* e : {"belt_slip=0.1", "belt_adhesion=500", "stream_spread=5", "plate_rebound=0.2"}) {
+  // Adhesion: the analytical holding acceleration sigma_a / m'' is recognised as the stress sigma_a.
+  const auto stick = validation::dem_effect_inputs(st, fx("belt_adhesion=500"));
+  BOOST_TEST(std::abs(stick.external.belt_adhesive_stress - 500.0) < 1e-9);
+  BOOST_TEST(joined(stick.notes).find("honoured") != std::string::npos);
+  BOOST_TEST(joined(stick.notes).find("ignored") == std::string::npos);
+  BOOST_TEST(stick.key != validation::dem_effect_inputs(st, {}).key);
+  BOOST_TEST(stick.key != validation::dem_effect_inputs(st, fx("belt_adhesion=600")).key);
+  BOOST_TEST(canonical(stick.external).find("belt_adhesive_stress = 500\n") != std::string::npos);
+  BOOST_TEST(canonical(ExternalInputs{}).empty());  // no effect: the key of runs made before adhesion existed
+  const RunSettings quick = preset(Quality::quick);
+  BOOST_TEST(validation::dem_cache_key(stick, quick, {}) !=
+             validation::dem_cache_key(validation::dem_effect_inputs(st, {}), quick, {}));
+
+  for (const char* e : {"belt_slip=0.1", "stream_spread=5", "plate_rebound=0.2"}) {
     const auto ig = validation::dem_effect_inputs(st, fx(e));
     BOOST_TEST(joined(ig.notes).find("ignored by the DEM") != std::string::npos, e);
     BOOST_TEST(ig.key == validation::dem_effect_inputs(st, {}).key, e);  // the DEM run is the baseline's
