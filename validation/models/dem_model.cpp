@@ -213,7 +213,9 @@ DemEffectInputs dem_effect_inputs(const Station& station, const analytical::Effe
       out.station.belt_speed = op.belt_speed;
       out.station.mass_flow = op.mass_flow;
     }
-    // Plate: the particle-plate friction is the DEM's; the stream restitution is not an input.
+    // Plate: the particle-plate friction is the DEM's. The stream restitution is not an input: the
+    // DEM's rebound comes from its contacts, and no plate restitution reaches a chosen e_s
+    // (effects/plate_rebound.cpp gives the measured range).
     analytical::PlateInteraction pi{friction, 0.0};
     e->adjust_plate(pi);
     if (pi.friction != friction) {
@@ -222,7 +224,8 @@ DemEffectInputs dem_effect_inputs(const Station& station, const analytical::Effe
       friction_changed = true;
     }
     if (pi.rebound != 0.0)
-      ignored.push_back("the stream's rebound follows from the particle-plate restitution in a DEM");
+      ignored.push_back("the DEM resolves the stream's rebound from its particle-plate and particle-particle "
+                        "restitution, and its R_n already contains it; no DEM input sets a stream restitution");
     // Flight.
     if (e->has_flight_force()) {
       flight.push_back(e);

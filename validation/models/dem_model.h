@@ -8,9 +8,9 @@
 // an adhesive stress at the belt (belt_adhesion: particle-belt and particle-pulley cohesion,
 // dem/station/belt_cohesion.h); measurement effects (load_cell_offset) are applied by the harness
 // to every model. Effects that change the analytical discharge in other ways or the release
-// (belt_slip, stream_spread) or the stream restitution (plate_rebound: in a DEM rebound follows
-// from the particle-plate restitution) have no DEM counterpart and are ignored with a note in the
-// prediction.
+// (belt_slip, stream_spread) or the stream restitution (plate_rebound: the DEM's rebound comes from
+// its contacts, and no DEM input sets a stream restitution) have no DEM counterpart and are ignored
+// with a note in the prediction.
 //
 // Effects are recognised by what they do, not by name: each is asked what it changes in a probe
 // of every analytical stage, so a new effect with a flight force, an operating-point change or a
