@@ -34,6 +34,10 @@ struct Context {
 
 Context make_context(const ReportInput& in);
 
+// Width of a chart drawn for one column of a before/after pair, which report.html lays side by
+// side: at 1:1 in a column on a 1400 px screen, so its text keeps the size of a full-width chart's.
+inline constexpr double kPairChartWidth = 640.0;
+
 inline constexpr std::string_view kMeasuredColour = "#111111";
 inline constexpr std::string_view kBandColour = "#dde6d5";
 
@@ -120,17 +124,24 @@ Table model_notes_table(const Context& c, const validation::ValidationResult& r,
 Table findings_table(const std::vector<validation::SeedFinding>& findings);
 
 
-// plot_bars.cpp
-std::string force_bar_chart(const Context& c, const validation::ValidationResult& r, std::string_view id);
+// plot_bars.cpp (`width`, `other`: as residual_chart's)
+std::string force_bar_chart(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                            double width = 960.0, const validation::ValidationResult* other = nullptr);
 std::string rms_bar_chart(const Context& c, const validation::ValidationResult& before,
                           const validation::ValidationResult& after, std::string_view id);
 std::string ranking_chart(const validation::DiagnosisResult& d, std::string_view id);
 
-// plot_trajectory.cpp: HTML (a shared legend and one SVG panel per condition).
-std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id);
+// plot_trajectory.cpp: HTML (a shared legend `legend_width` wide and one SVG panel per condition).
+std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                            double legend_width = 980.0);
 
-// plot_residuals.cpp
-std::string residual_chart(const Context& c, const validation::ValidationResult& r, std::string_view id);
+// plot_residuals.cpp. `other`: the other result of a before/after pair; the chart's panels, range
+// and legend then cover both, so two charts side by side line up and compare.
+std::string residual_chart(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                           double width = 980.0, const validation::ValidationResult* other = nullptr);
+// Every E/u before (hollow) and after (filled) adding effects, small panels: for "What is missing".
+std::string residual_change_chart(const Context& c, const validation::ValidationResult& before,
+                                  const validation::ValidationResult& after, std::string_view id);
 // Pearson r of E/u with belt speed and with mass flow per model and quantity.
 Table trend_table(const Context& c, const validation::ValidationResult& r, std::string_view id);
 
