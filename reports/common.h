@@ -100,10 +100,18 @@ struct Table {
   std::vector<Column> columns{};
   std::vector<std::vector<Cell>> rows{};
   std::vector<std::string> notes{};   // plain text lines under the table
+  std::size_t key_columns = 1;        // leading columns that name a row (merge_before_after)
 };
 
 std::string table_html(const Table& t);
 std::string table_markdown(const Table& t);
+
+// One table from the same table before and after adding effects (for report.md, which cannot lay
+// them side by side): a column equal in every row of both is kept once, any other becomes a
+// "before" and an "after" column. None when the two do not line up (other columns, or rows that
+// name something else). `what` says what the labels stand for, in a note under the table.
+std::optional<Table> merge_before_after(const Table& before, const Table& after, std::string_view before_label,
+                                        std::string_view after_label, std::string_view what);
 
 inline constexpr std::string_view kDash = "\u2014";   // no value
 inline constexpr std::string_view kFailMark = "\u2717";  // outside tolerance

@@ -327,6 +327,7 @@ Table trend_table(const Context& c, const validation::ValidationResult& r, std::
   Table t;
   t.id = std::string(id);
   t.caption = "Does the misfit follow belt speed or mass flow?";
+  t.key_columns = 2;
   t.columns = {{"", "model", "", true},
                {"", "quantity", "", true},
                {"", "n", "", false},
