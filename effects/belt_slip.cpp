@@ -5,8 +5,9 @@
 // appears when the belt accelerates a freshly fed layer over too short a distance, or when rolling
 // particles do not reach belt speed (the seed, section 5: "if slip/rolling occurs at the discharge
 // point ... the impact zone on the impact plate will be lower than anticipated").
-// Hook: discharge conditions (speed of every streamline). DEM counterpart: none needed — a DEM
-// belt shows slip or not by itself.
+// Hook: discharge conditions (speed of every streamline). DEM: ignored, with a note in the
+// prediction — a DEM layer slips on the belt or not by its own friction (the station's sensors
+// measure its speed before the pulley); there is no DEM input that imposes a slip.
 #include "effects/registry.h"
 
 namespace chutelab::effects {

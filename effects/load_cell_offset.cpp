@@ -6,7 +6,8 @@
 // about the reference point adds force but no moment, so the recorded y_R = M / (R_n + F_0). The
 // seed notes creep and vibration of the load cells at low momentum (section 6). F_0 in N, 0 = a
 // true zero; physical range -20 to +20 N.
-// Hook: the measurement itself — it applies to every model's prediction, DEM included.
+// Hook: the measurement itself — it applies to every model's prediction, DEM included: the harness
+// adds it to the DEM's R_n and y_R as to any model's; no DEM input changes.
 #include <cmath>
 
 #include "effects/registry.h"

@@ -5,7 +5,8 @@
 // true flow m_true = (1 + b) m_recorded. Every force scales with it (Eq 5, 6, 7) and, where the
 // stream thickness comes from continuity, so does h_b and with it the impact point. b is a
 // fraction, 0 = the record is right; physical range -0.3 to +0.3.
-// Hook: the operating point (the measurement of an input). DEM counterpart: the feed rate.
+// Hook: the operating point (the measurement of an input). DEM: honoured — the feed inserts
+// (1 + b) m_recorded.
 #include "effects/registry.h"
 
 namespace chutelab::effects {

@@ -6,8 +6,8 @@
 // stream thickens with distance (divergence coefficients in the trajectory models reviewed by
 // Hastie & Wypych 2007). delta in degrees, 0 = Booth; physical range 0-15 deg. The centroid and
 // with it the impact point and the plate forces are unchanged.
-// Hook: discharge conditions of the outer streamlines. DEM counterpart: none — a DEM stream spreads
-// by itself.
+// Hook: discharge conditions of the outer streamlines. DEM: ignored, with a note in the prediction —
+// a DEM stream spreads by itself, through the collisions and velocity spread this effect stands for.
 #include <cmath>
 
 #include "core/units.h"

@@ -210,4 +210,53 @@ std::string table_markdown(const Table& t) {
   return o;
 }
 
+std::optional<Table> merge_before_after(const Table& before, const Table& after, std::string_view before_label,
+                                        std::string_view after_label, std::string_view what) {
+  const auto& bc = before.columns;
+  if (bc.size() != after.columns.size() || before.rows.size() != after.rows.size() || before.rows.empty())
+    return std::nullopt;
+  for (std::size_t j = 0; j < bc.size(); ++j)
+    if (bc[j].group != after.columns[j].group || bc[j].text != after.columns[j].text) return std::nullopt;
+  for (std::size_t i = 0; i < before.rows.size(); ++i) {
+    const auto &rb = before.rows[i], &ra = after.rows[i];
+    if (rb.size() != bc.size() || ra.size() != bc.size()) return std::nullopt;
+    for (std::size_t j = 0; j < std::min(before.key_columns, bc.size()); ++j)
+      if (rb[j].text != ra[j].text) return std::nullopt;
+  }
+  Table t;
+  t.id = before.id;
+  t.caption = before.caption + " — before and after";
+  t.key_columns = before.key_columns;
+  t.rows.resize(before.rows.size());
+  bool split = false;
+  for (std::size_t j = 0; j < bc.size(); ++j) {
+    bool same = true;
+    for (std::size_t i = 0; i < before.rows.size() && same; ++i) {
+      const Cell &b = before.rows[i][j], &a = after.rows[i][j];
+      same = b.text == a.text && b.fail == a.fail;
+    }
+    if (same) {
+      t.columns.push_back(bc[j]);
+      for (std::size_t i = 0; i < before.rows.size(); ++i) t.rows[i].push_back(before.rows[i][j]);
+      continue;
+    }
+    split = true;
+    for (const auto* side : {&before, &after}) {
+      Column col = bc[j];
+      const std::string_view label = side == &before ? before_label : after_label;
+      col.text += fmt::format(" {}", label);
+      if (!col.html.empty()) col.html += fmt::format(" {}", esc(label));
+      t.columns.push_back(std::move(col));
+      for (std::size_t i = 0; i < before.rows.size(); ++i) t.rows[i].push_back(side->rows[i][j]);
+    }
+  }
+  for (const auto* side : {&before, &after})
+    for (const auto& n : side->notes)
+      if (std::find(t.notes.begin(), t.notes.end(), n) == t.notes.end()) t.notes.push_back(n);
+  if (split)
+    t.notes.push_back(fmt::format("{}; a column marked neither \"{}\" nor \"{}\" is the same in both.", what,
+                                  before_label, after_label));
+  return t;
+}
+
 }  // namespace chutelab::reports

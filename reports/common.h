@@ -34,6 +34,10 @@ struct Context {
 
 Context make_context(const ReportInput& in);
 
+// Width of a chart drawn for one column of a before/after pair, which report.html lays side by
+// side: at 1:1 in a column on a 1400 px screen, so its text keeps the size of a full-width chart's.
+inline constexpr double kPairChartWidth = 640.0;
+
 inline constexpr std::string_view kMeasuredColour = "#111111";
 inline constexpr std::string_view kBandColour = "#dde6d5";
 
@@ -96,10 +100,18 @@ struct Table {
   std::vector<Column> columns{};
   std::vector<std::vector<Cell>> rows{};
   std::vector<std::string> notes{};   // plain text lines under the table
+  std::size_t key_columns = 1;        // leading columns that name a row (merge_before_after)
 };
 
 std::string table_html(const Table& t);
 std::string table_markdown(const Table& t);
+
+// One table from the same table before and after adding effects (for report.md, which cannot lay
+// them side by side): a column equal in every row of both is kept once, any other becomes a
+// "before" and an "after" column. None when the two do not line up (other columns, or rows that
+// name something else). `what` says what the labels stand for, in a note under the table.
+std::optional<Table> merge_before_after(const Table& before, const Table& after, std::string_view before_label,
+                                        std::string_view after_label, std::string_view what);
 
 inline constexpr std::string_view kDash = "\u2014";   // no value
 inline constexpr std::string_view kFailMark = "\u2717";  // outside tolerance
@@ -120,17 +132,24 @@ Table model_notes_table(const Context& c, const validation::ValidationResult& r,
 Table findings_table(const std::vector<validation::SeedFinding>& findings);
 
 
-// plot_bars.cpp
-std::string force_bar_chart(const Context& c, const validation::ValidationResult& r, std::string_view id);
+// plot_bars.cpp (`width`, `other`: as residual_chart's)
+std::string force_bar_chart(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                            double width = 960.0, const validation::ValidationResult* other = nullptr);
 std::string rms_bar_chart(const Context& c, const validation::ValidationResult& before,
                           const validation::ValidationResult& after, std::string_view id);
 std::string ranking_chart(const validation::DiagnosisResult& d, std::string_view id);
 
-// plot_trajectory.cpp: HTML (a shared legend and one SVG panel per condition).
-std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id);
+// plot_trajectory.cpp: HTML (a shared legend `legend_width` wide and one SVG panel per condition).
+std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                            double legend_width = 980.0);
 
-// plot_residuals.cpp
-std::string residual_chart(const Context& c, const validation::ValidationResult& r, std::string_view id);
+// plot_residuals.cpp. `other`: the other result of a before/after pair; the chart's panels, range
+// and legend then cover both, so two charts side by side line up and compare.
+std::string residual_chart(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                           double width = 980.0, const validation::ValidationResult* other = nullptr);
+// Every E/u before (hollow) and after (filled) adding effects, small panels: for "What is missing".
+std::string residual_change_chart(const Context& c, const validation::ValidationResult& before,
+                                  const validation::ValidationResult& after, std::string_view id);
 // Pearson r of E/u with belt speed and with mass flow per model and quantity.
 Table trend_table(const Context& c, const validation::ValidationResult& r, std::string_view id);
 

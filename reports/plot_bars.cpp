@@ -18,18 +18,16 @@ struct Bar {
   bool fail = false;
 };
 
-}  // namespace
+struct Series {
+  std::string label, colour;
+  std::vector<Bar> bars;  // one per condition
+};
 
-std::string force_bar_chart(const Context& c, const validation::ValidationResult& r, std::string_view id) {
+// The measurement, then every model that predicts R anywhere.
+std::vector<Series> force_series(const Context& c, const validation::ValidationResult& r) {
   const Quantity q = Quantity::resultant_force;
   const auto qn = quantity_name(name(q));
   const Lookup look(r);
-
-  // Series: the measurement, then every model that predicts R anywhere.
-  struct Series {
-    std::string label, colour;
-    std::vector<Bar> bars;  // one per condition
-  };
   std::vector<Series> series;
   Series meas{"measured (± 1 sd)", std::string(kMeasuredColour), {}};
   bool any_measured = false;
@@ -68,22 +66,37 @@ std::string force_bar_chart(const Context& c, const validation::ValidationResult
     }
     if (any) series.push_back(std::move(s));
   }
+  return series;
+}
+
+double series_top(const std::vector<Series>& series) {
+  double top = 0.0;
+  for (const auto& s : series)
+    for (const auto& b : s.bars)
+      if (b.value) top = std::max(top, *b.value + b.sd.value_or(0.0));
+  return top;
+}
+
+}  // namespace
+
+std::string force_bar_chart(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                            double width, const validation::ValidationResult* other) {
+  const auto qn = quantity_name(name(Quantity::resultant_force));
+  const std::vector<Series> series = force_series(c, r);
   if (series.empty() || c.conditions.empty()) return {};
 
   bool any_fail = false;
-  double top = 0.0;
   for (const auto& s : series)
-    for (const auto& b : s.bars) {
-      if (b.value) top = std::max(top, *b.value + b.sd.value_or(0.0));
-      any_fail = any_fail || b.fail;
-    }
+    for (const auto& b : s.bars) any_fail = any_fail || b.fail;
+  // A pair shares the force axis: equal bars are equal forces in both.
+  const double top = std::max(series_top(series), other ? series_top(force_series(c, *other)) : 0.0);
 
   std::vector<LegendEntry> legend;
   for (const auto& s : series) legend.push_back({LegendEntry::Kind::box, s.label, s.colour});
   if (any_fail)
     legend.push_back({LegendEntry::Kind::marker, "outside tolerance", std::string(kFail), "", Shape::cross});
 
-  const double W = 960.0;
+  const double W = width;
   const double lh = legend_height(W - 140, legend);
   Frame f{78.0, 30.0 + lh + 10.0, W - 78.0 - 16.0, 260.0};
   const double H = f.bottom() + 72.0;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <map>
+#include <tuple>
 
 #include "reports/common.h"
 
@@ -45,59 +47,118 @@ std::size_t slot_of(const Context& c, const std::string& condition) {
   return c.conditions.size();
 }
 
+// Every normalised error of one quantity in a result, with its tooltip.
+std::vector<Point> points_of(const Context& c, const validation::ValidationResult& r, const std::string& qname,
+                             const QuantityName& qn) {
+  std::vector<Point> out;
+  for (const auto& cmp : r.comparisons) {
+    if (cmp.quantity != qname) continue;
+    const auto z = cmp.normalised_error();
+    const std::size_t slot = slot_of(c, cmp.condition);
+    if (!z || slot >= c.conditions.size()) continue;
+    std::string tip = fmt::format("{}, {}, {}", cmp.condition, cmp.model, qn.symbol);
+    if (cmp.boundary) tip += fmt::format(" at x = {:.0f} mm", cmp.x * 1e3);
+    tip += fmt::format(": E/u = {:+.2f} (E = {:+.3g} {})", *z, cmp.error() * qn.scale, qn.unit);
+    const bool fail = cmp.verdict.checked && !cmp.verdict.passed;
+    if (fail) tip += "; outside tolerance: " + cmp.verdict.limit;
+    out.push_back({slot, cmp.model, *z, tip, fail});
+  }
+  return out;
+}
+
+// What charts of the same results share: panels, range, models and legend entries. Two charts of
+// a before/after pair drawn from one scale line up panel by panel and their heights compare.
+struct ResidualScale {
+  std::vector<std::string> quantities;  // panels, in the vocabulary's order
+  std::vector<std::string> models;      // those with a point somewhere, in the report's order
+  double limit = 3.0;                   // |E/u| at the plot's edge
+  bool beyond = false, any_fail = false;
+};
+
+ResidualScale residual_scale(const Context& c, const std::vector<const validation::ValidationResult*>& results) {
+  ResidualScale sc;
+  double worst = 0.0;
+  std::vector<std::string> present;
+  for (const auto* r : results) {
+    if (!r) continue;
+    for (const auto& qname : compared_quantities(*r)) {
+      const auto pts = points_of(c, *r, qname, quantity_name(qname));
+      if (pts.empty()) continue;
+      if (std::find(sc.quantities.begin(), sc.quantities.end(), qname) == sc.quantities.end())
+        sc.quantities.push_back(qname);
+      for (const auto& pt : pts) {
+        worst = std::max(worst, std::abs(pt.z));
+        sc.any_fail = sc.any_fail || pt.fail;
+        if (std::find(present.begin(), present.end(), pt.model) == present.end()) present.push_back(pt.model);
+      }
+    }
+  }
+  // A quantity only the second result has goes where the vocabulary puts it.
+  std::vector<std::string> order;
+  for (const auto* r : results)
+    if (r)
+      for (const auto& q : compared_quantities(*r))
+        if (std::find(order.begin(), order.end(), q) == order.end()) order.push_back(q);
+  std::stable_sort(sc.quantities.begin(), sc.quantities.end(), [&](const std::string& a, const std::string& b) {
+    return std::find(order.begin(), order.end(), a) < std::find(order.begin(), order.end(), b);
+  });
+  for (const auto& m : c.models)
+    if (std::find(present.begin(), present.end(), m) != present.end()) sc.models.push_back(m);
+  // One y range for all panels so that their heights compare; beyond +-10 a value is off the
+  // chart whatever it is (the tooltip and the label give it).
+  sc.limit = worst <= 2.8 ? 3.0 : worst <= 4.6 ? 5.0 : 10.0;
+  sc.beyond = worst > sc.limit;
+  return sc;
+}
+
+// Condition labels under a categorical axis: name, then belt speed and mass flow when `lines` > 1.
+void condition_labels(Svg& svg, const Context& c, const Frame& f, int lines, double font) {
+  const std::size_t n = c.conditions.size();
+  const double sw = f.width / static_cast<double>(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double cx = f.left + sw * (static_cast<double>(i) + 0.5);
+    if (i > 0) svg.line(f.left + sw * i, f.bottom(), f.left + sw * i, f.bottom() + 4, "stroke=\"#444\"");
+    const auto& row = c.conditions[i];
+    const std::size_t fit = static_cast<std::size_t>(std::max(4.0, sw / (0.6 * font)));
+    const std::string size = fmt::format("font-size=\"{:g}\"", font);
+    svg.text(cx, f.bottom() + font + 4, shorten(row.name, fit), "middle", size + " font-weight=\"600\"");
+    if (lines > 1) {
+      svg.text(cx, f.bottom() + 2 * font + 6, shorten(row.speed_label(), fit), "middle", size + " fill=\"#333\"");
+      svg.text(cx, f.bottom() + 3 * font + 8, shorten(row.flow_label(), fit), "middle", size + " fill=\"#333\"");
+    }
+  }
+}
+
 }  // namespace
 
-std::string residual_chart(const Context& c, const validation::ValidationResult& r, std::string_view id) {
-  // Panels: every quantity with at least one normalised error.
+std::string residual_chart(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                           double width, const validation::ValidationResult* other) {
+  const ResidualScale sc = residual_scale(c, {&r, other});
+  if (sc.quantities.empty()) return {};
   struct Panel {
     QuantityName qn;
     std::vector<Point> points;
   };
   std::vector<Panel> panels;
-  double worst = 0.0;
-  bool any_fail = false;
-  for (const auto& qname : compared_quantities(r)) {
+  for (const auto& qname : sc.quantities) {
     Panel p{quantity_name(qname), {}};
-    for (const auto& cmp : r.comparisons) {
-      if (cmp.quantity != qname) continue;
-      const auto z = cmp.normalised_error();
-      const std::size_t slot = slot_of(c, cmp.condition);
-      if (!z || slot >= c.conditions.size()) continue;
-      std::string tip = fmt::format("{}, {}, {}", cmp.condition, cmp.model, p.qn.symbol);
-      if (cmp.boundary) tip += fmt::format(" at x = {:.0f} mm", cmp.x * 1e3);
-      tip += fmt::format(": E/u = {:+.2f} (E = {:+.3g} {})", *z, cmp.error() * p.qn.scale, p.qn.unit);
-      const bool fail = cmp.verdict.checked && !cmp.verdict.passed;
-      if (fail) tip += "; outside tolerance: " + cmp.verdict.limit;
-      any_fail = any_fail || fail;
-      p.points.push_back({slot, cmp.model, *z, tip, fail});
-      worst = std::max(worst, std::abs(*z));
-    }
-    if (!p.points.empty()) panels.push_back(std::move(p));
+    p.points = points_of(c, r, qname, p.qn);
+    panels.push_back(std::move(p));
   }
-  if (panels.empty()) return {};
-
-  // One y range for all panels so that their heights compare; beyond +-10 a value is off the
-  // chart whatever it is (the tooltip and the label give it).
-  const double L = worst <= 2.8 ? 3.0 : worst <= 4.6 ? 5.0 : 10.0;
-
-  std::vector<std::string> models;
-  for (const auto& m : c.models)
-    for (const auto& p : panels)
-      if (std::any_of(p.points.begin(), p.points.end(), [&](const Point& pt) { return pt.model == m; })) {
-        models.push_back(m);
-        break;
-      }
+  const double L = sc.limit;
+  const auto& models = sc.models;
   std::vector<LegendEntry> legend;
   for (const auto& m : models) legend.push_back({LegendEntry::Kind::marker, m, c.colour(m), "", c.shape(m), true});
   legend.push_back({LegendEntry::Kind::box, "|E/u| ≤ 2 (measurement noise)", std::string(kBandColour)});
-  if (worst > L)
+  if (sc.beyond)
     legend.push_back({LegendEntry::Kind::marker, fmt::format("beyond ±{:.0f}: drawn at the edge, value printed", L),
                       "#666", "", Shape::triangle_up, false});
-  if (any_fail) legend.push_back({LegendEntry::Kind::marker, "outside tolerance (red ring)", std::string(kFail), "",
-                                  Shape::circle, false});
+  if (sc.any_fail) legend.push_back({LegendEntry::Kind::marker, "outside tolerance (red ring)", std::string(kFail), "",
+                                     Shape::circle, false});
 
-  const double W = 980.0;
-  const int cols = panels.size() == 1 ? 1 : 2;
+  const double W = width;
+  // Side by side, a column is too narrow for two panels of readable conditions: one a row.
+  const int cols = panels.size() == 1 || W < 900.0 ? 1 : 2;
   const double pw = (W - 20.0) / cols;
   const double lh = legend_height(W - 40, legend);
   const double head = 30.0 + lh + 8.0;
@@ -105,7 +166,8 @@ std::string residual_chart(const Context& c, const validation::ValidationResult&
   const std::size_t rows = (panels.size() + cols - 1) / cols;
   const double H = head + ph * static_cast<double>(rows) + 6.0;
   Svg svg(W, H, "plot residual-chart", id, "Normalised errors per condition and quantity");
-  svg.title("Normalised error E/u per condition and quantity (E = predicted − measured, u = 1 sd of the measurement)");
+  svg.title(W < 900.0 ? "Normalised error E/u per condition and quantity"
+                      : "Normalised error E/u per condition and quantity (E = predicted − measured, u = 1 sd of the measurement)");
   svg.legend(20.0, 28.0, W - 40, legend);
 
   const Ticks yt = inner_ticks(-L, L, L > 5 ? 5 : 7);
@@ -123,18 +185,12 @@ std::string residual_chart(const Context& c, const validation::ValidationResult&
     svg.y_axis(f, y, yt, "E/u (–)");
     svg.line(f.left, y(0.0), f.right(), y(0.0), "stroke=\"#777\" stroke-width=\"1\"");
     svg.rect(f.left, f.top, f.width, f.height, "fill=\"none\" stroke=\"#444\"");
+    if (p.points.empty())
+      svg.text(f.left + f.width / 2, f.top + 20, "no normalised error here", "middle", "font-size=\"11\" fill=\"#666\"");
 
     const double sw = f.width / static_cast<double>(n);
     const double step = std::min(12.0, 0.7 * sw / static_cast<double>(std::max<std::size_t>(1, models.size())));
-    for (std::size_t i = 0; i < n; ++i) {
-      const double cx = f.left + sw * (static_cast<double>(i) + 0.5);
-      if (i > 0) svg.line(f.left + sw * i, f.bottom(), f.left + sw * i, f.bottom() + 4, "stroke=\"#444\"");
-      const auto& row = c.conditions[i];
-      const std::size_t fit = static_cast<std::size_t>(std::max(4.0, sw / 6.0));
-      svg.text(cx, f.bottom() + 14, shorten(row.name, fit), "middle", "font-size=\"10\" font-weight=\"600\"");
-      svg.text(cx, f.bottom() + 26, row.speed_label(), "middle", "font-size=\"10\" fill=\"#333\"");
-      svg.text(cx, f.bottom() + 38, row.flow_label(), "middle", "font-size=\"10\" fill=\"#333\"");
-    }
+    condition_labels(svg, c, f, 3, 10.0);
     svg.text(f.left + f.width / 2, f.bottom() + 56, "condition (belt speed, mass flow)", "middle",
              "class=\"axis-label\" font-size=\"11\"");
 
@@ -176,10 +232,102 @@ std::string residual_chart(const Context& c, const validation::ValidationResult&
   return svg.finish();
 }
 
+// The compact picture of what the effects changed, for "What is missing": every normalised error as
+// it was (hollow) and with the effects (filled), joined, in small panels on one shared range.
+std::string residual_change_chart(const Context& c, const validation::ValidationResult& before,
+                                  const validation::ValidationResult& after, std::string_view id) {
+  const ResidualScale sc = residual_scale(c, {&before, &after});
+  if (sc.quantities.empty() || c.conditions.empty()) return {};
+  const double L = sc.limit;
+  // The same compared value before and after: same condition, model, quantity and x.
+  using Key = std::tuple<std::string, std::string, std::string, long long>;
+  auto key = [](const validation::Comparison& cmp) {
+    return Key{cmp.condition, cmp.model, cmp.quantity, std::llround(cmp.x * 1e6)};
+  };
+  std::map<Key, double> z_after;
+  for (const auto& cmp : after.comparisons)
+    if (const auto z = cmp.normalised_error()) z_after[key(cmp)] = *z;
+
+  std::vector<LegendEntry> legend;
+  for (const auto& m : sc.models) legend.push_back({LegendEntry::Kind::marker, m, c.colour(m), "", c.shape(m), true});
+  legend.push_back({LegendEntry::Kind::marker, "hollow: models as they are", "#555", "", Shape::circle, false});
+  legend.push_back({LegendEntry::Kind::marker, "filled: with effects", "#555", "", Shape::circle, true});
+  legend.push_back({LegendEntry::Kind::box, "|E/u| ≤ 2", std::string(kBandColour)});
+  if (sc.beyond)
+    legend.push_back({LegendEntry::Kind::marker, fmt::format("beyond ±{:.0f}: at the edge", L), "#666", "",
+                      Shape::triangle_up, false});
+
+  const double W = 980.0;
+  const int cols = static_cast<int>(std::min<std::size_t>(3, sc.quantities.size()));
+  const double pw = (W - 20.0) / cols;
+  const double lh = legend_height(W - 40, legend);
+  const double head = 30.0 + lh + 6.0;
+  const double ph = 20.0 + 110.0 + 24.0;  // title, plot, one label line
+  const std::size_t rows = (sc.quantities.size() + cols - 1) / cols;
+  const double H = head + ph * static_cast<double>(rows) + 24.0;
+  Svg svg(W, H, "plot residual-change-chart", id, "Normalised errors before and after adding the effects");
+  svg.title("Normalised error E/u per condition: as the models are (hollow) and with the effects (filled)");
+  svg.legend(20.0, 28.0, W - 40, legend);
+
+  const Ticks yt = inner_ticks(-L, L, 5);
+  const std::size_t n = c.conditions.size();
+  auto at = [&](const Scale& y, const Frame& f, double z) {
+    return z > L ? f.top + 5 : z < -L ? f.bottom() - 5 : y(z);
+  };
+  for (std::size_t k = 0; k < sc.quantities.size(); ++k) {
+    const QuantityName qn = quantity_name(sc.quantities[k]);
+    const double ox = 10.0 + pw * static_cast<double>(k % static_cast<std::size_t>(cols));
+    const double oy = head + ph * static_cast<double>(k / static_cast<std::size_t>(cols));
+    Frame f{ox + 50.0, oy + 20.0, pw - 50.0 - 10.0, 110.0};
+    const Scale y{-L, L, f.bottom(), f.top};
+    svg.raw(fmt::format("<g class=\"residual-change-panel\" data-quantity=\"{}\">\n", esc(qn.name)));
+    svg.markup(f.left, oy + 13, fmt::format("{} — {}", symbol_svg(qn.symbol), esc(shorten(qn.label, 34))), "start",
+               "font-size=\"11\" font-weight=\"600\"");
+    svg.rect(f.left, y(2.0), f.width, y(-2.0) - y(2.0), fmt::format("fill=\"{}\"", kBandColour));
+    svg.y_axis(f, y, yt, "E/u (–)");
+    svg.line(f.left, y(0.0), f.right(), y(0.0), "stroke=\"#777\" stroke-width=\"1\"");
+    svg.rect(f.left, f.top, f.width, f.height, "fill=\"none\" stroke=\"#444\"");
+    condition_labels(svg, c, f, 1, 9.0);
+
+    const double sw = f.width / static_cast<double>(n);
+    const double step = std::min(8.0, 0.7 * sw / static_cast<double>(std::max<std::size_t>(1, sc.models.size())));
+    for (std::size_t mi = 0; mi < sc.models.size(); ++mi) {
+      const auto& m = sc.models[mi];
+      const double dx = (static_cast<double>(mi) - (static_cast<double>(sc.models.size()) - 1.0) / 2.0) * step;
+      for (const auto& cmp : before.comparisons) {
+        if (cmp.model != m || cmp.quantity != qn.name) continue;
+        const auto zb = cmp.normalised_error();
+        const std::size_t slot = slot_of(c, cmp.condition);
+        if (!zb || slot >= n) continue;
+        const double cx = f.left + sw * (static_cast<double>(slot) + 0.5) + dx;
+        const auto it = z_after.find(key(cmp));
+        std::string tip = fmt::format("{}, {}, {}", cmp.condition, m, qn.symbol);
+        if (cmp.boundary) tip += fmt::format(" at x = {:.0f} mm", cmp.x * 1e3);
+        tip += fmt::format(": E/u {:+.2f}", *zb);
+        if (it != z_after.end()) tip += fmt::format(" → {:+.2f} with effects", it->second);
+        const double yb = at(y, f, *zb);
+        if (it != z_after.end()) {
+          const double ya = at(y, f, it->second);
+          svg.line(cx, yb, cx, ya, fmt::format("stroke=\"{}\" stroke-width=\"1.2\" stroke-opacity=\"0.55\"", c.colour(m)));
+          svg.marker(std::abs(it->second) > L ? (it->second > 0 ? Shape::triangle_up : Shape::triangle_down) : c.shape(m),
+                     cx, ya, 5.5, c.colour(m), true, tip);
+        }
+        svg.marker(std::abs(*zb) > L ? (*zb > 0 ? Shape::triangle_up : Shape::triangle_down) : c.shape(m), cx, yb, 6.5,
+                   c.colour(m), false, tip);
+      }
+    }
+    svg.raw("</g>\n");
+  }
+  svg.text(W / 2, H - 8, "condition, in the order of the tables (belt speed, then mass flow)", "middle",
+           "class=\"axis-label\" font-size=\"11\"");
+  return svg.finish();
+}
+
 Table trend_table(const Context& c, const validation::ValidationResult& r, std::string_view id) {
   Table t;
   t.id = std::string(id);
   t.caption = "Does the misfit follow belt speed or mass flow?";
+  t.key_columns = 2;
   t.columns = {{"", "model", "", true},
                {"", "quantity", "", true},
                {"", "n", "", false},

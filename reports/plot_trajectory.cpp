@@ -151,7 +151,8 @@ void draw_plate_strip(Svg& svg, const Frame& sf, const Context& c, const validat
 
 }  // namespace
 
-std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id) {
+std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                            double legend_width) {
   // Styles: one dash per curve name, one colour per model.
   std::vector<std::string> curve_names;
   std::vector<std::pair<std::string, std::string>> model_curves;  // (model, curve) as they occur
@@ -232,7 +233,7 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
 
   std::string o = fmt::format("<figure class=\"traj-figure\" id=\"{}\">\n", esc(id));
   {
-    const double W = 980.0;
+    const double W = legend_width;
     const double lh = legend_height(W - 20, legend);
     const double bar = vs.valid() ? 22.0 : 0.0;
     Svg leg(W, lh + 30.0 + bar, "plot traj-legend", fmt::format("{}-legend", id), "Legend of the stream pictures");

@@ -18,7 +18,7 @@ using validation::ValidationResult;
 
 // Both renderers walk the same list of blocks.
 struct Block {
-  enum class Kind { heading, paragraph, list, table, figure, verdict, definition } kind{};
+  enum class Kind { heading, paragraph, list, table, figure, verdict, definition, pair } kind{};
   int level = 2;                    // headings
   std::string id{};                 // headings: anchor
   std::string text{};               // plain text (headings, paragraphs, verdict, definition term)
@@ -27,7 +27,47 @@ struct Block {
   Table table{};
   std::string svg_html{};           // figures: ready HTML (inline SVG)
   std::string caption{};            // figures: plain
+  // pair: the same blocks for the models as they are and with effects, which report.html shows
+  // side by side; `merged` is what report.md shows instead (empty: the two one after the other).
+  std::vector<Block> before{}, after{}, merged{};
 };
+
+// report.md cannot put two tables side by side: a pair becomes one table per table with before and
+// after columns, one line per figure and the rest once where both say the same. Empty when the
+// two columns do not line up (then both are shown, one after the other).
+std::vector<Block> merge_for_markdown(const std::vector<Block>& before, const std::vector<Block>& after,
+                                      const std::string& after_title) {
+  if (before.size() != after.size()) return {};
+  std::vector<Block> out;
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    const Block &b = before[k], &a = after[k];
+    if (b.kind != a.kind) return {};
+    switch (b.kind) {
+      case Block::Kind::heading: break;  // the columns' titles: the merged columns say before/after
+      case Block::Kind::table: {
+        std::string after_what = after_title;
+        if (!after_what.empty() && after_what[0] >= 'A' && after_what[0] <= 'Z') after_what[0] += 'a' - 'A';
+        auto t = merge_before_after(b.table, a.table, "before", "after",
+                                    "\"before\": the models as they are; \"after\": " + after_what);
+        if (!t) return {};
+        out.push_back(b);
+        out.back().table = std::move(*t);
+        break;
+      }
+      case Block::Kind::figure: {
+        std::string what = b.caption.empty() ? std::string("Chart") : b.caption;
+        if (what.ends_with('.')) what.pop_back();
+        out.push_back(b);
+        out.back().caption = what + " — before and after";
+        break;
+      }
+      default:
+        if (b.text != a.text || b.items != a.items || b.detail != a.detail) return {};
+        out.push_back(b);
+    }
+  }
+  return out;
+}
 
 class Doc {
  public:
@@ -56,6 +96,15 @@ class Doc {
     blocks.push_back(std::move(b));
   }
   void verdict(std::string text) { blocks.push_back({Block::Kind::verdict, 0, {}, std::move(text)}); }
+  // `id`: the HTML element holding both columns.
+  void pair(std::string id, Doc before, Doc after, const std::string& after_title) {
+    Block b{Block::Kind::pair};
+    b.id = std::move(id);
+    b.merged = merge_for_markdown(before.blocks, after.blocks, after_title);
+    b.before = std::move(before.blocks);
+    b.after = std::move(after.blocks);
+    blocks.push_back(std::move(b));
+  }
   void definition(std::string term, std::string body) {
     Block b{Block::Kind::definition};
     b.text = std::move(term);
@@ -99,6 +148,28 @@ void before_after(Doc& d, const Context& c, int level, const std::vector<std::st
   if (!chart.empty())
     d.figure(chart, "RMS normalised error per model (all compared values), before and after; the dashed line "
                     "is what measurement noise alone gives.");
+  const std::string change = residual_change_chart(c, *in.baseline, *in.with_effects, "resid-change");
+  if (!change.empty())
+    d.figure(change, "Each compared value's E/u as the models are (hollow) and with the effects (filled), joined "
+                     "by a line; the full charts are side by side under \u201cWhere each model fails\u201d.");
+}
+
+// A section drawn once per variant. Without effects, just the models as they are; with effects a
+// pair, one titled column each, which report.html lays side by side and report.md merges. `fill`
+// gets the other variant's result when it draws a column (charts then share scales and are drawn
+// kPairChartWidth wide), else nullptr.
+template <class Fill>
+void per_variant(Doc& d, const std::vector<Variant>& vs, const std::string& section, Fill fill) {
+  if (vs.size() == 1) {
+    fill(d, vs[0], static_cast<const ValidationResult*>(nullptr));
+    return;
+  }
+  Doc before, after;
+  before.h(3, section + "-" + vs[0].suffix, vs[0].title);
+  fill(before, vs[0], vs[1].result);
+  after.h(3, section + "-" + vs[1].suffix, vs[1].title);
+  fill(after, vs[1], vs[0].result);
+  d.pair(section + "-pair", std::move(before), std::move(after), vs[1].title);
 }
 
 void what_is_missing(Doc& d, const Context& c) {
@@ -208,32 +279,30 @@ Doc assemble(const ReportInput& in) {
                                       *z > 2.0 ? " (more than measurement noise explains)" : ""));
     d.list(lines);
   }
-  for (const auto& v : vs) {
-    if (vs.size() > 1) d.h(3, "summary-" + v.suffix, v.title);
-    d.table(summary_table(*v.result, "summary-" + v.suffix));
-  }
+  per_variant(d, vs, "summary", [&](Doc& x, const Variant& v, const ValidationResult*) {
+    x.table(summary_table(*v.result, "summary-table-" + v.suffix));
+  });
 
   if (in.diagnosis) what_is_missing(d, c);
   else if (in.with_effects) before_after(d, c, 2);
 
   // ---- Seed Table 4 and Fig. 6 ----
   d.h(2, "forces", "Plate forces");
-  for (const auto& v : vs) {
-    if (vs.size() > 1) d.h(3, "forces-" + v.suffix, v.title);
-    d.table(force_table(c, *v.result, "table4-" + v.suffix));
-    const std::string chart = force_bar_chart(c, *v.result, "bars-" + v.suffix);
+  per_variant(d, vs, "forces", [&](Doc& x, const Variant& v, const ValidationResult* other) {
+    x.table(force_table(c, *v.result, "table4-" + v.suffix));
+    const std::string chart =
+        force_bar_chart(c, *v.result, "bars-" + v.suffix, other ? kPairChartWidth : 960.0, other);
     if (!chart.empty())
-      d.figure(chart, "Resultant plate force R per condition (cf. seed Fig. 6); error bars: ±1 sd of the "
+      x.figure(chart, "Resultant plate force R per condition (cf. seed Fig. 6); error bars: ±1 sd of the "
                       "measurement.");
-    else d.p("Neither measured nor predicted: the resultant force R.");
-  }
+    else x.p("Neither measured nor predicted: the resultant force R.");
+  });
 
   // ---- Seed Table 5 ----
   d.h(2, "velocities", "Stream velocities and impact point");
-  for (const auto& v : vs) {
-    if (vs.size() > 1) d.h(3, "velocities-" + v.suffix, v.title);
-    d.table(velocity_table(c, *v.result, "table5-" + v.suffix));
-  }
+  per_variant(d, vs, "velocities", [&](Doc& x, const Variant& v, const ValidationResult*) {
+    x.table(velocity_table(c, *v.result, "table5-" + v.suffix));
+  });
 
   // ---- Seed Fig. 7 ----
   d.h(2, "trajectories", "Stream trajectories");
@@ -242,23 +311,25 @@ Doc assemble(const ReportInput& in) {
       "axes; the view ends a little below the lowest impact point. Beside each panel, the plate face "
       "magnified (\u201cat the plate\u201d): where each streamline arrives, the models' impact points and the "
       "measured one with its ± 1 sd.");
-  for (const auto& v : vs) {
-    if (vs.size() > 1) d.h(3, "trajectories-" + v.suffix, v.title);
-    d.figure(trajectory_grid(c, *v.result, "traj-" + v.suffix), "Stream trajectories per condition (cf. seed Fig. 7)");
-  }
+  per_variant(d, vs, "trajectories", [&](Doc& x, const Variant& v, const ValidationResult* other) {
+    x.figure(trajectory_grid(c, *v.result, "traj-" + v.suffix, other ? kPairChartWidth : 980.0),
+             "Stream trajectories per condition (cf. seed Fig. 7)");
+  });
 
   // ---- Residuals ----
   d.h(2, "residuals", "Where each model fails");
   d.p("Normalised error E/u per condition and quantity, conditions ordered by belt speed, then mass flow. "
       "Inside the shaded band (|E/u| ≤ 2) the difference is what measurement noise gives; outside it the model "
       "misses something.");
-  for (const auto& v : vs) {
-    if (vs.size() > 1) d.h(3, "residuals-" + v.suffix, v.title);
-    const std::string chart = residual_chart(c, *v.result, "resid-" + v.suffix);
-    if (chart.empty()) d.p("No compared value has a stated uncertainty: no normalised error to show.");
-    else d.figure(chart, "");
-    d.table(trend_table(c, *v.result, "trends-" + v.suffix));
-  }
+  per_variant(d, vs, "residuals", [&](Doc& x, const Variant& v, const ValidationResult* other) {
+    const std::string chart =
+        residual_chart(c, *v.result, "resid-" + v.suffix, other ? kPairChartWidth : 980.0, other);
+    if (chart.empty()) x.p("No compared value has a stated uncertainty: no normalised error to show.");
+    else x.figure(chart, other ? "Normalised error E/u per condition and quantity (E = predicted − measured, u = 1 sd "
+                                 "of the measurement); both columns on one scale."
+                               : "");
+    x.table(trend_table(c, *v.result, "trends-" + v.suffix));
+  });
 
   if (in.findings && !in.findings->empty()) {
     d.h(2, "findings", "The seed's findings");
@@ -315,14 +386,69 @@ svg.plot { display: block; max-width: 100%; height: auto; font-family: inherit; 
 svg.plot text { font-family: inherit; fill: #1b1b1b; }
 .traj-grid { display: flex; flex-wrap: wrap; gap: 10px 14px; align-items: flex-start; }
 .traj-grid svg.plot { flex: 0 1 auto; }
+/* Before and after adding effects side by side, the pair wider than the text (centred on it) so
+   that each column holds a chart drawn for it at full size; one under the other where two columns
+   would not fit. */
+.before-after { display: grid; grid-template-columns: minmax(0, 1fr) minmax(0, 1fr); gap: 0 28px;
+  align-items: start; width: min(1800px, calc(100vw - 48px));
+  margin-left: calc((100% - min(1800px, calc(100vw - 48px))) / 2); }
+.ba-col { min-width: 0; }
+.ba-col > h3:first-child { margin-top: 10px; padding-bottom: 3px; border-bottom: 1px solid var(--rule); }
+/* Half the width for the same tables: tighter cells, a measurement's sd under its value. */
+.before-after table.data { font-size: 11.5px; }
+.before-after table.data th, .before-after table.data td { padding: 3px 4px; }
+.before-after table.data td .u { display: block; line-height: 1.1; }
+.before-after table.data td.left:first-child { white-space: nowrap; }
+/* A table wider than its column scrolls; the row's name stays in view. */
+.before-after table.data td:first-child { position: sticky; left: 0; background: #fff; }
+.before-after table.data th:first-child { position: sticky; left: 0; }
+@media (max-width: 1199px) { .before-after { display: block; width: auto; margin-left: 0; } }
 footer { margin-top: 40px; font-size: 12px; color: var(--muted); }
 @media print {
+  .before-after { display: block; width: auto; margin-left: 0; }
   body { font-size: 11px; } main { max-width: none; padding: 0; }
   nav.toc { display: none; }
   h2 { break-after: avoid; } figure, .table-wrap, svg.plot { break-inside: avoid; }
   table.data td.fail { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
 }
 )";
+
+// Every block but the page's own headings (levels 1 and 2, which open the header and the sections).
+std::string block_html(const Block& b, bool in_header) {
+  std::string o;
+  switch (b.kind) {
+    case Block::Kind::heading: o += fmt::format("<h{0} id=\"{1}\">{2}</h{0}>\n", b.level, esc(b.id), esc(b.text)); break;
+    case Block::Kind::paragraph: o += fmt::format("<p>{}</p>\n", esc(b.text)); break;
+    case Block::Kind::verdict: o += fmt::format("<p class=\"verdict\">{}</p>\n", esc(b.text)); break;
+    case Block::Kind::list:
+      o += in_header ? "<ul class=\"meta\">\n" : "<ul>\n";
+      for (const auto& i : b.items) o += fmt::format("<li>{}</li>\n", esc(i));
+      o += "</ul>\n";
+      break;
+    case Block::Kind::definition:
+      o += fmt::format("<dl class=\"effect\"><dt>{}</dt><dd>{}</dd></dl>\n", esc(b.text), esc(b.detail));
+      break;
+    case Block::Kind::table: o += table_html(b.table); break;
+    case Block::Kind::figure:
+      if (b.svg_html.starts_with("<figure")) o += b.svg_html;  // a figure of its own (trajectory grid)
+      else {
+        o += "<figure>\n" + b.svg_html;
+        if (!b.caption.empty()) o += fmt::format("<figcaption>{}</figcaption>\n", esc(b.caption));
+        o += "</figure>\n";
+      }
+      break;
+    case Block::Kind::pair:
+      o += fmt::format("<div class=\"before-after\" id=\"{}\">\n", esc(b.id));
+      for (const auto* side : {&b.before, &b.after}) {
+        o += fmt::format("<div class=\"ba-col ba-{}\">\n", side == &b.before ? "before" : "after");
+        for (const auto& x : *side) o += block_html(x, false);
+        o += "</div>\n";
+      }
+      o += "</div>\n";
+      break;
+  }
+  return o;
+}
 
 std::string render_html(const Doc& d, const ReportInput& in) {
   std::string o = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -337,41 +463,18 @@ std::string render_html(const Doc& d, const ReportInput& in) {
   bool toc_done = false;
   bool in_section = false;
   for (const auto& b : d.blocks) {
-    switch (b.kind) {
-      case Block::Kind::heading:
-        if (b.level == 2) {
-          if (!toc_done) {
-            o += fmt::format("<nav class=\"toc\">{}</nav>\n</header>\n", toc);
-            toc_done = true;
-          }
-          if (in_section) o += "</section>\n";
-          o += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n", esc(b.id), esc(b.text));
-          in_section = true;
-        } else if (b.level == 1) {
-          o += fmt::format("<header>\n<h1 id=\"{}\">{}</h1>\n", esc(b.id), esc(b.text));
-        } else {
-          o += fmt::format("<h{0} id=\"{1}\">{2}</h{0}>\n", b.level, esc(b.id), esc(b.text));
-        }
-        break;
-      case Block::Kind::paragraph: o += fmt::format("<p>{}</p>\n", esc(b.text)); break;
-      case Block::Kind::verdict: o += fmt::format("<p class=\"verdict\">{}</p>\n", esc(b.text)); break;
-      case Block::Kind::list:
-        o += toc_done ? "<ul>\n" : "<ul class=\"meta\">\n";
-        for (const auto& i : b.items) o += fmt::format("<li>{}</li>\n", esc(i));
-        o += "</ul>\n";
-        break;
-      case Block::Kind::definition:
-        o += fmt::format("<dl class=\"effect\"><dt>{}</dt><dd>{}</dd></dl>\n", esc(b.text), esc(b.detail));
-        break;
-      case Block::Kind::table: o += table_html(b.table); break;
-      case Block::Kind::figure:
-        if (b.svg_html.starts_with("<figure")) o += b.svg_html;  // a figure of its own (trajectory grid)
-        else {
-          o += "<figure>\n" + b.svg_html;
-          if (!b.caption.empty()) o += fmt::format("<figcaption>{}</figcaption>\n", esc(b.caption));
-          o += "</figure>\n";
-        }
-        break;
+    if (b.kind == Block::Kind::heading && b.level == 2) {
+      if (!toc_done) {
+        o += fmt::format("<nav class=\"toc\">{}</nav>\n</header>\n", toc);
+        toc_done = true;
+      }
+      if (in_section) o += "</section>\n";
+      o += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n", esc(b.id), esc(b.text));
+      in_section = true;
+    } else if (b.kind == Block::Kind::heading && b.level == 1) {
+      o += fmt::format("<header>\n<h1 id=\"{}\">{}</h1>\n", esc(b.id), esc(b.text));
+    } else {
+      o += block_html(b, !toc_done);
     }
   }
   if (!toc_done) o += "</header>\n";
@@ -382,9 +485,9 @@ std::string render_html(const Doc& d, const ReportInput& in) {
   return o;
 }
 
-std::string render_markdown(const Doc& d) {
+std::string blocks_markdown(const std::vector<Block>& blocks) {
   std::string o;
-  for (const auto& b : d.blocks) {
+  for (const auto& b : blocks) {
     switch (b.kind) {
       case Block::Kind::heading:
         o += fmt::format("{} {}\n\n", std::string(static_cast<std::size_t>(b.level), '#'), md_esc(b.text));
@@ -403,10 +506,16 @@ std::string render_markdown(const Doc& d) {
         o += fmt::format("*{} (see report.html)*\n\n", md_esc(what));
         break;
       }
+      case Block::Kind::pair:
+        if (!b.merged.empty()) o += blocks_markdown(b.merged);
+        else o += blocks_markdown(b.before) + blocks_markdown(b.after);
+        break;
     }
   }
   return o;
 }
+
+std::string render_markdown(const Doc& d) { return blocks_markdown(d.blocks); }
 
 }  // namespace
 

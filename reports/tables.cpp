@@ -273,6 +273,7 @@ Table summary_table(const ValidationResult& r, std::string_view id) {
   Table t;
   t.id = std::string(id);
   t.caption = "Summary per model and quantity";
+  t.key_columns = 2;
   t.columns = {{"", "model", "", true},
                {"", "quantity", "", true},
                {"", "n", "", false},

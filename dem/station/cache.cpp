@@ -44,6 +44,14 @@ std::uint64_t fnv1a64(const std::string& s) {
   return h;
 }
 
+std::string canonical(const ExternalInputs& fx) {
+  std::string o;
+  if (fx.plate_friction) o += fmt::format("plate_friction = {}\n", num(*fx.plate_friction));
+  if (!fx.flight_key.empty()) o += fx.flight_key + "\n";
+  if (fx.belt_adhesive_stress > 0.0) o += fmt::format("belt_adhesive_stress = {}\n", num(fx.belt_adhesive_stress));
+  return o;
+}
+
 std::string to_text(const StationResult& r) {
   std::string o;
   o += fmt::format("condition {}\nquality {}\n", r.condition, r.quality);

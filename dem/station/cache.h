@@ -19,6 +19,11 @@ std::optional<StationResult> from_text(const std::string& text);
 
 std::uint64_t fnv1a64(const std::string& s);
 
+// What added effects change in a run (ExternalInputs), as canonical key text: one line per input
+// that is set, none for an input left at its neutral value, so a run without effects keeps the key
+// it had before an input existed.
+std::string canonical(const ExternalInputs& fx);
+
 class ResultCache {
  public:
   explicit ResultCache(std::string dir);

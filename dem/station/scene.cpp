@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "dem/station/belt_cohesion.h"
 #include "dem/timestep.h"
 #include "dem/walls/stl.h"
 
@@ -180,6 +181,24 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   mt.set_interaction(mp, mp, interaction(mat.friction_particle, mat.rolling_friction_particle, mat.restitution_particle));
   mt.set_interaction(mp, mplate, interaction(mu_plate, mat.rolling_friction_wall, mat.restitution_plate));
   mt.set_interaction(mp, mbelt, interaction(mat.friction_belt, mat.rolling_friction_wall, mat.restitution_belt));
+  if (fx.belt_adhesive_stress > 0.0) {
+    // The belt and the pulley share mbelt, so one pair carries the adhesion over both.
+    if (s.contact == ContactLaw::hertz_mindlin) {
+      const double es = mt.pair(mp, mbelt).e_star;
+      Interaction in = interaction(mat.friction_belt, mat.rolling_friction_wall, mat.restitution_belt);
+      in.cohesion_energy_density = belt_cohesion_energy_density(fx.belt_adhesive_stress, es);
+      mt.set_interaction(mp, mbelt, in);
+      sc.notes.push_back(fmt::format(
+          "belt adhesion {:.4g} Pa: particle-belt and particle-pulley cohesion k_c = {:.4g} J/m^3 (sJKR), a "
+          "pull-off of {:.3g} N per contact over {:.4g} contacts/m^2",
+          fx.belt_adhesive_stress, in.cohesion_energy_density,
+          sjkr_pull_off_force(in.cohesion_energy_density, r, es), monolayer_contacts_per_area(d)));
+    } else {
+      sc.notes.push_back(fmt::format("belt adhesion {:.4g} Pa not represented: with the linear spring-dashpot "
+                                     "contact the sJKR cohesion has no finite pull-off (belt_cohesion.h)",
+                                     fx.belt_adhesive_stress));
+    }
+  }
   // Side panels: their own friction (acrylic in the seed), the plate's restitution.
   mt.set_interaction(mp, mside, interaction(mat.friction_side, mat.rolling_friction_wall, mat.restitution_plate));
 

@@ -22,6 +22,7 @@ namespace chutelab::dem::station {
 // derives them from the harness's effects).
 struct ExternalInputs {
   std::optional<double> plate_friction;  // particle-plate sliding friction instead of mu_pw
+  double belt_adhesive_stress = 0.0;     // Pa, belt and pulley hold the layer (belt_cohesion.h); 0 = none
   FlightAcceleration flight;             // extra acceleration in flight (air drag)
   std::string flight_key;                // what `flight` is, for cache keys ("" = none)
 };

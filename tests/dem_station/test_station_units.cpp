@@ -10,9 +10,11 @@
 
 #include "core/input_error.h"
 #include "dem/insertion.h"
+#include "dem/station/belt_cohesion.h"
 #include "dem/station/cache.h"
 #include "dem/station/run.h"
 #include "dem/walls/stl.h"
+#include "dem/world.h"
 #include "dem/station/scene.h"
 #include "dem/station/settings.h"
 #include "dem/station/steady_state.h"
@@ -176,7 +178,8 @@ BOOST_AUTO_TEST_CASE(impossible_scenes_are_input_errors) {
 }
 
 // The harness's effects reach the DEM through what they change: the feed rate, the particle-plate
-// friction and a body force in flight; effects without a DEM counterpart leave a note.
+// friction, a body force in flight and the belt's adhesion; effects without a DEM counterpart leave
+// a note.
 BOOST_AUTO_TEST_CASE(effects_map_onto_dem_inputs) {
   const Station st = test::tiny_station();
   auto fx = [](const std::string& s) { return effects::instantiate({effects::parse_setting(s, false)}); };
@@ -203,7 +206,20 @@ BOOST_AUTO_TEST_CASE(effects_map_onto_dem_inputs) {
   BOOST_TEST(std::abs(a.y() - (-k * 5.0 * -4.0)) < 1e-12);
   BOOST_TEST(drag.key != validation::dem_effect_inputs(st, fx("air_drag=0.6")).key);
 
-  for (const char* e : {"belt_slip=0.1", "belt_adhesion=500", "stream_spread=5", "plate_rebound=0.2"}) {
+  // Adhesion: the analytical holding acceleration sigma_a / m'' is recognised as the stress sigma_a.
+  const auto stick = validation::dem_effect_inputs(st, fx("belt_adhesion=500"));
+  BOOST_TEST(std::abs(stick.external.belt_adhesive_stress - 500.0) < 1e-9);
+  BOOST_TEST(joined(stick.notes).find("honoured") != std::string::npos);
+  BOOST_TEST(joined(stick.notes).find("ignored") == std::string::npos);
+  BOOST_TEST(stick.key != validation::dem_effect_inputs(st, {}).key);
+  BOOST_TEST(stick.key != validation::dem_effect_inputs(st, fx("belt_adhesion=600")).key);
+  BOOST_TEST(canonical(stick.external).find("belt_adhesive_stress = 500\n") != std::string::npos);
+  BOOST_TEST(canonical(ExternalInputs{}).empty());  // no effect: the key of runs made before adhesion existed
+  const RunSettings quick = preset(Quality::quick);
+  BOOST_TEST(validation::dem_cache_key(stick, quick, {}) !=
+             validation::dem_cache_key(validation::dem_effect_inputs(st, {}), quick, {}));
+
+  for (const char* e : {"belt_slip=0.1", "stream_spread=5", "plate_rebound=0.2"}) {
     const auto ig = validation::dem_effect_inputs(st, fx(e));
     BOOST_TEST(joined(ig.notes).find("ignored by the DEM") != std::string::npos, e);
     BOOST_TEST(ig.key == validation::dem_effect_inputs(st, {}).key, e);  // the DEM run is the baseline's
@@ -212,6 +228,67 @@ BOOST_AUTO_TEST_CASE(effects_map_onto_dem_inputs) {
   const auto cell = validation::dem_effect_inputs(st, fx("load_cell_offset=2"));
   BOOST_TEST(cell.key == validation::dem_effect_inputs(st, {}).key);
   BOOST_TEST(cell.notes.empty());
+}
+
+// belt_cohesion.h's mapping in the DEM engine itself: a sphere of the quick quality (13.6 mm, the
+// tiny rig's modulus / 3) hangs under a belt-like mesh with the cohesion mapped from sigma_a, and a
+// pull that ramps up over 30 contact periods (quasi-static) to f times the predicted pull-off force
+// sigma_a / n. It must hold at f = 0.95 and let go at f = 1.05: the closed form of F_pull is right
+// to 5 %, and the per-area count n turns it into sigma_a. Without the cohesion it falls at once.
+BOOST_AUTO_TEST_CASE(belt_cohesion_holds_the_adhesive_stress) {
+  const double sigma = 300.0, d = 0.0136, r = 0.5 * d, rho = 1000.0;
+  const double E = 2.5e7 / 3.0, nu = 0.38;
+  auto hangs = [&](double f, bool cohesion) {
+    dem::Settings s;
+    s.dt = 2e-6;
+    s.gravity = dem::Vec3::Zero();
+    s.domain = dem::Box{dem::Vec3::Constant(-0.2), dem::Vec3::Constant(0.2)};
+    s.rolling = dem::RollingModel::none;
+    s.threads = 1;
+    s.max_speed = 100.0;  // a released sphere accelerates freely
+    s.on_warning = [](const std::string&) {};
+    dem::World w(s);
+    const int mp = w.materials().add({"particle", E, nu, rho}), mb = w.materials().add({"belt", E, nu, 0.0});
+    dem::Interaction in;
+    in.friction = 0.7;
+    in.restitution = 0.4;
+    w.materials().set_interaction(mp, mb, in);
+    const double es = w.materials().pair(mp, mb).e_star;
+    in.cohesion_energy_density = cohesion ? belt_cohesion_energy_density(sigma, es) : 0.0;
+    w.materials().set_interaction(mp, mb, in);
+    // Belt face at y = 0 facing down; the sphere under it at the overlap where elastic push and
+    // cohesion balance with no load (F(delta) = 0: delta = 9/4 delta*).
+    const double a = 0.05;
+    w.add_wall(dem::Wall::mesh("belt", dem::TriangleMesh::from_soup({{dem::Vec3(-a, 0, -a), dem::Vec3(a, 0, -a), dem::Vec3(a, 0, a)},
+                                                                     {dem::Vec3(-a, 0, -a), dem::Vec3(a, 0, a), dem::Vec3(-a, 0, a)}}),
+                               mb));
+    const double k = in.cohesion_energy_density;
+    const double delta0 = cohesion ? 9.0 * M_PI * M_PI * k * k * r / (16.0 * es * es) : 1e-7;
+    w.add_particle({dem::Vec3(0, -(r - delta0), 0), dem::Vec3::Zero(), dem::Vec3::Zero(), r, mp});
+    const double f_pull = sigma / monolayer_contacts_per_area(d);
+    const double ramp = 0.1;
+    w.set_body_force([&](const dem::Particles&, double t, std::vector<dem::Vec3>& force) {
+      force[0].y() -= f * f_pull * std::min(1.0, t / ramp);
+    });
+    const auto n = static_cast<std::int64_t>(1.2 * ramp / s.dt);
+    for (std::int64_t i = 0; i < n; ++i) {
+      w.step();
+      if (w.particles().x[0].y() < -r) {
+        BOOST_TEST_MESSAGE("f = " << f << (cohesion ? "" : " without cohesion") << ": let go at t = " << i * s.dt
+                                  << " s, pull " << f * std::min(1.0, i * s.dt / ramp) << " F_pull");
+        return false;
+      }
+    }
+    return true;
+  };
+  const double es = E / (2.0 * (1.0 - nu * nu));
+  BOOST_TEST_MESSAGE("sigma_a " << sigma << " Pa -> k_c " << belt_cohesion_energy_density(sigma, es)
+                                << " J/m^3, pull-off " << sigma / monolayer_contacts_per_area(d) << " N per contact");
+  BOOST_TEST(std::abs(sjkr_pull_off_force(belt_cohesion_energy_density(sigma, es), r, es) -
+                      sigma / monolayer_contacts_per_area(d)) < 1e-9 * sigma / monolayer_contacts_per_area(d));
+  BOOST_TEST(hangs(0.95, true));
+  BOOST_TEST(!hangs(1.05, true));
+  BOOST_TEST(!hangs(0.95, false));
 }
 
 // A [dem.stl] plate replaces the generated one and is the load cell; its moment reference stays the

@@ -39,6 +39,18 @@ inline Station tiny_station() {
   return s;
 }
 
+// The tiny rig slowed to 1.2 m/s (1 kg/s: the same ~1.5 layers) with the plate at 250 mm. Here
+// V_b^2 / (g r) is just above 1 for the bottom layer, so a small pull towards the pulley holds it past
+// the tangent point (Booth's low-speed release): the scene where belt adhesion shows.
+inline Station tiny_slow_station() {
+  Station s = tiny_station();
+  s.condition = "tiny-slow";
+  s.belt_speed = 1.2;
+  s.mass_flow = 1.0;
+  s.plate_distance = 0.25;
+  return s;
+}
+
 // The quick preset, shortened: 0.75 s at most, a 0.3 s steady window.
 inline dem::station::RunSettings tiny_settings() {
   auto s = dem::station::preset(dem::station::Quality::quick);

@@ -95,6 +95,26 @@ constexpr std::string_view kChecker = R"(<script>
       var n = document.querySelectorAll(sel).length;
       if (n < expect.at_least[sel]) bad.push(sel + ': ' + n + ' found, at least ' + expect.at_least[sel] + ' expected');
     });
+    // Before/after pairs: two columns, side by side (same top, the second right of the first) or,
+    // on a narrow window, stacked; never wider than the window.
+    function columns(id) {
+      var el = document.getElementById(id);
+      if (!el) { bad.push('missing pair #' + id); return null; }
+      var cols = el.querySelectorAll(':scope > .ba-col');
+      if (cols.length !== 2) { bad.push('#' + id + ': ' + cols.length + ' columns'); return null; }
+      return [cols[0].getBoundingClientRect(), cols[1].getBoundingClientRect()];
+    }
+    expect.side_by_side.forEach(function (id) {
+      var c = columns(id);
+      if (c && !(Math.abs(c[0].top - c[1].top) < 1 && c[1].left >= c[0].right - 1))
+        bad.push('#' + id + ' not side by side');
+    });
+    expect.stacked.forEach(function (id) {
+      var c = columns(id);
+      if (c && !(c[1].top >= c[0].bottom - 1)) bad.push('#' + id + ' not stacked');
+    });
+    if (document.documentElement.scrollWidth > window.innerWidth + 1)
+      bad.push('page wider than the window: ' + document.documentElement.scrollWidth + ' > ' + window.innerWidth);
     var fetched = performance.getEntriesByType('resource');
     for (var j = 0; j < fetched.length; ++j) bad.push('page fetched ' + fetched[j].name);
     var out = document.createElement('pre');
@@ -110,6 +130,7 @@ constexpr std::string_view kChecker = R"(<script>
 struct Expectations {
   std::vector<std::string> ids;
   std::vector<std::pair<std::string, int>> counts, at_least;
+  std::vector<std::string> side_by_side, stacked;  // ids of before/after pairs
   std::string js() const {
     auto quote = [](const std::string& s) { return "'" + s + "'"; };
     std::string o = "{sections: [";
@@ -118,12 +139,16 @@ struct Expectations {
     for (const auto& [sel, n] : counts) o += fmt::format("{}: {},", quote(sel), n);
     o += "}, at_least: {";
     for (const auto& [sel, n] : at_least) o += fmt::format("{}: {},", quote(sel), n);
-    return o + "}}";
+    o += "}, side_by_side: [";
+    for (const auto& id : side_by_side) o += quote(id) + ",";
+    o += "], stacked: [";
+    for (const auto& id : stacked) o += quote(id) + ",";
+    return o + "]}";
   }
 };
 
 // The browser's verdict on a page, or the reason it could not be obtained.
-std::string browse(const fs::path& dir, const std::string& html, const Expectations& e) {
+std::string browse(const fs::path& dir, const std::string& html, const Expectations& e, int window_width = 1200) {
   std::string page = html;
   const auto head = page.find("<head>");
   const auto body_end = page.rfind("</body>");
@@ -138,9 +163,10 @@ std::string browse(const fs::path& dir, const std::string& html, const Expectati
   const std::string cmd = fmt::format(
       "timeout 90 '{}' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
       "--disable-background-networking --disable-component-update --disable-sync --disable-extensions "
-      "--user-data-dir='{}' --window-size=1200,900 --virtual-time-budget=5000 --dump-dom 'file://{}' "
+      "--user-data-dir='{}' --window-size={},900 --virtual-time-budget=5000 --dump-dom 'file://{}' "
       ">'{}' 2>'{}' </dev/null",
-      kChromium.string(), profile.string(), fs::absolute(dir / "check.html").string(), (dir / "dom.html").string(),
+      kChromium.string(), profile.string(), window_width, fs::absolute(dir / "check.html").string(),
+      (dir / "dom.html").string(),
       (dir / "stderr.txt").string());
   const int status = std::system(cmd.c_str());
   const std::string dom = slurp(dir / "dom.html");
@@ -257,9 +283,20 @@ BOOST_AUTO_TEST_CASE(diagnosis_and_before_after_report_renders_in_chromium) {
               {"#resid-base .residual-panel", quantities_with_normalised_error(before)},
               {"#resid-effects .residual-panel", quantities_with_normalised_error(after)},
               {"#ranking-chart rect.bar", static_cast<int>(g.singles.size() + g.pairs.size())},
-              {"#rms-before-after rect.bar", 4}};
+              {"#rms-before-after rect.bar", 4},
+              {"#residuals-pair .residual-chart", 2},
+              {"#missing #resid-change .residual-change-panel", quantities_with_normalised_error(before)}};
   e.at_least = {{"#missing li", 1}, {"#ranking tbody tr", 1}};
+  const std::vector<std::string> pairs = {"summary-pair", "forces-pair", "velocities-pair", "trajectories-pair",
+                                          "residuals-pair"};
+  e.side_by_side = pairs;
   const std::string verdict = browse(dir, html, e);
+  // A narrow window: the same page, every pair one column under the other.
+  Expectations narrow = e;
+  narrow.side_by_side.clear();
+  narrow.stacked = pairs;
+  const std::string narrow_verdict = browse(dir / "narrow", html, narrow, 900);
+  BOOST_TEST(narrow_verdict.starts_with("PASS"), "900 px window: " << narrow_verdict);
   finish(dir, verdict, since(t0));
 }
 
@@ -272,14 +309,18 @@ BOOST_AUTO_TEST_CASE(checker_catches_a_broken_page) {
       "<svg id=\"empty\" width=\"0\" height=\"0\"></svg>"
       "<svg id=\"spill\" class=\"plot\" width=\"100\" height=\"50\" viewBox=\"0 0 100 50\">"
       "<rect width=\"10\" height=\"10\"/><text x=\"90\" y=\"20\">far too long a label</text></svg>"
+      "<div class=\"before-after\" id=\"pair\"><div class=\"ba-col\">a</div><div class=\"ba-col\">b</div></div>"
+      "<div style=\"width: 3000px\">wide</div>"
       "<script>undefined_function();</script></body></html>\n";
   Expectations e;
   e.ids = {"summary"};
+  e.side_by_side = {"pair"};
   const std::string verdict = browse(dir, html, e);
   BOOST_TEST_MESSAGE("verdict on the broken page: " << verdict);
   BOOST_TEST(verdict.starts_with("FAIL"), verdict);
   for (const char* problem : {"script error", "svg with an empty box: empty", "text outside its picture",
-                              "missing element #summary", "plot without a title: spill"})
+                              "missing element #summary", "plot without a title: spill", "#pair not side by side",
+                              "page wider than the window"})
     BOOST_TEST(verdict.find(problem) != std::string::npos, problem);
   fs::remove_all(dir);
 }

@@ -4,6 +4,8 @@
 // and nothing that reaches outside the file.
 #include <boost/test/unit_test.hpp>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "reports/report.h"
 #include "reports/sensitivity_study.h"
@@ -262,6 +264,82 @@ BOOST_FIXTURE_TEST_CASE(before_after_and_diagnosis_sections, Fixture) {
   BOOST_TEST(md.find("## What is missing") != std::string::npos);
   BOOST_TEST(md.find("With effects: air\\_drag=0.5 (fitted)") != std::string::npos);
   BOOST_TEST(md.find("only the library's effects were tried") != std::string::npos);
+}
+
+// With effects, each section's before/after pair is one element of two columns, the models as they
+// are first; the page's style lays them side by side and stacks them on narrow screens. The two
+// residual charts share one frame (same size: their panels line up), a compact before/after chart
+// sits in "What is missing", and report.md puts the numbers in one table with before and after
+// columns, a column that did not change shown once.
+BOOST_FIXTURE_TEST_CASE(before_and_after_side_by_side, Fixture) {
+  ValidationResult after = small_result(d, true);
+  after.effects = {"air_drag=0.5 (fitted)"};
+  after.summary[0].rms_normalised_error = 1.5;  // m1's R: 34.0 before
+  // The effect moves every prediction by 1 %.
+  for (auto& p : after.predictions)
+    for (Quantity q : kAllQuantities)
+      if (p.prediction.values[q]) *p.prediction.values[q] *= 1.01;
+  for (auto& cmp : after.comparisons)
+    if (cmp.predicted) *cmp.predicted *= 1.01;
+  validation::DiagnosisResult g;
+  g.dataset = "hand-made";
+  g.models = {"m1", "m2"};
+  g.verdict = "Missing effect: air_drag.";
+  auto i = in();
+  i.with_effects = &after;
+  i.diagnosis = &g;
+  i.effects.push_back({"air_drag", "drag_coefficient", "", "drag", "", 0.5, 0.03, true});
+  const auto html = reports::report_html(i);
+  const auto md = reports::report_markdown(i);
+
+  // The pair element: two columns, before then after, each with its own table or chart.
+  auto pair_of = [&](const std::string& id) { return section(html, "<div class=\"before-after\" id=\"" + id + "\">", "<section"); };
+  for (const auto& [pair, base, effects] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{{"summary-pair", "summary-table-base", "summary-table-effects"},
+                                                                      {"forces-pair", "table4-base", "table4-effects"},
+                                                                      {"velocities-pair", "table5-base", "table5-effects"},
+                                                                      {"trajectories-pair", "traj-base", "traj-effects"},
+                                                                      {"residuals-pair", "resid-base", "resid-effects"}}) {
+    const std::string p = pair_of(pair);
+    const auto col_b = p.find("<div class=\"ba-col ba-before\">"), col_a = p.find("<div class=\"ba-col ba-after\">");
+    BOOST_TEST_REQUIRE((col_b != std::string::npos && col_a != std::string::npos && col_b < col_a), pair);
+    const auto at_b = p.find("id=\"" + base + "\""), at_a = p.find("id=\"" + effects + "\"");
+    BOOST_TEST((at_b > col_b && at_b < col_a), pair << ": " << base << " in the first column");
+    BOOST_TEST((at_a != std::string::npos && at_a > col_a), pair << ": " << effects << " in the second column");
+    BOOST_TEST(p.find("ba-col", col_a + std::string("<div class=\"ba-col").size()) == std::string::npos,
+               pair << ": two columns");
+  }
+  BOOST_TEST(html.find("grid-template-columns: minmax(0, 1fr) minmax(0, 1fr)") != std::string::npos);
+  BOOST_TEST(html.find("@media (max-width: 1199px) { .before-after { display: block;") != std::string::npos);
+  // One frame for both residual charts.
+  auto svg_size = [&](const std::string& id) {
+    const std::string tag = section(html, "<svg class=\"plot residual-chart\" id=\"" + id + "\"", ">");
+    return tag.substr(tag.find("viewBox"));
+  };
+  BOOST_TEST(svg_size("resid-base") == svg_size("resid-effects"));
+  BOOST_TEST(svg_size("resid-base").find("640") != std::string::npos);
+  // The compact chart in "What is missing".
+  const std::string missing = section(html, "<section id=\"missing\">", "</section>");
+  BOOST_TEST(missing.find("id=\"resid-change\"") != std::string::npos);
+  BOOST_TEST(missing.find("class=\"residual-change-panel\"") != std::string::npos);
+
+  // report.md: one summary table, before and after side by side in its columns.
+  const auto summary = section(md, "**Summary per model and quantity — before and after**", "\n\n\n");
+  BOOST_TEST(summary.find("| RMS E/u before | RMS E/u after |") != std::string::npos, summary);
+  BOOST_TEST(line_starting(summary, "| m1 |").find("| 34.0 | 1.50 |") != std::string::npos, summary);
+  BOOST_TEST(summary.find("| n before |") == std::string::npos, summary);  // unchanged: once
+  BOOST_TEST(md.find("**Summary per model and quantity**") == std::string::npos);
+  const auto t4 = section(md, "**Plate forces: measured and predicted (cf. seed Table 4) — before and after**", "\n\n\n");
+  BOOST_TEST(t4.find("| measured R (N) |") != std::string::npos, t4);
+  BOOST_TEST(t4.find("| m1 R (N) before | m1 R (N) after |") != std::string::npos, t4);
+}
+
+// Without effects there is nothing to pair: the page has no pair element and report.md no merged table.
+BOOST_FIXTURE_TEST_CASE(no_pairs_without_effects, Fixture) {
+  const auto html = reports::report_html(in());
+  BOOST_TEST(html.find("<div class=\"before-after\"") == std::string::npos);
+  BOOST_TEST(html.find("id=\"resid-change\"") == std::string::npos);
+  BOOST_TEST(reports::report_markdown(in()).find("before and after") == std::string::npos);
 }
 
 // A point cloud (a DEM's particles) is dots coloured on one scale shared by every panel, never a

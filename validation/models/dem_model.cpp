@@ -1,5 +1,6 @@
 #include "validation/models/dem_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -199,6 +200,7 @@ DemEffectInputs dem_effect_inputs(const Station& station, const analytical::Effe
   out.station = station;
   double friction = station.material.friction_plate;
   bool friction_changed = false;
+  double adhesive_stress = 0.0;
   std::vector<std::shared_ptr<const analytical::Effect>> flight;
   for (const auto& e : effects) {
     const std::string n = e->name();
@@ -211,7 +213,9 @@ DemEffectInputs dem_effect_inputs(const Station& station, const analytical::Effe
       out.station.belt_speed = op.belt_speed;
       out.station.mass_flow = op.mass_flow;
     }
-    // Plate: the particle-plate friction is the DEM's; the stream restitution is not an input.
+    // Plate: the particle-plate friction is the DEM's. The stream restitution is not an input: the
+    // DEM's rebound comes from its contacts, and no plate restitution reaches a chosen e_s
+    // (effects/plate_rebound.cpp gives the measured range).
     analytical::PlateInteraction pi{friction, 0.0};
     e->adjust_plate(pi);
     if (pi.friction != friction) {
@@ -220,19 +224,35 @@ DemEffectInputs dem_effect_inputs(const Station& station, const analytical::Effe
       friction_changed = true;
     }
     if (pi.rebound != 0.0)
-      ignored.push_back("the stream's rebound follows from the particle-plate restitution in a DEM");
+      ignored.push_back("the DEM resolves the stream's rebound from its particle-plate and particle-particle "
+                        "restitution, and its R_n already contains it; no DEM input sets a stream restitution");
     // Flight.
     if (e->has_flight_force()) {
       flight.push_back(e);
       honoured.push_back("body force on particles in flight");
     }
-    // Discharge and release: analytical constructions without a DEM input.
-    analytical::DischargeInput di{station.belt.belt_radius(), station.belt_speed, station.belt.incline,
-                                  station.gravity, 0.0, 1.0};
-    const analytical::DischargeInput di0 = di;
-    e->adjust_discharge(di, station);
-    if (di.radius != di0.radius || di.speed != di0.speed || di.incline != di0.incline ||
-        di.gravity != di0.gravity || di.holding_accel != di0.holding_accel)
+    // Discharge. A holding acceleration inversely proportional to the layer's mass per belt area is
+    // an adhesive stress at the belt, sigma_a = a_h m'' (probed at two m''): the DEM holds the layer
+    // with particle-belt cohesion. Any other change is an analytical construction of the discharge
+    // (slip, a changed radius or gravity) with no DEM input: the DEM's discharge follows from belt
+    // friction and contact forces.
+    auto probe = [&](double layer_mass_per_area) {
+      analytical::DischargeInput di{station.belt.belt_radius(), station.belt_speed, station.belt.incline,
+                                    station.gravity, 0.0, layer_mass_per_area};
+      e->adjust_discharge(di, station);
+      return di;
+    };
+    const analytical::DischargeInput d1 = probe(1.0), d2 = probe(2.0);
+    const bool geometry_changed = d1.radius != station.belt.belt_radius() || d1.speed != station.belt_speed ||
+                                  d1.incline != station.belt.incline || d1.gravity != station.gravity;
+    const double stress = d1.holding_accel * 1.0;
+    const bool is_stress = std::abs(d2.holding_accel * 2.0 - stress) <= 1e-12 * std::abs(stress);
+    if (d1.holding_accel != 0.0 && is_stress) {
+      adhesive_stress += stress;
+      honoured.push_back(fmt::format("adhesive stress {:.4g} Pa as particle-belt and particle-pulley cohesion "
+                                     "(simplified JKR, dem/station/belt_cohesion.h)", stress));
+    }
+    if (geometry_changed || (d1.holding_accel != 0.0 && !is_stress))
       ignored.push_back("it changes the analytical discharge from the pulley; in the DEM the discharge follows "
                         "from belt friction and contact forces");
     for (Boundary b : {Boundary::upper, Boundary::lower}) {
@@ -247,6 +267,7 @@ DemEffectInputs dem_effect_inputs(const Station& station, const analytical::Effe
     if (!ignored.empty()) out.notes.push_back(fmt::format("effect {} ignored by the DEM: {}", n, fmt::join(ignored, "; ")));
   }
   if (friction_changed) out.external.plate_friction = friction;
+  out.external.belt_adhesive_stress = std::max(0.0, adhesive_stress);
   if (!flight.empty()) {
     const analytical::FlightContext ctx{station.material.particle_diameter, station.material.solid_density};
     out.external.flight = [flight, ctx](const Eigen::Vector2d& v) {
@@ -265,8 +286,7 @@ DemEffectInputs dem_effect_inputs(const Station& station, const analytical::Effe
   }
   out.key = fmt::format("effective_belt_speed = {}\neffective_mass_flow = {}\n", num(out.station.belt_speed),
                         num(out.station.mass_flow));
-  if (out.external.plate_friction) out.key += fmt::format("plate_friction = {}\n", num(*out.external.plate_friction));
-  if (!out.external.flight_key.empty()) out.key += out.external.flight_key + "\n";
+  out.key += st::canonical(out.external);
   return out;
 }
 

@@ -4,15 +4,17 @@
 // Each condition is one DEM run (minutes), so results are cached by every input that matters
 // (dem/station/cache.h); a repeated validate is instant. Effects the DEM honours act on its inputs:
 // the operating point (mass_flow_bias: feed rate), the plate interaction's friction
-// (plate_friction: particle-plate sliding friction) and forces in flight (air_drag: a body force);
-// measurement effects (load_cell_offset) are applied by the harness to every model. Effects that
-// change the analytical discharge or release (belt_slip, belt_adhesion, stream_spread) or the
-// stream restitution (plate_rebound: in a DEM rebound follows from the particle-plate restitution)
-// have no DEM counterpart and are ignored with a note in the prediction.
+// (plate_friction: particle-plate sliding friction), forces in flight (air_drag: a body force) and
+// an adhesive stress at the belt (belt_adhesion: particle-belt and particle-pulley cohesion,
+// dem/station/belt_cohesion.h); measurement effects (load_cell_offset) are applied by the harness
+// to every model. Effects that change the analytical discharge in other ways or the release
+// (belt_slip, stream_spread) or the stream restitution (plate_rebound: the DEM's rebound comes from
+// its contacts, and no DEM input sets a stream restitution) have no DEM counterpart and are ignored
+// with a note in the prediction.
 //
 // Effects are recognised by what they do, not by name: each is asked what it changes in a probe
-// of every analytical stage, so a new effect with a flight force or an operating-point change is
-// honoured by the DEM without code here.
+// of every analytical stage, so a new effect with a flight force, an operating-point change or a
+// holding stress at the belt is honoured by the DEM without code here.
 #include <optional>
 #include <string>
 
@@ -41,7 +43,7 @@ ModelPtr make_dem_model(const DemModelConfig& c);
 // What a list of effects changes in a DEM run of a station.
 struct DemEffectInputs {
   Station station;                           // operating point after the effects
-  dem::station::ExternalInputs external;     // plate friction, flight acceleration
+  dem::station::ExternalInputs external;     // plate friction, flight acceleration, belt adhesion
   std::vector<std::string> notes;            // honoured / ignored, effect by effect
   std::string key;                           // canonical text of what the DEM sees
 };
