@@ -108,10 +108,11 @@ CHUTELAB_INLINE void chunk_contact(ContactChunk& h, std::size_t c, const PairCoe
   k.m_i = mi;
   k.m_j = mj;
   LaneVec shear{h.sx[c], h.sy[c], h.sz[c]};
-  LaneVec roll{h.qx[c], h.qy[c], h.qz[c]};
+  LaneVec roll = LaneVec::zero();
+  if constexpr (Model::rolling_history) roll = {h.qx[c], h.qy[c], h.qz[c]};
   const ContactForce cf = Model::compute(pc, k, shear, &roll, dt);
   h.sx[c] = shear.x, h.sy[c] = shear.y, h.sz[c] = shear.z;
-  h.qx[c] = roll.x, h.qy[c] = roll.y, h.qz[c] = roll.z;
+  if constexpr (Model::rolling_history) h.qx[c] = roll.x, h.qy[c] = roll.y, h.qz[c] = roll.z;
   h.fx[c] = cf.force.x, h.fy[c] = cf.force.y, h.fz[c] = cf.force.z;
   h.tix[c] = cf.torque_i.x, h.tiy[c] = cf.torque_i.y, h.tiz[c] = cf.torque_i.z;
   h.tjx[c] = cf.torque_j.x, h.tjy[c] = cf.torque_j.y, h.tjz[c] = cf.torque_j.z;
@@ -145,8 +146,6 @@ template <class Model>
     if constexpr (Model::rolling_history) {
       const Vec3& q = a.roll[s];
       h.qx[c] = q.x(), h.qy[c] = q.y(), h.qz[c] = q.z();
-    } else {
-      h.qx[c] = h.qy[c] = h.qz[c] = 0.0;
     }
   }
   if (pair_kind >= 0) {
