@@ -17,15 +17,7 @@ using namespace chutelab::dem::station;
 
 namespace {
 
-Station troughed_station() {
-  Station st = test::tiny_station();
-  st.belt.belt_width = 0.30;
-  st.belt.loaded_width = 0.20;
-  st.belt.trough.idler_angle = 20.0 * M_PI / 180.0;
-  st.belt.trough.centre_roll = 0.10;
-  st.belt.trough.surcharge_angle = 20.0 * M_PI / 180.0;
-  return st;
-}
+Station troughed_station() { return test::tiny_troughed_station(); }
 
 const StationResult& troughed_run() {
   static const StationResult r = [] {

@@ -315,12 +315,7 @@ BOOST_AUTO_TEST_CASE(stl_plate_replaces_the_generated_plate) {
 // the plate frame follows DESIGN.md (top edge at (Z, top), leaning towards the pulley), and a short
 // run stays stable.
 BOOST_AUTO_TEST_CASE(troughed_belt_and_inclined_plate) {
-  Station st = test::tiny_station();
-  st.belt.belt_width = 0.30;
-  st.belt.loaded_width = 0.20;
-  st.belt.trough.idler_angle = 20.0 * M_PI / 180.0;
-  st.belt.trough.centre_roll = 0.10;
-  st.belt.trough.surcharge_angle = 20.0 * M_PI / 180.0;
+  Station st = test::tiny_troughed_station();
   st.plate.angle = 15.0 * M_PI / 180.0;
   RunSettings s = test::tiny_settings();
   s.max_time = 0.12;

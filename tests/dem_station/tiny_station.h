@@ -2,6 +2,8 @@
 // A small, fast transfer station for the dem-station tests: a thin stream (2.5 kg/s at 3 m/s,
 // ~1.5 layers of 13.6 mm spheres), a short belt and a wide plate the stream never spreads across,
 // so the side panels stay out of the momentum balance. Material of the LIGGGHTS rig.
+#include <cmath>
+
 #include "core/rig.h"
 #include "dem/station/run.h"
 
@@ -48,6 +50,18 @@ inline Station tiny_slow_station() {
   s.belt_speed = 1.2;
   s.mass_flow = 1.0;
   s.plate_distance = 0.25;
+  return s;
+}
+
+// The tiny station on a 3-roll troughed belt: 20° idlers, 100 mm centre roll, 20° surcharge, the
+// wings flattening towards the pulley.
+inline Station tiny_troughed_station() {
+  Station s = tiny_station();
+  s.belt.belt_width = 0.30;
+  s.belt.loaded_width = 0.20;
+  s.belt.trough.idler_angle = 20.0 * M_PI / 180.0;
+  s.belt.trough.centre_roll = 0.10;
+  s.belt.trough.surcharge_angle = 20.0 * M_PI / 180.0;
   return s;
 }
 
