@@ -2,7 +2,7 @@
 # The main job: set up, build, validate the models against the bundled reference dataset
 # (datasets/liggghts-rig, a virtual experiment of the rig made with LIGGGHTS) and diagnose what they
 # miss. Writes out/<dataset>/ and prints where the report is. Usage: scripts/run.sh [DATASET]
-# The DEM runs at quick quality (a few minutes for eight conditions the first time, cached after).
+# The DEM runs at quick quality (about half a minute for eight conditions the first time, cached after).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
