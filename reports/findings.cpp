@@ -34,13 +34,7 @@ validation::SeedFinding sensitivity_finding(const SensitivityStudy* s) {
                                                     fmt::join(fl, ", "), v.size_mean_spread)
                                       : "fewer than two particle sizes ran"});
   }
-  int tested = 0, held = 0;
-  for (const auto& c : f.claims)
-    if (c.testable) ++tested, held += c.holds ? 1 : 0;
-  f.status = tested == 0      ? validation::FindingStatus::not_testable
-             : held == tested ? validation::FindingStatus::reproduced
-             : held == 0      ? validation::FindingStatus::not_reproduced
-                              : validation::FindingStatus::partly;
+  f.status = validation::status_of(f.claims);
   return f;
 }
 
@@ -60,13 +54,15 @@ Table findings_table(const std::vector<validation::SeedFinding>& findings) {
       verdict.strong = first;
       row.push_back(verdict);
       row.push_back({c.text, "", false, "", true});
-      row.push_back({!c.testable ? "untestable" : c.holds ? "yes" : "no", "", false, "", true});
+      row.push_back({!c.testable ? "untestable" : c.holds ? "yes" : c.undecided ? "undecided" : "no", "", false, "", true});
       row.push_back({c.evidence, "", false, "", true});
       t.rows.push_back(std::move(row));
       first = false;
     }
   }
-  t.notes.push_back("A finding is reproduced when every testable claim holds, partly reproduced when some do. "
+  t.notes.push_back("A finding is reproduced when every testable claim holds, partly reproduced when some do (or some "
+                    "are undecided: a tie within the uncertainty, e.g. finding 5's excess error of 0.5 h_b must exceed "
+                    "2 standard uncertainties). "
                     "Agreement means |E| ≤ 2 u_val (or 5 % where no uncertainty is known); \"varies\" means a chi-square "
                     "test rejects a constant ratio at p < 0.01 (or a spread above 5 % without uncertainties). Finding 6 "
                     "comes from a sensitivity study (chutelab sensitivity) given with --studies.");
