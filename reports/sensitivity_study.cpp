@@ -54,14 +54,17 @@ std::string dataset_text(const SensitivityStudy& s, bool markdown) {
 std::vector<std::string> run_notes(const SensitivityStudy& s) {
   std::vector<std::string> notes;
   // What the step really was: the Rayleigh cap, not dt_fraction t_c, sets it when it is tighter.
+  std::vector<std::string> capped;
   for (const auto& r : s.rows) {
     const auto& o = r.outcome;
     if (!(o.collision_time > 0.0) || !(o.dt > 0.0)) continue;
     const double ratio = o.dt / o.collision_time;
     if (ratio < r.variant.dt_fraction * (1.0 - 1e-3))
-      notes.push_back(fmt::format("{}: dt = {:.3f} t_c as run, not {:g} t_c — the cap of {:g} of the Rayleigh time was the "
-                                  "tighter limit", r.variant.key, ratio, r.variant.dt_fraction, r.variant.rayleigh_fraction));
+      capped.push_back(fmt::format("{} {:.3f} t_c (not {:g})", r.variant.key, ratio, r.variant.dt_fraction));
   }
+  if (!capped.empty())
+    notes.push_back(fmt::format("dt as run: the cap at a fraction of the Rayleigh time was tighter than the fraction of "
+                                "the collision time for {}", fmt::join(capped, ", ")));
   if (!s.sizes_left_out.empty()) {
     std::vector<std::string> d;
     for (double x : s.sizes_left_out) d.push_back(mm(x) + " mm");

@@ -123,8 +123,8 @@ BOOST_AUTO_TEST_CASE(verdict_follows_the_numbers) {
   const std::string csv = sensitivity_csv(ok), md = sensitivity_md(ok), html = sensitivity_html(ok);
   BOOST_TEST(std::count(csv.begin(), csv.end(), '\n') == 10);
   BOOST_TEST(md.find("| LSD |") != std::string::npos);
-  BOOST_TEST(md.find("dt = 0.092 t\\_c as run") != std::string::npos);  // the cap, said
-  BOOST_TEST(html.find("dt = 0.092 t_c as run") != std::string::npos);  // without Markdown's escapes
+  BOOST_TEST(md.find("base 0.092 t\\_c (not 0.1)") != std::string::npos);  // the cap, said
+  BOOST_TEST(html.find("base 0.092 t_c (not 0.1)") != std::string::npos);  // without Markdown's escapes
   BOOST_TEST(html.find("t\\_c") == std::string::npos);
   BOOST_TEST(md.find("`grima2010`") != std::string::npos);
   BOOST_TEST(html.find("<svg") != std::string::npos);
