@@ -105,21 +105,63 @@ std::string rig_text(const CalibrationStudy& s) {
 
 }  // namespace
 
-std::string calibration_csv(const CalibrationStudy& s) {
+std::string calibration_csv(const CalibrationContext& c, const CalibrationStudy& s) {
   std::string out =
       "shape,grain,rolling_friction,solid_density_kgm3,bulk_density_kgm3,pile_height_mm,repose_angle_deg,"
-      "peak_height_mm,fill_height_mm,particles,settled,run_seconds,target_distance,closest\n";
+      "peak_height_mm,fill_height_mm,particles,settled,run_seconds,target_distance,closest,dataset,quality\n";
   for (std::size_t k = 0; k < s.rows.size(); ++k) {
     const auto& r = s.rows[k];
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", name(r.shape), grain_label(s, r.shape),
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", name(r.shape), grain_label(s, r.shape),
                        csv_number(r.rolling_friction), csv_number(r.solid_density), csv_number(r.slump.bulk_density),
                        csv_number(r.slump.pile_height * 1e3), csv_number(r.slump.repose_angle_deg),
                        csv_number(r.slump.peak_height * 1e3), csv_number(r.slump.fill_height * 1e3), r.slump.particles, r.slump.settled ? 1 : 0,
                        csv_number(r.slump.wall_seconds),
                        std::isfinite(r.distance) ? csv_number(r.distance) : std::string(),
-                       static_cast<int>(k) == s.closest ? 1 : 0);
+                       static_cast<int>(k) == s.closest ? 1 : 0, c.setup.name, c.quality);
   }
   return out;
+}
+
+std::string table3_md(const CalibrationStudy& s) {
+  // Column pairs per shape, in the order asked for; a combination that did not run is a dash.
+  std::string md = "| rolling friction mu_r | solid density (kg/m^3) |";
+  std::string rule = "|---:|---:|";
+  for (GrainKind k : s.plan.shapes) {
+    md += fmt::format(" {0}: bulk density (kg/m^3) | {0}: pile height (mm) |", grain_label(s, k));
+    rule += "---:|---:|";
+  }
+  md += "\n" + rule + "\n";
+  for (double mu : s.plan.rolling)
+    for (double rho : s.plan.density) {
+      md += fmt::format("| {:g} | {:g} |", mu, rho);
+      for (GrainKind k : s.plan.shapes) {
+        const CalibrationRow* row = nullptr;
+        int index = -1;
+        for (std::size_t i = 0; i < s.rows.size(); ++i)
+          if (s.rows[i].shape == k && s.rows[i].rolling_friction == mu && s.rows[i].solid_density == rho) {
+            row = &s.rows[i];
+            index = static_cast<int>(i);
+          }
+        if (!row) {
+          md += " – | – |";
+          continue;
+        }
+        const bool best = index == s.closest;
+        const std::string b = best ? "**" : "";
+        md += fmt::format(" {b}{:.0f}{b}{} | {b}{:.1f}{b} |", row->slump.bulk_density, best ? " ◀ closest" : "",
+                          row->slump.pile_height * 1e3, fmt::arg("b", b));
+      }
+      md += "\n";
+    }
+  if (s.plan.targets.any()) {
+    md += "| experiment (target) | |";
+    for (std::size_t k = 0; k < s.plan.shapes.size(); ++k)
+      md += fmt::format(" {} | {} |",
+                        s.plan.targets.bulk_density ? fmt::format("{:.0f}", *s.plan.targets.bulk_density) : "–",
+                        s.plan.targets.pile_height ? fmt::format("{:.1f}", *s.plan.targets.pile_height * 1e3) : "–");
+    md += "\n";
+  }
+  return md;
 }
 
 std::string incline_csv(const CalibrationStudy& s) {
@@ -133,13 +175,16 @@ std::string incline_csv(const CalibrationStudy& s) {
 
 std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& s) {
   std::string md = "# Slump-test calibration (seed Table 3)\n\n";
-  md += fmt::format("Dataset `{}`, quality `{}`; {} slump tests in {:.0f} s.\n\n", reports::md_esc(c.dataset), c.quality,
-                    s.rows.size(), s.wall_seconds);
+  md += fmt::format("Dataset `{}` (`{}`), quality `{}`; {} slump tests in {:.0f} s.\n\n", reports::md_esc(c.setup.name),
+                    reports::md_esc(c.dataset), c.quality, s.rows.size(), s.wall_seconds);
   md += rig_text(s) + "\n\n";
   md += fmt::format("Held constant from the dataset: mu_s = {:g} (particle-particle), e = {:g}, E = {:g} MPa, nu = {:g}.\n\n",
                     c.setup.material.friction_particle, c.setup.material.restitution_particle,
                     c.setup.material.youngs_modulus / 1e6, c.setup.material.poisson_ratio);
   md += fmt::format("Target (measured): {}.\n\n", targets_text(s));
+  md += "## Table 3 (the seed's layout)\n\n";
+  md += table3_md(s);
+  md += "\n## Every slump test\n\n";
   md += "| particle | rolling friction mu_r | solid density (kg/m^3) | bulk density (kg/m^3) | pile height (mm) | "
         "angle of repose (deg) | grains | run (s) | distance to target |\n";
   md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -229,7 +274,7 @@ std::string calibration_html(const CalibrationContext& c, const CalibrationStudy
       while (a < line.size()) {
         const auto b = line.find('|', a);
         if (b == std::string::npos) break;
-        std::string cell = line.substr(a, b - a);
+        std::string cell = reports::md_unesc(line.substr(a, b - a));
         const bool bold = cell.find("**") != std::string::npos;
         std::string plain;
         for (std::size_t i = 0; i < cell.size(); ++i)
@@ -245,6 +290,7 @@ std::string calibration_html(const CalibrationContext& c, const CalibrationStudy
       body += "</table>\n";
       in_table = false;
     }
+    line = md_unesc(line);
     if (line.rfind("# ", 0) == 0) body += "<h1>" + esc(line.substr(2)) + "</h1>\n" + chart + "\n";
     else if (line.rfind("## ", 0) == 0) body += "<h2>" + esc(line.substr(3)) + "</h2>\n";
     else if (line.rfind("- ", 0) == 0) body += "<p class=\"item\">• " + esc(line.substr(2)) + "</p>\n";

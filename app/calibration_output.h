@@ -9,12 +9,17 @@
 namespace chutelab::app {
 
 struct CalibrationContext {
-  std::string dataset;   // where the material came from
+  std::string dataset;   // where the material came from (folder)
   std::string quality;
-  Setup setup;           // the dataset's setup (material before calibration)
+  Setup setup;           // the dataset's setup (material before calibration); setup.name names the study's rig
 };
 
-std::string calibration_csv(const dem::rigs::CalibrationStudy& s);
+// Long form, one slump test a row, with the dataset's name and the quality on every row (the report
+// reads it back, reports/studies.h, and warns when it validates another dataset).
+std::string calibration_csv(const CalibrationContext& c, const dem::rigs::CalibrationStudy& s);
+// The seed's Table 3 layout: a row per rolling friction x solid density, bulk density and pile height
+// per particle shape side by side, the target as the last row (Markdown).
+std::string table3_md(const dem::rigs::CalibrationStudy& s);
 std::string incline_csv(const dem::rigs::CalibrationStudy& s);
 std::string calibration_md(const CalibrationContext& c, const dem::rigs::CalibrationStudy& s);
 std::string calibration_html(const CalibrationContext& c, const dem::rigs::CalibrationStudy& s);

@@ -82,7 +82,9 @@ int run_calibrate(const CalibrateCli& o) {
   plan.incline = !o.no_incline;
 
   const int count = static_cast<int>(plan.shapes.size() * plan.rolling.size() * plan.density.size());
-  std::cout << fmt::format("calibrate: {} slump tests ({} quality) on {}\n", count, o.quality, ctx.dataset) << std::flush;
+  std::cout << fmt::format("calibrate: {} slump tests ({} quality) on {} ({})\n", count, o.quality, ctx.setup.name,
+                           ctx.dataset)
+            << std::flush;
   const bool tty = isatty(fileno(stderr)) != 0;
   auto progress = [&](const CalibrationProgress& p) {
     if (p.done) {
@@ -108,7 +110,8 @@ int run_calibrate(const CalibrateCli& o) {
                                r.wall_friction, r.result.onset_deg, name(r.result.motion), r.result.predicted.onset_deg,
                                name(r.result.predicted.motion));
   }
-  validation::write_outputs(o.out, {{"calibration.csv", calibration_csv(study)},
+  std::cout << "Table 3 (seed layout):\n" << table3_md(study);
+  validation::write_outputs(o.out, {{"calibration.csv", calibration_csv(ctx, study)},
                                     {"incline.csv", incline_csv(study)},
                                     {"calibration.md", calibration_md(ctx, study)},
                                     {"calibration.html", calibration_html(ctx, study)},

@@ -1,8 +1,9 @@
 // `chutelab sensitivity`: the seed's Table 6 (§6.1) as one command at one condition. The transfer-
 // station DEM (dem/station) runs once per variant — LSD vs Hertz-Mindlin, sphere vs two-sphere clump,
-// dt = t_c/10 vs t_c/20, G x10 and /10, three particle sizes — and the table of R_n, R_s, R with
+// dt = t_c/10 vs t_c/20, G x10 and /10, the seed's particle sizes — and the table of R_n, R_s, R with
 // standard errors, their fluctuation, the change against the base and the run time is printed and
 // written (sensitivity.csv/.md/.html), with the verdict on the seed's conclusion.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -29,7 +30,7 @@ using reports::Stat;
 using reports::VariantOutcome;
 
 struct SensitivityCli {
-  std::string dataset, condition = "V3-41", quality = "quick", out, only;
+  std::string dataset, condition = "V3-41", quality = "quick", out, only, sizes;
   std::optional<int> threads;
   std::optional<std::uint64_t> seed;
   double limit = 10.0;
@@ -83,10 +84,43 @@ int run_sensitivity(const SensitivityCli& o) {
   const st::RunSettings base = st::resolve(table, ov);
   const double base_d = base.particle_diameter > 0.0 ? base.particle_diameter : station->material.particle_diameter;
 
-  std::vector<SensitivityVariant> variants = reports::table6_variants(base_d);
+  SensitivityStudy study;
+  reports::Table6Base& b = study.base;
+  b.diameter = base_d;
+  b.modulus_scale = base.shear_modulus_scale;  // of the dataset's: the preset's and the [dem] table's
+  b.dt_fraction = base.dt_fraction;
+  b.rayleigh_fraction = base.rayleigh_fraction;
+  if (!o.sizes.empty()) {
+    b.sizes.clear();
+    for (const auto& item : split_list(o.sizes)) {
+      std::size_t used = 0;
+      double d = 0.0;
+      try {
+        d = std::stod(item, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != item.size() || !(d > 0.0) || d > 100.0)
+        throw InputError("", 0, "--sizes", fmt::format("'{}' is not a sphere diameter in mm (0-100, e.g. 5.6,9,13.6)", item));
+      b.sizes.push_back(d * 1e-3);
+    }
+  } else if (*ov.quality == st::Quality::quick) {
+    // Measured (bench/SENSITIVITY.md): one 5.6 mm run at quick settings costs 6.6 min of CPU, more
+    // than the whole rest of the study, which must stay within ~10 min; left out by default.
+    b.sizes = {9.0e-3, 13.6e-3};
+  }
+  // Every seed size that will not run is said (verdict "not fully tested"), whatever left it out.
+  for (double d : reports::Table6Base::seed_sizes()) {
+    bool runs = std::abs(d - base_d) < 0.05e-3;
+    for (double x : b.sizes) runs = runs || std::abs(d - x) < 0.05e-3;
+    if (!runs) study.sizes_left_out.push_back(d);
+  }
+
+  std::vector<SensitivityVariant> variants = reports::table6_variants(b);
   if (!o.only.empty()) {  // a subset (always with the base), e.g. for a quick look
     std::vector<SensitivityVariant> keep{variants[0]};
-    for (const auto& key : split_list(o.only)) {
+    const auto keys = split_list(o.only);
+    for (const auto& key : keys) {
       bool found = false;
       for (std::size_t k = 1; k < variants.size(); ++k)
         if (variants[k].key == key) {
@@ -99,19 +133,23 @@ int run_sensitivity(const SensitivityCli& o) {
         throw InputError("", 0, "--only", fmt::format("unknown variant '{}' (known: {})", key, fmt::join(names, ", ")));
       }
     }
+    for (std::size_t k = 1; k < variants.size(); ++k)
+      if (std::find(keys.begin(), keys.end(), variants[k].key) == keys.end())
+        study.variants_left_out.push_back(variants[k].key);
     variants = keep;
   }
 
-  SensitivityStudy study;
   study.dataset = dir.string();
+  study.dataset_name = setup.name;
   study.condition = station->condition;
   study.quality = o.quality;
   study.belt_speed = station->belt_speed;
   study.mass_flow = station->mass_flow;
   study.limit_percent = o.limit;
-  std::cout << fmt::format("sensitivity: {} DEM runs of {} ({} quality), base {}\n", variants.size(), station->condition,
-                           o.quality, variants[0].label)
-            << std::flush;
+  std::cout << fmt::format("sensitivity: {} DEM runs of {} / {} ({} quality), base {}\n", variants.size(), setup.name,
+                           station->condition, o.quality, variants[0].label);
+  for (const auto& n : reports::run_notes(study)) std::cout << "note: " << n << "\n";
+  std::cout << std::flush;
   for (std::size_t k = 0; k < variants.size(); ++k) {
     const SensitivityVariant& v = variants[k];
     st::RunSettings s = base;
@@ -120,7 +158,7 @@ int run_sensitivity(const SensitivityCli& o) {
     s.particle_shape = v.shape == "clump" ? st::ParticleShape::clump : st::ParticleShape::sphere;
     s.dt_fraction = v.dt_fraction;
     s.rayleigh_fraction = v.rayleigh_fraction;
-    s.shear_modulus_scale = base.shear_modulus_scale * v.modulus_scale;
+    s.shear_modulus_scale = b.modulus_scale * v.modulus_scale;
     st::RunOptions ro;
     ro.settings = s;
     ro.geometry = table;
@@ -166,13 +204,17 @@ void add_sensitivity(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "sensitivity",
       "The seed's Table 6 at one condition: the station DEM with LSD vs Hertz-Mindlin, sphere vs clump, dt/20, "
-      "G x10 and /10, three particle sizes; writes sensitivity.csv/.md/.html to --out and says whether the seed's "
+      "G x10 and /10, particle sizes 5.6/9/13.6 mm; writes sensitivity.csv/.md/.html to --out and says whether the seed's "
       "conclusion is reproduced.");
   cmd->add_option("--dataset", o->dataset, "dataset (default: bundled grima2010)");
   cmd->add_option("--condition", o->condition, "condition of the dataset (seed Table 6: V_b = 3 m/s, 41 t/h)")
       ->capture_default_str();
   cmd->add_option("--quality", o->quality, "quick, standard or paper (the base run's preset)")->capture_default_str();
   cmd->add_option("--only", o->only, "run only these variants besides the base (comma list of keys)");
+  cmd->add_option("--sizes", o->sizes,
+                  "sphere diameters of the size variants, mm (comma list; the one equal to the base diameter is the "
+                  "base). Default: the seed's 5.6,9,13.6; at quick quality 9,13.6 (5.6 mm alone would break the ~10 "
+                  "min budget; the verdict then says so)");
   cmd->add_option("--limit", o->limit, "'changes little' means |change of mean R| <= this, %")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();

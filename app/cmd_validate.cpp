@@ -31,7 +31,7 @@ int run_validate(const ValidateCli& o) {
   const fs::path dir(o.dataset);
   const auto dataset = validation::read_dataset(dir);
   // Read before any model runs: a bad study file ends the command before anything is written.
-  const auto studies = reports::read_studies({o.studies.begin(), o.studies.end()});
+  const auto studies = reports::read_studies({o.studies.begin(), o.studies.end()}, dataset.setup.name);
   std::optional<reports::SensitivityStudy> sensitivity;  // the seed's finding 6, when one was run
   for (const auto& s : o.studies) {
     const fs::path f = fs::is_directory(s) ? fs::path(s) / "sensitivity.csv" : fs::path(s);
@@ -56,7 +56,7 @@ int run_validate(const ValidateCli& o) {
   report.dataset = &dataset;
   report.baseline = &baseline;
   auto findings = validation::check_seed_findings(dataset, baseline);
-  findings.push_back(reports::sensitivity_finding(sensitivity ? &*sensitivity : nullptr));
+  findings.push_back(reports::sensitivity_finding(sensitivity ? &*sensitivity : nullptr, dataset.setup.name));
   report.findings = &findings;
   report.studies = &studies;
   // Fits and the diagnosis call the models hundreds of times: they use the cheap ones (an expensive

@@ -17,7 +17,65 @@ using validation::csv_number;
 
 std::string mm(double m) { return fmt::format("{:g}", std::round(m * 1e4) / 10.0); }
 
+std::vector<std::string> split_cell(const std::string& cell, char sep) {
+  std::vector<std::string> out;
+  std::size_t a = 0;
+  while (a < cell.size()) {
+    const auto b = std::min(cell.find(sep, a), cell.size());
+    if (b > a) out.push_back(cell.substr(a, b - a));
+    a = b + 1;
+  }
+  return out;
+}
+
+// Diameters equal to 0.1 mm (how they are named) are one size.
+bool same_size(double a, double b) { return std::round(a * 1e4) == std::round(b * 1e4); }
+
+std::string fraction(double f) { return fmt::format("{:.3g}", f); }
+
+// The modulus as run, against the dataset's: "the dataset's G", "the dataset's G / 3", "... x 3.33".
+// The tolerance covers the 6 significant digits the CSV keeps.
+std::string modulus_text(double scale) {
+  if (!std::isfinite(scale)) return "G of the base run (its ratio to the dataset's was not recorded)";
+  if (std::abs(scale - 1.0) < 1e-5) return "the dataset's G";
+  const double inv = 1.0 / scale;
+  if (scale < 1.0 && std::abs(inv - std::round(inv)) < 1e-5 * inv) return fmt::format("the dataset's G / {:g}", std::round(inv));
+  return fmt::format("the dataset's G x {:.3g}", scale);
+}
+
 }  // namespace
+
+std::string dataset_text(const SensitivityStudy& s, bool markdown) {
+  auto code = [&](const std::string& x) { return markdown ? "`" + md_esc(x) + "`" : x; };
+  if (s.dataset_name.empty()) return code(s.dataset) + " (dataset name not recorded)";
+  return code(s.dataset_name) + (s.dataset.empty() ? std::string() : " (" + code(s.dataset) + ")");
+}
+
+std::vector<std::string> run_notes(const SensitivityStudy& s) {
+  std::vector<std::string> notes;
+  // What the step really was: the Rayleigh cap, not dt_fraction t_c, sets it when it is tighter.
+  std::vector<std::string> capped;
+  for (const auto& r : s.rows) {
+    const auto& o = r.outcome;
+    if (!(o.collision_time > 0.0) || !(o.dt > 0.0)) continue;
+    const double ratio = o.dt / o.collision_time;
+    if (ratio < r.variant.dt_fraction * (1.0 - 1e-3))
+      capped.push_back(fmt::format("{} {:.3f} t_c (not {:g})", r.variant.key, ratio, r.variant.dt_fraction));
+  }
+  if (!capped.empty())
+    notes.push_back(fmt::format("dt as run: the cap at a fraction of the Rayleigh time was tighter than the fraction of "
+                                "the collision time for {}", fmt::join(capped, ", ")));
+  if (!s.sizes_left_out.empty()) {
+    std::vector<std::string> d;
+    for (double x : s.sizes_left_out) d.push_back(mm(x) + " mm");
+    notes.push_back(fmt::format("not run: spheres of {}, of the seed's sizes (at quick quality the default leaves 5.6 mm "
+                                "out: that one run costs more than the rest of the study's ~10 min); give --sizes to run "
+                                "them", fmt::join(d, ", ")));
+  }
+  if (!s.variants_left_out.empty())
+    notes.push_back(fmt::format("not run (--only): {}", fmt::join(s.variants_left_out, ", ")));
+  return notes;
+}
 
 std::string_view name(VariantGroup g) {
   switch (g) {
@@ -31,12 +89,16 @@ std::string_view name(VariantGroup g) {
   return "?";
 }
 
-std::vector<SensitivityVariant> table6_variants(double base_d) {
+std::vector<SensitivityVariant> table6_variants(const Table6Base& b) {
+  const double base_d = b.diameter;
   std::vector<SensitivityVariant> v;
   SensitivityVariant base;
   base.key = "base";
-  base.label = fmt::format("Hertz-Mindlin, spheres d = {} mm, dt = t_c/10, G as the dataset", mm(base_d));
   base.diameter = base_d;
+  base.dt_fraction = b.dt_fraction;
+  base.rayleigh_fraction = b.rayleigh_fraction;
+  base.label = fmt::format("Hertz-Mindlin, spheres d = {} mm, dt = {} t_c (at most {} t_R), {}", mm(base_d),
+                           fraction(b.dt_fraction), fraction(b.rayleigh_fraction), modulus_text(b.modulus_scale));
   v.push_back(base);
   auto variant = [&](std::string key, std::string label, VariantGroup g) {
     SensitivityVariant x = base;
@@ -48,29 +110,42 @@ std::vector<SensitivityVariant> table6_variants(double base_d) {
   auto lsd = variant("LSD", "linear spring-dashpot (seed Eq 8), same collision time", VariantGroup::contact);
   lsd.contact = "lsd";
   v.push_back(lsd);
+  // The seed's two shaped rows: its 4.4 mm clump against its 5.6 mm spheres (about the pellet's
+  // size), and a clump of 5.6 mm spheres ("d increased"). Relative to this base: 4.4/5.6 d and d.
   auto clump = variant("clump", "", VariantGroup::shape);
   clump.shape = "clump";
   clump.diameter = base_d * 4.4 / 5.6;
   clump.label = fmt::format("two-sphere clump (Fig. 4c), spheres d = {} mm (the seed's 4.4 vs 5.6 mm)", mm(clump.diameter));
   v.push_back(clump);
-  auto dt = variant("dt/20", "dt = t_c/20 (and 0.1 of the Rayleigh time): half the base step", VariantGroup::time_step);
-  dt.dt_fraction = 0.05;
-  dt.rayleigh_fraction = 0.1;
+  auto clump_d = variant("clump-d", "", VariantGroup::shape);
+  clump_d.shape = "clump";
+  clump_d.label = fmt::format("two-sphere clump, spheres d = {} mm = the base's (the seed's \"shaped d = 5.6 mm, d "
+                              "increased\")", mm(base_d));
+  v.push_back(clump_d);
+  auto dt = variant("dt/20", fmt::format("dt = {} t_c (at most {} t_R): half the base step", fraction(b.dt_fraction / 2),
+                                         fraction(b.rayleigh_fraction / 2)),
+                    VariantGroup::time_step);
+  dt.dt_fraction = b.dt_fraction / 2;
+  dt.rayleigh_fraction = b.rayleigh_fraction / 2;
   v.push_back(dt);
-  auto g10 = variant("Gx10", "shear modulus G x 10 (Young's modulus x 10)", VariantGroup::modulus);
+  auto g10 = variant("Gx10", fmt::format("G x 10 of the base (Young's modulus x 10): {}", modulus_text(10 * b.modulus_scale)),
+                     VariantGroup::modulus);
   g10.modulus_scale = 10.0;
   v.push_back(g10);
-  auto g01 = variant("G/10", "shear modulus G / 10", VariantGroup::modulus);
+  auto g01 = variant("G/10", fmt::format("G / 10 of the base: {}", modulus_text(0.1 * b.modulus_scale)), VariantGroup::modulus);
   g01.modulus_scale = 0.1;
   v.push_back(g01);
-  // The seed scaled its 5.6 mm spheres up to 9 and 13.6 mm: factors 1.61 and 2.43 of its base. The
-  // same factors of this base keep the study's shape at any quality (at `paper`, 5.6 mm, they are the
-  // seed's sizes) and make the extra sizes cheaper than the base, not 35x dearer.
-  for (double f : {9.0 / 5.6, 13.6 / 5.6}) {
-    const double d = base_d * f;
+  // The seed's sizes are absolute (5.6, 9, 13.6 mm): a size variant is a sphere of that diameter,
+  // whatever the base. Scaling factors of the base instead would reach a different regime at a
+  // coarse base (33 mm spheres are one grain deep in this stream).
+  std::vector<double> sizes = b.sizes;
+  std::sort(sizes.begin(), sizes.end());
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    const double d = sizes[k];
+    if (same_size(d, base_d) || (k > 0 && same_size(d, sizes[k - 1]))) continue;
     auto s = variant(fmt::format("d={}mm", mm(d)),
-                     fmt::format("spheres d = {} mm = {:.2f} x base (the seed's {:g} mm / 5.6 mm); mass flow kept: "
-                                 "fewer, heavier grains", mm(d), f, f * 5.6),
+                     fmt::format("spheres d = {} mm ({:.2f} x the base's); mass flow kept: {} grains", mm(d), d / base_d,
+                                 d > base_d ? "fewer, heavier" : "more, lighter"),
                      VariantGroup::size);
     s.diameter = d;
     v.push_back(s);
@@ -112,16 +187,37 @@ void evaluate(SensitivityStudy& s) {
         v.size_mean_spread = std::max(v.size_mean_spread, std::abs(r.change.value));
     }
   }
+  // Increasing size: the claim is that every step up in d raises the fluctuation.
   std::sort(v.size_fluctuation.begin(), v.size_fluctuation.end());
   v.size_tested = v.size_fluctuation.size() >= 2;
+  v.sizes_left_out = s.sizes_left_out;
+  std::sort(v.sizes_left_out.begin(), v.sizes_left_out.end());
+  v.variants_left_out = s.variants_left_out;
   v.fluctuation_grows = v.size_tested;
   for (std::size_t k = 1; k < v.size_fluctuation.size(); ++k)
     v.fluctuation_grows = v.fluctuation_grows && v.size_fluctuation[k].second > v.size_fluctuation[k - 1].second;
   std::vector<std::string> fl;
   for (const auto& [d, f] : v.size_fluctuation) fl.push_back(fmt::format("{:.1f} N at {} mm", f, mm(d)));
-  const std::string head = !(v.mean_tested && v.size_tested) ? "Seed Table 6 conclusion NOT FULLY TESTED (a subset of the variants ran)"
-                           : v.reproduced()                      ? "Seed Table 6 conclusion REPRODUCED"
-                                                                 : "Seed Table 6 conclusion NOT reproduced";
+  std::string head;
+  const std::string on_what_ran = v.mean_insensitive && v.fluctuation_grows ? "reproduced" : "NOT reproduced";
+  if (!(v.mean_tested && v.size_tested)) {
+    head = "Seed Table 6 conclusion NOT FULLY TESTED (a subset of the variants ran)";
+  } else if (!v.variants_left_out.empty()) {
+    head = fmt::format("Seed Table 6 conclusion NOT FULLY TESTED: {} not run (--only); on what ran it is {}",
+                       fmt::join(v.variants_left_out, ", "), on_what_ran);
+  } else if (!v.sizes_left_out.empty()) {
+    // Judged on what ran, but never called reproduced: a left-out size is a claim not checked.
+    std::vector<std::string> out, all;
+    for (double d : v.sizes_left_out) out.push_back(mm(d) + " mm");
+    for (const auto& [d, f] : v.size_fluctuation) all.push_back(mm(d));
+    for (double d : v.sizes_left_out) all.push_back(mm(d));
+    std::sort(all.begin(), all.end(), [](const std::string& a, const std::string& b) { return std::stod(a) < std::stod(b); });
+    head = fmt::format("Seed Table 6 conclusion NOT FULLY TESTED: {} left out at {} quality (run with --sizes {}); on "
+                       "what ran it is {}",
+                       fmt::join(out, ", "), s.quality, fmt::join(all, ","), on_what_ran);
+  } else {
+    head = v.reproduced() ? "Seed Table 6 conclusion REPRODUCED" : "Seed Table 6 conclusion NOT reproduced";
+  }
   const std::string mean_part =
       v.mean_tested ? fmt::format("contact model, shape, time step and shear modulus change it by at most {:+.1f} % ({}; "
                                   "limit ±{:g} %) — {}",
@@ -160,6 +256,29 @@ SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
   const auto& first = t.rows().front();
   s.condition = t.text(first, col("condition"));
   s.quality = t.text(first, col("quality"));
+  // Columns added later (provenance, the base as resolved): optional, so older studies still read.
+  auto text_or = [&](const validation::CsvRow& r, std::string_view c) {
+    const auto k = t.column(c);
+    return k ? t.text(r, *k) : std::string();
+  };
+  auto number_or = [&](const validation::CsvRow& r, std::string_view c, double fallback) {
+    const auto k = t.column(c);
+    return k ? t.optional_number(r, *k).value_or(fallback) : fallback;
+  };
+  s.dataset_name = text_or(first, "dataset");
+  for (const auto& item : split_cell(text_or(first, "sizes_left_out_mm"), ';')) {
+    std::size_t used = 0;
+    double d = 0.0;
+    try {
+      d = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !(d > 0.0))
+      throw InputError(f, first.line, "sizes_left_out_mm", fmt::format("'{}' is not a diameter in mm", item));
+    s.sizes_left_out.push_back(d * 1e-3);
+  }
+  s.variants_left_out = split_cell(text_or(first, "variants_left_out"), ';');
   s.belt_speed = num(first, "belt_speed_mps");
   s.mass_flow = num(first, "mass_flow_tph") / 3.6;
   s.limit_percent = num(first, "change_limit_pct");
@@ -184,6 +303,7 @@ SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
     v.contact = t.text(r, col("contact"));
     v.shape = t.text(r, col("shape"));
     v.dt_fraction = num(r, "dt_fraction");
+    v.rayleigh_fraction = number_or(r, "rayleigh_fraction", v.rayleigh_fraction);
     v.modulus_scale = num(r, "modulus_scale");
     VariantOutcome& o = row.outcome;
     o.diameter = num(r, "diameter_mm") * 1e-3;
@@ -206,8 +326,16 @@ SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
     s.wall_seconds += o.wall_seconds;
     s.rows.push_back(row);
   }
-  // Labels are not stored (they hold commas); the variants of the base's size give them back.
-  for (const auto& known : table6_variants(s.rows.front().outcome.diameter))
+  // Labels are not stored (they hold commas); the variants of the base as it ran give them back.
+  const SensitivityRow& b = s.rows.front();
+  s.base.diameter = b.outcome.diameter;
+  s.base.dt_fraction = b.variant.dt_fraction;
+  s.base.rayleigh_fraction = b.variant.rayleigh_fraction;
+  s.base.modulus_scale = number_or(first, "modulus_scale_of_dataset", std::nan(""));
+  s.base.sizes = s.sizes_left_out;
+  for (const auto& row : s.rows)
+    if (row.variant.group == VariantGroup::size) s.base.sizes.push_back(row.outcome.diameter);
+  for (const auto& known : table6_variants(s.base))
     for (auto& row : s.rows)
       if (row.variant.key == known.key) row.variant.label = known.label;
   for (auto& row : s.rows)
@@ -222,11 +350,15 @@ std::string sensitivity_csv(const SensitivityStudy& s) {
       "normal_force_N,normal_force_se_N,shear_force_N,shear_force_se_N,resultant_force_N,resultant_force_se_N,"
       "fluctuation_normal_N,fluctuation_shear_N,fluctuation_resultant_N,change_resultant_pct,change_se_pct,"
       "run_seconds,simulated_s,steps,peak_particles,steady,condition,belt_speed_mps,mass_flow_tph,quality,"
-      "change_limit_pct\n";
+      "change_limit_pct,dataset,rayleigh_fraction,modulus_scale_of_dataset,sizes_left_out_mm,variants_left_out\n";
+  std::vector<std::string> left_out;
+  for (double d : s.sizes_left_out) left_out.push_back(mm(d));
+  // One list in one cell: ';' keeps the CSV plain (no quoting).
+  const std::string left = fmt::format("{}", fmt::join(left_out, ";"));
   for (const auto& r : s.rows) {
     const auto& v = r.variant;
     const auto& o = r.outcome;
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},",
                        v.key, name(v.group),
                        v.contact, v.shape, csv_number(o.diameter * 1e3), csv_number(o.dt), csv_number(v.dt_fraction),
                        csv_number(o.collision_time), csv_number(v.modulus_scale), csv_number(o.normal.value),
@@ -236,23 +368,28 @@ std::string sensitivity_csv(const SensitivityStudy& s) {
                        csv_number(r.change.se), csv_number(o.wall_seconds), csv_number(o.simulated), o.steps, o.particles,
                        o.steady ? 1 : 0, s.condition, csv_number(s.belt_speed), csv_number(s.mass_flow * 3.6), s.quality,
                        csv_number(s.limit_percent));
+    out += fmt::format("{},{},{},{},{}\n", s.dataset_name, csv_number(v.rayleigh_fraction),
+                       std::isfinite(s.base.modulus_scale) ? csv_number(s.base.modulus_scale * v.modulus_scale) : std::string(),
+                       left, fmt::join(s.variants_left_out, ";"));
   }
   return out;
 }
 
 std::string sensitivity_md(const SensitivityStudy& s) {
   std::string md = "# Sensitivity of the plate force (seed Table 6)\n\n";
-  md += fmt::format("Dataset `{}`, condition `{}` (V_b = {:g} m/s, {:.1f} t/h), quality `{}`; {} DEM runs in {:.0f} s.\n\n",
-                    md_esc(s.dataset), md_esc(s.condition), s.belt_speed, s.mass_flow * 3.6,
+  md += fmt::format("Dataset {}, condition `{}` (V_b = {:g} m/s, {:.1f} t/h), quality `{}`; {} DEM runs in {:.0f} s.\n\n",
+                    dataset_text(s, true), md_esc(s.condition), s.belt_speed, s.mass_flow * 3.6,
                     s.quality, s.rows.size(), s.wall_seconds);
   md += s.verdict.text + "\n\n";
-  md += "| variant | what changes | d (mm) | dt (µs) | R_n (N) | R_s (N) | R (N) | sd R_n (N) | sd R_s (N) | sd R (N) | "
+  md += "| variant | what changes | d (mm) | dt (µs) | dt / t_c | R_n (N) | R_s (N) | R (N) | sd R_n (N) | sd R_s (N) | sd R (N) | "
         "change of R vs base (%) | run (s) |\n";
-  md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : s.rows) {
     const auto& o = r.outcome;
-    md += fmt::format("| {} | {} | {} | {:.2f} | {:.1f} ± {:.1f} | {:.1f} ± {:.1f} | {:.1f} ± {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} | {:.0f} |\n",
-                      r.variant.key, md_esc(r.variant.label), mm(o.diameter), o.dt * 1e6, o.normal.value,
+    md += fmt::format("| {} | {} | {} | {:.2f} | {} | {:.1f} ± {:.1f} | {:.1f} ± {:.1f} | {:.1f} ± {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} | {:.0f} |\n",
+                      r.variant.key, md_esc(r.variant.label), mm(o.diameter), o.dt * 1e6,
+                      o.collision_time > 0.0 ? fmt::format("{:.3f}", o.dt / o.collision_time) : std::string("–"),
+                      o.normal.value,
                       o.normal.se, o.shear.value, o.shear.se, o.resultant.value, o.resultant.se, o.fluct_normal,
                       o.fluct_shear, o.fluct_resultant,
                       &r == &s.rows[0] ? std::string("—") : fmt::format("{:+.1f} ± {:.1f}", r.change.value, r.change.se),
@@ -260,7 +397,7 @@ std::string sensitivity_md(const SensitivityStudy& s) {
   }
   md += "\nMeans are over the steady window of the plate load cell with block standard errors (±); sd is the "
         "standard deviation of the load-cell samples in that window (the fluctuation); change = R / R_base - 1.\n";
-  std::vector<std::string> notes;
+  std::vector<std::string> notes = run_notes(s);
   for (const auto& r : s.rows) {
     if (!r.outcome.steady) notes.push_back(fmt::format("{}: no steady window within the time limit (means uncertain)", r.variant.key));
     for (const auto& n : r.outcome.notes) notes.push_back(fmt::format("{}: {}", r.variant.key, n));
@@ -340,9 +477,9 @@ std::string sensitivity_html(const SensitivityStudy& s) {
   // Page: verdict, chart, table (the Markdown's table rendered), notes.
   const std::string md = sensitivity_md(s);
   std::string body = "<h1>Sensitivity of the plate force (seed Table 6)</h1>\n";
-  body += fmt::format("<p>Dataset <code>{}</code>, condition <code>{}</code> (V<sub>b</sub> = {:g} m/s, {:.1f} t/h), "
+  body += fmt::format("<p>Dataset {}, condition <code>{}</code> (V<sub>b</sub> = {:g} m/s, {:.1f} t/h), "
                       "quality <code>{}</code>; {} DEM runs in {:.0f} s.</p>\n",
-                      esc(s.dataset), esc(s.condition), s.belt_speed, s.mass_flow * 3.6, esc(s.quality), n, s.wall_seconds);
+                      esc(dataset_text(s, false)), esc(s.condition), s.belt_speed, s.mass_flow * 3.6, esc(s.quality), n, s.wall_seconds);
   body += fmt::format("<p class=\"verdict {}\">{}</p>\n", s.verdict.reproduced() ? "ok" : "not", esc(s.verdict.text));
   body += sensitivity_chart(s, "sensitivity-chart") + "\n<table>\n";
   std::size_t pos = 0;
@@ -353,7 +490,7 @@ std::string sensitivity_html(const SensitivityStudy& s) {
     const std::string line = md.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
     pos = end == std::string::npos ? md.size() : end + 1;
     if (line.empty() || line[0] != '|') {
-      if (!header && line.rfind("- ", 0) == 0) tail += "<p class=\"item\">• " + esc(line.substr(2)) + "</p>\n";
+      if (!header && line.rfind("- ", 0) == 0) tail += "<p class=\"item\">• " + esc(md_unesc(line.substr(2))) + "</p>\n";
       else if (!header && line.rfind("Means are", 0) == 0) tail += "<p>" + esc(line) + "</p>\n";
       else if (line.rfind("## ", 0) == 0) tail += "<h2>" + esc(line.substr(3)) + "</h2>\n";
       continue;
@@ -364,7 +501,7 @@ std::string sensitivity_html(const SensitivityStudy& s) {
     while (a < line.size()) {
       const auto b = line.find('|', a);
       if (b == std::string::npos) break;
-      row += fmt::format("<{0}>{1}</{0}>", header ? "th" : "td", esc(line.substr(a, b - a)));
+      row += fmt::format("<{0}>{1}</{0}>", header ? "th" : "td", esc(md_unesc(line.substr(a, b - a))));
       a = b + 1;
     }
     body += row + "</tr>\n";

@@ -19,7 +19,7 @@ enum class VariantGroup { base, contact, shape, time_step, modulus, size };
 std::string_view name(VariantGroup g);
 
 struct SensitivityVariant {
-  std::string key;     // "base", "lsd", "clump", "dt/20", "G*10", "G/10", "d=9mm", ...
+  std::string key;     // "base", "LSD", "clump", "clump-d", "dt/20", "Gx10", "G/10", "d=9mm", ...
   std::string label;   // what changes, for people
   VariantGroup group = VariantGroup::base;
   // Settings of the run (SI); 0 / empty = the base's.
@@ -29,6 +29,20 @@ struct SensitivityVariant {
   double dt_fraction = 0.1;     // of the Hertz collision time
   double rayleigh_fraction = 0.2;
   double modulus_scale = 1.0;   // multiplies the base run's modulus (G x10, /10)
+};
+
+// The base run as resolved (quality preset < the dataset's [dem] table < flags), so that the labels
+// say what ran rather than what the seed ran: at quick quality the modulus is a third of the
+// dataset's, and the Rayleigh cap can make the step shorter than dt_fraction t_c.
+struct Table6Base {
+  double diameter = 13.6e-3;           // m, the base spheres
+  double modulus_scale = 1.0;          // the base's E (and G) over the dataset's; NaN = not known
+  double dt_fraction = 0.1;            // of the Hertz collision time
+  double rayleigh_fraction = 0.2;      // cap, of the Rayleigh time
+  // Sphere diameters of the size variants, m. Those that differ from the base diameter become
+  // variants; the one equal to it is the base itself.
+  std::vector<double> sizes = seed_sizes();
+  static std::vector<double> seed_sizes() { return {5.6e-3, 9.0e-3, 13.6e-3}; }  // seed Table 6, absolute
 };
 
 struct Stat {
@@ -63,29 +77,46 @@ struct Table6Verdict {
   double size_mean_spread = 0.0;    // %, largest |change| among the size variants
   bool mean_tested = false;         // at least one contact/shape/dt/G variant ran
   bool size_tested = false;         // at least two particle sizes ran
-  bool reproduced() const { return mean_tested && size_tested && mean_insensitive && fluctuation_grows; }
+  std::vector<double> sizes_left_out;  // m, the seed's sizes that did not run
+  std::vector<std::string> variants_left_out;  // keys of other variants that did not run (--only)
+  bool complete() const { return mean_tested && size_tested && sizes_left_out.empty() && variants_left_out.empty(); }
+  bool reproduced() const { return complete() && mean_insensitive && fluctuation_grows; }
   std::string text;                 // one paragraph, with the numbers
 };
 
 struct SensitivityStudy {
-  std::string dataset, condition, quality;
+  std::string dataset;        // where it came from (folder), for people
+  std::string dataset_name;   // setup.toml `name`: which rig the study is about ("" = not recorded)
+  std::string condition, quality;
+  // The seed's sizes not run (m, e.g. 5.6 mm at quick quality, to stay within the time budget): the
+  // verdict then says "not fully tested" and how to run them.
+  std::vector<double> sizes_left_out;
+  std::vector<std::string> variants_left_out;  // keys not run (--only)
   double belt_speed = 0.0, mass_flow = 0.0;   // SI
+  Table6Base base;                             // the base run as resolved
   std::vector<SensitivityRow> rows;            // rows[0] is the base
   Table6Verdict verdict;
   double wall_seconds = 0.0;
   double limit_percent = 10.0;                 // "changes little": |change| <= this
 };
 
-// The seed's variants around a base run of diameter `base_d`: LSD, a two-sphere clump whose spheres
-// are base_d x 4.4/5.6 (the seed's 4.4 mm clump against its 5.6 mm spheres), dt = t_c/20, G x10, G/10,
-// and two larger spheres, base_d x 9/5.6 and x 13.6/5.6 (the seed's 5.6 -> 9 and 13.6 mm scale-up).
-std::vector<SensitivityVariant> table6_variants(double base_d);
+// The seed's variants around a base run: LSD, a two-sphere clump whose spheres are d_base x 4.4/5.6
+// (the seed's 4.4 mm clump against its 5.6 mm spheres), the same clump of spheres of d_base (the
+// seed's "shaped d = 5.6 mm, d increased"), half the time step, G x10, G/10, and spheres of every
+// size in base.sizes other than d_base, in increasing size.
+std::vector<SensitivityVariant> table6_variants(const Table6Base& base);
 
 // Fills change and the verdict from the rows.
 void evaluate(SensitivityStudy& s);
 
-// The seed's finding 6 (validation/seed_findings.h) from a study; not testable without one.
-validation::SeedFinding sensitivity_finding(const SensitivityStudy* study);
+// The seed's finding 6 (validation/seed_findings.h) from a study; not testable without one. The
+// evidence names the study's dataset, and says so when it is not `validated` (the report's dataset).
+validation::SeedFinding sensitivity_finding(const SensitivityStudy* study, std::string_view validated = {});
+
+// "grima2010 (path)" — which dataset the study ran on, as the outputs name it.
+std::string dataset_text(const SensitivityStudy& s, bool markdown);
+// Notes on what really ran that a label cannot say: a step set by the Rayleigh cap, sizes left out.
+std::vector<std::string> run_notes(const SensitivityStudy& s);
 
 std::string sensitivity_csv(const SensitivityStudy& s);
 // Reads back what sensitivity_csv wrote (the report's "Sensitivity" section) and evaluates it again;

@@ -21,6 +21,24 @@ Cell num_cell(std::string s, bool strong = false) { return {std::move(s), "", fa
 
 }  // namespace
 
+std::vector<std::string> provenance_paragraphs(std::string_view kind, std::string_view dataset, std::string_view quality,
+                                               std::string_view validated) {
+  std::vector<std::string> out;
+  const std::string q = quality.empty() ? std::string("an unrecorded") : std::string(quality);
+  if (dataset.empty()) {
+    out.push_back(fmt::format("The {} study's file does not record its dataset ({} quality){}.", kind, q,
+                              validated.empty() ? std::string()
+                                                : fmt::format(": whether it was run on {} cannot be checked", validated)));
+    return out;
+  }
+  out.push_back(fmt::format("The {} study ran on dataset {} at {} quality.", kind, dataset, q));
+  if (!validated.empty() && dataset != validated)
+    out.push_back(fmt::format("Warning: this report validates {}, but the {} study ran on {}: its numbers describe {}'s "
+                              "rig and material, not {}'s.",
+                              validated, kind, dataset, dataset, validated));
+  return out;
+}
+
 std::vector<CalibrationPoint> read_calibration_csv(const fs::path& file) {
   using validation::CsvTable;
   const CsvTable t = CsvTable::read(file, {"shape", "grain", "rolling_friction", "solid_density_kgm3",
@@ -45,13 +63,16 @@ std::vector<CalibrationPoint> read_calibration_csv(const fs::path& file) {
     p.run_seconds = t.number(r, col("run_seconds"));
     p.distance = t.optional_number(r, col("target_distance"));
     p.closest = t.number(r, col("closest")) != 0.0;
+    // Provenance columns came later: optional, so a study written before them still reads.
+    if (const auto c = t.column("dataset")) p.dataset = t.text(r, *c);
+    if (const auto c = t.column("quality")) p.quality = t.text(r, *c);
     if (!(p.solid_density > 0.0)) throw InputError(file.string(), r.line, "solid_density_kgm3", "must be > 0");
     out.push_back(p);
   }
   return out;
 }
 
-StudySection calibration_section(const fs::path& csv_file, std::string_view suffix) {
+StudySection calibration_section(const fs::path& csv_file, std::string_view suffix, std::string_view validated) {
   const std::vector<CalibrationPoint> pts = read_calibration_csv(csv_file);
   StudySection s;
   s.id = fmt::format("calibration{}", suffix);
@@ -66,6 +87,8 @@ StudySection calibration_section(const fs::path& csv_file, std::string_view suff
       "Swing-arm slump tests (seed Fig. 5) over particle-particle rolling friction, solid density and particle "
       "shape, from {} ({} tests, {:.0f} s of DEM). Loose-poured bulk density and pile height as the seed's Table 3.",
       csv_file.string(), pts.size(), seconds));
+  for (auto& p : provenance_paragraphs("calibration", pts.front().dataset, pts.front().quality, validated))
+    s.paragraphs.push_back(std::move(p));
   if (best)
     s.verdict = fmt::format("Closest to the measured target: {}, mu_r = {:g}, rho_s = {:g} kg/m^3 (bulk density {:.0f} "
                             "kg/m^3, pile height {:.1f} mm; {:.1f} % from the target).",
@@ -101,7 +124,7 @@ StudySection calibration_section(const fs::path& csv_file, std::string_view suff
   return s;
 }
 
-StudySection sensitivity_section(const fs::path& csv_file, std::string_view suffix) {
+StudySection sensitivity_section(const fs::path& csv_file, std::string_view suffix, std::string_view validated) {
   const SensitivityStudy st = read_sensitivity_csv(csv_file);
   StudySection s;
   s.id = fmt::format("sensitivity{}", suffix);
@@ -112,11 +135,14 @@ StudySection sensitivity_section(const fs::path& csv_file, std::string_view suff
       "changed at a time, from {} ({} runs, {:.0f} s of DEM). Means over the steady window with block standard "
       "errors; fluctuation = standard deviation of the load-cell samples in that window; change = R / R_base − 1.",
       st.condition, st.belt_speed, st.mass_flow * 3.6, st.quality, csv_file.string(), st.rows.size(), st.wall_seconds));
+  for (auto& p : provenance_paragraphs("sensitivity", st.dataset_name, st.quality, validated))
+    s.paragraphs.push_back(std::move(p));
   Table& t = s.table;
   t.id = s.id + "-table";
   t.caption = "Plate force per variant";
   t.columns = {{"", "variant", "", true},           {"", "what changes", "", true},
                {"", "d (mm)", "", false},           {"", "dt (µs)", "", false},
+               {"", "dt / t_c", "", false},
                {"mean (N)", "R_n", "", false},      {"mean (N)", "R_s", "", false},
                {"mean (N)", "R", "", false},        {"fluctuation, sd (N)", "R_n", "", false},
                {"fluctuation, sd (N)", "R_s", "", false}, {"fluctuation, sd (N)", "R", "", false},
@@ -127,6 +153,7 @@ StudySection sensitivity_section(const fs::path& csv_file, std::string_view suff
     const auto& o = r.outcome;
     t.rows.push_back({text_cell(r.variant.key, k == 0), text_cell(r.variant.label),
                       num_cell(fmt::format("{:g}", std::round(o.diameter * 1e4) / 10.0)), num_cell(num(o.dt * 1e6, 2)),
+                      num_cell(o.collision_time > 0.0 ? num(o.dt / o.collision_time, 3) : std::string(kDash)),
                       num_cell(pm(o.normal)), num_cell(pm(o.shear)), num_cell(pm(o.resultant)),
                       num_cell(num(o.fluct_normal, 1)), num_cell(num(o.fluct_shear, 1)), num_cell(num(o.fluct_resultant, 1)),
                       num_cell(k == 0 ? std::string(kDash)
@@ -136,22 +163,23 @@ StudySection sensitivity_section(const fs::path& csv_file, std::string_view suff
   }
   for (const auto& r : st.rows)
     if (!r.outcome.steady) t.notes.push_back(r.variant.key + ": no steady window within the time limit (means uncertain).");
+  for (const auto& n : run_notes(st)) t.notes.push_back(n + ".");
   s.chart_svg = sensitivity_chart(st, s.id + "-chart");
   s.caption = "Mean resultant plate force (± 1 standard error; dashed: the base) and its fluctuation per variant.";
   return s;
 }
 
-std::vector<StudySection> read_studies(const std::vector<fs::path>& paths) {
+std::vector<StudySection> read_studies(const std::vector<fs::path>& paths, std::string_view validated) {
   std::vector<StudySection> out;
   int calibrations = 0, sensitivities = 0;
   // The second study of a kind gets "-2" on its anchors: ids are unique in the page.
   auto add_cal = [&](const fs::path& f) {
     ++calibrations;
-    out.push_back(calibration_section(f, calibrations > 1 ? fmt::format("-{}", calibrations) : std::string()));
+    out.push_back(calibration_section(f, calibrations > 1 ? fmt::format("-{}", calibrations) : std::string(), validated));
   };
   auto add_sens = [&](const fs::path& f) {
     ++sensitivities;
-    out.push_back(sensitivity_section(f, sensitivities > 1 ? fmt::format("-{}", sensitivities) : std::string()));
+    out.push_back(sensitivity_section(f, sensitivities > 1 ? fmt::format("-{}", sensitivities) : std::string(), validated));
   };
   for (const auto& path : paths) {
     if (fs::is_regular_file(path)) {

@@ -37,6 +37,8 @@ struct CalibrationPoint {
   double run_seconds = 0.0;
   std::optional<double> distance;    // relative distance to the target
   bool closest = false;
+  std::string dataset;               // setup.toml `name` of the calibrated dataset ("" = not recorded)
+  std::string quality;               // of the slump tests ("" = not recorded)
 };
 
 struct CalibrationTargetsView {
@@ -53,12 +55,21 @@ std::string calibration_chart(const std::vector<CalibrationPoint>& points, const
 // and column for a missing column, a bad number or an empty table.
 std::vector<CalibrationPoint> read_calibration_csv(const std::filesystem::path& file);
 
-// A section from one CSV file; `suffix` makes its anchors unique when a kind occurs twice.
-StudySection calibration_section(const std::filesystem::path& csv_file, std::string_view suffix = {});
-StudySection sensitivity_section(const std::filesystem::path& csv_file, std::string_view suffix = {});
+// A section from one CSV file; `suffix` makes its anchors unique when a kind occurs twice. The
+// section says which dataset and quality the study used, and warns when that is not `validated` (the
+// setup.toml name of the dataset the report is about; "" = do not compare).
+StudySection calibration_section(const std::filesystem::path& csv_file, std::string_view suffix = {},
+                                 std::string_view validated = {});
+StudySection sensitivity_section(const std::filesystem::path& csv_file, std::string_view suffix = {},
+                                 std::string_view validated = {});
+
+// "Study on dataset X at Q quality." and, when X is known and not `validated`, a warning that its
+// numbers belong to another rig; when X was not recorded, that it cannot be checked.
+std::vector<std::string> provenance_paragraphs(std::string_view kind, std::string_view dataset, std::string_view quality,
+                                               std::string_view validated);
 
 // Each path is a study folder holding calibration.csv and/or sensitivity.csv, or one of those files.
 // Throws InputError when a path is missing or holds neither file, or a file is bad.
-std::vector<StudySection> read_studies(const std::vector<std::filesystem::path>& paths);
+std::vector<StudySection> read_studies(const std::vector<std::filesystem::path>& paths, std::string_view validated = {});
 
 }  // namespace chutelab::reports

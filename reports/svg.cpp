@@ -43,6 +43,30 @@ std::string md_esc(std::string_view s) {
   return o;
 }
 
+std::string md_unesc(std::string_view s) {
+  std::string o;
+  o.reserve(s.size());
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    if (s[k] == '\\' && k + 1 < s.size()) {
+      o += s[++k];
+      continue;
+    }
+    if (s[k] == '&') {
+      bool done = false;
+      for (auto [entity, c] : {std::pair{std::string_view("&amp;"), '&'}, {"&lt;", '<'}, {"&gt;", '>'}})
+        if (s.substr(k, entity.size()) == entity) {
+          o += c;
+          k += entity.size() - 1;
+          done = true;
+          break;
+        }
+      if (done) continue;
+    }
+    o += s[k];
+  }
+  return o;
+}
+
 std::string symbol_html(std::string_view symbol) {
   const auto u = symbol.find('_');
   if (u == std::string_view::npos) return esc(symbol);

@@ -15,6 +15,8 @@ std::string esc(std::string_view s);
 // Text for Markdown: HTML-significant and Markdown-significant characters neutralised, so a
 // condition called "a|b<c>" neither breaks a table nor injects markup.
 std::string md_esc(std::string_view s);
+// The text md_esc was given back (for pages rendered from their own Markdown, which escape again).
+std::string md_unesc(std::string_view s);
 // "R_n" -> "R<sub>n</sub>" (escaped) for headings and legends in HTML.
 std::string symbol_html(std::string_view symbol);
 

@@ -16,8 +16,19 @@ std::string_view name(FindingStatus s) {
     case FindingStatus::partly: return "partly reproduced";
     case FindingStatus::not_reproduced: return "not reproduced";
     case FindingStatus::not_testable: return "not testable on this dataset";
+    case FindingStatus::undecided: return "undecided";
   }
   return "?";
+}
+
+FindingStatus status_of(const std::vector<FindingClaim>& claims) {
+  int tested = 0, held = 0, undecided = 0;
+  for (const auto& c : claims)
+    if (c.testable) ++tested, held += c.holds ? 1 : 0, undecided += !c.holds && c.undecided ? 1 : 0;
+  if (tested == 0) return FindingStatus::not_testable;
+  if (held == tested) return FindingStatus::reproduced;
+  if (undecided == tested) return FindingStatus::undecided;
+  return held == 0 && undecided == 0 ? FindingStatus::not_reproduced : FindingStatus::partly;
 }
 
 namespace {
@@ -105,15 +116,6 @@ Agreement agree(const Value& p, const Value& m) {
     return {std::abs(e) <= kCoverage * u, fmt::format("|E|/u_val = {:.1f}", std::abs(e) / u)};
   }
   return {std::abs(e) <= kRelativeBand * std::abs(m.v), fmt::format("|E|/D = {:.1f} %", 100 * std::abs(e) / std::abs(m.v))};
-}
-
-FindingStatus status_of(const std::vector<FindingClaim>& claims) {
-  int tested = 0, held = 0;
-  for (const auto& c : claims)
-    if (c.testable) ++tested, held += c.holds ? 1 : 0;
-  if (tested == 0) return FindingStatus::not_testable;
-  if (held == tested) return FindingStatus::reproduced;
-  return held == 0 ? FindingStatus::not_reproduced : FindingStatus::partly;
 }
 
 // --- Finding 1: Korzen's stationary flow ends at high belt speed -------------------------------
@@ -405,16 +407,26 @@ SeedFinding finding5(const Data& x) {
   const std::string b_text = "the DEM's impact point lies below Booth/CEMA's at every condition";
   const std::string c_text = "Korzen's 0.5 h_b impact point is further from the measurement than Booth/CEMA's";
   std::vector<double> eb;
-  std::vector<std::pair<double, double>> paired;  // |E| of Booth/CEMA, Korzen at one condition
+  struct Pair {
+    double booth = 0.0, korzen = 0.0;  // |E| at one condition
+    double u = 0.0;                    // standard uncertainty of korzen - booth there
+  };
+  std::vector<Pair> paired;
   std::vector<std::string> worse, better;
+  bool any_u = false;
   for (const auto& c : x.conditions) {
     const auto m = x.measured(c.name, q);
     const auto b = x.predicted(c.name, kBooth, q);
     if (!m || !b) continue;
     eb.push_back(std::abs(b->v - m->v));
     if (const auto k = x.predicted(c.name, kKorzen, q)) {
-      paired.emplace_back(eb.back(), std::abs(k->v - m->v));
-      (paired.back().second > paired.back().first ? worse : better).push_back(c.name);
+      // d = |k - m| - |b - m|, linearised: the measurement cancels when both predictions lie on one
+      // side of it and counts twice when it lies between them.
+      const double sk = k->v >= m->v ? 1.0 : -1.0, sb = b->v >= m->v ? 1.0 : -1.0;
+      const double um = m->u.value_or(0.0), uk = k->u.value_or(0.0), ub = b->u.value_or(0.0);
+      any_u = any_u || m->u || k->u || b->u;
+      paired.push_back({eb.back(), std::abs(k->v - m->v), std::sqrt(uk * uk + ub * ub + std::pow((sb - sk) * um, 2))});
+      (paired.back().korzen > paired.back().booth ? worse : better).push_back(c.name);
     }
   }
   if (eb.empty()) {
@@ -443,14 +455,36 @@ SeedFinding finding5(const Data& x) {
   if (paired.empty()) {
     f.claims.push_back(untestable(c_text, "needs measured impact points with both korzen and booth-cema"));
   } else {
-    double mb = 0, mk = 0;
+    // "Increases the error" must be more than a tie: the mean excess |E| of 0.5 h_b over CEMA has to
+    // exceed kCoverage times its standard uncertainty — the conditions' scatter of the paired excess
+    // (standard error of the mean) and the measurement/prediction uncertainties propagated to it, in
+    // quadrature — as agreement elsewhere is |E| <= kCoverage u_val. The opposite margin is "not
+    // reproduced"; in between the claim is undecided. Without any uncertainty at one condition, the
+    // relative band of the other findings.
     const double n = static_cast<double>(paired.size());
-    for (const auto& [b, k] : paired) mb += b / n, mk += k / n;
-    f.claims.push_back(
-        {c_text, true, mk > mb,
-         fmt::format("mean |E| {} mm (0.5 h_b) vs {} mm (CEMA); worse at {} of {} conditions{}", fmt_value(q, mk, 1),
-                     fmt_value(q, mb, 1), worse.size(), paired.size(),
-                     better.empty() ? "" : fmt::format(" (better at {})", fmt::join(better, ", ")))});
+    double mb = 0, mk = 0, md = 0, up2 = 0;
+    for (const auto& p : paired) mb += p.booth / n, mk += p.korzen / n, md += (p.korzen - p.booth) / n, up2 += p.u * p.u;
+    double ss = 0;
+    for (const auto& p : paired) ss += std::pow(p.korzen - p.booth - md, 2);
+    const double u_scatter = paired.size() >= 2 ? std::sqrt(ss / (n - 1) / n) : 0.0;
+    const double u_prop = std::sqrt(up2) / n;
+    const double u = std::hypot(u_scatter, u_prop);
+    const bool banded = u == 0.0 && paired.size() < 2 && !any_u;
+    const double margin = banded ? kRelativeBand * mb : kCoverage * u;
+    const bool holds = md > margin, opposite = md < -margin;
+    const std::string criterion =
+        banded ? fmt::format("criterion: excess beyond {:g} % of the CEMA error, no uncertainties known", 100 * kRelativeBand)
+               : fmt::format("criterion: excess beyond {:g} u = {} mm, u from the scatter over conditions ({} mm) and "
+                             "the uncertainties ({} mm)",
+                             kCoverage, fmt_value(q, kCoverage * u, 2), fmt_value(q, u_scatter, 2), fmt_value(q, u_prop, 2));
+    FindingClaim cl{c_text, true, holds,
+                    fmt::format("{}mean |E| {} mm (0.5 h_b) vs {} mm (CEMA), excess {:+.2f} mm; worse at {} of {} "
+                                "conditions{} ({})",
+                                holds || opposite ? "" : "undecided, a tie within the uncertainty: ", fmt_value(q, mk, 2),
+                                fmt_value(q, mb, 2), md * info(q).to_boundary, worse.size(), paired.size(),
+                                better.empty() ? "" : fmt::format(", better at {}", fmt::join(better, ", ")), criterion)};
+    cl.undecided = !holds && !opposite;
+    f.claims.push_back(cl);
   }
   f.status = status_of(f.claims);
   return f;

@@ -12,7 +12,8 @@
 
 namespace chutelab::validation {
 
-enum class FindingStatus { reproduced, partly, not_reproduced, not_testable };
+// undecided: the claims that could be tested are within their uncertainty of either answer.
+enum class FindingStatus { reproduced, partly, not_reproduced, not_testable, undecided };
 std::string_view name(FindingStatus s);
 
 struct FindingClaim {
@@ -20,6 +21,9 @@ struct FindingClaim {
   bool testable = false;  // the models and measurements it needs are present
   bool holds = false;
   std::string evidence{}; // the numbers and the criterion (or why it cannot be tested)
+  // Tested, but the numbers do not tell the claim from its opposite (a tie within the uncertainty):
+  // holds is false and the claim is not counted against the finding either.
+  bool undecided = false;
 };
 
 struct SeedFinding {
@@ -28,6 +32,10 @@ struct SeedFinding {
   std::vector<FindingClaim> claims{};
   FindingStatus status = FindingStatus::not_testable;
 };
+
+// reproduced when every testable claim holds; not reproduced when none holds and none is undecided;
+// undecided when every testable claim is; otherwise partly.
+FindingStatus status_of(const std::vector<FindingClaim>& claims);
 
 // Findings 1-5 (model behaviour and model-vs-measurement patterns). Finding 6, the sensitivity
 // study, needs its own runs (`chutelab sensitivity`) and is judged there.
