@@ -13,6 +13,7 @@
 #include "app/calibration_output.h"
 #include "app/commands.h"
 #include "core/input_error.h"
+#include "core/number.h"
 #include "dem/rigs/calibration.h"
 #include "validation/dataset.h"
 #include "validation/output_files.h"
@@ -34,14 +35,9 @@ struct CalibrateCli {
 std::vector<double> numbers(const std::string& list, const char* flag) {
   std::vector<double> out;
   for (const auto& item : split_list(list)) {
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || !std::isfinite(v))
+    const std::optional<double> parsed = parse_number(item);
+    const double v = parsed.value_or(0.0);
+    if (!parsed || !std::isfinite(v))
       throw InputError("", 0, flag, fmt::format("'{}' is not a number (give a comma list, e.g. 0.05,0.1)", item));
     out.push_back(v);
   }

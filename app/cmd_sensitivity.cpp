@@ -14,6 +14,7 @@
 #include "app/commands.h"
 #include "reports/sensitivity_study.h"
 #include "core/input_error.h"
+#include "core/number.h"
 #include "dem/station/progress.h"
 #include "dem/station/run.h"
 #include "validation/dataset.h"
@@ -93,14 +94,8 @@ int run_sensitivity(const SensitivityCli& o) {
   if (!o.sizes.empty()) {
     b.sizes.clear();
     for (const auto& item : split_list(o.sizes)) {
-      std::size_t used = 0;
-      double d = 0.0;
-      try {
-        d = std::stod(item, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != item.size() || !(d > 0.0) || d > 100.0)
+      const double d = parse_number(item).value_or(0.0);
+      if (!(d > 0.0) || d > 100.0)
         throw InputError("", 0, "--sizes", fmt::format("'{}' is not a sphere diameter in mm (0-100, e.g. 5.6,9,13.6)", item));
       b.sizes.push_back(d * 1e-3);
     }

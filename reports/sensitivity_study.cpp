@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "core/number.h"
 #include "reports/svg.h"
 #include "validation/csv_table.h"
 #include "validation/output_files.h"
@@ -267,14 +268,8 @@ SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
   };
   s.dataset_name = text_or(first, "dataset");
   for (const auto& item : split_cell(text_or(first, "sizes_left_out_mm"), ';')) {
-    std::size_t used = 0;
-    double d = 0.0;
-    try {
-      d = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || !(d > 0.0))
+    const double d = parse_number(item).value_or(0.0);
+    if (!(d > 0.0) || !std::isfinite(d))
       throw InputError(f, first.line, "sizes_left_out_mm", fmt::format("'{}' is not a diameter in mm", item));
     s.sizes_left_out.push_back(d * 1e-3);
   }

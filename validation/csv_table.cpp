@@ -1,10 +1,10 @@
 #include "validation/csv_table.h"
 
-#include <charconv>
 #include <cmath>
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "core/number.h"
 
 // fccp copies file names with strncpy into fixed buffers; GCC flags the (harmless, terminated)
 // truncation wherever the reader is inlined, so the warning is silenced for that header only.
@@ -115,12 +115,9 @@ double CsvTable::number(const CsvRow& row, std::size_t col) const {
   const std::string& s = row.cells.at(col);
   const std::string& field = header_.at(col);
   if (s.empty()) throw InputError(file_, row.line, field, "value is missing");
-  double v = 0.0;
-  const char* begin = s.data() + (s[0] == '+' ? 1 : 0);  // from_chars takes no leading '+'
-  const char* end = s.data() + s.size();
-  auto [ptr, ec] = std::from_chars(begin, end, v);
-  if (ec != std::errc() || ptr != end)
-    throw InputError(file_, row.line, field, fmt::format("'{}' is not a number", s));
+  const std::optional<double> parsed = parse_number(s);
+  if (!parsed) throw InputError(file_, row.line, field, fmt::format("'{}' is not a number", s));
+  const double v = *parsed;
   if (!std::isfinite(v))
     throw InputError(file_, row.line, field, fmt::format("'{}' is not a finite number", s));
   return v;
