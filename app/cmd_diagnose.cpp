@@ -16,6 +16,7 @@ struct DiagnoseCli {
   std::string dataset, out, models = "booth-cema,korzen";
   double alpha = 0.01;
   bool no_pairs = false;
+  int jobs = 0;
   DemCli dem;
 };
 
@@ -27,8 +28,10 @@ int run_diagnose(const DiagnoseCli& o) {
   validation::DiagnoseOptions opt;
   opt.alpha = o.alpha;
   opt.pairs = !o.no_pairs;
-  // An expensive model (the DEM) runs once per condition; effect signatures come from the analytical
-  // models and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
+  opt.jobs = o.jobs;
+  // An expensive model (the DEM) runs once per condition, and once more per condition for every
+  // candidate it can represent (its own signature); the others take the analytical models'
+  // signatures, and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
   configure_dem_model(o.dem, o.dataset, "");
   const auto models = validation::make_models(names);
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
@@ -55,6 +58,8 @@ void add_diagnose(CLI::App& app, Action& action) {
       ->check(CLI::Range(1e-6, 0.5))
       ->capture_default_str();
   cmd->add_flag("--no-pairs", o->no_pairs, "do not fit pairs of effects");
+  cmd->add_option("--jobs", o->jobs, "expensive (DEM) runs side by side (default: one per core)")
+      ->check(CLI::Range(0, 256));
   add_dem_options(*cmd, o->dem);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_diagnose(*o); }; });

@@ -14,6 +14,15 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
   cmd.add_option("--dem-threads", o.threads, "OpenMP threads of the DEM (default: one per idle core)");
   cmd.add_option("--dem-cache", o.cache, "DEM result cache folder (default $XDG_CACHE_HOME/chutelab/dem)");
   cmd.add_flag("--no-dem-cache", o.no_cache, "run the DEM again even when a cached result exists");
+  cmd.add_option("--dem-ladder", o.ladder,
+                 "on (default): two more runs per condition at 1.25 and 1.56 times the particle size give u_num's "
+                 "discretisation part (GCI); off: statistical part only")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd.add_option("--signature-quality", o.signature_quality,
+                 "quality of the DEM's own effect-signature runs in diagnose (default: the --dem-quality)")
+      ->check(CLI::IsMember({"quick", "standard", "paper"}));
+  cmd.add_flag("--dem-cache-only", o.cache_only,
+               "never run the DEM: every run must be in the cache (recorded acceptance cases; exit 2 otherwise)");
 }
 
 void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir) {
@@ -26,6 +35,10 @@ void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const 
   }
   dc.overrides.threads = o.threads;
   dc.use_cache = !o.no_cache;
+  dc.cache_only = o.cache_only;
+  dc.ladder = o.ladder != "off";
+  if (!o.signature_quality.empty()) dc.signature_quality = dem::station::parse_quality(o.signature_quality);
+  if (o.cache_only && o.no_cache) throw InputError("", 0, "--dem-cache-only", "contradicts --no-dem-cache");
   dc.cache_dir = o.cache;
   dc.progress = true;
   dc.output_dir = output_dir;

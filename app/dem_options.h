@@ -14,6 +14,9 @@ struct DemCli {
   std::string quality, cache;
   std::optional<int> threads;
   bool no_cache = false;
+  bool cache_only = false;
+  std::string ladder = "on";  // "on" | "off": the particle-size ladder for u_num's discretisation part
+  std::string signature_quality;  // "" = the predictions' quality
 };
 
 void add_dem_options(CLI::App& cmd, DemCli& o);

@@ -11,6 +11,9 @@ constexpr std::array<QuantityInfo, kQuantityCount> kInfo = {{
     {Quantity::impact_velocity, "impact_velocity_mps", "V_p", "impact velocity", "m/s", 1.0, true},
     {Quantity::exit_velocity, "exit_velocity_mps", "V_a", "exit velocity", "m/s", 1.0, true},
     {Quantity::impact_point_y, "impact_point_y_mm", "y_R", "impact point height", "mm", 1e3, false},
+    {Quantity::belt_layer_velocity, "belt_layer_velocity_mps", "V_l", "layer speed before the pulley", "m/s", 1.0,
+     true, true},
+    {Quantity::stream_mass_flow, "stream_mass_flow_tph", "m_st", "free-stream mass flow", "t/h", 3.6, true, true},
 }};
 }  // namespace
 

@@ -16,11 +16,15 @@ enum class Quantity {
   impact_velocity,    // V_p, m/s
   exit_velocity,      // V_a, m/s
   impact_point_y,     // y of the point of application of R_n, m inside, mm at the boundary
+  // Optional measurements that separate candidate explanations (DESIGN.md §6):
+  belt_layer_velocity,  // mean speed along the belt of the layer 20-100 mm before the pulley, m/s
+  stream_mass_flow,     // mass flux of the free stream between pulley and plate, kg/s inside, t/h at the boundary
 };
-inline constexpr std::size_t kQuantityCount = 6;
+inline constexpr std::size_t kQuantityCount = 8;
 inline constexpr std::array<Quantity, kQuantityCount> kAllQuantities = {
     Quantity::normal_force,    Quantity::shear_force,   Quantity::resultant_force,
-    Quantity::impact_velocity, Quantity::exit_velocity, Quantity::impact_point_y};
+    Quantity::impact_velocity, Quantity::exit_velocity, Quantity::impact_point_y,
+    Quantity::belt_layer_velocity, Quantity::stream_mass_flow};
 
 struct QuantityInfo {
   Quantity quantity;
@@ -32,6 +36,9 @@ struct QuantityInfo {
   // A magnitude (a speed, the resultant) cannot be negative: the dataset reader refuses it and the
   // synthesizer's noise must respect it. R_n and R_s are signed components, y_R a coordinate.
   bool magnitude;
+  // Measured only by rigs instrumented for it (DESIGN.md §6): a synthesized dataset carries it only
+  // where its source dataset did.
+  bool optional = false;
 };
 
 const QuantityInfo& info(Quantity q);

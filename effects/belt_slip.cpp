@@ -5,9 +5,10 @@
 // appears when the belt accelerates a freshly fed layer over too short a distance, or when rolling
 // particles do not reach belt speed (the seed, section 5: "if slip/rolling occurs at the discharge
 // point ... the impact zone on the impact plate will be lower than anticipated").
-// Hook: discharge conditions (speed of every streamline). DEM: ignored, with a note in the
-// prediction — a DEM layer slips on the belt or not by its own friction (the station's sensors
-// measure its speed before the pulley); there is no DEM input that imposes a slip.
+// Hook: discharge conditions (speed of every streamline). DEM: honoured — the belt and the pulley
+// carry the layer at (1 - s) V_b (validation/models/dem_model.cpp), so the material reaches the
+// pulley and leaves it at that speed; the station's sensors measure the layer's speed before the
+// pulley (belt_layer_velocity_mps), which tells slip apart from drag.
 #include "effects/registry.h"
 
 namespace chutelab::effects {
@@ -29,7 +30,8 @@ const Registration registration({
     "belt_slip", "slip_fraction", "", "discharge",
     "V_d = (1 - s) V_b: the stream leaves the pulley slower than the belt by the slip fraction s.",
     "Grima & Wypych (2010) section 5 (slip at the discharge lowers the impact zone)",
-    0.0, 0.0, 0.3, 0.06, [](double v) { return std::make_shared<BeltSlip>(v); }});
+    0.0, 0.0, 0.3, 0.06, [](double v) { return std::make_shared<BeltSlip>(v); },
+    "the layer's speed on the belt just before the pulley (belt_layer_velocity_mps, e.g. from high-speed video)"});
 
 }  // namespace
 }  // namespace chutelab::effects

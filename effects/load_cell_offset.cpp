@@ -37,7 +37,8 @@ const Registration registration({
     "R_n,recorded = R_n + F_0 and y_R,recorded = M / (R_n + F_0): a zero error of the normal load "
     "cells adds force but no moment; R follows from R_n and R_s.",
     "Grima & Wypych (2010) Fig. 3 and section 6 (load-cell creep and vibration)",
-    0.0, -20.0, 20.0, 2.5, [](double v) { return std::make_shared<LoadCellOffset>(v); }});
+    0.0, -20.0, 20.0, 2.5, [](double v) { return std::make_shared<LoadCellOffset>(v); },
+    "a zero reading of the load cells with the belt running empty"});
 
 }  // namespace
 }  // namespace chutelab::effects

@@ -28,7 +28,8 @@ const Registration registration({
     "mass_flow_bias", "flow_bias", "", "inputs",
     "m_true = (1 + b) m_recorded: all forces scale with (1 + b); h_b from continuity grows with it.",
     "Grima & Wypych (2010) section 4.1 (mass flow recalculated from load-cell data)",
-    0.0, -0.3, 0.3, 0.1, [](double v) { return std::make_shared<MassFlowBias>(v); }});
+    0.0, -0.3, 0.3, 0.1, [](double v) { return std::make_shared<MassFlowBias>(v); },
+    "an independent mass-flow reading (a belt scale, timed bin weights, or the free-stream mass flux stream_mass_flow_tph)"});
 
 }  // namespace
 }  // namespace chutelab::effects

@@ -23,6 +23,9 @@ struct EffectInfo {
   double upper = 0.0;
   double typical = 0.0;      // a realistic non-neutral strength (for synthetic tests and docs)
   std::function<std::shared_ptr<const analytical::Effect>(double)> make;
+  // An independent measurement that confirms or rules the effect out, for when the data at hand
+  // cannot tell it from another candidate ("" = none beyond chutelab's vocabulary).
+  std::string check = {};
 };
 
 // All registered effects, sorted by name.

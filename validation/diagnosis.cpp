@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <gsl/gsl_cdf.h>
 #include <map>
+#include <set>
+#include <thread>
 
 #include "analytical/transfer_station.h"
 #include "validation/effect_fit.h"
@@ -205,6 +207,61 @@ std::string discriminator(const Misfit& m, const EffectFit& a, const EffectFit& 
   return fmt::format("{} vs {}: measure {}", a.label(), b.label(), text);
 }
 
+std::string signature_words(Misfit::Signature s) {
+  switch (s) {
+    case Misfit::Signature::own_runs: return "own runs";
+    case Misfit::Signature::cheap_models: return "analytical only";
+    case Misfit::Signature::none: return "exact (measurement)";
+  }
+  return "";
+}
+
+// The change a fitted candidate makes to every normalised residual.
+std::vector<double> fitted_change(const Misfit& m, const EffectFit& f, const std::vector<double>& r0) {
+  std::vector<const effects::EffectInfo*> fx;
+  for (const auto& n : f.effects) fx.push_back(effects::find(n));
+  auto r = m.residuals(fx, f.estimate);
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] -= r0[i];
+  return r;
+}
+
+double cosine(const std::vector<double>& a, const std::vector<double>& b) {
+  double ab = 0, aa = 0, bb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) ab += a[i] * b[i], aa += a[i] * a[i], bb += b[i] * b[i];
+  return aa > 0 && bb > 0 ? ab / std::sqrt(aa * bb) : 0.0;
+}
+
+// What would tell two candidates apart that these data cannot: quantities of the vocabulary this
+// dataset does not measure on which their fitted predictions differ, and each effect's own check.
+std::string separating_measurement(const Misfit& m, const EffectFit& a, const EffectFit& b) {
+  std::set<Quantity> measured;
+  for (const auto& meas : m.dataset().measurements) measured.insert(meas.quantity);
+  auto infos = [](const EffectFit& f) {
+    std::vector<const effects::EffectInfo*> v;
+    for (const auto& n : f.effects) v.push_back(effects::find(n));
+    return v;
+  };
+  const auto pa = m.predict_all(infos(a), a.estimate), pb = m.predict_all(infos(b), b.estimate);
+  std::map<Quantity, double> largest;  // largest relative difference over the conditions
+  for (std::size_t c = 0; c < pa.size(); ++c)
+    for (std::size_t k = 0; k < pa[c].size(); ++k)
+      for (Quantity q : kAllQuantities) {
+        if (measured.count(q)) continue;
+        const auto &va = pa[c][k].values[q], &vb = pb[c][k].values[q];
+        if (!va || !vb) continue;
+        const double scale = std::max({std::abs(*va), std::abs(*vb), 1e-12});
+        largest[q] = std::max(largest[q], std::abs(*va - *vb) / scale);
+      }
+  std::vector<std::string> ways;
+  for (const auto& [q, rel] : largest)
+    if (rel > 0.01) ways.push_back(fmt::format("{} (not measured here; they differ by up to {:.0f} %)", name(q), 100 * rel));
+  for (const auto* f : {&a, &b})
+    for (const auto& n : f->effects)
+      if (const auto* i = effects::find(n); i && !i->check.empty()) ways.push_back(fmt::format("for {}: {}", n, i->check));
+  if (ways.empty()) return "no quantity in chutelab's vocabulary separates them: test other belt speeds or drop heights";
+  return fmt::format("{}", fmt::join(ways, "; "));
+}
+
 }  // namespace
 
 DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
@@ -226,9 +283,19 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
   }
 
   const auto& lib = effects::library();
+  const int jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (m.has_expensive()) {
+    // An expensive baseline's own response to every candidate it can represent: one probe run per
+    // candidate and condition, side by side (they are independent).
+    std::vector<const effects::EffectInfo*> all;
+    for (const auto& e : lib) all.push_back(&e);
+    m.prepare_signatures(all, jobs);
+  }
   for (const auto& e : lib) {
     const std::vector<const effects::EffectInfo*> fx = {&e};
-    out.singles.push_back(make_fit(m, fx, fit_strengths(m, fx), out.chi2_baseline));
+    EffectFit f = make_fit(m, fx, fit_strengths(m, fx), out.chi2_baseline);
+    if (m.has_expensive()) f.signature = signature_words(m.signature(e));
+    out.singles.push_back(std::move(f));
   }
   // Control the family-wise false-alarm rate over every single candidate tried (Bonferroni).
   const double k = static_cast<double>(out.singles.size());
@@ -256,6 +323,8 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
             {lib[i].neutral, single_estimate[lib[j].name]},
             {single_estimate[lib[i].name], single_estimate[lib[j].name]}};
         EffectFit f = make_fit(m, fx, fit_strengths(m, fx, starts), out.chi2_baseline);
+        if (m.has_expensive())
+          f.signature = signature_words(m.signature(lib[i])) + " + " + signature_words(m.signature(lib[j]));
         const double gain = top.chi2_after - f.chi2_after;
         f.p_value = gsl_cdf_chisq_Q(std::max(0.0, gain), 1.0);
         f.p_adjusted = std::min(1.0, f.p_value * npairs);
@@ -273,6 +342,20 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
       if (s.significant && s.delta_bic - top.delta_bic < opt.tie_margin_bic) {
         out.indistinguishable.push_back(s.label());
         out.discriminators.push_back(discriminator(m, top, s));
+      }
+    }
+    // Candidates that move the measured quantities in proportion to the best one explain the data
+    // equally well at their own strengths: the data cannot tell them apart, whatever the ranking.
+    {
+      const auto d_top = fitted_change(m, top, r0);
+      for (std::size_t i = 1; i < out.singles.size(); ++i) {
+        const auto& s = out.singles[i];
+        if (!s.significant) continue;
+        if (std::abs(cosine(d_top, fitted_change(m, s, r0))) < opt.proportional_cosine) continue;
+        if (s.chi2_after - top.chi2_after > std::max(4.0, 0.05 * top.chi2_after)) continue;
+        out.proportional.push_back(fmt::format("{} and {} move every measured quantity in proportion (these data "
+                                               "cannot tell them apart); to separate them, measure {}",
+                                               top.label(), s.label(), separating_measurement(m, top, s)));
       }
     }
     const EffectFit& b = *out.best();
@@ -298,6 +381,7 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
           out.indistinguishable.empty()
               ? ""
               : fmt::format("; about as good: {}", fmt::join(out.indistinguishable, ", ")));
+      for (const auto& p : out.proportional) out.verdict += " But " + p + ".";
     } else {
       out.verdict = fmt::format(
           "No effect in the library explains the misfit well: the best candidate, {} ({}), removes "
@@ -318,16 +402,29 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
   }
   out.used_surrogate = m.has_expensive();
   if (out.used_surrogate) {
-    std::vector<std::string> slow;
+    std::vector<std::string> slow, slow_none;
     for (const auto& mm : models)
       if (mm->expensive()) slow.push_back(mm->name());
-    out.caveats.push_back(fmt::format(
-        "{} predictions with a candidate effect were estimated from one run without it plus the "
-        "analytical models' response to the effect (DESIGN.md §5), not run for every candidate.",
-        fmt::join(slow, ", ")));
+    std::vector<std::string> own, cheap;
+    for (const auto& e : lib)
+      (m.signature(e) == Misfit::Signature::own_runs ? own : m.signature(e) == Misfit::Signature::cheap_models ? cheap
+                                                                                                           : slow_none)
+          .push_back(e.name);
+    if (!own.empty())
+      out.caveats.push_back(fmt::format(
+          "{}'s response to {} comes from its own runs, one per condition with the effect at a probe strength "
+          "(twice its typical value) and the baseline's seed, carried to other strengths along the analytical "
+          "models' response.",
+          fmt::join(slow, ", "), fmt::join(own, ", ")));
+    if (!cheap.empty())
+      out.caveats.push_back(fmt::format(
+          "{} cannot represent {}: their signatures are the analytical models' response applied as a difference "
+          "(DESIGN.md §5), marked \"analytical only\" in the ranking.",
+          fmt::join(slow, ", "), fmt::join(cheap, ", ")));
     if (const EffectFit* b = out.best()) {
       std::vector<const effects::EffectInfo*> fx;
       for (const auto& n : b->effects) fx.push_back(effects::find(n));
+      m.prepare_exact(fx, b->estimate, jobs);
       out.confirmed_chi2 = m.chi2_exact(fx, b->estimate);
       out.caveats.push_back(fmt::format(
           "Confirmed by running {} with {} on: chi^2 = {:.1f} (the estimate from differences was {:.1f}).",
@@ -368,16 +465,16 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
 std::string diagnosis_csv(const DiagnosisResult& r) {
   std::string o =
       "rank,effect,parameter,estimate,uncertainty,chi2_before,chi2_after,delta_bic,"
-      "explained_fraction,significant,p_value,p_adjusted\n";
+      "explained_fraction,significant,p_value,p_adjusted,signature\n";
   auto row = [&](const EffectFit& f, const std::string& rank) {
     std::vector<std::string> est, unc;
     for (double v : f.estimate) est.push_back(csv_number(v));
     for (double v : f.uncertainty) unc.push_back(std::isfinite(v) ? csv_number(v) : "inf");
-    o += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", rank, fmt::join(f.effects, "+"),
+    o += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", rank, fmt::join(f.effects, "+"),
                      fmt::join(f.parameters, "+"), fmt::join(est, "+"), fmt::join(unc, "+"),
                      csv_number(f.chi2_before), csv_number(f.chi2_after), csv_number(f.delta_bic),
                      csv_number(f.explained_fraction), f.significant ? "yes" : "no",
-                     csv_number(f.p_value), csv_number(f.p_adjusted));
+                     csv_number(f.p_value), csv_number(f.p_adjusted), f.signature);
   };
   for (const auto& f : r.singles) row(f, std::to_string(f.rank));
   for (const auto& f : r.pairs) row(f, "pair");
@@ -403,8 +500,10 @@ std::string diagnosis_markdown(const DiagnosisResult& r) {
                      r.patterns[i + 3].correlation);
   }
   o += "\n## Candidate effects, ranked\n\n";
-  o += "| rank | effect | estimate ± sd | chi^2 after | delta BIC | explained | p (adjusted) | significant |\n";
-  o += "|---|---|---|---|---|---|---|---|\n";
+  const bool sig = r.used_surrogate;
+  o += fmt::format("| rank | effect | estimate ± sd | chi^2 after | delta BIC | explained | p (adjusted) | significant |{}\n",
+                   sig ? " signature |" : "");
+  o += fmt::format("|---|---|---|---|---|---|---|---|{}\n", sig ? "---|" : "");
   auto est = [](const EffectFit& f) {
     std::vector<std::string> v;
     for (std::size_t i = 0; i < f.estimate.size(); ++i)
@@ -414,16 +513,17 @@ std::string diagnosis_markdown(const DiagnosisResult& r) {
     return fmt::format("{}", fmt::join(v, "; "));
   };
   for (const auto& f : r.singles)
-    o += fmt::format("| {} | {} | {} | {:.1f} | {:.1f} | {:.0f} % | {:.2g} | {} |\n", f.rank, f.label(), est(f),
+    o += fmt::format("| {} | {} | {} | {:.1f} | {:.1f} | {:.0f} % | {:.2g} | {} |{}\n", f.rank, f.label(), est(f),
                      f.chi2_after, f.delta_bic, 100 * f.explained_fraction, f.p_adjusted,
-                     f.significant ? "yes" : "no");
+                     f.significant ? "yes" : "no", sig ? " " + f.signature + " |" : "");
   if (!r.pairs.empty()) {
     o += "\nPairs that beat every single effect by a clear margin:\n\n";
     for (const auto& f : r.pairs)
       o += fmt::format("- {} ({}): chi^2 {:.1f}, delta BIC {:.1f}\n", f.label(), est(f), f.chi2_after, f.delta_bic);
   }
-  if (!r.indistinguishable.empty()) {
+  if (!r.indistinguishable.empty() || !r.proportional.empty()) {
     o += "\n## Indistinguishable alternatives\n\n";
+    for (const auto& s : r.proportional) o += "- " + s + "\n";
     for (const auto& s : r.discriminators) o += "- " + s + "\n";
   }
   o += "\n## Caveats\n\n";

@@ -36,6 +36,9 @@ struct EffectFit {
   double p_adjusted = 1.0;                // after controlling for the number of candidates tried
   bool significant = false;
   int rank = 0;                           // 1 = best single effect
+  // With an expensive baseline: where its response to the effect came from ("own runs", "analytical
+  // only": it cannot represent the effect, "exact": a measurement effect applied to its output).
+  std::string signature;
   std::string label() const;              // "air_drag" or "air_drag + belt_slip"
 };
 
@@ -54,6 +57,7 @@ struct DiagnosisResult {
   bool convincing = false;                // the best fit explains >= 70 % and is inside its range
   std::vector<std::string> indistinguishable;  // effects about as good as the best
   std::vector<std::string> discriminators;     // which measurement would tell them apart
+  std::vector<std::string> proportional;       // candidates that move the data in proportion to the best
   std::vector<std::string> caveats;
   std::string verdict;                    // one sentence
   // With an expensive model (DEM) the ranking uses the cheap models' signatures as differences
@@ -72,6 +76,10 @@ struct DiagnoseOptions {
   bool pairs = true;
   double pair_margin_bic = 6.0;  // a pair must beat the best single by this much ("strong", Kass & Raftery 1995)
   double tie_margin_bic = 2.0;   // within this of the best: indistinguishable
+  // Two candidates whose fitted changes of the normalised residuals are this parallel (|cos|) move
+  // the measured quantities in proportion: these data cannot tell them apart.
+  double proportional_cosine = 0.98;
+  int jobs = 0;                  // expensive runs side by side (0 = one per core)
 };
 
 DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <fmt/format.h>
 #include <functional>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
@@ -9,6 +10,7 @@
 
 #include "core/input_error.h"
 #include "validation/harness.h"
+#include "validation/parallel_runs.h"
 
 namespace chutelab::validation {
 
@@ -67,29 +69,34 @@ std::vector<std::vector<ModelPrediction>> Misfit::predict(std::span<const effect
   for (std::size_t c = 0; c < d_->stations.size(); ++c) {
     const Station& st = d_->stations[c];
     std::vector<ConditionResult> same(models_.size());
-    for (std::size_t k = 0; k < models_.size(); ++k)
-      if (!models_[k]->expensive() || how == Evaluation::exact)
-        same[k] = {st.condition, models_[k]->name(), models_[k]->predict(st, list, {queries_[c], false})};
-    std::vector<ModelPrediction> signature;  // cheap models with the effects, raw
-    bool need_signature = how == Evaluation::surrogate && has_expensive();
-    if (need_signature)
-      for (const auto& m : signature_) signature.push_back(m->predict(st, list, {queries_[c], false}));
     for (std::size_t k = 0; k < models_.size(); ++k) {
-      if (!models_[k]->expensive() || how == Evaluation::exact) continue;
-      // DESIGN.md §5: an expensive model is run once without the candidate effects; an effect's
-      // signature comes from the cheap models, applied as a difference: dem + (cheap(e) - cheap).
-      ModelPrediction p = expensive_base(c, k);
-      for (Quantity q : kAllQuantities)
-        if (p.values[q])
-          if (auto d = cheap_delta(c, signature, [q](const ModelPrediction& mp) { return mp.values[q]; }))
-            *p.values[q] += *d;
-      for (std::size_t t = 0; t < p.trajectory.size(); ++t)
-        if (p.trajectory[t])
-          if (auto d = cheap_delta(c, signature, [t](const ModelPrediction& mp) {
-                return t < mp.trajectory.size() ? mp.trajectory[t] : std::nullopt;
-              }))
-            *p.trajectory[t] += *d;
-      same[k] = {st.condition, models_[k]->name(), std::move(p)};
+      if (!models_[k]->expensive())
+        same[k] = {st.condition, models_[k]->name(), models_[k]->predict(st, list, {queries_[c], false})};
+      else if (how == Evaluation::exact)
+        same[k] = {st.condition, models_[k]->name(), exact_run(c, k, fx, strengths)};
+    }
+    if (how == Evaluation::surrogate && has_expensive()) {
+      // Each candidate's shift of an expensive model, summed over the candidates (superposition):
+      // from the model's own probe run, or from the cheap models (DESIGN.md §5).
+      std::vector<Shift> shifts;
+      for (std::size_t i = 0; i < fx.size(); ++i) shifts.push_back(shift_of(c, *fx[i], strengths[i]));
+      for (std::size_t k = 0; k < models_.size(); ++k) {
+        if (!models_[k]->expensive()) continue;
+        ModelPrediction p = expensive_base(c, k);
+        for (Quantity q : kAllQuantities)
+          if (p.values[q])
+            for (std::size_t i = 0; i < fx.size(); ++i)
+              if (auto d = shifts[i].value(*this, c, k, *fx[i], [q](const ModelPrediction& mp) { return mp.values[q]; }))
+                *p.values[q] += *d;
+        for (std::size_t t = 0; t < p.trajectory.size(); ++t)
+          if (p.trajectory[t])
+            for (std::size_t i = 0; i < fx.size(); ++i)
+              if (auto d = shifts[i].value(*this, c, k, *fx[i], [t](const ModelPrediction& mp) {
+                    return t < mp.trajectory.size() ? mp.trajectory[t] : std::nullopt;
+                  }))
+                *p.trajectory[t] += *d;
+        same[k] = {st.condition, models_[k]->name(), std::move(p)};
+      }
     }
     apply_measurement_effects(list, same);
     for (auto& s : same) out[c].push_back(std::move(s.prediction));
@@ -97,25 +104,191 @@ std::vector<std::vector<ModelPrediction>> Misfit::predict(std::span<const effect
   return out;
 }
 
+Misfit::Shift Misfit::shift_of(std::size_t c, const effects::EffectInfo& e, double s) const {
+  Shift sh;
+  sh.strength = s;
+  if (s == e.neutral) return sh;
+  // Raw predictions of the cheap models (before measurement effects, which act on every model
+  // afterwards) with the effect alone at s and at the probe strength.
+  analytical::EffectList at_s = fixed_, at_p = fixed_;
+  at_s.push_back(e.make(s));
+  at_p.push_back(e.make(probe_strength(e)));
+  const Station& st = d_->stations[c];
+  for (const auto& m : signature_) {
+    sh.cheap_at_s.push_back(m->predict(st, at_s, {queries_[c], false}));
+    try {
+      sh.cheap_at_probe.push_back(m->predict(st, at_p, {queries_[c], false}));
+    } catch (const InputError&) {
+      sh.cheap_at_probe.push_back({});  // no analytical shape there: the own response is carried linearly
+    }
+  }
+  sh.active = true;
+  return sh;
+}
+
+std::optional<double> Misfit::Shift::value(const Misfit& m, std::size_t c, std::size_t k, const effects::EffectInfo& e,
+                                           const std::function<std::optional<double>(const ModelPrediction&)>& pick) const {
+  if (!active) return 0.0;
+  // The cheap models' shift: the first of them (registry order) that predicts the value.
+  auto cheap = [&](const std::vector<ModelPrediction>& with) -> std::optional<double> {
+    for (std::size_t j = 0; j < m.signature_.size(); ++j) {
+      const auto b = pick(m.cheap_base(c, m.signature_[j]));
+      if (!b) continue;
+      const auto w = pick(with[j]);
+      if (!w) return std::nullopt;
+      return *w - *b;
+    }
+    return std::nullopt;
+  };
+  switch (m.signature(e)) {
+    case Signature::none: return 0.0;
+    case Signature::cheap_models: return cheap(cheap_at_s);
+    case Signature::own_runs: break;
+  }
+  const auto base = pick(m.signature_base(c, k));
+  const auto probe = pick(m.expensive_probe(c, k, e));
+  if (!base || !probe) return cheap(cheap_at_s);
+  // The model's own response at the probe strength, carried to s along the shape of the cheap
+  // models' response (their nonlinearity in s), or linearly where they do not respond.
+  const double sp = m.probe_strength(e);
+  const double linear = (strength - e.neutral) / (sp - e.neutral);
+  double ratio = linear;
+  const auto cs = cheap(cheap_at_s), cp = cheap(cheap_at_probe);
+  if (cs && cp && std::abs(*cp) > 1e-9 * (std::abs(*base) + 1e-12)) {
+    const double r = *cs / *cp;
+    // A cheap response that nearly vanishes at the probe would blow the ratio up: trust it only
+    // within a few times the linear carry.
+    if (std::abs(r) <= 4.0 * std::abs(linear) + 0.5) ratio = r;
+  }
+  return (*probe - *base) * ratio;
+}
+
+Misfit::Signature Misfit::signature(const effects::EffectInfo& e) const {
+  if (auto it = signature_cache_.find(e.name); it != signature_cache_.end()) return it->second;
+  Signature s = Signature::none;
+  if (has_expensive()) {
+    analytical::EffectList with = fixed_;
+    with.push_back(e.make(probe_strength(e)));
+    bool own = false, any_cheap = false;
+    for (const auto& m : models_)
+      if (m->expensive())
+        for (const auto& st : d_->stations) own = own || m->represents(st, fixed_, with);
+    // Does the effect change any raw prediction of the cheap models (not only the measurement)?
+    if (!own)
+      for (std::size_t c = 0; c < d_->stations.size() && !any_cheap; ++c)
+        for (const auto& m : signature_) {
+          try {
+            const auto a = m->predict(d_->stations[c], with, {queries_[c], false});
+            const auto& b = cheap_base(c, m);
+            for (Quantity q : kAllQuantities) any_cheap = any_cheap || a.values[q] != b.values[q];
+            any_cheap = any_cheap || a.trajectory != b.trajectory;
+          } catch (const InputError&) {
+            any_cheap = true;  // it changes the analytical chain so much that it has no answer there
+          }
+        }
+    s = own ? Signature::own_runs : any_cheap ? Signature::cheap_models : Signature::none;
+  }
+  signature_cache_[e.name] = s;
+  return s;
+}
+
+double Misfit::probe_strength(const effects::EffectInfo& e) const {
+  if (auto it = probe_cache_strength_.find(e.name); it != probe_cache_strength_.end()) return it->second;
+  // Twice the typical strength, inside the physical range: large enough for the response to stand
+  // out of a DEM's noise, small enough to stay near the linear regime. Where the analytical chain
+  // has no answer there at some condition (a holding stress the stream cannot escape), the typical
+  // strength itself.
+  const double twice = std::clamp(e.neutral + 2.0 * (e.typical - e.neutral), e.lower, e.upper);
+  double p = twice;
+  try {
+    analytical::EffectList with = fixed_;
+    with.push_back(e.make(twice));
+    for (std::size_t c = 0; c < d_->stations.size(); ++c)
+      for (const auto& m : signature_) (void)m->predict(d_->stations[c], with, {queries_[c], false});
+  } catch (const InputError&) {
+    p = std::clamp(e.typical, e.lower, e.upper);
+  }
+  probe_cache_strength_[e.name] = p;
+  return p;
+}
+
+const ModelPrediction& Misfit::expensive_probe(std::size_t c, std::size_t k, const effects::EffectInfo& e) const {
+  auto& slot = probe_cache_[{c, k, e.name}];
+  if (!slot) {
+    analytical::EffectList with = fixed_;
+    with.push_back(e.make(probe_strength(e)));
+    slot = models_[k]->predict(d_->stations[c], with, {queries_[c], false, false, true});
+  }
+  return *slot;
+}
+
+const ModelPrediction& Misfit::signature_base(std::size_t c, std::size_t k) const {
+  if (!models_[k]->cheaper_signatures()) return expensive_base(c, k);
+  auto& slot = signature_base_cache_[{c, k}];
+  if (!slot) slot = models_[k]->predict(d_->stations[c], fixed_, {queries_[c], false, false, true});
+  return *slot;
+}
+
+namespace {
+std::string strengths_key(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) {
+  std::string k;
+  for (std::size_t i = 0; i < fx.size(); ++i) k += fmt::format("{}={:.17g};", fx[i]->name, strengths[i]);
+  return k;
+}
+}  // namespace
+
+const ModelPrediction& Misfit::exact_run(std::size_t c, std::size_t k, std::span<const effects::EffectInfo* const> fx,
+                                         std::span<const double> strengths) const {
+  auto& slot = exact_cache_[{c, k, strengths_key(fx, strengths)}];
+  if (!slot) {
+    analytical::EffectList list = fixed_;
+    for (std::size_t i = 0; i < fx.size(); ++i) list.push_back(fx[i]->make(strengths[i]));
+    slot = models_[k]->predict(d_->stations[c], list, {queries_[c], false, false});
+  }
+  return *slot;
+}
+
+void Misfit::prepare_signatures(std::span<const effects::EffectInfo* const> candidates, int jobs) const {
+  std::vector<std::function<void()>> work;
+  // The baselines first, slots created here: the maps are not touched while the runs go on.
+  for (std::size_t k = 0; k < models_.size(); ++k)
+    if (models_[k]->expensive())
+      for (std::size_t c = 0; c < d_->stations.size(); ++c)
+        if (!expensive_cache_[{c, k}]) work.push_back([this, c, k] { (void)expensive_base(c, k); });
+  for (const auto* e : candidates)
+    if (signature(*e) == Signature::own_runs) {
+      for (std::size_t k = 0; k < models_.size(); ++k)
+        if (models_[k]->expensive() && models_[k]->cheaper_signatures())
+          for (std::size_t c = 0; c < d_->stations.size(); ++c)
+            if (!signature_base_cache_[{c, k}]) work.push_back([this, c, k] { (void)signature_base(c, k); });
+      break;
+    }
+  run_concurrently(work, jobs);
+  work.clear();
+  for (const auto* e : candidates)
+    if (signature(*e) == Signature::own_runs)
+      for (std::size_t k = 0; k < models_.size(); ++k)
+        if (models_[k]->expensive())
+          for (std::size_t c = 0; c < d_->stations.size(); ++c)
+            if (!probe_cache_[{c, k, e->name}]) work.push_back([this, c, k, e] { (void)expensive_probe(c, k, *e); });
+  run_concurrently(work, jobs);
+}
+
+void Misfit::prepare_exact(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
+                           int jobs) const {
+  std::vector<std::function<void()>> work;
+  const std::string key = strengths_key(fx, strengths);
+  for (std::size_t k = 0; k < models_.size(); ++k)
+    if (models_[k]->expensive())
+      for (std::size_t c = 0; c < d_->stations.size(); ++c)
+        if (!exact_cache_[{c, k, key}]) work.push_back([this, c, k, fx, strengths] { (void)exact_run(c, k, fx, strengths); });
+  run_concurrently(work, jobs);
+}
+
 const ModelPrediction& Misfit::expensive_base(std::size_t c, std::size_t k) const {
   auto& slot = expensive_cache_[{c, k}];
   if (!slot) slot = models_[k]->predict(d_->stations[c], fixed_, {queries_[c], false});
   return *slot;
-}
-
-std::optional<double> Misfit::cheap_delta(
-    std::size_t c, const std::vector<ModelPrediction>& with_effects,
-    const std::function<std::optional<double>(const ModelPrediction&)>& pick) const {
-  // The first cheap model (registry order) that predicts the value carries the signature; raw
-  // predictions, before measurement effects, since those are applied to every model afterwards.
-  for (std::size_t k = 0; k < signature_.size(); ++k) {
-    const auto b = pick(cheap_base(c, signature_[k]));
-    if (!b) continue;
-    const auto e = pick(with_effects[k]);
-    if (!e) return std::nullopt;
-    return *e - *b;
-  }
-  return std::nullopt;
 }
 
 const ModelPrediction& Misfit::cheap_base(std::size_t c, const ModelPtr& m) const {

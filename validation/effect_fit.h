@@ -6,6 +6,7 @@
 // V_a from Korzen, the seed's hybrid.
 #include <functional>
 #include <map>
+#include <tuple>
 #include <optional>
 #include <span>
 #include <string>
@@ -49,6 +50,21 @@ class Misfit {
   std::vector<std::vector<ModelPrediction>> predict_all(
       std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
   bool has_expensive() const;
+
+  // How an expensive model's prediction with a candidate effect is obtained.
+  enum class Signature {
+    none,          // no expensive model, or the effect acts on the measurement only (applied exactly)
+    own_runs,      // the expensive model run with the effect on at a probe strength (its own response)
+    cheap_models,  // the cheap models' response as a difference (DESIGN.md §5): it cannot represent it
+  };
+  Signature signature(const effects::EffectInfo& e) const;
+  // The strength of the probe run that gives an expensive model's own signature of `e`.
+  double probe_strength(const effects::EffectInfo& e) const;
+  // Runs every probe run the candidates need (`jobs` at a time), so that fits find them ready.
+  void prepare_signatures(std::span<const effects::EffectInfo* const> candidates, int jobs) const;
+  // Runs the expensive models at these strengths for every condition (`jobs` at a time).
+  void prepare_exact(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
+                     int jobs) const;
   double chi2_exact(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
 
  private:
@@ -59,8 +75,20 @@ class Misfit {
   double chi2_of(const std::vector<std::vector<ModelPrediction>>& pred) const;
   const ModelPrediction& expensive_base(std::size_t condition, std::size_t model) const;
   const ModelPrediction& cheap_base(std::size_t condition, const ModelPtr& model) const;
-  std::optional<double> cheap_delta(std::size_t condition, const std::vector<ModelPrediction>& with_effects,
-                                    const std::function<std::optional<double>(const ModelPrediction&)>& pick) const;
+  const ModelPrediction& expensive_probe(std::size_t condition, std::size_t model, const effects::EffectInfo& e) const;
+  // The expensive model without candidates, made the way its probe runs are (their reference).
+  const ModelPrediction& signature_base(std::size_t condition, std::size_t model) const;
+  const ModelPrediction& exact_run(std::size_t condition, std::size_t model, std::span<const effects::EffectInfo* const> fx,
+                                   std::span<const double> strengths) const;
+  // One candidate effect's shift of the expensive models at one condition and strength.
+  struct Shift {
+    bool active = false;  // false: the effect is neutral at this strength
+    double strength = 0.0;
+    std::vector<ModelPrediction> cheap_at_s, cheap_at_probe;  // per signature model, raw
+    std::optional<double> value(const Misfit& m, std::size_t condition, std::size_t model, const effects::EffectInfo& e,
+                                const std::function<std::optional<double>(const ModelPrediction&)>& pick) const;
+  };
+  Shift shift_of(std::size_t condition, const effects::EffectInfo& e, double strength) const;
 
   const Dataset* d_;
   std::vector<ModelPtr> models_;
@@ -71,6 +99,13 @@ class Misfit {
   int left_out_ = 0;
   mutable std::map<std::pair<std::size_t, std::size_t>, std::optional<ModelPrediction>> expensive_cache_;
   mutable std::map<std::pair<std::size_t, std::string>, std::optional<ModelPrediction>> cheap_cache_;
+  // Probe runs of expensive models: (condition, model, effect name).
+  mutable std::map<std::tuple<std::size_t, std::size_t, std::string>, std::optional<ModelPrediction>> probe_cache_;
+  mutable std::map<std::string, Signature> signature_cache_;
+  mutable std::map<std::string, double> probe_cache_strength_;
+  mutable std::map<std::pair<std::size_t, std::size_t>, std::optional<ModelPrediction>> signature_base_cache_;
+  // Exact runs with candidate effects: (condition, model, effects and strengths as text).
+  mutable std::map<std::tuple<std::size_t, std::size_t, std::string>, std::optional<ModelPrediction>> exact_cache_;
 };
 
 struct StrengthFit {

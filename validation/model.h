@@ -34,11 +34,19 @@ struct Curve {
 struct PredictRequest {
   std::span<const TrajectoryQuery> trajectory;  // stream points to predict
   bool curves = true;                           // polylines for pictures (not needed by fits)
+  // The model's own discretisation uncertainty (an expensive model's extra runs); a fit's probe
+  // runs do not need it.
+  bool discretisation = true;
+  // A run for an effect's signature (a difference of two such runs): an expensive model may make it
+  // at a cheaper setting than its predictions (the DEM's --signature-quality).
+  bool signature = false;
 };
 
 struct ModelPrediction {
   QuantityValues values;                          // SI
   QuantityValues uncertainty;                     // SI, one sd of the prediction (e.g. DEM mean)
+  QuantityValues discretisation;                  // SI, u_num's discretisation part (DEM ladder)
+  std::vector<std::optional<double>> trajectory_discretisation;  // per query, SI
   std::vector<std::optional<double>> trajectory;  // y (m) per query, absent where not predicted
   std::vector<Curve> curves;
   std::vector<std::string> notes;                 // e.g. "R_s from Eq 7 (no stationary flow)"
@@ -52,6 +60,18 @@ class Model {
   // Cheap models answer in microseconds; an expensive one (DEM) says so, and the diagnosis then
   // works with analytical signatures applied as differences (DESIGN.md §5).
   virtual bool expensive() const { return false; }
+  // Whether the model itself responds to the effects (beyond the fixed ones) at this station: an
+  // expensive model that does is run with a candidate effect on to obtain its own signature; one
+  // that does not (the default) takes its signatures from the cheap models (DESIGN.md §5).
+  // Whether its signature runs (PredictRequest::signature) differ from its predictions (a cheaper
+  // setting); when not, the prediction without candidates is their reference.
+  virtual bool cheaper_signatures() const { return false; }
+  virtual bool represents(const Station&, const analytical::EffectList& fixed,
+                          const analytical::EffectList& with_candidate) const {
+    (void)fixed;
+    (void)with_candidate;
+    return false;
+  }
   virtual ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
                                   const PredictRequest& request) const = 0;
 };

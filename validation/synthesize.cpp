@@ -49,6 +49,8 @@ double default_uncertainty(Quantity q, double value) {
     case Quantity::impact_velocity:
     case Quantity::exit_velocity: return 0.04;
     case Quantity::impact_point_y: return 2.5e-3;
+    case Quantity::belt_layer_velocity: return 0.04;
+    case Quantity::stream_mass_flow: return 0.02 * std::abs(value);
   }
   return 0.0;
 }
@@ -131,6 +133,7 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       // noise (u / 0.02 of a force would be its noise-free value).
       auto it = given_u.find({st.condition, q});
       const bool given = it != given_u.end();
+      if (info(q).optional && !given) continue;  // a rig not instrumented for it
       const double sigma = (given ? it->second : default_uncertainty(q, *truth)) * opt.noise_scale;
       const double s = info(q).to_boundary;
       const std::string value = fmt::format("{:.4f}", reading(q, *truth, sigma, noise) * s);

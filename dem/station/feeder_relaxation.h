@@ -10,7 +10,9 @@
 // g/k = 0.2 m/s, so many were still in the air where the relaxation ended and bounced on the free
 // belt. Here the fall is free and only rebounds are damped, and the zone reaches 50 mm past where
 // the last inserted particles land. Downstream of it the layer is carried by belt friction alone
-// (tests/dem_station check that it reaches the pulley at belt speed).
+// (tests/dem_station check that it reaches the pulley at belt speed). A dataset whose feeder did
+// otherwise declares it ([dem.feed]: relax_components = "all", relax_end = "face"), so that the
+// DEM runs the experiment as it was run.
 #include <cstddef>
 #include <vector>
 
@@ -26,6 +28,7 @@ struct FeederRelaxation {
   double s_begin = 0.0;      // belt coordinate range where it acts, m
   double s_end = 0.0;
   double h_max = 0.0;        // and only below this height above the belt, m
+  bool all_components = false;  // relax the fall too (a dataset's feeder, [dem.feed] relax_components)
 
   void add(const Particles& p, std::vector<Vec3>& force) const {
     if (!(rate > 0.0)) return;
@@ -35,7 +38,7 @@ struct FeederRelaxation {
       if (s < s_begin || s > s_end || belt.h(p.x[i]) > h_max) continue;
       Vec3 dv = vb - p.v[i];
       const double vn = p.v[i].dot(belt.up);
-      dv += (vn < 0.0 ? vn : 0.0) * belt.up;  // a falling particle keeps its fall
+      if (!all_components) dv += (vn < 0.0 ? vn : 0.0) * belt.up;  // a falling particle keeps its fall
       force[i] += (p.mass[i] * rate) * dv;
     }
   }

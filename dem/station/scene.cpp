@@ -109,10 +109,25 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   // inserted particles land, the relaxation must still act (feeder_relaxation.h).
   const double fall_h = ins_low + ins_depth, v0 = s.insert_speed_down;
   const double t_land = (-v0 + std::sqrt(v0 * v0 + 2.0 * g * fall_h)) / g;
-  sc.relax_s_end = -s.free_belt;
-  sc.feed_s_end = sc.relax_s_end - s.relax_past - vb * t_land;
+  if (std::isfinite(s.face_end)) {
+    // The dataset's feeder places the face itself; the relaxation follows from it.
+    sc.feed_s_end = -(s.face_end + vb * s.face_end_time);
+    sc.relax_s_end = s.relax_from_face ? sc.feed_s_end + s.relax_past : sc.feed_s_end + vb * t_land + s.relax_past;
+  } else {
+    sc.relax_s_end = -s.free_belt;
+    sc.feed_s_end = sc.relax_s_end - s.relax_past - (s.relax_from_face ? 0.0 : vb * t_land);
+  }
+  if (sc.relax_s_end > 0.0)
+    throw InputError("", 0, "dem.feed.relax_past_mm", "the feeder relaxation would reach past the pulley");
   sc.feed_s_begin = sc.feed_s_end - s.feed_length;
   sc.belt_start = sc.feed_s_begin - s.belt_upstream;
+  if (std::isfinite(s.belt_start_x)) {
+    // Belt coordinate of the given x on the carrying run (s grows along the belt, 0 at the tangent point).
+    const double s_x = (s.belt_start_x - R * -std::sin(st.belt.incline)) / std::cos(st.belt.incline);
+    if (s_x > sc.feed_s_begin)
+      throw InputError("", 0, "dem.feed.belt_start_mm", "the belt must start upstream of the insertion face");
+    sc.belt_start = s_x;
+  }
   const double belt_len = -sc.belt_start;
   const double trough_transition = trough ? std::min(std::max(B, 0.3), 0.8 * belt_len) : 0.0;
 
@@ -178,7 +193,10 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     return in;
   };
   const double mu_plate = fx.plate_friction ? std::max(0.0, *fx.plate_friction) : mat.friction_plate;
-  mt.set_interaction(mp, mp, interaction(mat.friction_particle, mat.rolling_friction_particle, mat.restitution_particle));
+  // The engine's rolling torque has the lever R_i (seed Eq 10); LIGGGHTS' cdt uses R_i R_j/(R_i + R_j),
+  // which for the station's equal spheres is the same law with half the coefficient.
+  const double mu_r_pp = mat.rolling_friction_particle * (s.rolling_lever_effective ? 0.5 : 1.0);
+  mt.set_interaction(mp, mp, interaction(mat.friction_particle, mu_r_pp, mat.restitution_particle));
   mt.set_interaction(mp, mplate, interaction(mu_plate, mat.rolling_friction_wall, mat.restitution_plate));
   mt.set_interaction(mp, mbelt, interaction(mat.friction_belt, mat.rolling_friction_wall, mat.restitution_belt));
   if (fx.belt_adhesive_stress > 0.0) {
@@ -310,8 +328,9 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     const Vec3 a = sc.belt.tangent_point + sc.feed_s_begin * sc.belt.along;
     const Vec3 b = sc.belt.tangent_point + sc.feed_s_end * sc.belt.along;
     Inserter in;
-    in.region.lo = Vec3(std::min(a.x(), b.x()), std::max(a.y(), b.y()) + ins_low, -0.5 * W);
-    in.region.hi = Vec3(std::max(a.x(), b.x()), in.region.lo.y() + ins_depth, 0.5 * W);
+    const double face_w = std::isfinite(s.face_width) ? s.face_width : W;
+    in.region.lo = Vec3(std::min(a.x(), b.x()), std::max(a.y(), b.y()) + ins_low, -0.5 * face_w);
+    in.region.hi = Vec3(std::max(a.x(), b.x()), in.region.lo.y() + ins_depth, 0.5 * face_w);
     in.mass_rate = st.mass_flow;
     in.radius_min = in.radius_max = r;
     in.material = mp;
@@ -329,6 +348,7 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     sc.feeder.belt = sc.belt;
     sc.feeder.belt_speed = vb;
     sc.feeder.rate = s.relax_rate;
+    sc.feeder.all_components = s.relax_all;
     sc.feeder.s_begin = sc.belt_start - 0.05;
     sc.feeder.s_end = sc.relax_s_end;
     sc.feeder.h_max = ins_low + ins_depth + 0.05;

@@ -105,6 +105,52 @@ std::string path_string(const toml::node& n, const std::string& file, const std:
   return p.string();
 }
 
+double finite_number(const toml::node& n, const std::string& file, const std::string& key) {
+  const auto v = n.value<double>();
+  if (!v || !n.is_number() || !std::isfinite(*v)) throw InputError(file, line_of(n), key, "must be a number");
+  return *v;
+}
+
+// [dem.feed]: lengths in mm, the rest in the units its names say.
+void read_feed_table(const toml::node& node, const std::string& file, const std::string& key, DemTable::Feed& f) {
+  const toml::table* t = node.as_table();
+  if (!t) throw InputError(file, line_of(node), key, "must be a table ([dem.feed])");
+  for (const auto& [k, n] : *t) {
+    const std::string fk = key + "." + std::string(k.str());
+    const std::string_view kv = k.str();
+    auto choice = [&](const char* a, const char* b) {
+      const auto v = n.value<std::string>();
+      if (!v || (*v != a && *v != b))
+        throw InputError(file, line_of(n), fk, fmt::format("must be \"{}\" or \"{}\"", a, b));
+      return *v == a;
+    };
+    if (kv == "face_length_mm") f.face_length = positive_number(n, file, fk) * 1e-3;
+    else if (kv == "face_width_mm") f.face_width = positive_number(n, file, fk) * 1e-3;
+    else if (kv == "face_low_mm") f.face_low = positive_number(n, file, fk) * 1e-3;
+    else if (kv == "face_high_mm") f.face_high = positive_number(n, file, fk) * 1e-3;
+    else if (kv == "face_end_mm") f.face_end = finite_number(n, file, fk) * 1e-3;
+    else if (kv == "face_end_time_s") f.face_end_time = finite_number(n, file, fk);
+    else if (kv == "insert_speed_down_mps") f.insert_speed_down = finite_number(n, file, fk);
+    else if (kv == "relax_rate_per_s") {
+      const double v = finite_number(n, file, fk);
+      if (v < 0.0) throw InputError(file, line_of(n), fk, "must be zero (no relaxation) or positive");
+      f.relax_rate = v;
+    } else if (kv == "relax_past_mm") f.relax_past = finite_number(n, file, fk) * 1e-3;
+    else if (kv == "relax_components") f.relax_all = choice("all", "along");
+    else if (kv == "relax_end") f.relax_from_face = choice("face", "landing");
+    else if (kv == "belt_start_mm") f.belt_start_x = finite_number(n, file, fk) * 1e-3;
+    else
+      throw InputError(file, line_of(n), fk,
+                       "unknown key (known: face_length_mm, face_width_mm, face_low_mm, face_high_mm, face_end_mm, "
+                       "face_end_time_s, insert_speed_down_mps, relax_rate_per_s, relax_components, relax_end, "
+                       "relax_past_mm, belt_start_mm)");
+  }
+  if (f.face_low && f.face_high && !(*f.face_high > *f.face_low))
+    throw InputError(file, line_of(node), key + ".face_high_mm", "must be above face_low_mm");
+  if (f.face_end_time && !f.face_end)
+    throw InputError(file, line_of(node), key + ".face_end_time_s", "needs face_end_mm");
+}
+
 }  // namespace
 
 DemTable read_dem_table(const std::string& file) {
@@ -157,6 +203,13 @@ DemTable read_dem_table(const std::string& file) {
       const auto v = node.value<std::int64_t>();
       if (!v || !node.is_integer() || *v < 0) throw InputError(file, line_of(node), key, "must be a non-negative integer");
       t.seed = static_cast<std::uint64_t>(*v);
+    } else if (kv == "rolling_lever") {
+      const auto v = node.value<std::string>();
+      if (!v || (*v != "particle" && *v != "effective"))
+        throw InputError(file, line_of(node), key, "must be \"particle\" (seed Eq 10) or \"effective\" (LIGGGHTS cdt)");
+      t.rolling_lever_effective = *v == "effective";
+    } else if (kv == "feed") {
+      read_feed_table(node, file, key, t.feed);
     } else if (kv == "stl") {
       const toml::table* stl = node.as_table();
       if (!stl) throw InputError(file, line_of(node), key, "must be a table ([dem.stl])");
@@ -176,7 +229,8 @@ DemTable read_dem_table(const std::string& file) {
     } else {
       throw InputError(file, line_of(node), key,
                        "unknown key (known: quality, particle_diameter_mm, shear_modulus_scale, dt_fraction, "
-                       "contact, shape, seed, max_time_s, min_window_s, feed_length_mm, skin_fraction, [dem.stl])");
+                       "contact, shape, seed, max_time_s, min_window_s, feed_length_mm, skin_fraction, rolling_lever, "
+                       "[dem.feed], [dem.stl])");
     }
   }
   return t;
@@ -193,6 +247,20 @@ void apply(const DemTable& t, RunSettings& s) {
   if (t.min_window) s.min_window = *t.min_window;
   if (t.feed_length) s.feed_length = *t.feed_length;
   if (t.skin_fraction) s.skin_fraction = *t.skin_fraction;
+  if (t.rolling_lever_effective) s.rolling_lever_effective = *t.rolling_lever_effective;
+  const DemTable::Feed& f = t.feed;
+  if (f.face_length) s.feed_length = *f.face_length;
+  if (f.face_width) s.face_width = *f.face_width;
+  if (f.face_low) s.insert_low = *f.face_low;
+  if (f.face_high) s.insert_depth = *f.face_high - s.insert_low;
+  if (f.face_end) s.face_end = *f.face_end;
+  if (f.face_end_time) s.face_end_time = *f.face_end_time;
+  if (f.insert_speed_down) s.insert_speed_down = *f.insert_speed_down;
+  if (f.relax_rate) s.relax_rate = *f.relax_rate;
+  if (f.relax_past) s.relax_past = *f.relax_past;
+  if (f.relax_all) s.relax_all = *f.relax_all;
+  if (f.relax_from_face) s.relax_from_face = *f.relax_from_face;
+  if (f.belt_start_x) s.belt_start_x = *f.belt_start_x;
 }
 
 RunSettings resolve(const DemTable& table, const SettingsOverrides& o, Quality fallback) {
@@ -232,6 +300,12 @@ void check(const RunSettings& s) {
   need(s.min_window > 0.0 && s.min_window < s.max_time, "min_window_s",
        fmt::format("steady window {} s must be shorter than the simulated time {} s", s.min_window, s.max_time));
   need(s.feed_length > 0.0 && s.feed_length <= 10.0, "feed_length_mm", "must be in (0, 10000] mm");
+  need(s.insert_low > 0.0 && s.insert_depth > 0.0, "dem.feed.face_low_mm", "the insertion face must lie above the belt");
+  need(s.relax_rate >= 0.0 && s.relax_rate <= 1e4, "dem.feed.relax_rate_per_s", "must be in [0, 10000] 1/s");
+  need(!std::isfinite(s.face_end) || s.face_end >= 0.0, "dem.feed.face_end_mm",
+       "the insertion face must end upstream of the pulley (face_end_mm >= 0)");
+  need(!std::isfinite(s.face_width) || (s.face_width > 0.0 && s.face_width <= 10.0), "dem.feed.face_width_mm",
+       "must be in (0, 10000] mm");
   need(s.sample_interval > 0.0 && s.snapshot_interval >= s.sample_interval, "sample_interval",
        "snapshots must not be more frequent than force samples");
 }
@@ -265,6 +339,16 @@ std::string canonical(const RunSettings& s) {
   put("detect_tail", s.detect_tail);
   put("skin_fraction", s.skin_fraction);
   put("momentum_plane_fraction", s.momentum_plane_fraction);
+  // The dataset's feeder: only what differs from the recipe, so older cached runs keep their key.
+  if (s.rolling_lever_effective) o += "rolling_lever = effective\n";
+  if (s.relax_all) o += "relax_all = true\n";
+  if (s.relax_from_face) o += "relax_from_face = true\n";
+  if (std::isfinite(s.face_end)) {
+    put("face_end", s.face_end);
+    put("face_end_time", s.face_end_time);
+  }
+  if (std::isfinite(s.face_width)) put("face_width", s.face_width);
+  if (std::isfinite(s.belt_start_x)) put("belt_start_x", s.belt_start_x);
   // threads are left out on purpose: 1 and N threads give bit-identical results (dem/world.h).
   return o;
 }

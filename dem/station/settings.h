@@ -3,6 +3,7 @@
 // itself, in one place: the quality presets, the scaling options of the seed's Table 6 and the
 // numerics. Precedence: preset(quality) < the dataset's optional [dem] table < command-line flags.
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -59,6 +60,25 @@ struct RunSettings {
   double insert_interval = 0.003;    // s between insertion events (each forces a neighbour rebuild)
   double relax_rate = 50.0;          // 1/s, feeder relaxation of the velocity towards the belt's
   double relax_past = 0.05;          // m past the landing of the last inserted particles
+  // How a dataset's own feeder differs from the recipe above ([dem.feed], README "DEM"): the
+  // experiment as it was run, so that the DEM reproduces the rig it is compared with. Unset (NaN,
+  // false) keeps the recipe, and the cache keys of runs made before these keys existed.
+  // relax_all: relax the whole velocity towards the belt's, the fall included (the LIGGGHTS rig),
+  // instead of the along-belt components and rebounds only.
+  bool relax_all = false;
+  // relax_from_face: the relaxation ends relax_past after the insertion face's downstream end, not
+  // after the landing of the last inserted particles.
+  bool relax_from_face = false;
+  // Where the insertion face ends, upstream of the pulley's tangent point: face_end + V_b *
+  // face_end_time (m; the LIGGGHTS rig: 0.15 m + 0.075 s V_b). Set: free_belt is not used.
+  double face_end = std::numeric_limits<double>::quiet_NaN();
+  double face_end_time = 0.0;        // s
+  double face_width = std::numeric_limits<double>::quiet_NaN();  // m across the belt (default: loaded width)
+  double belt_start_x = std::numeric_limits<double>::quiet_NaN(); // m, x of the belt's upstream end
+  // Lever arm of the particle-particle rolling torque: false = the particle's radius R_i (seed
+  // Eq 10); true = the effective radius R_i R_j / (R_i + R_j), as LIGGGHTS' `rolling_friction cdt`
+  // defines it (half of R_i for the station's equal spheres). Against walls both use R_i.
+  bool rolling_lever_effective = false;
 
   // --- time ---
   double min_time = 0.5;             // s, never stop before
@@ -109,6 +129,17 @@ struct DemTable {
   std::optional<double> min_window;          // s
   std::optional<double> feed_length;         // m
   std::optional<double> skin_fraction;       // Verlet skin / particle radius
+  std::optional<bool> rolling_lever_effective;  // rolling_lever = "effective" | "particle"
+  // [dem.feed]: the dataset's feeder (RunSettings' feed fields; README "DEM").
+  struct Feed {
+    std::optional<double> face_length, face_width, face_low, face_high, face_end, face_end_time;
+    std::optional<double> insert_speed_down, relax_rate, relax_past, belt_start_x;
+    std::optional<bool> relax_all, relax_from_face;
+    bool any() const {
+      return face_length || face_width || face_low || face_high || face_end || face_end_time || insert_speed_down ||
+             relax_rate || relax_past || belt_start_x || relax_all || relax_from_face;
+    }
+  } feed;
   // STL meshes (mm, DESIGN.md frame) replacing generated parts; absolute paths after reading.
   std::optional<std::string> stl_plate, stl_belt, stl_pulley;
   std::vector<std::string> stl_walls;        // extra static walls (side panels, skirts, chute)

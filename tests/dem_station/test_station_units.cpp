@@ -158,6 +158,60 @@ BOOST_AUTO_TEST_CASE(dem_table_and_presets) {
   BOOST_CHECK_THROW(resolve(DemTable{}, bad), InputError);
 }
 
+// [dem.feed]: the dataset's own feeder. The LIGGGHTS rig's face ends 0.15 + 0.075 V_b m before the
+// pulley and its relaxation (of the whole velocity) ends 50 mm past the face; the belt starts at the
+// declared x. Without the table the scene and the cache key are the recipe's.
+BOOST_AUTO_TEST_CASE(dem_feed_table_places_the_feeder) {
+  const fs::path d = temp_dir("feed");
+  std::ofstream(d / "setup.toml") << "[dem.feed]\nface_length_mm = 300.0\nface_low_mm = 30.0\nface_high_mm = 62.0\n"
+                                     "face_end_mm = 150.0\nface_end_time_s = 0.075\nrelax_components = \"all\"\n"
+                                     "relax_end = \"face\"\nrelax_past_mm = 50.0\nbelt_start_mm = -950.0\n";
+  const DemTable t = read_dem_table((d / "setup.toml").string());
+  RunSettings s = resolve(t, {}, Quality::standard);
+  BOOST_TEST(s.relax_all);
+  BOOST_TEST(s.relax_from_face);
+  BOOST_TEST(std::abs(s.insert_depth - 0.032) < 1e-12);
+  Station st = test::tiny_station();
+  s.particle_diameter = 0.0136;
+  s.threads = 1;
+  const Scene sc = build_scene(st, s, t, {});
+  const double vb = st.belt_speed;
+  BOOST_TEST(std::abs(sc.feed_s_end - -(0.15 + 0.075 * vb)) < 1e-12);
+  BOOST_TEST(std::abs(sc.feed_s_begin - (sc.feed_s_end - 0.3)) < 1e-12);
+  BOOST_TEST(std::abs(sc.relax_s_end - (sc.feed_s_end + 0.05)) < 1e-12);
+  BOOST_TEST(std::abs(sc.belt_start - -0.95) < 1e-12);  // flat belt: s = x at the tangent point's level
+  BOOST_TEST(sc.feeder.all_components);
+  // The recipe's key is unchanged by the feed fields it does not set.
+  BOOST_TEST(canonical(preset(Quality::standard)).find("relax_all") == std::string::npos);
+  BOOST_TEST(canonical(s).find("relax_all = true") != std::string::npos);
+  // A falling particle in the zone: "along" keeps its fall, "all" relaxes it too.
+  FeederRelaxation f = sc.feeder;
+  dem::Particles p;
+  p.x.push_back(sc.belt.tangent_point + (sc.feed_s_begin + 0.01) * sc.belt.along + 0.02 * sc.belt.up);
+  p.v.push_back(dem::Vec3(vb, -1.0, 0.0));
+  p.mass.push_back(1.0);
+  std::vector<dem::Vec3> force(1, dem::Vec3::Zero());
+  f.add(p, force);
+  BOOST_TEST(std::abs(force[0].y() - f.rate * 1.0) < 1e-9);
+  f.all_components = false;
+  force[0] = dem::Vec3::Zero();
+  f.add(p, force);
+  BOOST_TEST(std::abs(force[0].y()) < 1e-12);
+
+  std::ofstream(d / "bad.toml") << "[dem.feed]\nrelax_components = \"some\"\n";
+  try {
+    read_dem_table((d / "bad.toml").string());
+    BOOST_FAIL("bad relax_components accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.field() == "dem.feed.relax_components");
+    BOOST_TEST(e.line() == 2);
+  }
+  std::ofstream(d / "bad2.toml") << "[dem.feed]\nface_lenght_mm = 300.0\n";
+  BOOST_CHECK_THROW(read_dem_table((d / "bad2.toml").string()), InputError);
+  std::ofstream(d / "bad3.toml") << "[dem.feed]\nface_low_mm = 60.0\nface_high_mm = 30.0\n";
+  BOOST_CHECK_THROW(read_dem_table((d / "bad3.toml").string()), InputError);
+}
+
 // Impossible geometry is refused before any particle moves.
 BOOST_AUTO_TEST_CASE(impossible_scenes_are_input_errors) {
   const RunSettings s = test::tiny_settings();
@@ -219,7 +273,13 @@ BOOST_AUTO_TEST_CASE(effects_map_onto_dem_inputs) {
   BOOST_TEST(validation::dem_cache_key(stick, quick, {}) !=
              validation::dem_cache_key(validation::dem_effect_inputs(st, {}), quick, {}));
 
-  for (const char* e : {"belt_slip=0.1", "stream_spread=5", "plate_rebound=0.2"}) {
+  // Belt slip: the belt and the pulley carry the layer at (1 - s) V_b.
+  const auto slip = validation::dem_effect_inputs(st, fx("belt_slip=0.1"));
+  BOOST_TEST(std::abs(slip.station.belt_speed - 0.9 * st.belt_speed) < 1e-12);
+  BOOST_TEST(joined(slip.notes).find("honoured") != std::string::npos);
+  BOOST_TEST(slip.key != validation::dem_effect_inputs(st, {}).key);
+
+  for (const char* e : {"stream_spread=5", "plate_rebound=0.2"}) {
     const auto ig = validation::dem_effect_inputs(st, fx(e));
     BOOST_TEST(joined(ig.notes).find("ignored by the DEM") != std::string::npos, e);
     BOOST_TEST(ig.key == validation::dem_effect_inputs(st, {}).key, e);  // the DEM run is the baseline's

@@ -63,3 +63,101 @@ BOOST_AUTO_TEST_CASE(expensive_model_runs_once_per_condition_plus_confirmation) 
   // exactly as Korzen does), so the confirmed chi^2 is within 5 % of the surrogate's.
   BOOST_TEST(*r.confirmed_chi2 <= 1.05 * r.best()->chi2_after + 1.0);
 }
+
+namespace {
+
+// An expensive stand-in that represents mass_flow_bias itself and responds to it twice as strongly
+// as the analytical models do (a code whose own physics differs): its signature must come from its
+// own runs, or the fitted strength comes out twice too large.
+class OwnResponseModel final : public Model {
+ public:
+  explicit OwnResponseModel(std::atomic<int>& calls) : inner_(make_model("korzen")), calls_(calls) {}
+  std::string name() const override { return "own"; }
+  std::string description() const override { return "expensive stand-in with its own response to the flow"; }
+  bool expensive() const override { return true; }
+  bool represents(const Station&, const analytical::EffectList& fixed,
+                  const analytical::EffectList& with) const override {
+    return with.size() > fixed.size() && with.back()->name() == "mass_flow_bias";
+  }
+  ModelPrediction predict(const Station& st, const analytical::EffectList& fx,
+                          const PredictRequest& req) const override {
+    ++calls_;
+    // Doubles the flow change of any operating-point effect, ignores everything else.
+    analytical::OperatingPoint op{st.belt_speed, st.mass_flow};
+    for (const auto& e : fx) e->adjust_operating_point(op);
+    Station s = st;
+    s.mass_flow = st.mass_flow + 2.0 * (op.mass_flow - st.mass_flow);
+    auto p = inner_->predict(s, {}, req);
+    p.values[Quantity::impact_point_y].reset();
+    p.values[Quantity::impact_velocity].reset();
+    return p;
+  }
+
+ private:
+  ModelPtr inner_;
+  std::atomic<int>& calls_;
+};
+
+}  // namespace
+
+// Signatures from the expensive model itself (issue: DEM signatures): one probe run per condition
+// for the candidate it represents, and the fit lands on the strength its own response asks for.
+BOOST_AUTO_TEST_CASE(expensive_model_gives_its_own_signature) {
+  std::atomic<int> calls{0};
+  auto own = std::make_shared<OwnResponseModel>(calls);
+  const auto rig = read_dataset(CHUTELAB_SOURCE_DIR "/datasets/liggghts-rig", MeasurementsRequired::no);
+  SynthesizeOptions so;
+  so.effects = {chutelab::effects::find("mass_flow_bias")->make(-0.06)};  // the model's flow moves by -0.12
+  so.seed = 6191;
+  so.noise_scale = 0.3;
+  const auto dir = test::fresh_dir("own-signature");
+  write_outputs(dir, synthesize(rig, {own}, so));
+  const auto d = read_dataset(dir);
+  calls = 0;
+  DiagnoseOptions opt;
+  opt.pairs = false;
+  const auto r = diagnose(d, {own}, opt);
+  const int n = static_cast<int>(d.stations.size());
+  BOOST_TEST(calls.load() == 3 * n);  // baseline, one probe and one confirming run per condition
+  BOOST_REQUIRE(r.best());
+  // With the stream thickness given a gain scales the forces as the flow does: either may lead.
+  BOOST_TEST((r.best()->label() == "mass_flow_bias" || r.best()->label() == "load_cell_gain"), r.best()->label());
+  bool seen = false;
+  for (const auto& s : r.singles) {
+    if (s.label() == "mass_flow_bias") {
+      seen = true;
+      BOOST_TEST(s.signature == "own runs");
+      BOOST_TEST(s.significant);
+      // The truth is -0.06; the analytical signature (half this model's response) would give ~ -0.12.
+      BOOST_TEST(std::abs(s.estimate[0] - -0.06) < 3.0 * s.uncertainty[0] + 0.005, s.estimate[0]);
+    } else if (s.label() == "air_drag") {
+      BOOST_TEST(s.signature == "analytical only");
+    } else if (s.label() == "load_cell_gain") {
+      BOOST_TEST(s.signature == "exact (measurement)");
+    }
+  }
+  BOOST_TEST(seen);
+}
+
+// A load-cell gain and a mass-flow bias with the stream thickness given: every force scales and
+// nothing else moves, so the verdict must say the data cannot tell them apart and what would.
+BOOST_AUTO_TEST_CASE(gain_and_flow_bias_are_indistinguishable) {
+  const auto rig = read_dataset(CHUTELAB_SOURCE_DIR "/datasets/liggghts-rig", MeasurementsRequired::no);
+  std::vector<ModelPtr> cheap;
+  for (const auto& m : model_names())
+    if (auto p = make_model(m); !p->expensive()) cheap.push_back(p);
+  SynthesizeOptions so;
+  so.effects = {chutelab::effects::find("load_cell_gain")->make(0.1)};
+  so.seed = 6192;
+  const auto dir = test::fresh_dir("gain");
+  write_outputs(dir, synthesize(rig, cheap, so));
+  const auto d = read_dataset(dir);
+  const auto r = diagnose(d, cheap);
+  BOOST_REQUIRE(r.best());
+  const std::string top = r.best()->label();
+  BOOST_TEST((top == "load_cell_gain" || top == "mass_flow_bias"), top);
+  BOOST_REQUIRE(!r.proportional.empty());
+  BOOST_TEST(r.verdict.find("cannot tell them apart") != std::string::npos, r.verdict);
+  BOOST_TEST(r.verdict.find("static calibration") != std::string::npos, r.verdict);
+  BOOST_TEST(r.verdict.find("stream_mass_flow_tph") != std::string::npos, r.verdict);
+}

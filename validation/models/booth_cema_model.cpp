@@ -20,6 +20,12 @@ class BoothCemaModel final : public Model {
     ModelPrediction p;
     p.values[Quantity::impact_velocity] = hit.speed;
     p.values[Quantity::impact_point_y] = hit.point.position.y();
+    // The layer on the belt moves at the discharge speed of Booth's analysis (V_b unless an effect
+    // slows it), and the whole delivered flow flies (continuity).
+    analytical::DischargeInput di{st.belt.belt_radius(), a.operating.belt_speed, st.belt.incline, st.gravity, 0.0, 0.0};
+    for (const auto& e : effects) e->adjust_discharge(di, st);
+    p.values[Quantity::belt_layer_velocity] = di.speed;
+    p.values[Quantity::stream_mass_flow] = a.operating.mass_flow;
     p.trajectory.reserve(request.trajectory.size());
     for (const auto& q : request.trajectory) {
       const Streamline s = q.boundary == Boundary::upper   ? Streamline::upper

@@ -1,6 +1,7 @@
 #include "validation/models/dem_model.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "core/input_error.h"
 #include "dem/station/cache.h"
 #include "dem/station/progress.h"
 #include "dem/station/run.h"
@@ -51,6 +53,38 @@ std::optional<double> trajectory_at(const std::vector<st::TrajectoryRow>& rows, 
   return std::nullopt;
 }
 
+// Discretisation uncertainty of the finest of three ladder levels h[0] < h[1] < h[2] (values f, standard errors
+// se). Replaced by validation/gci.h when it lands.
+double ladder_uncertainty(const std::array<double, 3>& h, const std::array<double, 3>& f,
+                          const std::array<double, 3>& se) {
+  const double e21 = f[1] - f[0], e32 = f[2] - f[1];
+  const double r21 = h[1] / h[0];
+  const double noise = 2.0 * std::hypot(std::isfinite(se[0]) ? se[0] : 0.0, std::isfinite(se[1]) ? se[1] : 0.0);
+  double p = 1.0;
+  if (std::abs(e21) > noise && e21 * e32 > 0.0) p = std::clamp(std::log(std::abs(e32 / e21)) / std::log(r21), 0.5, 2.0);
+  const double fs = (std::abs(e21) > noise && e21 * e32 > 0.0) ? 1.25 : 3.0;
+  return fs * std::max(std::abs(e21), noise) / (std::pow(r21, p) - 1.0) / 2.0;
+}
+
+// The DEM's trajectory estimate (value and standard error) at x, interpolated like trajectory_at.
+std::optional<st::Estimate> trajectory_estimate(const std::vector<st::TrajectoryRow>& rows, Boundary b, double x) {
+  auto pick = [&](const st::TrajectoryRow& r) -> const st::Estimate& {
+    return b == Boundary::upper ? r.upper : b == Boundary::lower ? r.lower : r.centre;
+  };
+  for (std::size_t k = 0; k + 1 < rows.size(); ++k) {
+    const auto &a = rows[k], &c = rows[k + 1];
+    if (x < a.x - 1e-9 || x > c.x + 1e-9 || c.x - a.x > 0.0105) continue;
+    const auto &ya = pick(a), &yc = pick(c);
+    if (!ya.ok() || !yc.ok()) return std::nullopt;
+    const double f = (x - a.x) / (c.x - a.x);
+    st::Estimate e;
+    e.value = ya.value + f * (yc.value - ya.value);
+    e.se = std::hypot((1 - f) * ya.se, f * yc.se);
+    return e;
+  }
+  return std::nullopt;
+}
+
 class DemModel final : public Model {
  public:
   explicit DemModel(DemModelConfig c) : c_(std::move(c)) {}
@@ -59,36 +93,125 @@ class DemModel final : public Model {
     return "DEM of the transfer station (chutelab dem/station): Hertz-Mindlin spheres, sensors as the LIGGGHTS rig's";
   }
   bool expensive() const override { return true; }
+  // The DEM responds to an effect when the effect changes one of its inputs (feed, belt speed,
+  // plate friction, flight force, belt cohesion): the run's key then differs.
+  bool cheaper_signatures() const override { return c_.signature_quality.has_value(); }
+  bool represents(const Station& station, const analytical::EffectList& fixed,
+                  const analytical::EffectList& with_candidate) const override {
+    return dem_effect_inputs(station, fixed).key != dem_effect_inputs(station, with_candidate).key;
+  }
 
   ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
                           const PredictRequest& request) const override {
     const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file);
-    const st::RunSettings settings = st::resolve(table, c_.overrides);
-    const DemEffectInputs fx = dem_effect_inputs(station, effects);
-
-    const std::string key = dem_cache_key(fx, settings, table);
-
-    const st::ResultCache cache(c_.cache_dir.empty() ? st::ResultCache::default_dir() : c_.cache_dir);
-    std::optional<st::StationResult> cached = c_.use_cache ? cache.load(key) : std::nullopt;
-    st::StationResult r;
-    if (cached) {
-      r = std::move(*cached);
-    } else {
-      st::RunOptions o;
-      o.settings = settings;
-      o.geometry = table;
-      o.external = fx.external;
-      if (c_.progress) o.progress = st::ProgressPrinter(fmt::format("dem {}", station.condition));
-      r = st::run_station(fx.station, o);
-      if (c_.use_cache) cache.store(key, r);
+    st::SettingsOverrides over = c_.overrides;
+    if (request.signature && c_.signature_quality) {
+      // A signature at a cheaper quality: that quality's own preset, the dataset's table on top.
+      over = {};
+      over.quality = c_.signature_quality;
+      over.seed = c_.overrides.seed;
+      over.threads = c_.overrides.threads;
     }
+    const st::RunSettings settings = st::resolve(table, over);
+    const DemEffectInputs fx = dem_effect_inputs(station, effects);
+    bool from_cache = false;
+    std::string cache_file;
+    const st::StationResult r = run_or_load(station, fx, settings, table, &from_cache, &cache_file);
     if (!c_.output_dir.empty()) {
       const auto dir = std::filesystem::path(c_.output_dir) / station.condition;
       st::write_result_files(dir.string(), r);
       st::write_side_view_vtk((dir / "side_view.vtk").string(), r.side_view);
     }
-    return to_prediction(r, fx, request, cached.has_value(), cache.path_for(key));
+    ModelPrediction p = to_prediction(r, fx, request, from_cache, cache_file);
+    if (request.discretisation && c_.ladder) add_ladder(p, station, fx, settings, table, r, request);
+    return p;
   }
+
+ private:
+  // The run of these inputs: from the cache, or run now (and cached).
+  st::StationResult run_or_load(const Station& station, const DemEffectInputs& fx, const st::RunSettings& settings,
+                                const st::DemTable& table, bool* from_cache, std::string* cache_file) const {
+    const std::string key = dem_cache_key(fx, settings, table);
+    const st::ResultCache cache(c_.cache_dir.empty() ? st::ResultCache::default_dir() : c_.cache_dir);
+    if (cache_file) *cache_file = cache.path_for(key);
+    if (c_.use_cache)
+      if (auto cached = cache.load(key)) {
+        if (from_cache) *from_cache = true;
+        return std::move(*cached);
+      }
+    if (c_.cache_only)
+      throw InputError("", 0, "--dem-cache-only",
+                       fmt::format("no cached DEM run of condition {} ({} mm particles) with these settings and "
+                                   "effects in {} (expected {})",
+                                   station.condition,
+                                   1e3 * (settings.particle_diameter > 0 ? settings.particle_diameter
+                                                                         : station.material.particle_diameter),
+                                   cache.dir(), cache.path_for(key)));
+    st::RunOptions o;
+    o.settings = settings;
+    o.geometry = table;
+    o.external = fx.external;
+    if (c_.progress)
+      o.progress = st::ProgressPrinter(
+          settings.particle_diameter > 0 && settings.particle_diameter != station.material.particle_diameter
+              ? fmt::format("dem {} ({:.1f} mm)", station.condition, settings.particle_diameter * 1e3)
+              : fmt::format("dem {}", station.condition));
+    st::StationResult r = st::run_station(fx.station, o);
+    if (c_.use_cache) cache.store(key, r);
+    return r;
+  }
+
+  // u_num's discretisation part from a ladder of particle sizes d, r d, r^2 d (everything else as
+  // the quality sets it): the DEM's "grid" is its particle, so coarser particles are coarser
+  // grids, and the Richardson/GCI estimate of validation/gci.h turns the three levels into an
+  // uncertainty of the run's own value. The modulus and the time step are held at the quality's
+  // values; their part is not in this estimate (the report says so).
+  void add_ladder(ModelPrediction& p, const Station& station, const DemEffectInputs& fx,
+                  const st::RunSettings& settings, const st::DemTable& table, const st::StationResult& fine,
+                  const PredictRequest& request) const {
+    const double d1 = settings.particle_diameter > 0 ? settings.particle_diameter : station.material.particle_diameter;
+    std::vector<st::StationResult> levels;
+    for (int k = 1; k <= 2; ++k) {
+      st::RunSettings s = settings;
+      s.particle_diameter = d1 * std::pow(c_.ladder_ratio, k);
+      try {
+        levels.push_back(run_or_load(station, fx, s, table, nullptr, nullptr));
+      } catch (const InputError& e) {
+        if (c_.cache_only) throw;
+        p.notes.push_back(fmt::format("no discretisation estimate: the ladder's {:.1f} mm particles do not fit this "
+                                      "rig ({})", s.particle_diameter * 1e3, e.what()));
+        return;
+      }
+    }
+    const std::array<double, 3> h = {d1, d1 * c_.ladder_ratio, d1 * c_.ladder_ratio * c_.ladder_ratio};
+    auto estimate = [&](const st::Estimate& a, const st::Estimate& b, const st::Estimate& c) -> std::optional<double> {
+      if (!a.ok() || !b.ok() || !c.ok()) return std::nullopt;
+      return ladder_uncertainty(h, {a.value, b.value, c.value}, {a.se, b.se, c.se});
+    };
+    auto fill = [&](Quantity q, const st::Estimate& (*pick)(const st::StationResult&)) {
+      if (!p.values[q]) return;
+      if (auto u = estimate(pick(fine), pick(levels[0]), pick(levels[1]))) p.discretisation[q] = *u;
+    };
+    fill(Quantity::normal_force, [](const st::StationResult& r) -> const st::Estimate& { return r.normal_force; });
+    fill(Quantity::shear_force, [](const st::StationResult& r) -> const st::Estimate& { return r.shear_force; });
+    fill(Quantity::resultant_force, [](const st::StationResult& r) -> const st::Estimate& { return r.resultant_force; });
+    fill(Quantity::impact_velocity, [](const st::StationResult& r) -> const st::Estimate& { return r.impact_velocity; });
+    fill(Quantity::exit_velocity, [](const st::StationResult& r) -> const st::Estimate& { return r.exit_velocity; });
+    fill(Quantity::impact_point_y, [](const st::StationResult& r) -> const st::Estimate& { return r.impact_point_y; });
+    fill(Quantity::belt_layer_velocity, [](const st::StationResult& r) -> const st::Estimate& { return r.layer_speed; });
+    fill(Quantity::stream_mass_flow, [](const st::StationResult& r) -> const st::Estimate& { return r.mass_flux; });
+    p.trajectory_discretisation.assign(request.trajectory.size(), std::nullopt);
+    for (std::size_t t = 0; t < request.trajectory.size(); ++t) {
+      const auto& q = request.trajectory[t];
+      const auto y1 = trajectory_estimate(fine.trajectory, q.boundary, q.x);
+      const auto y2 = trajectory_estimate(levels[0].trajectory, q.boundary, q.x);
+      const auto y3 = trajectory_estimate(levels[1].trajectory, q.boundary, q.x);
+      if (y1 && y2 && y3) p.trajectory_discretisation[t] = estimate(*y1, *y2, *y3);
+    }
+    p.notes.push_back(fmt::format("u_num discretisation from the particle-size ladder {:.1f} / {:.1f} / {:.1f} mm",
+                                  h[0] * 1e3, h[1] * 1e3, h[2] * 1e3));
+  }
+
 
  private:
   static ModelPrediction to_prediction(const st::StationResult& r, const DemEffectInputs& fx,
@@ -105,6 +228,8 @@ class DemModel final : public Model {
     set(Quantity::impact_velocity, r.impact_velocity);
     set(Quantity::exit_velocity, r.exit_velocity);
     set(Quantity::impact_point_y, r.impact_point_y);
+    set(Quantity::belt_layer_velocity, r.layer_speed);
+    set(Quantity::stream_mass_flow, r.mass_flux);
     p.trajectory.reserve(request.trajectory.size());
     for (const auto& q : request.trajectory) p.trajectory.push_back(trajectory_at(r.trajectory, q.boundary, q.x));
     if (request.curves) {
@@ -243,8 +368,18 @@ DemEffectInputs dem_effect_inputs(const Station& station, const analytical::Effe
       return di;
     };
     const analytical::DischargeInput d1 = probe(1.0), d2 = probe(2.0);
-    const bool geometry_changed = d1.radius != station.belt.belt_radius() || d1.speed != station.belt_speed ||
-                                  d1.incline != station.belt.incline || d1.gravity != station.gravity;
+    const bool geometry_changed = d1.radius != station.belt.belt_radius() || d1.incline != station.belt.incline ||
+                                  d1.gravity != station.gravity;
+    // A slower discharge (belt slip): the DEM's belt and pulley carry the layer at the discharge
+    // speed, so the material reaches the pulley and leaves it at (1 - s) V_b, and the layer is as
+    // much thicker as continuity asks.
+    if (d1.speed != station.belt_speed && !geometry_changed && d1.speed > 0.0 &&
+        std::abs(d2.speed - d1.speed) <= 1e-12 * d1.speed) {
+      const double ratio = d1.speed / station.belt_speed;
+      out.station.belt_speed *= ratio;
+      honoured.push_back(fmt::format("the layer is carried and discharged at {:.4g} m/s ({:.4g} x the belt speed)",
+                                     out.station.belt_speed, ratio));
+    }
     const double stress = d1.holding_accel * 1.0;
     const bool is_stress = std::abs(d2.holding_accel * 2.0 - stress) <= 1e-12 * std::abs(stress);
     if (d1.holding_accel != 0.0 && is_stress) {
@@ -252,7 +387,8 @@ DemEffectInputs dem_effect_inputs(const Station& station, const analytical::Effe
       honoured.push_back(fmt::format("adhesive stress {:.4g} Pa as particle-belt and particle-pulley cohesion "
                                      "(simplified JKR, dem/station/belt_cohesion.h)", stress));
     }
-    if (geometry_changed || (d1.holding_accel != 0.0 && !is_stress))
+    if (geometry_changed || (d1.holding_accel != 0.0 && !is_stress) ||
+        (d1.speed != station.belt_speed && std::abs(d2.speed - d1.speed) > 1e-12 * std::abs(d1.speed)))
       ignored.push_back("it changes the analytical discharge from the pulley; in the DEM the discharge follows "
                         "from belt friction and contact forces");
     for (Boundary b : {Boundary::upper, Boundary::lower}) {

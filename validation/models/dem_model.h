@@ -29,6 +29,13 @@ struct DemModelConfig {
   dem::station::SettingsOverrides overrides;  // e.g. --dem-quality; beats the dataset's [dem]
   std::string setup_file;    // the dataset's setup.toml, for its optional [dem] table
   bool use_cache = true;
+  bool cache_only = false;   // a run missing from the cache is an error, not a run
+  // u_num's discretisation part from two more runs at r d and r^2 d (validation/gci.h).
+  bool ladder = true;
+  double ladder_ratio = 1.25;
+  // Settings of the runs that give effect signatures (PredictRequest::signature); unset: the
+  // predictions' own. A signature is a difference of two runs at the same settings.
+  std::optional<dem::station::Quality> signature_quality;
   std::string cache_dir;     // "" = dem::station::ResultCache::default_dir()
   bool progress = false;     // progress on stderr
   std::string output_dir;    // "" = none; else per condition: CSV series, side view, VTK
