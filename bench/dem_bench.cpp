@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -147,6 +148,23 @@ void read_liggghts_data(const std::string& path, World& w) {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
+// CPU time of the whole process (all threads). On a shared machine wall time includes waiting for a
+// core; CPU time does not, so A/B comparisons of one-thread runs use it.
+double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Peak resident set size (VmHWM) of this process, bytes; 0 if /proc is not readable.
+double peak_rss_bytes() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmHWM:", 0) == 0) return 1024.0 * std::stod(line.substr(6));  // kB
+  return 0.0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -191,6 +209,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (mode == "run") {
+    const double rss0 = peak_rss_bytes();  // program, libraries and the empty World: the baseline
     World w = make_world(P, false);
     if (!P.data.empty()) {
       read_liggghts_data(P.data, w);
@@ -207,14 +226,19 @@ int main(int argc, char** argv) {
       return 0;
     }
     const std::int64_t r0 = w.rebuild_count();
-    const double t0 = now();
+    const double t0 = now(), c0 = cpu_now();
     w.step(P.steps);
-    const double t1 = now();
+    const double t1 = now(), c1 = cpu_now();
     const double psps = static_cast<double>(w.particles().size()) * static_cast<double>(P.steps) / (t1 - t0);
-    std::printf("threads=%d particles=%zu steps=%lld seconds=%.3f rebuilds=%lld pairs=%zu contacts=%zu ke=%.6g psps=%.0f\n",
-                P.threads, w.particles().size(), static_cast<long long>(P.steps), t1 - t0,
+    // Memory per particle: peak RSS after the run minus the baseline before the World existed. It
+    // includes the data-file reader's temporary ParticleSpec list (~100 B per particle, freed but
+    // counted by the peak), so it is an upper bound on the engine's own footprint.
+    const double bytes_per_particle = (peak_rss_bytes() - rss0) / static_cast<double>(w.particles().size());
+    std::printf("threads=%d particles=%zu steps=%lld seconds=%.3f cpu_s=%.3f rebuilds=%lld pairs=%zu contacts=%zu "
+                "ke=%.6g bytes_per_particle=%.0f psps=%.0f\n",
+                P.threads, w.particles().size(), static_cast<long long>(P.steps), t1 - t0, c1 - c0,
                 static_cast<long long>(w.rebuild_count() - r0), w.neighbor_pair_count(), w.contact_count(),
-                w.energy().translational, psps);
+                w.energy().translational, bytes_per_particle, psps);
     return 0;
   }
   std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
