@@ -59,6 +59,7 @@ struct PairArrays {
   const std::int32_t* mat;
   const std::int32_t* row;
   const std::int32_t* nbr;
+  const std::int32_t* slot_row;
   Vec3* shear;
   Vec3* roll;
   std::uint8_t* touch;
@@ -180,28 +181,28 @@ void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __rest
   thread_local ContactChunk h;
   std::size_t n = 0;
   // The distance test writes every pair into the next slot and keeps it only if it touches (no
-  // branch on the outcome, which is a coin toss in a dense bed).
-  for (std::size_t i = i0; i < i1; ++i) {
-    const Vec3 xi = x[i];
-    const double ri = rad[i];
-    const std::int32_t s0 = row[i], s1 = row[i + 1];
-    for (std::int32_t s = s0; s < s1; ++s) {
-      const auto j = static_cast<std::size_t>(nbr[s]);
-      const double rs = ri + rad[j];
-      const bool hit = (x[j] - xi).squaredNorm() < rs * rs;
-      if (!hit & (touch[s] != 0)) {  // a contact that just ended forgets its history (rare: predictable)
-        shear[s].setZero();
-        if constexpr (Model::rolling_history) roll[s].setZero();
-      }
-      touch[s] = hit;
-      h.i[n] = static_cast<std::int32_t>(i);
-      h.j[n] = static_cast<std::int32_t>(j);
-      h.s[n] = s;
-      n += hit;
-      if (n == kChunk) {
-        run_chunk<Model>(h, n, a, f, t);
-        n = 0;
-      }
+  // branch on the outcome, which is a coin toss in a dense bed). One flat loop over the slots (the
+  // row of a slot from slot_row): a loop per row would mispredict its exit at almost every row, as
+  // rows hold only a few pairs.
+  const std::int32_t* __restrict slot_row = a.slot_row;
+  const auto s0 = static_cast<std::size_t>(row[i0]), s1 = static_cast<std::size_t>(row[i1]);
+  for (std::size_t s = s0; s < s1; ++s) {
+    const auto i = static_cast<std::size_t>(slot_row[s]);
+    const auto j = static_cast<std::size_t>(nbr[s]);
+    const double rs = rad[i] + rad[j];
+    const bool hit = (x[j] - x[i]).squaredNorm() < rs * rs;
+    if (!hit & (touch[s] != 0)) {  // a contact that just ended forgets its history (rare: predictable)
+      shear[s].setZero();
+      if constexpr (Model::rolling_history) roll[s].setZero();
+    }
+    touch[s] = hit;
+    h.i[n] = static_cast<std::int32_t>(i);
+    h.j[n] = static_cast<std::int32_t>(j);
+    h.s[n] = static_cast<std::int32_t>(s);
+    n += hit;
+    if (n == kChunk) {
+      run_chunk<Model>(h, n, a, f, t);
+      n = 0;
     }
   }
   if (n > 0) run_chunk<Model>(h, n, a, f, t);
@@ -232,7 +233,7 @@ void World::compute_forces_impl() {
   std::uint8_t* touch = nl_.touch.data();
   const MaterialTable& mt = materials_;
 
-  PairArrays arrays{x, v, w, rad, mass, inv_i, mat, row, nbr, shear, roll, touch, mt.coeff_table(),
+  PairArrays arrays{x, v, w, rad, mass, inv_i, mat, row, nbr, nl_.slot_row.data(), shear, roll, touch, mt.coeff_table(),
                     static_cast<std::size_t>(mt.size()), dt};
   // Wall contacts of one particle, into per-entry storage. Within one mesh, face contacts win over
   // edge contacts and edges over vertices, so a sphere on a flat or convex seam touches once.
