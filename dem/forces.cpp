@@ -69,11 +69,22 @@ struct PairArrays {
 };
 
 // The contact law runs over chunks of touching pairs (their indices collected by the distance test).
-// The loop over a chunk has no branch and reads the particle state by index, so the compiler
-// evaluates several contacts per SIMD instruction (with vector gathers); the distance test before it and the scatter after it keep the row-by-row
-// order of every sum, so the forces do not depend on the chunk size or the thread count.
+// The loop over a chunk has no branch, so the compiler evaluates several contacts per SIMD
+// instruction; the distance test before it and the scatter after it keep the row-by-row order of
+// every sum, so the forces do not depend on the chunk size or the thread count.
 constexpr std::size_t kChunk = 64;
 
+// Two ways to feed the law, with the same arithmetic (so the same results). With AVX2 (vector
+// gathers) the law reads the particle state by index inside the vectorised loop. Without them (the
+// default x86-64 build: SSE2) indexed loads in that loop would stop the vectoriser, so the state is
+// first copied into the chunk's structure-of-arrays scratch by a scalar loop.
+#if defined(__AVX2__)
+#define CHUTELAB_DEM_GATHER_IN_LAW 1
+#else
+#define CHUTELAB_DEM_GATHER_IN_LAW 0
+#endif
+
+#if CHUTELAB_DEM_GATHER_IN_LAW
 struct ContactChunk {
   std::int32_t i[kChunk], j[kChunk], s[kChunk];  // particles and list slot of each touching pair
   double fx[kChunk], fy[kChunk], fz[kChunk];      // force on i
@@ -166,6 +177,112 @@ template <class Model>
     t[j] += Vec3(h.tjx[c], h.tjy[c], h.tjz[c]);
   }
 }
+
+#else
+struct ContactChunk {
+  std::int32_t i[kChunk], j[kChunk], s[kChunk];
+  double dx[kChunk], dy[kChunk], dz[kChunk];      // x_j - x_i
+  double ri[kChunk], rj[kChunk], mi[kChunk], mj[kChunk], ii[kChunk], ij[kChunk];
+  double vx[kChunk], vy[kChunk], vz[kChunk];      // v_i - v_j
+  double wix[kChunk], wiy[kChunk], wiz[kChunk];
+  double wjx[kChunk], wjy[kChunk], wjz[kChunk];
+  double sx[kChunk], sy[kChunk], sz[kChunk];      // tangential history, in and out
+  double qx[kChunk], qy[kChunk], qz[kChunk];      // rolling history, in and out
+  double fx[kChunk], fy[kChunk], fz[kChunk];      // force on i
+  double tix[kChunk], tiy[kChunk], tiz[kChunk];   // torque on i
+  double tjx[kChunk], tjy[kChunk], tjz[kChunk];   // torque on j
+};
+
+// Contact c of a chunk through the contact law.
+template <class Model>
+CHUTELAB_INLINE void chunk_contact(ContactChunk& h, std::size_t c, const PairCoeffs& pc, double dt) {
+  const LaneVec d{h.dx[c], h.dy[c], h.dz[c]};
+  const double dist = std::sqrt(d.squared_norm());
+  const double ri = h.ri[c], rj = h.rj[c], mi = h.mi[c], mj = h.mj[c];
+  const LaneVec wi{h.wix[c], h.wiy[c], h.wiz[c]}, wj{h.wjx[c], h.wjy[c], h.wjz[c]};
+  ContactKinematics k;
+  k.n = d * (1.0 / dist);
+  k.delta = ri + rj - dist;
+  k.r_i = ri;
+  k.r_j = rj;
+  k.v_rel = LaneVec{h.vx[c], h.vy[c], h.vz[c]} + (ri * wi + rj * wj).cross(k.n);
+  k.w_rel = wi - wj;
+  k.r_eff = ri * rj / (ri + rj);
+  k.m_eff = mi * mj / (mi + mj);
+  k.inv_inertia_i = h.ii[c];
+  k.inv_inertia_j = h.ij[c];
+  k.m_i = mi;
+  k.m_j = mj;
+  LaneVec shear{h.sx[c], h.sy[c], h.sz[c]};
+  LaneVec roll = LaneVec::zero();
+  if constexpr (Model::rolling_history) roll = {h.qx[c], h.qy[c], h.qz[c]};
+  const ContactForce cf = Model::compute(pc, k, shear, &roll, dt);
+  h.sx[c] = shear.x, h.sy[c] = shear.y, h.sz[c] = shear.z;
+  if constexpr (Model::rolling_history) h.qx[c] = roll.x, h.qy[c] = roll.y, h.qz[c] = roll.z;
+  h.fx[c] = cf.force.x, h.fy[c] = cf.force.y, h.fz[c] = cf.force.z;
+  h.tix[c] = cf.torque_i.x, h.tiy[c] = cf.torque_i.y, h.tiz[c] = cf.torque_i.z;
+  h.tjx[c] = cf.torque_j.x, h.tjy[c] = cf.torque_j.y, h.tjz[c] = cf.torque_j.z;
+}
+
+// The contacts gathered in h: the law over all of them (vectorised when they share one material
+// pair, as they do in a one-material bed), then their forces scattered in gathering order.
+template <class Model>
+[[gnu::noinline]] void run_chunk(ContactChunk& h, std::size_t n, const PairArrays& a, Vec3* __restrict f,
+                                 Vec3* __restrict t) {
+  const Vec3* __restrict x = a.x;
+  const Vec3* __restrict v = a.v;
+  const Vec3* __restrict w = a.w;
+  std::int32_t pair_kind = -1;  // the material pair of every contact in the chunk; -2 if mixed
+  for (std::size_t c = 0; c < n; ++c) {
+    const auto i = static_cast<std::size_t>(h.i[c]);
+    const auto j = static_cast<std::size_t>(h.j[c]);
+    const auto s = static_cast<std::size_t>(h.s[c]);
+    const auto kind = static_cast<std::int32_t>(static_cast<std::size_t>(a.mat[i]) * a.nmat + static_cast<std::size_t>(a.mat[j]));
+    pair_kind = pair_kind == -1 || pair_kind == kind ? kind : -2;
+    const Vec3 d = x[j] - x[i];
+    h.dx[c] = d.x(), h.dy[c] = d.y(), h.dz[c] = d.z();
+    h.ri[c] = a.rad[i], h.rj[c] = a.rad[j], h.mi[c] = a.mass[i], h.mj[c] = a.mass[j];
+    h.ii[c] = a.inv_inertia[i], h.ij[c] = a.inv_inertia[j];
+    const Vec3 dv = v[i] - v[j];
+    h.vx[c] = dv.x(), h.vy[c] = dv.y(), h.vz[c] = dv.z();
+    h.wix[c] = w[i].x(), h.wiy[c] = w[i].y(), h.wiz[c] = w[i].z();
+    h.wjx[c] = w[j].x(), h.wjy[c] = w[j].y(), h.wjz[c] = w[j].z();
+    const Vec3& sh = a.shear[s];
+    h.sx[c] = sh.x(), h.sy[c] = sh.y(), h.sz[c] = sh.z();
+    if constexpr (Model::rolling_history) {
+      const Vec3& q = a.roll[s];
+      h.qx[c] = q.x(), h.qy[c] = q.y(), h.qz[c] = q.z();
+    }
+  }
+  if (pair_kind >= 0) {
+    const PairCoeffs pc = a.coeffs[static_cast<std::size_t>(pair_kind)];
+    const double dt = a.dt;
+    // ivdep, not omp simd: under omp simd GCC 12 turns the law's small structs into per-lane
+    // arrays and gives up; with ivdep it vectorises the whole law.
+#pragma GCC ivdep
+    for (std::size_t c = 0; c < n; ++c) chunk_contact<Model>(h, c, pc, dt);
+  } else {
+    for (std::size_t c = 0; c < n; ++c)
+      chunk_contact<Model>(h, c,
+                           a.coeffs[static_cast<std::size_t>(a.mat[h.i[c]]) * a.nmat +
+                                    static_cast<std::size_t>(a.mat[h.j[c]])],
+                           a.dt);
+  }
+  for (std::size_t c = 0; c < n; ++c) {
+    const auto i = static_cast<std::size_t>(h.i[c]);
+    const auto j = static_cast<std::size_t>(h.j[c]);
+    const auto s = static_cast<std::size_t>(h.s[c]);
+    a.shear[s] = Vec3(h.sx[c], h.sy[c], h.sz[c]);
+    if constexpr (Model::rolling_history) a.roll[s] = Vec3(h.qx[c], h.qy[c], h.qz[c]);
+    const Vec3 fc(h.fx[c], h.fy[c], h.fz[c]);
+    f[i] += fc;
+    t[i] += Vec3(h.tix[c], h.tiy[c], h.tiz[c]);
+    f[j] -= fc;
+    t[j] += Vec3(h.tjx[c], h.tjy[c], h.tjz[c]);
+  }
+}
+
+#endif
 
 // Pair contacts of rows [i0, i1), scattered row by row into f/t (a block's partial-sum buffers).
 template <class Model>
