@@ -5,10 +5,15 @@
 //                                              a chutelab checkpoint and as a LIGGGHTS data file
 //   run     --data FILE.data | --in FILE.ckpt  --steps N --threads T   time N steps from the settled
 //           state (the data file is what LIGGGHTS reads: same numbers, no contact history); prints psps
+//   chute-init --out FILE.data              the starting lattice of the LAMMPS chute anchor
+//           (bench/lammps_chute): a rough frozen base and 31 200 free spheres, LAMMPS data format
+//   chute   --data FILE.data --steps N --threads T   chutelab's equivalent of LAMMPS bench/in.chute on
+//           the state LAMMPS wrote (see make_chute_world); prints psps like run
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -145,7 +150,156 @@ void read_liggghts_data(const std::string& path, World& w) {
   for (const auto& sp : specs) w.add_particle(sp);
 }
 
+
+// --- LAMMPS chute anchor (bench/lammps_chute) ------------------------------------------------------
+// LAMMPS bench/in.chute in reduced units read as SI: d = 1 m, density 1 kg/m^3, g = 1 m/s^2 tilted
+// 26 degrees down the chute (+x), dt = 1e-4 s, skin 0.1 m; gran/hooke/history with k_n = 2e5 N/m,
+// k_t = 2/7 k_n, gamma_n = 50 1/s, mu = 0.5, no tangential damping; base atoms (type 2) frozen.
+// chutelab's equivalent, and where it differs:
+//   - linear spring-dashpot with tangential history (seed Eq 8). LAMMPS' damping force is
+//     m* gamma_n v_n; chutelab's is 2 zeta sqrt(k_n m*) v_n. zeta is set so the two agree for two
+//     free spheres (m* = m/2); against the base (m* = m) chutelab damps 1/sqrt(2) as much. The
+//     tangential spring keeps chutelab's damping at the same ratio (LAMMPS: none, dampflag 0).
+//   - frozen base: spheres 1e12 times denser whose gravity is cancelled by the body-force hook
+//     (they move less than 1e-12 m in a run); base-base pairs are in chutelab's list (LAMMPS excludes
+//     them; ~2 % of the pairs).
+//   - LAMMPS is periodic in x and y; chutelab has no periodic boundaries, so four side planes half a
+//     diameter outside the periodic box close it (a grain wrapped to x = 0.1 must not start inside
+//     a wall). Over the timed 0.1 s the grains move about a fifth of a diameter.
+constexpr double kChuteAngle = 26.0;  // degrees
+constexpr double kChuteLx = 40.0, kChuteLy = 20.0;
+
+void write_chute_lattice(const std::string& path) {
+  std::ofstream f(path);
+  std::uint64_t seed = 1977;
+  struct A { int type; double x, y, z; };
+  std::vector<A> atoms;
+  // Rough base: a square lattice of spacing 1 jittered by up to 0.3 in height.
+  for (int iy = 0; iy < 20; ++iy)
+    for (int ix = 0; ix < 40; ++ix) atoms.push_back({2, ix + 0.5, iy + 0.5, 0.5 + 0.3 * uniform01(seed)});
+  // Free spheres on a loose lattice above it (spacing 1.05: no overlaps).
+  const double a = 1.05;
+  const int nx = 38, ny = 19;
+  for (int k = 0; atoms.size() < 32000; ++k) {
+    const int ix = k % nx, iy = (k / nx) % ny, iz = k / (nx * ny);
+    atoms.push_back({1, 0.5 + ix * a + 0.01 * uniform01(seed), 0.5 + iy * a + 0.01 * uniform01(seed), 2.0 + iz * a});
+  }
+  f << "LAMMPS data file written by chutelab dem_bench chute-init\n\n" << atoms.size() << " atoms\n2 atom types\n\n";
+  f << fmt::format("0 {} xlo xhi\n0 {} ylo yhi\n0 {} zlo zhi\n\nAtoms # sphere\n\n", kChuteLx, kChuteLy, 60.0);
+  for (std::size_t i = 0; i < atoms.size(); ++i)
+    f << fmt::format("{} {} 1 1 {:.9g} {:.9g} {:.9g}\n", i + 1, atoms[i].type, atoms[i].x, atoms[i].y, atoms[i].z);
+}
+
+struct ChuteAtom {
+  int type = 1;
+  ParticleSpec spec;
+};
+
+// Reads a LAMMPS data file (atom_style sphere: id type diameter density x y z [ix iy iz]; optional
+// Velocities: id vx vy vz wx wy wz), unwrapping periodic images is not needed (positions only).
+std::vector<ChuteAtom> read_chute_data(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error("cannot open " + path);
+  std::string line;
+  std::size_t n = 0;
+  std::vector<ChuteAtom> atoms;
+  while (std::getline(f, line)) {
+    if (n == 0 && line.find(" atoms") != std::string::npos) n = std::stoul(line);
+    if (line.rfind("Atoms", 0) == 0) {
+      atoms.resize(n);
+      std::getline(f, line);
+      for (std::size_t k = 0; k < n; ++k) {
+        std::getline(f, line);
+        std::istringstream in(line);
+        std::size_t id;
+        ChuteAtom a;
+        double d, rho, x, y, z;
+        in >> id >> a.type >> d >> rho >> x >> y >> z;
+        a.spec = ParticleSpec{Vec3(x, y, z), Vec3::Zero(), Vec3::Zero(), 0.5 * d, a.type == 2 ? 1 : 0, rho};
+        atoms.at(id - 1) = a;
+      }
+    }
+    if (line.rfind("Velocities", 0) == 0) {
+      std::getline(f, line);
+      for (std::size_t k = 0; k < n; ++k) {
+        std::getline(f, line);
+        std::istringstream in(line);
+        std::size_t id;
+        double vx, vy, vz, wx, wy, wz;
+        in >> id >> vx >> vy >> vz >> wx >> wy >> wz;
+        if (atoms.at(id - 1).type == 2) continue;  // frozen
+        atoms.at(id - 1).spec.velocity = Vec3(vx, vy, vz);
+        atoms.at(id - 1).spec.omega = Vec3(wx, wy, wz);
+      }
+    }
+  }
+  if (atoms.empty()) throw std::runtime_error("no atoms in " + path);
+  return atoms;
+}
+
+World make_chute_world(const std::vector<ChuteAtom>& atoms, int threads) {
+  const double th = kChuteAngle * M_PI / 180.0;
+  Settings s;
+  s.dt = 1e-4;
+  s.skin = 0.1;
+  s.threads = threads;
+  s.gravity = Vec3(std::sin(th), 0.0, -std::cos(th));
+  s.normal = NormalModel::linear_spring_dashpot;
+  s.tangential = TangentialModel::coulomb_history;
+  s.rolling = RollingModel::none;
+  double ztop = 0.0;
+  for (const auto& a : atoms) ztop = std::max(ztop, a.spec.position.z());
+  s.domain = Box{Vec3(-1.0, -1.0, -1.0), Vec3(kChuteLx + 1.0, kChuteLy + 1.0, ztop + 20.0)};
+  s.on_warning = [](const std::string&) {};  // E below only sizes the (unused) Hertz time-step estimate
+  World w(s);
+  const int grain = w.materials().add({"grain", 1e3, 0.3, 1.0});
+  const int base = w.materials().add({"base", 1e3, 0.3, 1e12});
+  const int wall = w.materials().add({"side", 1e3, 0.3, 1.0});
+  const double kn = 2e5, gamma_n = 50.0, m_pair = 0.5 * M_PI / 6.0;  // m* of two free unit spheres
+  const double zeta = 0.5 * gamma_n * std::sqrt(m_pair / kn);
+  Interaction it;
+  it.friction = 0.5;
+  it.linear_stiffness = kn;
+  it.linear_tangential_ratio = 2.0 / 7.0;
+  it.restitution = std::exp(-zeta * M_PI / std::sqrt(1.0 - zeta * zeta));
+  for (int a : {grain, base, wall})
+    for (int b : {grain, base, wall}) w.materials().set_interaction(a, b, it);
+  w.add_wall(Wall::plane("x0", Vec3(-0.5, 0, 0), Vec3::UnitX(), wall));
+  w.add_wall(Wall::plane("x1", Vec3(kChuteLx + 0.5, 0, 0), -Vec3::UnitX(), wall));
+  w.add_wall(Wall::plane("y0", Vec3(0, -0.5, 0), Vec3::UnitY(), wall));
+  w.add_wall(Wall::plane("y1", Vec3(0, kChuteLy + 0.5, 0), -Vec3::UnitY(), wall));
+  for (const auto& a : atoms) {
+    ParticleSpec p = a.spec;
+    p.material = a.type == 2 ? base : grain;
+    p.density = a.type == 2 ? 1e12 * p.density : p.density;
+    w.add_particle(p);
+  }
+  const Vec3 g = s.gravity;
+  w.set_body_force([base, g](const Particles& p, double, std::vector<Vec3>& f) {
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.material[i] == base) f[i] -= p.mass[i] * g;  // frozen: no weight
+  });
+  return w;
+}
+
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+// CPU time of the whole process (all threads). On a shared machine wall time includes waiting for a
+// core; CPU time does not, so A/B comparisons of one-thread runs use it.
+double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Peak resident set size (VmHWM) of this process, bytes; 0 if /proc is not readable.
+double peak_rss_bytes() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmHWM:", 0) == 0) return 1024.0 * std::stod(line.substr(6));  // kB
+  return 0.0;
+}
 
 }  // namespace
 
@@ -191,6 +345,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (mode == "run") {
+    const double rss0 = peak_rss_bytes();  // program, libraries and the empty World: the baseline
     World w = make_world(P, false);
     if (!P.data.empty()) {
       read_liggghts_data(P.data, w);
@@ -207,14 +362,43 @@ int main(int argc, char** argv) {
       return 0;
     }
     const std::int64_t r0 = w.rebuild_count();
-    const double t0 = now();
+    const double t0 = now(), c0 = cpu_now();
     w.step(P.steps);
-    const double t1 = now();
+    const double t1 = now(), c1 = cpu_now();
     const double psps = static_cast<double>(w.particles().size()) * static_cast<double>(P.steps) / (t1 - t0);
-    std::printf("threads=%d particles=%zu steps=%lld seconds=%.3f rebuilds=%lld pairs=%zu contacts=%zu ke=%.6g psps=%.0f\n",
-                P.threads, w.particles().size(), static_cast<long long>(P.steps), t1 - t0,
+    // Memory per particle: peak RSS after the run minus the baseline before the World existed. It
+    // includes the data-file reader's temporary ParticleSpec list (~100 B per particle, freed but
+    // counted by the peak), so it is an upper bound on the engine's own footprint.
+    const double bytes_per_particle = (peak_rss_bytes() - rss0) / static_cast<double>(w.particles().size());
+    std::printf("threads=%d particles=%zu steps=%lld seconds=%.3f cpu_s=%.3f rebuilds=%lld pairs=%zu contacts=%zu "
+                "ke=%.6g bytes_per_particle=%.0f psps=%.0f\n",
+                P.threads, w.particles().size(), static_cast<long long>(P.steps), t1 - t0, c1 - c0,
                 static_cast<long long>(w.rebuild_count() - r0), w.neighbor_pair_count(), w.contact_count(),
-                w.energy().translational, psps);
+                w.energy().translational, bytes_per_particle, psps);
+    return 0;
+  }
+  if (mode == "chute-init") {
+    write_chute_lattice(P.out);
+    return 0;
+  }
+  if (mode == "chute") {
+    const double rss0 = peak_rss_bytes();
+    World w = make_chute_world(read_chute_data(P.data), P.threads);
+    w.initialise();
+    const std::int64_t r0 = w.rebuild_count();
+    const double t0 = now(), c0 = cpu_now();
+    w.step(P.steps);
+    const double t1 = now(), c1 = cpu_now();
+    double ke = 0.0;
+    const auto& p = w.particles();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.material[i] == 0) ke += 0.5 * p.mass[i] * p.v[i].squaredNorm();
+    std::printf("threads=%d particles=%zu steps=%lld seconds=%.3f cpu_s=%.3f rebuilds=%lld pairs=%zu contacts=%zu "
+                "ke=%.6g bytes_per_particle=%.0f psps=%.0f\n",
+                P.threads, p.size(), static_cast<long long>(P.steps), t1 - t0, c1 - c0,
+                static_cast<long long>(w.rebuild_count() - r0), w.neighbor_pair_count(), w.contact_count(), ke,
+                (peak_rss_bytes() - rss0) / static_cast<double>(p.size()),
+                static_cast<double>(p.size()) * static_cast<double>(P.steps) / (t1 - t0));
     return 0;
   }
   std::fprintf(stderr, "unknown mode %s\n", mode.c_str());

@@ -59,6 +59,7 @@ struct PairArrays {
   const std::int32_t* mat;
   const std::int32_t* row;
   const std::int32_t* nbr;
+  const std::int32_t* slot_row;
   Vec3* shear;
   Vec3* roll;
   std::uint8_t* touch;
@@ -67,12 +68,117 @@ struct PairArrays {
   double dt;
 };
 
-// The contact law runs over chunks of touching pairs copied into structure-of-arrays scratch. The
-// loop over a chunk has no indirect access and no branch, so the compiler evaluates several contacts
-// per SIMD instruction; the distance test before it and the scatter after it keep the row-by-row
-// order of every sum, so the forces do not depend on the chunk size or the thread count.
+// The contact law runs over chunks of touching pairs (their indices collected by the distance test).
+// The loop over a chunk has no branch, so the compiler evaluates several contacts per SIMD
+// instruction; the distance test before it and the scatter after it keep the row-by-row order of
+// every sum, so the forces do not depend on the chunk size or the thread count.
 constexpr std::size_t kChunk = 64;
 
+// Two ways to feed the law, with the same arithmetic (so the same results). With AVX2 (vector
+// gathers) the law reads the particle state by index inside the vectorised loop. Without them (the
+// default x86-64 build: SSE2) indexed loads in that loop would stop the vectoriser, so the state is
+// first copied into the chunk's structure-of-arrays scratch by a scalar loop.
+#if defined(__AVX2__)
+#define CHUTELAB_DEM_GATHER_IN_LAW 1
+#else
+#define CHUTELAB_DEM_GATHER_IN_LAW 0
+#endif
+
+#if CHUTELAB_DEM_GATHER_IN_LAW
+struct ContactChunk {
+  std::int32_t i[kChunk], j[kChunk], s[kChunk];  // particles and list slot of each touching pair
+  double fx[kChunk], fy[kChunk], fz[kChunk];      // force on i
+  double tix[kChunk], tiy[kChunk], tiz[kChunk];   // torque on i
+  double tjx[kChunk], tjy[kChunk], tjz[kChunk];   // torque on j
+};
+
+// Contact c of a chunk through the contact law. The particle state is read straight from the
+// particle arrays by index: inside the vectorised loop these become vector gathers, so no scalar
+// copy into the chunk is needed.
+
+template <class Model>
+CHUTELAB_INLINE void chunk_contact(ContactChunk& h, std::size_t c, const double* __restrict x,
+                                   const double* __restrict v, const double* __restrict w,
+                                   const double* __restrict rad, const double* __restrict mass,
+                                   const double* __restrict inv_inertia, double* __restrict sh,
+                                   double* __restrict rl, const PairCoeffs& pc, double dt) {
+  // int indices: GCC recognises base[int] as a vector gather, not base[size_t] computed from an int.
+  const std::int32_t i = h.i[c], j = h.j[c], s = h.s[c];
+  const LaneVec d{x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]};
+  const double dist = std::sqrt(d.squared_norm());
+  const double ri = rad[i], rj = rad[j], mi = mass[i], mj = mass[j];
+  const LaneVec wi{w[3 * i], w[3 * i + 1], w[3 * i + 2]}, wj{w[3 * j], w[3 * j + 1], w[3 * j + 2]};
+  ContactKinematics k;
+  k.n = d * (1.0 / dist);
+  k.delta = ri + rj - dist;
+  k.r_i = ri;
+  k.r_j = rj;
+  k.v_rel = LaneVec{v[3 * i] - v[3 * j], v[3 * i + 1] - v[3 * j + 1], v[3 * i + 2] - v[3 * j + 2]} +
+            (ri * wi + rj * wj).cross(k.n);
+  k.w_rel = wi - wj;
+  k.r_eff = ri * rj / (ri + rj);
+  k.m_eff = mi * mj / (mi + mj);
+  k.inv_inertia_i = inv_inertia[i];
+  k.inv_inertia_j = inv_inertia[j];
+  k.m_i = mi;
+  k.m_j = mj;
+  LaneVec shear{sh[3 * s], sh[3 * s + 1], sh[3 * s + 2]};
+  LaneVec roll = LaneVec::zero();
+  if constexpr (Model::rolling_history) roll = {rl[3 * s], rl[3 * s + 1], rl[3 * s + 2]};
+  const ContactForce cf = Model::compute(pc, k, shear, &roll, dt);
+  // Each slot s appears once in a chunk, so these stores never collide.
+  sh[3 * s] = shear.x, sh[3 * s + 1] = shear.y, sh[3 * s + 2] = shear.z;
+  if constexpr (Model::rolling_history) rl[3 * s] = roll.x, rl[3 * s + 1] = roll.y, rl[3 * s + 2] = roll.z;
+  h.fx[c] = cf.force.x, h.fy[c] = cf.force.y, h.fz[c] = cf.force.z;
+  h.tix[c] = cf.torque_i.x, h.tiy[c] = cf.torque_i.y, h.tiz[c] = cf.torque_i.z;
+  h.tjx[c] = cf.torque_j.x, h.tjy[c] = cf.torque_j.y, h.tjz[c] = cf.torque_j.z;
+}
+
+// The contacts gathered in h: the law over all of them (vectorised when they share one material
+// pair, as they do in a one-material bed), then their forces scattered in gathering order.
+template <class Model>
+[[gnu::noinline]] void run_chunk(ContactChunk& h, std::size_t n, const PairArrays& a, Vec3* __restrict f,
+                                 Vec3* __restrict t) {
+  std::int32_t pair_kind = -1;  // the material pair of every contact in the chunk; -2 if mixed
+  for (std::size_t c = 0; c < n; ++c) {
+    const auto kind = static_cast<std::int32_t>(static_cast<std::size_t>(a.mat[h.i[c]]) * a.nmat +
+                                                static_cast<std::size_t>(a.mat[h.j[c]]));
+    pair_kind = pair_kind == -1 || pair_kind == kind ? kind : -2;
+  }
+  const double* x = a.x->data();
+  const double* v = a.v->data();
+  const double* w = a.w->data();
+  const double* rad = a.rad;
+  const double* mass = a.mass;
+  const double* ii = a.inv_inertia;
+  double* sh = a.shear->data();
+  double* rl = a.roll->data();
+  const double dt = a.dt;
+  if (pair_kind >= 0) {
+    const PairCoeffs pc = a.coeffs[static_cast<std::size_t>(pair_kind)];
+    // ivdep, not omp simd: under omp simd GCC 12 turns the law's small structs into per-lane
+    // arrays and gives up; with ivdep it vectorises the whole law.
+#pragma GCC ivdep
+    for (std::size_t c = 0; c < n; ++c) chunk_contact<Model>(h, c, x, v, w, rad, mass, ii, sh, rl, pc, dt);
+  } else {
+    for (std::size_t c = 0; c < n; ++c)
+      chunk_contact<Model>(h, c, x, v, w, rad, mass, ii, sh, rl,
+                           a.coeffs[static_cast<std::size_t>(a.mat[h.i[c]]) * a.nmat +
+                                    static_cast<std::size_t>(a.mat[h.j[c]])],
+                           dt);
+  }
+  for (std::size_t c = 0; c < n; ++c) {
+    const auto i = static_cast<std::size_t>(h.i[c]);
+    const auto j = static_cast<std::size_t>(h.j[c]);
+    const Vec3 fc(h.fx[c], h.fy[c], h.fz[c]);
+    f[i] += fc;
+    t[i] += Vec3(h.tix[c], h.tiy[c], h.tiz[c]);
+    f[j] -= fc;
+    t[j] += Vec3(h.tjx[c], h.tjy[c], h.tjz[c]);
+  }
+}
+
+#else
 struct ContactChunk {
   std::int32_t i[kChunk], j[kChunk], s[kChunk];
   double dx[kChunk], dy[kChunk], dz[kChunk];      // x_j - x_i
@@ -176,6 +282,8 @@ template <class Model>
   }
 }
 
+#endif
+
 // Pair contacts of rows [i0, i1), scattered row by row into f/t (a block's partial-sum buffers).
 template <class Model>
 void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __restrict f, Vec3* __restrict t) {
@@ -190,28 +298,28 @@ void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __rest
   thread_local ContactChunk h;
   std::size_t n = 0;
   // The distance test writes every pair into the next slot and keeps it only if it touches (no
-  // branch on the outcome, which is a coin toss in a dense bed).
-  for (std::size_t i = i0; i < i1; ++i) {
-    const Vec3 xi = x[i];
-    const double ri = rad[i];
-    const std::int32_t s0 = row[i], s1 = row[i + 1];
-    for (std::int32_t s = s0; s < s1; ++s) {
-      const auto j = static_cast<std::size_t>(nbr[s]);
-      const double rs = ri + rad[j];
-      const bool hit = (x[j] - xi).squaredNorm() < rs * rs;
-      if (!hit & (touch[s] != 0)) {  // a contact that just ended forgets its history (rare: predictable)
-        shear[s].setZero();
-        if constexpr (Model::rolling_history) roll[s].setZero();
-      }
-      touch[s] = hit;
-      h.i[n] = static_cast<std::int32_t>(i);
-      h.j[n] = static_cast<std::int32_t>(j);
-      h.s[n] = s;
-      n += hit;
-      if (n == kChunk) {
-        run_chunk<Model>(h, n, a, f, t);
-        n = 0;
-      }
+  // branch on the outcome, which is a coin toss in a dense bed). One flat loop over the slots (the
+  // row of a slot from slot_row): a loop per row would mispredict its exit at almost every row, as
+  // rows hold only a few pairs.
+  const std::int32_t* __restrict slot_row = a.slot_row;
+  const auto s0 = static_cast<std::size_t>(row[i0]), s1 = static_cast<std::size_t>(row[i1]);
+  for (std::size_t s = s0; s < s1; ++s) {
+    const auto i = static_cast<std::size_t>(slot_row[s]);
+    const auto j = static_cast<std::size_t>(nbr[s]);
+    const double rs = rad[i] + rad[j];
+    const bool hit = (x[j] - x[i]).squaredNorm() < rs * rs;
+    if (!hit & (touch[s] != 0)) {  // a contact that just ended forgets its history (rare: predictable)
+      shear[s].setZero();
+      if constexpr (Model::rolling_history) roll[s].setZero();
+    }
+    touch[s] = hit;
+    h.i[n] = static_cast<std::int32_t>(i);
+    h.j[n] = static_cast<std::int32_t>(j);
+    h.s[n] = static_cast<std::int32_t>(s);
+    n += hit;
+    if (n == kChunk) {
+      run_chunk<Model>(h, n, a, f, t);
+      n = 0;
     }
   }
   if (n > 0) run_chunk<Model>(h, n, a, f, t);
@@ -242,7 +350,7 @@ void World::compute_forces_impl() {
   std::uint8_t* touch = nl_.touch.data();
   const MaterialTable& mt = materials_;
 
-  PairArrays arrays{x, v, w, rad, mass, inv_i, mat, row, nbr, shear, roll, touch, mt.coeff_table(),
+  PairArrays arrays{x, v, w, rad, mass, inv_i, mat, row, nbr, nl_.slot_row.data(), shear, roll, touch, mt.coeff_table(),
                     static_cast<std::size_t>(mt.size()), dt};
   // Wall contacts of one particle, into per-entry storage. Within one mesh, face contacts win over
   // edge contacts and edges over vertices, so a sphere on a flat or convex seam touches once.

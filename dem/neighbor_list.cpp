@@ -72,6 +72,9 @@ void NeighborList::layout_blocks(std::size_t n, std::size_t blocks) {
   }
   block_f.resize(block_off[blocks]);
   block_t.resize(block_off[blocks]);
+  slot_row.resize(nbr.size());
+  for (std::size_t i = 0; i < n; ++i)
+    std::fill(slot_row.begin() + row_begin[i], slot_row.begin() + row_begin[i + 1], static_cast<std::int32_t>(i));
 }
 
 void World::rebuild() {

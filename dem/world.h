@@ -91,6 +91,7 @@ struct NeighborList {
   std::vector<std::size_t> block_lo, block_hi, block_off;
   std::vector<std::size_t> block_first;  // first block whose buffer reaches into block b
   std::vector<Vec3> block_f, block_t;
+  std::vector<std::int32_t> slot_row;  // row (particle i) of each slot, so the pair loop is one flat loop
   void layout_blocks(std::size_t n, std::size_t blocks);
 };
 inline constexpr std::size_t kForceBlocks = 16;
