@@ -104,13 +104,15 @@ Table vv20_table(const Context& c, const ValidationResult& r, std::string_view i
           if (n == 0) return std::nullopt;
           return std::sqrt(sum / n);
         };
-        const auto e = rms([](const Comparison& g) { return std::optional<double>(g.error()); });
+        // E keeps its sign for one value; a group of stream points shows its RMS.
+        const auto e = group.size() == 1 ? std::optional<double>(group[0]->error())
+                                         : rms([](const Comparison& g) { return std::optional<double>(g.error()); });
         const auto ud = rms([](const Comparison& g) { return g.uncertainty; });
         const auto us = rms([](const Comparison& g) { return g.u_num_stat(); });
         const auto un = rms([](const Comparison& g) { return g.u_num_disc; });
         const auto ui = rms([](const Comparison& g) { return g.u_input; });
         const auto uv = rms([](const Comparison& g) { return g.validation_uncertainty(); });
-        const auto ratio = rms([](const Comparison& g) { return g.vv20_ratio(); });
+        const auto ratio = rms([](const Comparison& g) { return g.vv20_ratio(); });  // RMS over a group
         const double scale = qn.scale;
         double biggest = 0.0;
         for (const auto& v : {e, ud, us, un, ui, uv})
