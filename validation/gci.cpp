@@ -153,4 +153,46 @@ GciEstimate gci_estimate(std::span<const LadderLevel> in, const GciOptions& o) {
   return g;
 }
 
+LadderUncertainty ladder_uncertainty(std::span<const LadderRun> runs, const GciOptions& o) {
+  LadderUncertainty out;
+  std::size_t queries = 0;
+  for (const auto& r : runs)
+    if (r.prediction) queries = std::max(queries, r.prediction->trajectory.size());
+  auto estimate = [&](auto value_of, auto se_of) -> std::optional<GciEstimate> {
+    std::vector<LadderLevel> levels;
+    for (const auto& r : runs) {
+      if (!r.prediction) continue;
+      if (const std::optional<double> v = value_of(*r.prediction))
+        levels.push_back({r.h, *v, se_of(*r.prediction).value_or(0.0)});
+    }
+    if (levels.size() < 2) return std::nullopt;
+    return gci_estimate(levels, o);
+  };
+  auto nth = [](const std::vector<std::optional<double>>& v, std::size_t t) {
+    return t < v.size() ? v[t] : std::nullopt;
+  };
+  for (Quantity q : kAllQuantities) {
+    auto& e = out.estimate[static_cast<std::size_t>(q)];
+    e = estimate([q](const ModelPrediction& p) { return p.values[q]; },
+                 [q](const ModelPrediction& p) { return p.uncertainty[q]; });
+    if (e) out.u_disc[q] = e->u_disc;
+  }
+  out.trajectory.resize(queries);
+  out.trajectory_estimate.resize(queries);
+  for (std::size_t t = 0; t < queries; ++t) {
+    out.trajectory_estimate[t] = estimate([&](const ModelPrediction& p) { return nth(p.trajectory, t); },
+                                          [&](const ModelPrediction& p) { return nth(p.trajectory_uncertainty, t); });
+    if (out.trajectory_estimate[t]) out.trajectory[t] = out.trajectory_estimate[t]->u_disc;
+  }
+  return out;
+}
+
+void apply_discretisation(ModelPrediction& fine, const LadderUncertainty& u) {
+  fine.discretisation = u.u_disc;
+  fine.trajectory_discretisation = u.trajectory;
+  for (Quantity q : kAllQuantities)
+    if (const auto& e = u.estimate[static_cast<std::size_t>(q)])
+      fine.notes.push_back(fmt::format("u_num,disc of {}: {}", info(q).symbol, e->method));
+}
+
 }  // namespace chutelab::validation

@@ -32,9 +32,13 @@
 //   a GCI with Fs = 1.25. The standard's text was not available to check, so take the factor as
 //   chutelab's choice; it is applied to the Fs = 3 bounds too (conservative: a bound divided by
 //   1.15 rather than by sqrt(3) for a rectangular band).
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
+
+#include "validation/model.h"
 
 namespace chutelab::validation {
 
@@ -80,5 +84,27 @@ struct GciEstimate {
 GciEstimate gci_estimate(std::span<const LadderLevel> levels, const GciOptions& options = {});
 
 std::string_view name(GciCase c);
+
+// A model's predictions along a ladder (e.g. the DEM at 13.6, 9 and 5.6 mm spheres), all asked the
+// same trajectory queries. Each run's `uncertainty` / `trajectory_uncertainty` is its standard error.
+struct LadderRun {
+  double h = 0.0;                             // refinement parameter of the run
+  const ModelPrediction* prediction = nullptr;
+};
+
+struct LadderUncertainty {
+  QuantityValues u_disc;                                    // SI, per quantity; absent = not estimated
+  std::vector<std::optional<double>> trajectory;            // m per query
+  std::array<std::optional<GciEstimate>, kQuantityCount> estimate{};  // per quantity, for notes
+  std::vector<std::optional<GciEstimate>> trajectory_estimate;
+};
+
+// The GCI of every value that at least two runs predict (the finest run is the one the estimate
+// is for: u_disc belongs to the prediction at the smallest h).
+LadderUncertainty ladder_uncertainty(std::span<const LadderRun> runs, const GciOptions& options = {});
+
+// Sets `fine.discretisation` and `fine.trajectory_discretisation` from `u`, and adds one note per
+// quantity with the method used.
+void apply_discretisation(ModelPrediction& fine, const LadderUncertainty& u);
 
 }  // namespace chutelab::validation

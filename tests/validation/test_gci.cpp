@@ -154,3 +154,30 @@ BOOST_AUTO_TEST_CASE(bad_ladders_are_refused) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+// A ladder of model predictions: every value two runs predict gets a GCI; the finest run's
+// prediction carries it.
+BOOST_AUTO_TEST_CASE(ladder_of_predictions) {
+  using chutelab::Quantity;
+  std::vector<ModelPrediction> p(3);
+  const double h[3] = {0.009, 0.0136, 0.018};
+  for (int i = 0; i < 3; ++i) {
+    p[i].values[Quantity::normal_force] = 35.0 + 100.0 * h[i];   // first order
+    p[i].uncertainty[Quantity::normal_force] = 1e-4;
+    p[i].trajectory = {0.15 + 50.0 * h[i] * h[i]};                // second order
+  }
+  p[2].values[Quantity::shear_force] = 4.0;                       // one run only: not estimated
+  const std::vector<LadderRun> runs = {{h[2], &p[2]}, {h[0], &p[0]}, {h[1], &p[1]}};
+  const auto u = ladder_uncertainty(runs);
+  BOOST_REQUIRE(u.estimate[0]);
+  BOOST_TEST(*u.estimate[0]->observed_order == 1.0, boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(*u.estimate[0]->extrapolated == 35.0, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(!u.u_disc[Quantity::shear_force]);
+  BOOST_REQUIRE(u.trajectory.at(0));
+  BOOST_TEST(*u.trajectory_estimate[0]->observed_order == 2.0, boost::test_tools::tolerance(1e-6));
+  ModelPrediction fine = p[0];
+  apply_discretisation(fine, u);
+  BOOST_TEST(*fine.discretisation[Quantity::normal_force] == *u.u_disc[Quantity::normal_force]);
+  BOOST_TEST(*fine.trajectory_discretisation.at(0) == *u.trajectory[0]);
+  BOOST_TEST(fine.notes.size() == 1u);
+}
