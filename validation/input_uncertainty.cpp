@@ -172,6 +172,11 @@ InputUncertaintyResult input_uncertainty(const Model& model, const Station& stat
       const auto b = base_of(src.base);
       if (!b) continue;
       const double scale = !model.expensive() || position || !(*b > 0.0 && *value > 0.0) ? 1.0 : *value / *b;
+      // An elasticity carried across a factor of more than 2 rests on a cheap model far from this
+      // prediction (e.g. Korzen's V_a near the root of Eq 4): say so beside the number.
+      if (scale > 2.0 || scale < 0.5)
+        r.notes.push_back(fmt::format("u_input of {} from the relative coefficients of a cheap model whose value is {:.2g} times this one", what,
+                                      1.0 / scale));
       double sum = 0.0;
       for (const auto& is : src.s) {
         const auto c = coef_of(is);

@@ -27,7 +27,9 @@
 //   (forces, speeds: dS/dx / S_cheap times the expensive model's own S), where both the cheap and
 //   the expensive value are strictly positive; otherwise absolute. Elasticities carry the
 //   relative sensitivity over where the two models differ in level, e.g. Korzen's R_s being 2-4x
-//   the DEM's on the LIGGGHTS rig.
+//   the DEM's on the LIGGGHTS rig. Where the two differ by more than a factor of 2 (Korzen's V_a
+//   near the root of its Eq 4 is 0.50 m/s against the DEM's 1.78 at V3-41 of that rig), the
+//   elasticity is the cheap model's and may not be the DEM's: a note says so.
 #include <optional>
 #include <span>
 #include <string>
