@@ -12,6 +12,7 @@
 #include "core/input_error.h"
 #include "core/units.h"
 #include "validation/dataset.h"
+#include "validation/effect_fit.h"
 #include "validation/harness.h"
 #include "validation/input_uncertainty.h"
 #include "validation/output_files.h"
@@ -381,6 +382,48 @@ BOOST_AUTO_TEST_CASE(validate_carries_the_parts_into_u_val_and_errors_csv) {
                tt::tolerance(1e-12));
   }
   BOOST_TEST(seen > 20);
+}
+
+// The diagnosis weights each residual by u_val: u_D with the baseline's u_input (and u_num).
+BOOST_AUTO_TEST_CASE(misfit_weights_are_u_val) {
+  const auto d = read_dataset(dataset(
+      "unc-misfit", "[uncertainty]\n\"material.friction_plate\" = 0.02\n",
+      conditions_with(",belt_speed_uncertainty_mps", ",0.03", ",0.03")));
+  const auto models = make_models({"booth-cema", "korzen"});
+  const Misfit m(d, models);
+  const auto r = validate(d, models);
+  int n = 0;
+  for (const auto& p : m.points()) {
+    const std::string& cond = d.stations[p.condition].condition;
+    // The comparison of the same value by the same model.
+    const Comparison* c = nullptr;
+    const double at_x = p.q ? 0.0 : trajectory_queries(d, cond).at(p.query).x;
+    for (const auto& x : r.comparisons)
+      if (x.condition == cond && x.model == models[p.model]->name() && x.quantity == p.quantity &&
+          x.x == at_x) {
+        c = &x;
+        break;
+      }
+    BOOST_REQUIRE(c);
+    BOOST_REQUIRE(c->u_input);
+    BOOST_TEST(p.uncertainty == *c->validation_uncertainty(), tt::tolerance(1e-12));
+    BOOST_TEST(p.uncertainty > *c->uncertainty);
+    ++n;
+  }
+  BOOST_TEST(n > 50);
+}
+
+// A stream thickness uncertainty has nothing to act on where h_b comes from continuity.
+BOOST_AUTO_TEST_CASE(stream_thickness_uncertainty_needs_a_stated_thickness) {
+  const auto korzen = make_model("korzen");
+  const Station st = make_station(grima(), "t", 3.0, 35.0 * units::tph, 0.45, 0.25, std::nullopt);
+  InputUncertainties u;
+  u.stream_thickness = 1e-3;
+  const auto p = korzen->predict(st, {}, {});
+  const auto r = input_uncertainty(*korzen, st, u, {}, {}, p);
+  BOOST_TEST(*r.u[Quantity::normal_force] == 0.0);
+  BOOST_REQUIRE_EQUAL(r.notes.size(), 1u);
+  BOOST_TEST(r.notes[0].find("continuity") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
