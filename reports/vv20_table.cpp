@@ -54,7 +54,8 @@ std::vector<std::string> vv20_not_estimated(const validation::Dataset& d, const 
       }
     if (!any) continue;
     if (!stat && !disc && !is_expensive(m)) {
-      out.push_back(fmt::format("{}: u_num = 0, a closed-form model (no sampling, no discretisation).", m));
+      out.push_back(fmt::format("{}: u_num taken as 0 (a cheap deterministic model: no sampling error, and "
+                                "a numerical error far below the data's).", m));
       continue;
     }
     if (!stat) out.push_back(fmt::format("{}: u_num statistical part not estimated.", m));

@@ -176,7 +176,9 @@ Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
     }
   }
   check_geometry(s, file, 0);
-  if (uncertainty) *uncertainty = read_uncertainty_table(doc, file);
+  // Checked even when the caller has no use for it: a bad table is bad input wherever it is read.
+  InputUncertainties u = read_uncertainty_table(doc, file);
+  if (uncertainty) *uncertainty = std::move(u);
   return s;
 }
 
