@@ -30,8 +30,9 @@ std::string predictions_csv(const ValidationResult& r) {
   // Trajectory predictions, at the points the dataset measured.
   for (const auto& c : r.comparisons)
     if (c.boundary && c.predicted)
-      o += fmt::format("{},{},{},{},,{}\n", c.condition, c.model, c.quantity,
-                       csv_number(*c.predicted * c.scale), x_mm(c));
+      o += fmt::format("{},{},{},{},{},{}\n", c.condition, c.model, c.quantity,
+                       csv_number(*c.predicted * c.scale),
+                       c.u_num_stat() ? csv_number(*c.u_num_stat() * c.scale) : "", x_mm(c));
   return o;
 }
 
