@@ -128,6 +128,10 @@ Table effects_table(const std::vector<EffectDescription>& effects);
 Table ranking_table(const validation::DiagnosisResult& d);
 Table model_notes_table(const Context& c, const validation::ValidationResult& r, std::string_view id);
 
+// vv20_table.cpp: the parts of u_val per prediction, and which parts were not estimated.
+Table vv20_table(const Context& c, const validation::ValidationResult& r, std::string_view id);
+std::vector<std::string> vv20_not_estimated(const validation::Dataset& d, const validation::ValidationResult& r);
+
 // findings.cpp
 Table findings_table(const std::vector<validation::SeedFinding>& findings);
 

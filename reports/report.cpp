@@ -283,6 +283,11 @@ Doc assemble(const ReportInput& in) {
     x.table(summary_table(*v.result, "summary-table-" + v.suffix));
   });
 
+  // ---- V&V 20: the parts of the validation uncertainty ----
+  d.h(2, "vv20", "Validation uncertainty (V&V 20)");
+  d.list(vv20_not_estimated(*in.dataset, *in.baseline));
+  d.table(vv20_table(c, *in.baseline, "vv20-table"));
+
   if (in.diagnosis) what_is_missing(d, c);
   else if (in.with_effects) before_after(d, c, 2);
 

@@ -51,9 +51,84 @@ void check_geometry(const Setup& s, const std::string& file, long line) {
   }
 }
 
+// The operating inputs a condition may state an uncertainty of: conditions.csv column, the
+// [uncertainty] key of a setup-wide default, the unit, and where it goes.
+struct OperatingUncertainty {
+  std::string_view column, key;
+  double to_si;
+  std::optional<double> InputUncertainties::*member;
+};
+constexpr OperatingUncertainty kOperating[] = {
+    {"belt_speed_uncertainty_mps", "belt_speed_mps", 1.0, &InputUncertainties::belt_speed},
+    {"mass_flow_uncertainty_tph", "mass_flow_tph", units::tph, &InputUncertainties::mass_flow},
+    {"plate_distance_uncertainty_mm", "plate_distance_mm", units::mm, &InputUncertainties::plate_distance},
+    {"plate_top_uncertainty_mm", "plate_top_mm", units::mm, &InputUncertainties::plate_top},
+    {"stream_thickness_uncertainty_mm", "stream_thickness_mm", units::mm,
+     &InputUncertainties::stream_thickness},
+};
+
+// An input uncertainty is one standard deviation, finite and >= 0 (0 = known exactly).
+void check_input_uncertainty(double v, const std::string& file, long line, const std::string& field) {
+  if (!std::isfinite(v)) throw InputError(file, line, field, "uncertainty must be a finite number");
+  if (v < 0.0) throw InputError(file, line, field, fmt::format("uncertainty cannot be negative, got {}", v));
+}
+
+// [uncertainty]: keys are the setup's own, dotted ("material.friction_plate" = 0.02) or in
+// sub-tables ([uncertainty.material] friction_plate = 0.02), in the key's unit; top-level keys are
+// gravity_mps2 and the operating inputs' setup-wide defaults (belt_speed_mps, mass_flow_tph, ...).
+InputUncertainties read_uncertainty_table(const toml::table& doc, const std::string& file) {
+  InputUncertainties u;
+  const toml::node* root = doc.get("uncertainty");
+  if (!root) return u;
+  const toml::table* t = root->as_table();
+  if (!t)
+    throw InputError(file, static_cast<long>(root->source().begin.line), "uncertainty", "must be a table");
+  std::map<const RigField*, double> rig;
+  std::set<std::string> seen;
+  auto take = [&](std::string_view section, std::string_view key, const toml::node& n) {
+    const std::string dotted = section.empty() ? std::string(key) : fmt::format("{}.{}", section, key);
+    const std::string field = "uncertainty." + dotted;
+    const long line = static_cast<long>(n.source().begin.line);
+    if (!seen.insert(dotted).second) throw InputError(file, line, field, "given twice");
+    const auto v = n.value<double>();
+    if (!v || !n.is_number())
+      throw InputError(file, line, field, "must be a number (one standard deviation, in the key's unit)");
+    check_input_uncertainty(*v, file, line, field);
+    if (section.empty())
+      for (const auto& op : kOperating)
+        if (op.key == key) {
+          u.*op.member = *v * op.to_si;
+          return;
+        }
+    for (const auto& f : rig_fields())
+      if (f.section == section && f.key == key) {
+        rig[&f] = *v * f.to_si;
+        return;
+      }
+    throw InputError(file, line, field,
+                     fmt::format("unknown key '{}': not a setup key (e.g. material.friction_plate, "
+                                 "belt.pulley_diameter_mm) nor an operating input (belt_speed_mps, "
+                                 "mass_flow_tph, plate_distance_mm, plate_top_mm, stream_thickness_mm)",
+                                 dotted));
+  };
+  for (const auto& [k, n] : *t) {
+    if (const toml::table* sub = n.as_table()) {
+      for (const auto& [k2, n2] : *sub) take(k.str(), k2.str(), n2);
+      continue;
+    }
+    const std::string_view ks = k.str();
+    const auto dot = ks.find('.');
+    if (dot == std::string_view::npos) take("", ks, n);
+    else take(ks.substr(0, dot), ks.substr(dot + 1), n);
+  }
+  for (const auto& f : rig_fields())
+    if (auto it = rig.find(&f); it != rig.end()) u.rig.emplace_back(&f, it->second);
+  return u;
+}
+
 }  // namespace
 
-Setup read_setup(const fs::path& path) {
+Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
   const std::string file = path.string();
   if (!fs::exists(path)) throw InputError(file, 0, "", "file not found");
   toml::table doc;
@@ -101,6 +176,9 @@ Setup read_setup(const fs::path& path) {
     }
   }
   check_geometry(s, file, 0);
+  // Checked even when the caller has no use for it: a bad table is bad input wherever it is read.
+  InputUncertainties u = read_uncertainty_table(doc, file);
+  if (uncertainty) *uncertainty = std::move(u);
   return s;
 }
 
@@ -122,7 +200,9 @@ Station make_station(const Setup& setup, std::string condition, double belt_spee
 }
 
 std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
-                                     std::vector<SourceLine>* lines) {
+                                     std::vector<SourceLine>* lines,
+                                     std::vector<InputUncertainties>* uncertainties,
+                                     const InputUncertainties& defaults) {
   const CsvTable t = CsvTable::read(
       path, {"condition", "belt_speed_mps", "mass_flow_tph", "plate_distance_mm", "plate_top_mm"});
   const std::size_t c_id = t.require("condition");
@@ -131,6 +211,9 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
   const std::size_t c_dist = t.require("plate_distance_mm");
   const std::size_t c_top = t.require("plate_top_mm");
   const auto c_thick = t.column("stream_thickness_mm");
+  std::vector<std::pair<std::size_t, const OperatingUncertainty*>> c_unc;
+  for (const auto& op : kOperating)
+    if (auto c = t.column(std::string(op.column))) c_unc.emplace_back(*c, &op);
 
   std::vector<std::pair<std::size_t, const RigField*>> overrides;
   static const std::set<std::string> base = {"condition",         "belt_speed_mps",
@@ -139,6 +222,9 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
   for (std::size_t i = 0; i < t.header().size(); ++i) {
     const std::string& col = t.header()[i];
     if (base.count(col)) continue;
+    bool is_uncertainty = false;
+    for (const auto& op : kOperating) is_uncertainty = is_uncertainty || op.column == col;
+    if (is_uncertainty) continue;
     if (const RigField* f = find_override_column(col))
       overrides.emplace_back(i, f);
     else
@@ -186,6 +272,15 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
                                top * units::mm,
                                thick ? std::optional<double>(*thick * units::mm) : std::nullopt));
     if (lines) lines->push_back({t.file(), row.line});
+    if (uncertainties) {
+      InputUncertainties u = defaults;
+      for (const auto& [col, op] : c_unc)
+        if (const auto v = t.optional_number(row, col)) {
+          check_input_uncertainty(*v, t.file(), row.line, std::string(op->column));
+          u.*op->member = *v * op->to_si;
+        }
+      uncertainties->push_back(std::move(u));
+    }
   }
   if (out.empty()) throw InputError(t.file(), 0, "", "no conditions in the file");
   return out;
@@ -289,8 +384,10 @@ Dataset read_dataset(const fs::path& dir, MeasurementsRequired need) {
   if (!fs::is_directory(dir)) throw InputError(dir.string(), 0, "", "dataset folder not found");
   Dataset d;
   d.dir = dir;
-  d.setup = read_setup(dir / "setup.toml");
-  d.stations = read_conditions(dir / "conditions.csv", d.setup, &d.station_lines);
+  InputUncertainties setup_uncertainty;
+  d.setup = read_setup(dir / "setup.toml", &setup_uncertainty);
+  d.stations = read_conditions(dir / "conditions.csv", d.setup, &d.station_lines, &d.input_uncertainty,
+                               setup_uncertainty);
   const fs::path meas = dir / "measurements.csv";
   if (fs::exists(meas))
     d.measurements = read_measurements(meas, d);

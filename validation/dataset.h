@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/quantity.h"
@@ -33,6 +34,18 @@ struct TrajectoryPoint {
   SourceLine where;
 };
 
+// The stated uncertainties of a condition's inputs, one standard deviation each, SI; absent = not
+// stated. Operating inputs come from conditions.csv columns `<input>_uncertainty_<unit>` (or a
+// setup-wide default in setup.toml's [uncertainty] table); rig and material inputs from the
+// [uncertainty] table, keyed like the setup (rig_fields()).
+struct InputUncertainties {
+  std::optional<double> belt_speed, mass_flow, plate_distance, plate_top, stream_thickness;
+  std::vector<std::pair<const RigField*, double>> rig;  // in rig_fields() order
+  bool empty() const {
+    return !belt_speed && !mass_flow && !plate_distance && !plate_top && !stream_thickness && rig.empty();
+  }
+};
+
 struct Dataset {
   std::filesystem::path dir;
   Setup setup;
@@ -40,6 +53,7 @@ struct Dataset {
   std::vector<SourceLine> station_lines;
   std::vector<Measurement> measurements;
   std::vector<TrajectoryPoint> trajectory;
+  std::vector<InputUncertainties> input_uncertainty;  // parallel to stations
 
   const Station* station(std::string_view condition) const;
   const SourceLine* station_line(std::string_view condition) const;
@@ -47,12 +61,18 @@ struct Dataset {
 
 enum class MeasurementsRequired { no, yes };
 
-Setup read_setup(const std::filesystem::path& file);
+// `uncertainty`, when given, receives the [uncertainty] table (rig and material keys, and the
+// setup-wide defaults of the operating inputs); an unknown key there is an error.
+Setup read_setup(const std::filesystem::path& file, InputUncertainties* uncertainty = nullptr);
 Dataset read_dataset(const std::filesystem::path& dir,
                      MeasurementsRequired need = MeasurementsRequired::yes);
 // The rig's conditions only (e.g. for estimate/synthesize on a dataset without measurements).
+// `uncertainties`, when given, receives one entry per row: `defaults` (e.g. from read_setup)
+// completed by the row's *_uncertainty_* columns.
 std::vector<Station> read_conditions(const std::filesystem::path& file, const Setup& setup,
-                                     std::vector<SourceLine>* lines = nullptr);
+                                     std::vector<SourceLine>* lines = nullptr,
+                                     std::vector<InputUncertainties>* uncertainties = nullptr,
+                                     const InputUncertainties& defaults = {});
 
 // Station from a setup and explicit operating values (all SI).
 Station make_station(const Setup& setup, std::string condition, double belt_speed,

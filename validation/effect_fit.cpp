@@ -10,6 +10,7 @@
 
 #include "core/input_error.h"
 #include "validation/harness.h"
+#include "validation/input_uncertainty.h"
 #include "validation/parallel_runs.h"
 
 namespace chutelab::validation {
@@ -28,6 +29,21 @@ Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::Effec
       if (d.stations[i].condition == c) return i;
     throw std::logic_error("measurement of an unknown condition");
   };
+  // chi^2 weights: u_D combined with the baseline prediction's u_num (statistical and
+  // discretisation parts) and u_input, as V&V 20's u_val.
+  std::map<std::pair<std::size_t, std::size_t>, InputUncertaintyResult> u_input;
+  auto input_part = [&](std::size_t ci, std::size_t k) -> const InputUncertaintyResult& {
+    auto [it, fresh] = u_input.try_emplace({ci, k});
+    if (fresh && ci < d.input_uncertainty.size() && !d.input_uncertainty[ci].empty())
+      it->second = input_uncertainty(*models_[k], d.stations[ci], d.input_uncertainty[ci], fixed_,
+                                     queries_[ci], base[ci][k]);
+    return it->second;
+  };
+  auto weight = [](double u_d, std::initializer_list<std::optional<double>> parts) {
+    double sum = u_d * u_d;
+    for (const auto& u : parts) sum += std::pow(u.value_or(0.0), 2);
+    return std::sqrt(sum);
+  };
   for (const auto& m : d.measurements) {
     const std::size_t ci = condition_index(m.condition);
     std::optional<std::size_t> by;
@@ -37,7 +53,10 @@ Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::Effec
       ++left_out_;
       continue;
     }
-    points_.push_back({ci, std::string(name(m.quantity)), m.quantity, 0, *by, m.value, *m.uncertainty});
+    const ModelPrediction& b = base[ci][*by];
+    const double u = weight(*m.uncertainty, {b.uncertainty[m.quantity], b.discretisation[m.quantity],
+                                             input_part(ci, *by).u[m.quantity]});
+    points_.push_back({ci, std::string(name(m.quantity)), m.quantity, 0, *by, m.value, u});
   }
   std::vector<std::size_t> next(d.stations.size(), 0);
   for (const auto& p : d.trajectory) {
@@ -50,8 +69,13 @@ Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::Effec
       ++left_out_;
       continue;
     }
-    points_.push_back({ci, trajectory_quantity(p.boundary), std::nullopt, qi,
-                       *by, p.y, *p.uncertainty});
+    const ModelPrediction& b = base[ci][*by];
+    auto nth = [qi](const std::vector<std::optional<double>>& v) {
+      return qi < v.size() ? v[qi] : std::nullopt;
+    };
+    const double u = weight(*p.uncertainty, {nth(b.trajectory_uncertainty), nth(b.trajectory_discretisation),
+                                             nth(input_part(ci, *by).trajectory)});
+    points_.push_back({ci, trajectory_quantity(p.boundary), std::nullopt, qi, *by, p.y, u});
   }
 }
 

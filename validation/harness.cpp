@@ -8,6 +8,7 @@
 #include <span>
 
 #include "core/input_error.h"
+#include "validation/input_uncertainty.h"
 
 namespace chutelab::validation {
 
@@ -22,9 +23,10 @@ std::optional<double> Comparison::normalised_error() const {
 }
 
 std::optional<double> Comparison::validation_uncertainty() const {
-  if (!predicted || (!uncertainty && !prediction_uncertainty)) return std::nullopt;
-  const double ud = uncertainty.value_or(0.0), un = prediction_uncertainty.value_or(0.0);
-  return std::sqrt(ud * ud + un * un);
+  if (!predicted || (!uncertainty && !prediction_uncertainty && !u_num_disc && !u_input)) return std::nullopt;
+  double sum = 0.0;
+  for (const auto& u : {uncertainty, prediction_uncertainty, u_num_disc, u_input}) sum += std::pow(u.value_or(0.0), 2);
+  return std::sqrt(sum);
 }
 
 std::optional<double> Comparison::vv20_ratio() const {
@@ -157,6 +159,13 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       } catch (const InputError& e) {
         throw e.located(d.station_lines[i].file, d.station_lines[i].line);
       }
+      // u_input on the raw prediction: measurement-stage effects act on the record, not the inputs.
+      if (i < d.input_uncertainty.size() && !d.input_uncertainty[i].empty()) {
+        auto ui = input_uncertainty(*m, st, d.input_uncertainty[i], options.effects, queries, p);
+        p.input_uncertainty = ui.u;
+        p.trajectory_input_uncertainty = std::move(ui.trajectory);
+        for (auto& n : ui.notes) p.notes.push_back(std::move(n));
+      }
       r.predictions.push_back({st.condition, m->name(), std::move(p)});
     }
     apply_measurement_effects(options.effects,
@@ -176,6 +185,8 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       c.uncertainty = meas.uncertainty;
       c.predicted = cr->prediction.values[meas.quantity];
       c.prediction_uncertainty = cr->prediction.uncertainty[meas.quantity];
+      c.u_num_disc = cr->prediction.discretisation[meas.quantity];
+      c.u_input = cr->prediction.input_uncertainty[meas.quantity];
       r.comparisons.push_back(std::move(c));
     }
   for (const auto& m : models) {
@@ -192,7 +203,11 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       c.scale = 1e3;
       c.measured = pt.y;
       c.uncertainty = pt.uncertainty;
-      if (k < cr->prediction.trajectory.size()) c.predicted = cr->prediction.trajectory[k];
+      const ModelPrediction& mp = cr->prediction;
+      if (k < mp.trajectory.size()) c.predicted = mp.trajectory[k];
+      if (k < mp.trajectory_uncertainty.size()) c.prediction_uncertainty = mp.trajectory_uncertainty[k];
+      if (k < mp.trajectory_discretisation.size()) c.u_num_disc = mp.trajectory_discretisation[k];
+      if (k < mp.trajectory_input_uncertainty.size()) c.u_input = mp.trajectory_input_uncertainty[k];
       r.comparisons.push_back(std::move(c));
     }
   }

@@ -1,9 +1,12 @@
 #pragma once
 // Run every condition of a dataset through every model and compare with the measurements.
 // Errors follow ASME V&V 20-2009: comparison error E = S - D (prediction minus data) and the
-// validation uncertainty u_val = sqrt(u_num^2 + u_input^2 + u_D^2); here u_num is what the model
-// states about its own prediction (the DEM's uncertainty of the mean, 0 for analytical models),
-// u_input is not known and taken as 0, u_D is the measurement's uncertainty.
+// validation uncertainty u_val = sqrt(u_num_stat^2 + u_num_disc^2 + u_input^2 + u_D^2): u_num is
+// what the model states about its own prediction, split into the statistical part (the DEM's
+// standard error of the mean) and the discretisation part (a GCI over a ladder of particle sizes,
+// validation/gci.h), both absent for analytical models; u_input is propagated from the dataset's
+// stated input uncertainties (validation/input_uncertainty.h); u_D is the measurement's. A part
+// that was not estimated is absent and counts as 0 in u_val (the report says which).
 #include <optional>
 #include <span>
 #include <string>
@@ -28,11 +31,14 @@ struct Comparison {
   double measured = 0.0;         // SI
   std::optional<double> uncertainty;       // u_D, SI
   std::optional<double> predicted;         // absent when the model does not predict it
-  std::optional<double> prediction_uncertainty;  // u_num, SI
+  std::optional<double> prediction_uncertainty;  // u_num_stat (statistical part of u_num), SI
+  std::optional<double> u_num_disc;              // discretisation part of u_num, SI
+  std::optional<double> u_input;                 // SI
+  const std::optional<double>& u_num_stat() const { return prediction_uncertainty; }
   double error() const { return *predicted - measured; }  // E = S - D
   std::optional<double> relative_error() const;
   std::optional<double> normalised_error() const;   // E / u_D
-  std::optional<double> validation_uncertainty() const;  // u_val
+  std::optional<double> validation_uncertainty() const;  // u_val; absent when no part is known
   std::optional<double> vv20_ratio() const;          // |E| / u_val
   ToleranceVerdict verdict;      // filled when a tolerance applies
 };

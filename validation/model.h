@@ -42,12 +42,21 @@ struct PredictRequest {
   bool signature = false;
 };
 
+// The uncertainties are standard uncertainties (one sd), SI, of V&V 20's parts: `uncertainty` and
+// `trajectory_uncertainty` the statistical part of u_num (e.g. a DEM mean's standard error),
+// `discretisation` and `trajectory_discretisation` its discretisation part (e.g. a GCI over a
+// particle-size ladder, validation/gci.h); absent = not estimated. `input_uncertainty` and
+// `trajectory_input_uncertainty` (u_input) are filled by the harness from the dataset's stated
+// input uncertainties (validation/input_uncertainty.h), not by the model.
 struct ModelPrediction {
   QuantityValues values;                          // SI
   QuantityValues uncertainty;                     // SI, one sd of the prediction (e.g. DEM mean)
-  QuantityValues discretisation;                  // SI, u_num's discretisation part (DEM ladder)
-  std::vector<std::optional<double>> trajectory_discretisation;  // per query, SI
   std::vector<std::optional<double>> trajectory;  // y (m) per query, absent where not predicted
+  std::vector<std::optional<double>> trajectory_uncertainty;     // m per query (statistical)
+  QuantityValues discretisation;                                 // SI, u_num's discretisation part
+  std::vector<std::optional<double>> trajectory_discretisation;  // m per query
+  QuantityValues input_uncertainty;                              // SI, u_input (harness)
+  std::vector<std::optional<double>> trajectory_input_uncertainty;  // m per query (harness)
   std::vector<Curve> curves;
   std::vector<std::string> notes;                 // e.g. "R_s from Eq 7 (no stationary flow)"
 };

@@ -30,26 +30,30 @@ std::string predictions_csv(const ValidationResult& r) {
   // Trajectory predictions, at the points the dataset measured.
   for (const auto& c : r.comparisons)
     if (c.boundary && c.predicted)
-      o += fmt::format("{},{},{},{},,{}\n", c.condition, c.model, c.quantity,
-                       csv_number(*c.predicted * c.scale), x_mm(c));
+      o += fmt::format("{},{},{},{},{},{}\n", c.condition, c.model, c.quantity,
+                       csv_number(*c.predicted * c.scale),
+                       c.u_num_stat() ? csv_number(*c.u_num_stat() * c.scale) : "", x_mm(c));
   return o;
 }
 
 std::string errors_csv(const ValidationResult& r) {
   std::string o =
       "condition,model,quantity,measured,uncertainty,predicted,error,relative_error,"
-      "normalised_error,x_mm,validation_uncertainty,vv20_ratio,tolerance\n";
+      "normalised_error,x_mm,validation_uncertainty,vv20_ratio,tolerance,u_num_stat,u_num_disc,u_input\n";
   for (const auto& c : r.comparisons) {
     const double s = c.scale;
     auto scaled = [s](const std::optional<double>& v) {
       return v ? csv_number(*v * s) : std::string();
     };
     const std::string tol = !c.verdict.checked ? "" : c.verdict.passed ? "pass" : "fail: " + c.verdict.limit;
-    o += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.condition, c.model, c.quantity,
+    // The parts of u_val only beside a prediction: without one nothing was propagated.
+    auto part = [&](const std::optional<double>& v) { return c.predicted ? scaled(v) : std::string(); };
+    o += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.condition, c.model, c.quantity,
                      csv_number(c.measured * s), scaled(c.uncertainty), scaled(c.predicted),
                      c.predicted ? csv_number(c.error() * s) : "", csv_number(c.relative_error()),
                      csv_number(c.normalised_error()), x_mm(c), scaled(c.validation_uncertainty()),
-                     csv_number(c.vv20_ratio()), tol);
+                     csv_number(c.vv20_ratio()), tol, part(c.u_num_stat()), part(c.u_num_disc),
+                     part(c.u_input));
   }
   return o;
 }

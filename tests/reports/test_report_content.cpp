@@ -406,3 +406,41 @@ BOOST_AUTO_TEST_CASE(nice_ticks_land_on_round_numbers) {
 }
 
 }  // namespace chutelab::test
+
+namespace chutelab::test {
+
+// The V&V 20 section: the parts of u_val per prediction, and in words which were not estimated.
+BOOST_AUTO_TEST_CASE(vv20_section_shows_parts_and_says_what_was_not_estimated) {
+  Dataset d = small_dataset();
+  ValidationResult r = small_result(d, false);
+  reports::ReportInput in;
+  in.dataset = &d;
+  in.baseline = &r;
+  {
+    const std::string md = reports::report_markdown(in);
+    const std::string s = section(md, "## Validation uncertainty (V&amp;V 20)", "\n## ");
+    BOOST_TEST(s.find("u\\_input not estimated: the dataset states no input uncertainties") != std::string::npos, s);
+    BOOST_TEST(s.find("u\\_num statistical part not estimated") == std::string::npos, s);  // m1, m2 unknown: silent
+  }
+  // Stated input uncertainties and a model with both u_num parts on R_n at V3.
+  d.input_uncertainty.assign(d.stations.size(), {});
+  d.input_uncertainty[0].belt_speed = 0.02;
+  for (auto& c : r.comparisons)
+    if (c.predicted) {
+      c.u_input = 0.4 / c.scale;  // 0.4 in the quantity's unit
+      if (c.model == "m1" && c.condition == "V3" && c.q == Quantity::normal_force) {
+        c.prediction_uncertainty = 0.3;
+        c.u_num_disc = 1.2;
+      }
+    }
+  const std::string md = reports::report_markdown(in);
+  const std::string s = section(md, "## Validation uncertainty (V&amp;V 20)", "\n## ");
+  BOOST_TEST(s.find("u\\_input not estimated") == std::string::npos, s);
+  // V3, m1, R_n: E = 34.17 - 34.996 = -0.826; u_val = sqrt(0.148^2 + 0.3^2 + 1.2^2 + 0.4^2) = 1.3084 (three significant digits of the largest, 1.31).
+  const std::string row = line_starting(s, "| V3 | m1 | R\\_n (N) |");
+  BOOST_TEST(row.find("| -0.83 | 0.15 | 0.30 | 1.20 | 0.40 | 1.31 | 0.63 |") != std::string::npos, row);
+  const std::string html = reports::report_html(in);
+  BOOST_TEST(html.find("id=\"vv20-table\"") != std::string::npos);
+}
+
+}  // namespace chutelab::test

@@ -13,6 +13,7 @@
 #include "dem/station/cache.h"
 #include "dem/station/progress.h"
 #include "dem/station/run.h"
+#include "validation/gci.h"
 #include "validation/models/models.h"
 
 namespace chutelab::validation {
@@ -51,19 +52,6 @@ std::optional<double> trajectory_at(const std::vector<st::TrajectoryRow>& rows, 
   }
   if (rows.size() == 1 && std::abs(rows[0].x - x) < 1e-9 && pick(rows[0]).ok()) return pick(rows[0]).value;
   return std::nullopt;
-}
-
-// Discretisation uncertainty of the finest of three ladder levels h[0] < h[1] < h[2] (values f, standard errors
-// se). Replaced by validation/gci.h when it lands.
-double ladder_uncertainty(const std::array<double, 3>& h, const std::array<double, 3>& f,
-                          const std::array<double, 3>& se) {
-  const double e21 = f[1] - f[0], e32 = f[2] - f[1];
-  const double r21 = h[1] / h[0];
-  const double noise = 2.0 * std::hypot(std::isfinite(se[0]) ? se[0] : 0.0, std::isfinite(se[1]) ? se[1] : 0.0);
-  double p = 1.0;
-  if (std::abs(e21) > noise && e21 * e32 > 0.0) p = std::clamp(std::log(std::abs(e32 / e21)) / std::log(r21), 0.5, 2.0);
-  const double fs = (std::abs(e21) > noise && e21 * e32 > 0.0) ? 1.25 : 3.0;
-  return fs * std::max(std::abs(e21), noise) / (std::pow(r21, p) - 1.0) / 2.0;
 }
 
 // The DEM's trajectory estimate (value and standard error) at x, interpolated like trajectory_at.
@@ -184,30 +172,11 @@ class DemModel final : public Model {
       }
     }
     const std::array<double, 3> h = {d1, d1 * c_.ladder_ratio, d1 * c_.ladder_ratio * c_.ladder_ratio};
-    auto estimate = [&](const st::Estimate& a, const st::Estimate& b, const st::Estimate& c) -> std::optional<double> {
-      if (!a.ok() || !b.ok() || !c.ok()) return std::nullopt;
-      return ladder_uncertainty(h, {a.value, b.value, c.value}, {a.se, b.se, c.se});
-    };
-    auto fill = [&](Quantity q, const st::Estimate& (*pick)(const st::StationResult&)) {
-      if (!p.values[q]) return;
-      if (auto u = estimate(pick(fine), pick(levels[0]), pick(levels[1]))) p.discretisation[q] = *u;
-    };
-    fill(Quantity::normal_force, [](const st::StationResult& r) -> const st::Estimate& { return r.normal_force; });
-    fill(Quantity::shear_force, [](const st::StationResult& r) -> const st::Estimate& { return r.shear_force; });
-    fill(Quantity::resultant_force, [](const st::StationResult& r) -> const st::Estimate& { return r.resultant_force; });
-    fill(Quantity::impact_velocity, [](const st::StationResult& r) -> const st::Estimate& { return r.impact_velocity; });
-    fill(Quantity::exit_velocity, [](const st::StationResult& r) -> const st::Estimate& { return r.exit_velocity; });
-    fill(Quantity::impact_point_y, [](const st::StationResult& r) -> const st::Estimate& { return r.impact_point_y; });
-    fill(Quantity::belt_layer_velocity, [](const st::StationResult& r) -> const st::Estimate& { return r.layer_speed; });
-    fill(Quantity::stream_mass_flow, [](const st::StationResult& r) -> const st::Estimate& { return r.mass_flux; });
-    p.trajectory_discretisation.assign(request.trajectory.size(), std::nullopt);
-    for (std::size_t t = 0; t < request.trajectory.size(); ++t) {
-      const auto& q = request.trajectory[t];
-      const auto y1 = trajectory_estimate(fine.trajectory, q.boundary, q.x);
-      const auto y2 = trajectory_estimate(levels[0].trajectory, q.boundary, q.x);
-      const auto y3 = trajectory_estimate(levels[1].trajectory, q.boundary, q.x);
-      if (y1 && y2 && y3) p.trajectory_discretisation[t] = estimate(*y1, *y2, *y3);
-    }
+    PredictRequest plain = request;
+    plain.curves = false;
+    const ModelPrediction p2 = to_prediction(levels[0], fx, plain, true, ""), p3 = to_prediction(levels[1], fx, plain, true, "");
+    const std::vector<LadderRun> runs = {{h[0], &p}, {h[1], &p2}, {h[2], &p3}};
+    apply_discretisation(p, ladder_uncertainty(runs));
     p.notes.push_back(fmt::format("u_num discretisation from the particle-size ladder {:.1f} / {:.1f} / {:.1f} mm",
                                   h[0] * 1e3, h[1] * 1e3, h[2] * 1e3));
   }
@@ -231,7 +200,12 @@ class DemModel final : public Model {
     set(Quantity::belt_layer_velocity, r.layer_speed);
     set(Quantity::stream_mass_flow, r.mass_flux);
     p.trajectory.reserve(request.trajectory.size());
-    for (const auto& q : request.trajectory) p.trajectory.push_back(trajectory_at(r.trajectory, q.boundary, q.x));
+    for (const auto& q : request.trajectory) {
+      p.trajectory.push_back(trajectory_at(r.trajectory, q.boundary, q.x));
+      // The stream limit's standard error (snapshot to snapshot), u_num's statistical part.
+      const auto e = trajectory_estimate(r.trajectory, q.boundary, q.x);
+      p.trajectory_uncertainty.push_back(e && std::isfinite(e->se) ? std::optional<double>(e->se) : std::nullopt);
+    }
     if (request.curves) {
       for (Boundary b : {Boundary::upper, Boundary::centre, Boundary::lower}) {
         Curve c{b == Boundary::upper ? "upper" : b == Boundary::lower ? "lower" : "centre (mean)", {}};
