@@ -63,8 +63,11 @@ py::dict as_dict(const Columns& cols) {
   for (const auto& [name, values] : cols) d[py::str(name)] = values;
   return d;
 }
+// A file's value went to SI and back; 15 significant digits drop the conversion's last-bit noise,
+// so a table shows the number the file holds (41.9, not 41.900000000000006).
+double as_written(double v) { return std::isfinite(v) ? std::stod(fmt::format("{:.15g}", v)) : v; }
 py::object number_or_nan(const std::optional<double>& v) {
-  return py::float_(v ? *v : std::nan(""));
+  return py::float_(v ? as_written(*v) : std::nan(""));
 }
 
 py::dict conditions_table(const validation::Dataset& d) {
@@ -72,14 +75,14 @@ py::dict conditions_table(const validation::Dataset& d) {
                        "stream_thickness_mm", "plate_angle_deg", "belt_incline_deg"});
   for (const auto& s : d.stations) {
     c[0].second.append(s.condition);
-    c[1].second.append(s.belt_speed);
-    c[2].second.append(s.mass_flow / units::tph);
-    c[3].second.append(s.plate_distance / units::mm);
-    c[4].second.append(s.plate_top / units::mm);
+    c[1].second.append(as_written(s.belt_speed));
+    c[2].second.append(as_written(s.mass_flow / units::tph));
+    c[3].second.append(as_written(s.plate_distance / units::mm));
+    c[4].second.append(as_written(s.plate_top / units::mm));
     c[5].second.append(number_or_nan(s.stream_thickness ? std::optional(*s.stream_thickness / units::mm)
                                                         : std::nullopt));
-    c[6].second.append(s.plate.angle * kDeg);
-    c[7].second.append(s.belt.incline * kDeg);
+    c[6].second.append(as_written(s.plate.angle * kDeg));
+    c[7].second.append(as_written(s.belt.incline * kDeg));
   }
   return as_dict(c);
 }
@@ -90,7 +93,7 @@ py::dict measurements_table(const validation::Dataset& d) {
     const double s = info(m.quantity).to_boundary;
     c[0].second.append(m.condition);
     c[1].second.append(std::string(name(m.quantity)));
-    c[2].second.append(m.value * s);
+    c[2].second.append(as_written(m.value * s));
     c[3].second.append(number_or_nan(m.uncertainty ? std::optional(*m.uncertainty * s) : std::nullopt));
   }
   return as_dict(c);
@@ -101,8 +104,8 @@ py::dict trajectory_table(const validation::Dataset& d) {
   for (const auto& p : d.trajectory) {
     c[0].second.append(p.condition);
     c[1].second.append(std::string(name(p.boundary)));
-    c[2].second.append(p.x / units::mm);
-    c[3].second.append(p.y / units::mm);
+    c[2].second.append(as_written(p.x / units::mm));
+    c[3].second.append(as_written(p.y / units::mm));
     c[4].second.append(number_or_nan(p.uncertainty ? std::optional(*p.uncertainty / units::mm) : std::nullopt));
   }
   return as_dict(c);
@@ -116,7 +119,7 @@ py::dict setup_dict(const Setup& setup) {
   Setup copy = setup;
   for (const auto& f : rig_fields()) {
     const std::string key = f.section.empty() ? std::string(f.key) : fmt::format("{}.{}", f.section, f.key);
-    d[py::str(key)] = f.ref(copy) / f.to_si;
+    d[py::str(key)] = as_written(f.ref(copy) / f.to_si);
   }
   return d;
 }

@@ -140,14 +140,16 @@ def validate(dataset, models=("korzen", "booth-cema"), effects=None, *, toleranc
 
 
 class Diagnosis:
-    """What `chutelab diagnose` finds: ranking (diagnosis.csv), patterns (residual trends per
+    """What `chutelab diagnose` finds: ranking (diagnosis.csv; its first row is the best single
+    effect), patterns (residual trends per
     model, quantity and driver), verdict, best (the recommended effect or None), markdown
     (diagnosis.md) and the numbers behind them."""
 
     def __init__(self, raw):
+        # A pair's row joins its two values with "+" (as diagnosis.csv does), which leaves rank,
+        # estimate and uncertainty as text when the ranking holds a pair.
         self.ranking = _table(_parse_csv(raw["ranking"]),
-                              text_columns=("rank", "effect", "parameter", "estimate", "uncertainty",
-                                            "significant"))
+                              text_columns=("effect", "parameter", "significant"))
         self.patterns = _table(raw["patterns"], text_columns=("model", "quantity", "driver"))
         for key in ("markdown", "verdict", "models", "n_data", "n_without_uncertainty",
                     "chi2_baseline", "baseline_p_value", "any_significant", "convincing", "best",
