@@ -92,13 +92,17 @@ class Dataset:
         return f"chutelab.Dataset({self.name!r}, dir={self.dir!r})"
 
 
-def read_dataset(path, measurements_required=True):
-    """Reads a dataset folder; raises InputError naming file, line and field on bad input."""
+def read_dataset(path, measurements_required=False):
+    """Reads a dataset folder; raises InputError naming file, line and field on bad input.
+    measurements.csv may be absent (a rig and its conditions, e.g. datasets/grima2010) unless
+    measurements_required; validate() and diagnose() need it."""
     return Dataset(_chutelab.read_dataset(_os.fspath(path), measurements_required))
 
 
 def _dataset(d, measurements_required=True):
     if isinstance(d, Dataset):
+        if measurements_required and not _os.path.exists(_os.path.join(d.dir, "measurements.csv")):
+            read_dataset(d.dir, True)  # raises the reader's InputError
         return d
     return read_dataset(d, measurements_required)
 

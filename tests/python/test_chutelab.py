@@ -105,6 +105,12 @@ def test_bad_files_raise_input_error_with_file_line_and_field(tmp_path):
     # The command line says the same.
     r = cli("validate", "--dataset", str(ds), "--out", str(tmp_path / "out"))
     assert r.returncode == 2 and f"{ds / 'measurements.csv'}:3: value" in r.stderr
+    # A rig without measurements reads, but does not validate.
+    rig = chutelab.read_dataset(os.path.join(SOURCE, "datasets", "grima2010"))
+    assert len(rig.conditions) == 8 and len(rig.measurements) == 0
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.validate(rig)
+    assert e.value.file.endswith("measurements.csv") and "needs measurements" in str(e.value)
     with pytest.raises(chutelab.InputError) as e:
         chutelab.read_dataset(tmp_path / "nowhere")
     assert e.value.field == "" and "not found" in str(e.value)
