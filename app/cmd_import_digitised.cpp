@@ -1,5 +1,6 @@
 // `chutelab import-digitised`: curves digitised from published figures (WebPlotDigitizer's CSV
 // export or project JSON) become trajectory.csv / measurements.csv rows of a dataset.
+#include <algorithm>
 #include <fmt/format.h>
 #include <fstream>
 #include <iostream>
@@ -65,8 +66,11 @@ int run_import(const ImportCli& o) {
   }
   const auto imp = validation::import_digitised(d, o.mapping, curves);
 
-  if (fs::exists(out) && fs::weakly_canonical(out) == fs::weakly_canonical(src))
-    throw InputError(o.out, 0, "--out", "is the source dataset; the import writes a new dataset folder");
+  // The source is copied into the new folder, so the new folder cannot be (or lie inside) it.
+  const fs::path csrc = fs::weakly_canonical(src), cout = fs::weakly_canonical(out);
+  const auto [mismatch, rest] = std::mismatch(csrc.begin(), csrc.end(), cout.begin(), cout.end());
+  if (mismatch == csrc.end())
+    throw InputError(o.out, 0, "--out", "is or lies inside the source dataset; the import writes a new dataset folder");
   if (fs::exists(out) && !(fs::is_directory(out) && fs::is_empty(out)))
     throw InputError(o.out, 0, "--out", "exists and is not an empty folder; give a new folder");
 

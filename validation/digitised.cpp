@@ -88,7 +88,9 @@ std::vector<DigitisedCurve> read_wpd_csv(const fs::path& path) {
     for (std::size_t k = 0; k < curves.size(); ++k) {
       curves[k].name = cell(2 * k);
       curves[k].where = {file, rows[first].first};
-      if (!cell(2 * k + 1).empty())
+      // WebPlotDigitizer writes the name over the x column only ("Red,,Green,"); the name over
+      // both columns ("Red,Red,Green,Green") reads the same.
+      if (!cell(2 * k + 1).empty() && cell(2 * k + 1) != cell(2 * k))
         throw InputError(file, rows[first].first, fmt::format("column {}", 2 * k + 2),
                          fmt::format("'{}' over a y column: a dataset name sits over its x column", cell(2 * k + 1)));
     }

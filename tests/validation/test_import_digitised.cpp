@@ -75,16 +75,24 @@ BOOST_AUTO_TEST_CASE(csv_exports_with_and_without_headers) {
   // A single dataset's export: bare x,y rows, named after the file; and one with an X,Y label row.
   write_file(dir / "upper.csv", "100,153\n200,137.5\n");
   write_file(dir / "lower.csv", "x,y\n0.1,0.128\n0.2,0.110\n");
+  // Two datasets, the name over both columns, the shorter one padded with empty cells.
+  write_file(dir / "both.csv", "centre,centre,lower2,lower2\nX,Y,X,Y\n100,140,100,127\n150,133,,\n");
   write_file(dir / "map.toml",
              "[[curve]]\nname = \"upper\"\ncondition = \"V3-41\"\nboundary = \"upper\"\nx_unit = \"mm\"\n"
              "y_unit = \"mm\"\nuncertainty = 1\n"
              "[[curve]]\nname = \"lower\"\ncondition = \"V3-41\"\nboundary = \"lower\"\nx_unit = \"m\"\n"
-             "y_unit = \"m\"\nuncertainty = 0\n");
-  const auto r = import(kGrima, dir / "map.toml", {dir / "upper.csv", dir / "lower.csv"}, dir / "out");
+             "y_unit = \"m\"\nuncertainty = 0\n"
+             "[[curve]]\nname = \"centre\"\ncondition = \"V3-41\"\nboundary = \"centre\"\nx_unit = \"mm\"\n"
+             "y_unit = \"mm\"\nuncertainty = 1\n");
+  const auto r = import(kGrima, dir / "map.toml", {dir / "upper.csv", dir / "lower.csv", dir / "both.csv"}, dir / "out");
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   const std::string traj = read_file(dir / "out" / "trajectory.csv");
   BOOST_TEST(traj.find("V3-41,upper,200,137.5,1\n") != std::string::npos, traj);
   BOOST_TEST(traj.find("V3-41,lower,100,128,\n") != std::string::npos, traj);  // 0 = unknown: empty
+  BOOST_TEST(traj.find("V3-41,centre,150,133,1\n") != std::string::npos, traj);
+  BOOST_TEST(count_lines(traj) == 1 + 2 + 2 + 2);
+  // The curve in the inputs that the mapping does not use is named, not imported.
+  BOOST_TEST(r.err.find("warning: curve 'lower2' is not in the mapping") != std::string::npos, r.err);
   // No measurements were imported, so the new dataset has none (grima2010 has none either).
   BOOST_TEST(!fs::exists(dir / "out" / "measurements.csv"));
 }
@@ -147,6 +155,13 @@ BOOST_AUTO_TEST_CASE(bad_mappings_and_points_are_one_message_and_nothing_written
       BOOST_TEST(!fs::exists(out));
     }
   }
+  // Nor inside the source it copies.
+  fs::copy(kGrima, dir / "src", fs::copy_options::recursive);
+  const auto inside = import((dir / "src").string(), kExample + "/mapping.toml",
+                             {fig_a, kExample + "/fig-b-forces.json"}, dir / "src" / "new");
+  BOOST_TEST(inside.exit_code == 2);
+  BOOST_TEST(inside.err.find("lies inside the source dataset") != std::string::npos, inside.err);
+  BOOST_TEST(!fs::exists(dir / "src" / "new"));
   // An existing dataset folder is never written over.
   fs::create_directories(dir / "taken");
   write_file(dir / "taken" / "keep.txt", "mine\n");
