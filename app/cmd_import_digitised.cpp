@@ -67,8 +67,8 @@ int run_import(const ImportCli& o) {
   const auto imp = validation::import_digitised(d, o.mapping, curves);
 
   // The source is copied into the new folder, so the new folder cannot be (or lie inside) it.
-  const fs::path csrc = fs::weakly_canonical(src), cout = fs::weakly_canonical(out);
-  const auto [mismatch, rest] = std::mismatch(csrc.begin(), csrc.end(), cout.begin(), cout.end());
+  const fs::path csrc = fs::weakly_canonical(src), cdst = fs::weakly_canonical(out);
+  const auto [mismatch, rest] = std::mismatch(csrc.begin(), csrc.end(), cdst.begin(), cdst.end());
   if (mismatch == csrc.end())
     throw InputError(o.out, 0, "--out", "is or lies inside the source dataset; the import writes a new dataset folder");
   if (fs::exists(out) && !(fs::is_directory(out) && fs::is_empty(out)))
