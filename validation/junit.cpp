@@ -104,7 +104,7 @@ std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSum
       const Tolerance& t = *tol->find(s.model, k.quantity);
       const std::string unit = unit_of(*k.values.front());
       const std::string name = fmt::format("{} {}", k.condition, k.quantity);
-      cases += fmt::format("    <testcase name=\"{}\" classname=\"chutelab.{}.{}\" time=\"0\">\n",
+      cases += fmt::format("    <testcase name=\"{}\" classname=\"chutelab.{}.{}\">\n",
                            xml_escape(name), dataset, xml_escape(s.model));
       std::vector<const Comparison*> predicted, failed;
       for (const Comparison* c : k.values) {
@@ -145,7 +145,7 @@ std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSum
     sum.failures += s.failures;
     sum.skipped += s.skipped;
     body += fmt::format(
-        "  <testsuite name=\"{}.{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" skipped=\"{}\" time=\"0\">\n",
+        "  <testsuite name=\"{}.{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" skipped=\"{}\">\n",
         dataset, xml_escape(s.model), n, s.failures, s.skipped);
     body += "    <properties>\n";
     body += fmt::format("      <property name=\"dataset\" value=\"{}\"/>\n", dataset);
@@ -165,8 +165,8 @@ std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSum
     ++sum.tests;
     ++sum.errors;
     body += fmt::format(
-        "  <testsuite name=\"{}\" tests=\"1\" failures=\"0\" errors=\"1\" skipped=\"0\" time=\"0\">\n"
-        "    <testcase name=\"acceptance\" classname=\"chutelab.{}\" time=\"0\">\n"
+        "  <testsuite name=\"{}\" tests=\"1\" failures=\"0\" errors=\"1\" skipped=\"0\">\n"
+        "    <testcase name=\"acceptance\" classname=\"chutelab.{}\">\n"
         "      <error message=\"{}\" type=\"nothing-checked\"/>\n"
         "    </testcase>\n"
         "  </testsuite>\n",
@@ -176,7 +176,7 @@ std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSum
   return fmt::format(
              "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
              "<testsuites name=\"chutelab validate {}\" tests=\"{}\" failures=\"{}\" errors=\"{}\" "
-             "skipped=\"{}\" time=\"0\">\n",
+             "skipped=\"{}\">\n",
              dataset, sum.tests, sum.failures, sum.errors, sum.skipped) +
          body + "</testsuites>\n";
 }
