@@ -125,6 +125,33 @@ std::vector<DigitisedCurve> read_wpd_csv(const fs::path& path) {
 
 // ---- WebPlotDigitizer project JSON -------------------------------------------------------------
 
+// XYAxes calibration: four points, the first two on the x axis, the last two on the y axis, each
+// with pixel position (px, py) and the value typed for it (dx, dy as text).
+std::optional<PixelScale> y_scale(const JsonValue& axes) {
+  const JsonValue* cal = axes.member("calibrationPoints");
+  if (!cal || !cal->array() || cal->array()->size() != 4) return std::nullopt;
+  auto num = [](const JsonValue* v) -> std::optional<double> {
+    if (!v) return std::nullopt;
+    if (v->is_number()) return std::get<double>(v->value);
+    if (v->is_string()) return parse_number(std::get<std::string>(v->value));
+    return std::nullopt;
+  };
+  const JsonValue& a = (*cal->array())[2];
+  const JsonValue& b = (*cal->array())[3];
+  const auto pxa = num(a.member("px")), pya = num(a.member("py")), ya = num(a.member("dy"));
+  const auto pxb = num(b.member("px")), pyb = num(b.member("py")), yb = num(b.member("dy"));
+  if (!pxa || !pya || !ya || !pxb || !pyb || !yb) return std::nullopt;
+  const double pixels = std::hypot(*pxb - *pxa, *pyb - *pya);
+  PixelScale s;
+  const JsonValue* log = axes.member("isLogY");
+  s.log = log && std::holds_alternative<bool>(log->value) && std::get<bool>(log->value);
+  if (s.log && !(*ya > 0.0 && *yb > 0.0)) return std::nullopt;
+  const double span = s.log ? std::abs(std::log10(*yb / *ya)) : std::abs(*yb - *ya);
+  if (!(pixels > 0.0) || !(span > 0.0) || !std::isfinite(span)) return std::nullopt;
+  s.per_px = span / pixels;
+  return s;
+}
+
 std::vector<DigitisedCurve> read_wpd_json(const fs::path& path) {
   const std::string file = path.string();
   const JsonValue doc = read_json(path);
@@ -132,12 +159,16 @@ std::vector<DigitisedCurve> read_wpd_json(const fs::path& path) {
   if (!coll || !coll->array())
     throw InputError(file, doc.line, "datasetColl", "not a WebPlotDigitizer project (no datasetColl array)");
   std::map<std::string, std::string> axes_type;  // axes name -> type
+  std::map<std::string, std::optional<PixelScale>> axes_scale;
   if (const JsonValue* axes = doc.member("axesColl"); axes && axes->array())
     for (const auto& a : *axes->array()) {
       const JsonValue* n = a.member("name");
       const JsonValue* t = a.member("type");
-      if (n && n->is_string() && t && t->is_string())
-        axes_type[std::get<std::string>(n->value)] = std::get<std::string>(t->value);
+      if (n && n->is_string() && t && t->is_string()) {
+        const std::string& an = std::get<std::string>(n->value);
+        axes_type[an] = std::get<std::string>(t->value);
+        if (axes_type[an] == "XYAxes") axes_scale[an] = y_scale(a);
+      }
     }
   std::vector<DigitisedCurve> curves;
   for (std::size_t i = 0; i < coll->array()->size(); ++i) {
@@ -155,6 +186,7 @@ std::vector<DigitisedCurve> read_wpd_json(const fs::path& path) {
                          fmt::format("dataset '{}' is on {} axes; only calibrated x-y axes (XYAxes) give "
                                      "data units",
                                      c.name, it->second));
+      if (auto sc = axes_scale.find(std::get<std::string>(an->value)); sc != axes_scale.end()) c.pixel = sc->second;
     }
     const JsonValue* data = ds.member("data");
     if (!data || !data->array()) throw InputError(file, ds.line, at + ".data", "a dataset needs a data array");
@@ -307,6 +339,11 @@ class Mapping {
 
 }  // namespace
 
+double PixelScale::y_units(double y, double pixels) const {
+  // On a log axis a pixel is a fixed ratio: dy = y ln(10) d(log10 y).
+  return log ? std::abs(y) * std::log(10.0) * per_px * pixels : per_px * pixels;
+}
+
 std::vector<DigitisedCurve> read_digitised(const fs::path& file) {
   if (!fs::exists(file)) throw InputError(file.string(), 0, "", "file not found");
   std::string ext = file.extension().string();
@@ -335,7 +372,8 @@ DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
   if (doc.contains("defaults") && !defaults) top.fail("defaults", "must be a table: [defaults]");
   if (defaults)
     Mapping(mfile, *defaults, "defaults", nullptr)
-        .only({"x_unit", "y_unit", "uncertainty", "x_offset_mm", "y_offset_mm", "match_tolerance"});
+        .only({"x_unit", "y_unit", "uncertainty", "uncertainty_px", "x_offset_mm", "y_offset_mm",
+               "match_tolerance"});
   const toml::array* list = doc["curve"].as_array();
   if (!list || list->empty()) throw InputError(mfile, 0, "curve", "no [[curve]] tables: nothing to import");
 
@@ -360,7 +398,8 @@ DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
     const toml::table* ct = (*list)[k].as_table();
     if (!ct) throw InputError(mfile, 0, fmt::format("curve[{}]", k), "must be a table");
     const Mapping m(mfile, *ct, fmt::format("curve[{}]", k), defaults ? defaults : &empty);
-    m.only({"name", "condition", "boundary", "quantity", "x_unit", "y_unit", "uncertainty", "x_offset_mm",
+    m.only({"name", "condition", "boundary", "quantity", "x_unit", "y_unit", "uncertainty", "uncertainty_px",
+            "x_offset_mm",
             "y_offset_mm", "condition_by", "conditions", "match_tolerance"});
     const auto name = m.text("name");
     if (!name) m.fail("name", "is required: the curve's dataset name in the digitiser's export");
@@ -377,11 +416,27 @@ DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
       if (!d.station(c)) m.fail(key, fmt::format("condition '{}' is not in conditions.csv", c));
       return c;
     };
-    const auto uncertainty = m.number("uncertainty");
-    if (!uncertainty)
-      m.fail("uncertainty", "is required: the digitising uncertainty (one standard deviation of y, in y_unit; "
-                            "0 = unknown)");
-    if (*uncertainty < 0.0) m.fail("uncertainty", "cannot be negative");
+    // A curve that states its own uncertainty (either kind) replaces the defaults' (both kinds):
+    // mixing one from [defaults] with another from the curve would add a different figure's.
+    const bool own_u = ct->contains("uncertainty") || ct->contains("uncertainty_px");
+    const Mapping own(mfile, *ct, fmt::format("curve[{}]", k), nullptr);
+    const Mapping& um = own_u ? own : m;
+    const auto u_given = um.number("uncertainty");
+    const auto u_px = um.number("uncertainty_px");
+    if (!u_given && !u_px)
+      m.fail("uncertainty", "is required: the digitising uncertainty (one standard deviation of y, in y_unit, "
+                            "0 = unknown; or uncertainty_px in pixels)");
+    if (u_given && *u_given < 0.0) m.fail("uncertainty", "cannot be negative");
+    if (u_px && *u_px < 0.0) m.fail("uncertainty_px", "cannot be negative");
+    if (u_px && !curve.pixel)
+      m.fail("uncertainty_px", fmt::format("curve '{}' has no pixel calibration (only a project JSON on XY axes "
+                                           "has one); give uncertainty in y_unit",
+                                           *name));
+    // One standard deviation of a digitised y in y_unit; both kinds given add in quadrature.
+    auto uncertainty_at = [&](double y) {
+      const double a = u_given.value_or(0.0), b = u_px ? curve.pixel->y_units(y, *u_px) : 0.0;
+      return std::sqrt(a * a + b * b);
+    };
     const bool is_trajectory = ct->contains("boundary");
     if (is_trajectory == ct->contains("quantity"))
       m.fail(is_trajectory ? "quantity" : "boundary",
@@ -406,7 +461,7 @@ DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
         // Rounded as trajectory.csv will hold it, so that duplicates are found as the reader finds them.
         t.x = std::round((p.x * ux.to_si + x0) * 1e9) / 1e9;
         t.y = p.y * uy.to_si + y0;
-        if (*uncertainty > 0.0) t.uncertainty = *uncertainty * uy.to_si;
+        if (const double u = uncertainty_at(p.y); u > 0.0) t.uncertainty = u * uy.to_si;
         t.where = p.where;
         if (!have_t.insert({t.condition, t.boundary, t.x}).second)
           throw InputError(p.where.file, p.where.line, p.field,
@@ -496,7 +551,7 @@ DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
       meas.condition = cond_of[i];
       meas.quantity = *q;
       meas.value = p.y * uy.to_si;
-      if (*uncertainty > 0.0) meas.uncertainty = *uncertainty * uy.to_si;
+      if (const double u = uncertainty_at(p.y); u > 0.0) meas.uncertainty = u * uy.to_si;
       meas.where = p.where;
       if (info(*q).magnitude && meas.value < 0.0)
         throw InputError(p.where.file, p.where.line, p.field,

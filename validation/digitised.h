@@ -14,6 +14,9 @@
 //   [defaults]                            # for every curve; each curve may override
 //   x_unit = "mm"  y_unit = "mm"          # mm cm m in ft | N kN lbf kgf | m/s ft/s ft/min km/h | t/h kg/s
 //   uncertainty = 2.0                     # digitising uncertainty, one sd of y, in y_unit (0 = unknown)
+//   uncertainty_px = 2                    # or in pixels, through a project's y calibration; with both,
+//                                         # they add in quadrature; a curve stating either
+//                                         # replaces both of [defaults]
 //   [[curve]]                             # a stream boundary -> trajectory.csv
 //   name = "V3-41 upper"  condition = "V3-41"  boundary = "upper"
 //   x_offset_mm = 0  y_offset_mm = 0      # the figure's origin in chutelab's frame (pulley centre)
@@ -24,6 +27,7 @@
 //   match_tolerance = 0.1                 # in the column's unit (default 5 % of the value)
 //   (or condition = "V3-41" for a curve of one point)
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,10 +41,18 @@ struct DigitisedPoint {
   std::string field;        // e.g. "V3-41 upper.y" or "datasetColl[0].data[3].value"
 };
 
+// How many y units one pixel is, from a project's axis calibration (CSV exports have none).
+struct PixelScale {
+  bool log = false;       // log axis: per_px is decades per pixel
+  double per_px = 0.0;    // y units (or decades) per pixel along the y axis
+  double y_units(double y, double pixels) const;  // the y uncertainty of `pixels` at y
+};
+
 struct DigitisedCurve {
   std::string name;
   SourceLine where;
   std::vector<DigitisedPoint> points;
+  std::optional<PixelScale> pixel;  // project JSON on calibrated XY axes
 };
 
 // By extension: .json is a project file, anything else a CSV export. Throws InputError.

@@ -51,10 +51,11 @@ BOOST_AUTO_TEST_CASE(the_bundled_example_becomes_rows_that_validate) {
   BOOST_TEST(row_starting(traj, "V3-41,upper,102.108,") == "V3-41,upper,102.108,152.908,0.508");
   BOOST_TEST(row_starting(traj, "V3-41,lower,100.838,") == "V3-41,lower,100.838,127.762,0.508");
   BOOST_TEST(count_lines(traj) == 1 + 10);
-  // Each force point is the high-flow condition at its belt speed.
+  // Each force point is the high-flow condition at its belt speed. R_n's uncertainty is 2 px
+  // through the project's y calibration (70 N over 420 px), R_s's 0.3 N as stated.
   const std::string meas = read_file(out / "measurements.csv");
-  BOOST_TEST(row_starting(meas, "V2-41,normal_force_N") == "V2-41,normal_force_N,23.3,0.3");
-  BOOST_TEST(row_starting(meas, "V5-44,normal_force_N") == "V5-44,normal_force_N,60.5,0.3");
+  BOOST_TEST(row_starting(meas, "V2-41,normal_force_N") == "V2-41,normal_force_N,23.3,0.333333");
+  BOOST_TEST(row_starting(meas, "V5-44,normal_force_N") == "V5-44,normal_force_N,60.5,0.333333");
   BOOST_TEST(row_starting(meas, "V4-41,shear_force_N") == "V4-41,shear_force_N,3.3,0.3");
   BOOST_TEST(count_lines(meas) == 1 + 8);
   // The rest of the dataset comes along unchanged; the README says where the rows came from.
@@ -67,7 +68,7 @@ BOOST_AUTO_TEST_CASE(the_bundled_example_becomes_rows_that_validate) {
   BOOST_TEST_REQUIRE(v.exit_code == 0, v.err);
   const std::string errors = read_file(dir / "val" / "errors.csv");
   BOOST_TEST(errors.find("V3-41,booth-cema,trajectory_upper_y_mm,152.908,0.508,") != std::string::npos);
-  BOOST_TEST(errors.find("V5-44,korzen,normal_force_N,60.5,0.3,") != std::string::npos);
+  BOOST_TEST(errors.find("V5-44,korzen,normal_force_N,60.5,0.333333,") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(csv_exports_with_and_without_headers) {
@@ -95,6 +96,29 @@ BOOST_AUTO_TEST_CASE(csv_exports_with_and_without_headers) {
   BOOST_TEST(r.err.find("warning: curve 'lower2' is not in the mapping") != std::string::npos, r.err);
   // No measurements were imported, so the new dataset has none (grima2010 has none either).
   BOOST_TEST(!fs::exists(dir / "out" / "measurements.csv"));
+}
+
+BOOST_AUTO_TEST_CASE(pixels_become_y_units_through_the_calibration_also_on_a_log_axis) {
+  // y axis: 1 N at py = 400, 100 N at py = 0, logarithmic: 2 decades over 400 px. At y = 10 N one
+  // pixel is 10 ln(10) 0.005 N, so 2 px are 0.230259 N; 0.1 N stated adds in quadrature.
+  const fs::path dir = fresh_dir("wpd-log");
+  write_file(dir / "log.json",
+             "{\"axesColl\": [{\"name\": \"XY\", \"type\": \"XYAxes\", \"isLogY\": true, \"calibrationPoints\": [\n"
+             "  {\"px\": 0, \"py\": 400, \"dx\": \"1\", \"dy\": \"1\"}, {\"px\": 500, \"py\": 400, \"dx\": \"6\", \"dy\": \"1\"},\n"
+             "  {\"px\": 0, \"py\": 400, \"dx\": \"1\", \"dy\": \"1\"}, {\"px\": 0, \"py\": 0, \"dx\": \"1\", \"dy\": \"100\"}]}],\n"
+             " \"datasetColl\": [{\"name\": \"R_s\", \"axesName\": \"XY\", \"data\": [{\"value\": [3.0, 10.0]}]},\n"
+             "                   {\"name\": \"R_n\", \"axesName\": \"XY\", \"data\": [{\"value\": [3.0, 10.0]}]}]}\n");
+  write_file(dir / "map.toml",
+             "[defaults]\nuncertainty = 5\nx_unit = \"m/s\"\ny_unit = \"N\"\n"
+             "[[curve]]\nname = \"R_s\"\nquantity = \"shear_force_N\"\ncondition = \"V3-41\"\nuncertainty_px = 2\n"
+             "[[curve]]\nname = \"R_n\"\nquantity = \"normal_force_N\"\ncondition = \"V3-41\"\nuncertainty_px = 2\n"
+             "uncertainty = 0.1\n");
+  const auto r = import(kGrima, dir / "map.toml", {dir / "log.json"}, dir / "out");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  const std::string meas = read_file(dir / "out" / "measurements.csv");
+  // The curve's own uncertainty_px replaces the defaults' 5 N.
+  BOOST_TEST(row_starting(meas, "V3-41,shear_force_N") == "V3-41,shear_force_N,10,0.230259");
+  BOOST_TEST(row_starting(meas, "V3-41,normal_force_N") == "V3-41,normal_force_N,10,0.251036");  // hypot(0.1, 0.230259)
 }
 
 BOOST_AUTO_TEST_CASE(bad_mappings_and_points_are_one_message_and_nothing_written) {
@@ -130,6 +154,9 @@ BOOST_AUTO_TEST_CASE(bad_mappings_and_points_are_one_message_and_nothing_written
        {fig_a}, "map.toml:6: curve[0].y_unit: unknown unit 'furlong'"},
       {"no digitising uncertainty", curve_a + "condition = \"V3-41\"\nx_unit = \"in\"\ny_unit = \"in\"\n", {fig_a},
        "curve[0].uncertainty: is required"},
+      {"pixels without a calibration",
+       curve_a + "condition = \"V3-41\"\nx_unit = \"in\"\ny_unit = \"in\"\nuncertainty_px = 2\n", {fig_a},
+       "map.toml:7: curve[0].uncertainty_px: curve 'V3-41 upper' has no pixel calibration"},
       {"unknown key", curve_a + "condition = \"V3-41\"\nx_unit = \"in\"\ny_unit = \"in\"\nuncertainty = 0.02\nsmooth = true\n",
        {fig_a}, "map.toml:8: curve[0].smooth: unknown key"},
       {"curve not in the inputs", "[[curve]]\nname = \"V3-41 centre\"\nboundary = \"centre\"\n", {fig_a},
