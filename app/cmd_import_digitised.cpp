@@ -29,6 +29,13 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
+void write_text(const fs::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw InputError(file.string(), 0, "--out", "cannot write the file");
+}
+
 std::vector<std::string> header_of(const std::string& text) {
   std::vector<std::string> cols;
   std::string line = text.substr(0, text.find('\n'));
@@ -53,7 +60,7 @@ void append_rows(const fs::path& file, const std::vector<std::string>& columns,
         if (header[i] == columns[j]) cells[i] = r[j];
     text += fmt::format("{}\n", fmt::join(cells, ","));
   }
-  std::ofstream(file, std::ios::binary) << text;
+  write_text(file, text);
 }
 
 int run_import(const ImportCli& o) {
@@ -101,7 +108,7 @@ int run_import(const ImportCli& o) {
                           imp.source.empty() ? "not stated in the mapping" : imp.source, o.mapping,
                           fmt::join(o.inputs, ", "));
     for (const auto& s : imp.summary) readme += "- " + s + "\n";
-    std::ofstream(stage / "README.md", std::ios::binary) << readme;
+    write_text(stage / "README.md", readme);
     try {
       validation::read_dataset(stage, validation::MeasurementsRequired::no);
     } catch (const InputError& e) {
