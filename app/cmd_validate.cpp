@@ -12,6 +12,7 @@
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
+#include "validation/junit.h"
 #include "validation/output_files.h"
 #include "validation/tolerances.h"
 
@@ -19,12 +20,30 @@ namespace chutelab::app {
 namespace {
 
 struct ValidateCli {
-  std::string dataset, out, tolerances, models = "korzen,booth-cema";
+  std::string dataset, out, tolerances, models = "korzen,booth-cema", junit;
   std::vector<std::string> effects;
   bool diagnose = false;
   DemCli dem;
   std::vector<std::string> studies;
 };
+
+// --junit FILE must not replace a file this run reads or writes elsewhere.
+void check_junit_path(const ValidateCli& o, const std::filesystem::path& tolerances_file) {
+  namespace fs = std::filesystem;
+  if (o.junit.empty()) return;
+  const fs::path f(o.junit);
+  if (fs::is_directory(f)) throw InputError(o.junit, 0, "--junit", "is a folder; give a file name");
+  std::vector<fs::path> taken = {tolerances_file};
+  for (const char* n : {"setup.toml", "conditions.csv", "measurements.csv", "trajectory.csv"})
+    taken.push_back(fs::path(o.dataset) / n);
+  for (const char* n : {"predictions.csv", "errors.csv", "summary.csv", "report.md", "report.html",
+                        "diagnosis.csv", "diagnosis.md"})
+    taken.push_back(fs::path(o.out) / n);
+  const fs::path mine = fs::weakly_canonical(f);
+  for (const auto& t : taken)
+    if (!t.empty() && fs::weakly_canonical(t) == mine)
+      throw InputError(o.junit, 0, "--junit", fmt::format("is {}, which this run reads or writes", t.string()));
+}
 
 int run_validate(const ValidateCli& o) {
   namespace fs = std::filesystem;
@@ -46,6 +65,7 @@ int run_validate(const ValidateCli& o) {
   std::optional<validation::Tolerances> tol;
   if (!o.tolerances.empty()) tol = validation::Tolerances::read(o.tolerances);
   else if (fs::exists(dir / "tolerances.toml")) tol = validation::Tolerances::read(dir / "tolerances.toml");
+  check_junit_path(o, tol ? fs::path(tol->file()) : fs::path());
 
   validation::ValidateOptions base_opts;
   base_opts.tolerances = tol ? &*tol : nullptr;
@@ -95,11 +115,28 @@ int run_validate(const ValidateCli& o) {
     files.emplace_back("diagnosis.md", validation::diagnosis_markdown(*diagnosis));
   }
   validation::write_outputs(o.out, files);
+  validation::JunitSummary junit;
+  if (!o.junit.empty()) {  // after the others, under a temporary name first
+    const fs::path f(o.junit);
+    validation::write_outputs(f.parent_path().empty() ? fs::path(".") : f.parent_path(),
+                              {{f.filename().string(),
+                                validation::junit_xml(final_result, tol ? &*tol : nullptr, &junit)}});
+  }
   dem_files.commit();
   if (after) std::cout << "before: " << baseline.brief() << "\nafter:  " << after->brief() << "\n";
   else std::cout << baseline.brief() << "\n";
   if (diagnosis) std::cout << diagnosis->verdict << "\n";
   std::cout << fmt::format("report: {}\n", (fs::path(o.out) / "report.html").string());
+  if (!o.junit.empty()) {
+    std::cout << fmt::format("junit: {} ({} test cases, {} failed, {} skipped)\n", o.junit, junit.tests,
+                             junit.failures, junit.skipped);
+    // An acceptance run that checked nothing has not accepted anything.
+    if (junit.nothing_checked()) {
+      std::cerr << "chutelab: --junit: no tolerance applied to any predicted value: nothing was checked "
+                   "(the JUnit file reports an error)\n";
+      return kExitAcceptanceFailed;
+    }
+  }
   return final_result.acceptance_failed ? kExitAcceptanceFailed : kExitOk;
 }
 
@@ -123,6 +160,9 @@ void add_validate(CLI::App& app, Action& action) {
                   "folders of `chutelab calibrate` / `sensitivity` runs (comma list or repeated): their tables "
                   "and charts become report sections")
       ->delimiter(',');
+  cmd->add_option("--junit", o->junit,
+                  "also write the acceptance results as JUnit XML (one test case per condition x model x "
+                  "quantity with a tolerance; exit 1 when nothing was checked)");
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_validate(*o); }; });
 }

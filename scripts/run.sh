@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-cmake --build build -j"$(nproc)" --target chutelab >/dev/null
+cmake --build build -j"$(nproc)" --target chutelab chutelab_python >/dev/null
 dataset=${1:-datasets/liggghts-rig}
 # The recorded calibration and sensitivity studies (bench/, seed Tables 3 and 6) join the report.
 exec build/app/chutelab validate --dataset "$dataset" --models korzen,booth-cema,dem --diagnose \

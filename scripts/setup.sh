@@ -5,7 +5,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make libeigen3-dev libgsl-dev libboost-test-dev libfmt-dev libfccp-dev
-          libtomlplusplus-dev libcli11-dev chromium)
+          libtomlplusplus-dev libcli11-dev chromium
+          python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pandas python3-matplotlib
+          python3-pytest libxml2-utils)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -21,4 +23,23 @@ fi
 
 if [[ ! -f build/CMakeCache.txt ]]; then
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+fi
+
+# `import chutelab` (README, "Python"): a chutelab.pth in the user site-packages of python3 (and of
+# the interpreter the package is built for) names this checkout's build/python, as an editable
+# install would. CHUTELAB_NO_PTH=1 leaves site-packages alone; PYTHONPATH=build/python then works.
+if [[ -z ${CHUTELAB_NO_PTH:-} ]]; then
+  pythons=(python3 "$(sed -n 's/^Python_EXECUTABLE:FILEPATH=//p' build/CMakeCache.txt)")
+  for py in "${pythons[@]}"; do
+    [[ -n $py ]] && command -v "$py" >/dev/null || continue
+    site=$("$py" -c 'import site, sys; print(site.getusersitepackages()) if site.ENABLE_USER_SITE else sys.exit(1)' \
+           2>/dev/null) || continue
+    [[ -n $site ]] || continue
+    pth="$site/chutelab.pth"
+    if [[ $(cat "$pth" 2>/dev/null) != "$PWD/build/python" ]]; then
+      if mkdir -p "$site" && echo "$PWD/build/python" >"$pth"; then
+        echo "setup: $py imports chutelab from $PWD/build/python ($pth)"
+      fi
+    fi
+  done
 fi

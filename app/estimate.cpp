@@ -1,0 +1,82 @@
+#include "app/estimate.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/input_error.h"
+#include "core/units.h"
+#include "validation/dataset.h"
+#include "validation/harness.h"
+#include "validation/model.h"
+
+namespace chutelab::app {
+namespace {
+
+Station resolve_station(const EstimateInput& o) {
+  namespace fs = std::filesystem;
+  if (!o.dataset.empty() && !o.setup_file.empty())
+    throw InputError("", 0, "--setup", "give either --dataset or --setup, not both");
+  const fs::path dir = o.dataset.empty() ? o.default_dataset : fs::path(o.dataset);
+  const fs::path setup_path = o.setup_file.empty() ? dir / "setup.toml" : fs::path(o.setup_file);
+  const Setup setup = validation::read_setup(setup_path);
+
+  std::optional<Station> base;
+  if (!o.condition.empty()) {
+    if (!o.setup_file.empty())
+      throw InputError("", 0, "--condition", "--condition picks a row of a dataset's conditions.csv; use --dataset");
+    for (const auto& s : validation::read_conditions(dir / "conditions.csv", setup))
+      if (s.condition == o.condition) base = s;
+    if (!base)
+      throw InputError((dir / "conditions.csv").string(), 0, "--condition",
+                       fmt::format("no condition named '{}'", o.condition));
+  }
+  auto need = [&](const std::optional<double>& flag, const char* name, double from_base) {
+    if (flag) return *flag;
+    if (base) return from_base;
+    throw InputError("", 0, name, "is required (or pick a dataset row with --condition)");
+  };
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw InputError("", 0, name, fmt::format("must be a positive number, got {}", v));
+    return v;
+  };
+  // A row's stream_thickness was measured at the row's flow and speed; with another operating
+  // point it no longer describes the layer, so h_b comes from continuity unless given.
+  const bool operating_point_changed = o.mass_flow || o.belt_speed;
+  Station st = validation::make_station(
+      setup, base ? base->condition : "cli",
+      positive(need(o.belt_speed, "--belt-speed", base ? base->belt_speed : 0), "--belt-speed"),
+      positive(need(o.mass_flow, "--mass-flow", base ? base->mass_flow / units::tph : 0),
+               "--mass-flow") * units::tph,
+      positive(need(o.plate_distance, "--plate-distance", base ? base->plate_distance / units::mm : 0),
+               "--plate-distance") * units::mm,
+      (o.plate_top ? *o.plate_top : base ? base->plate_top / units::mm : 250.0) * units::mm,
+      o.stream_thickness
+          ? std::optional<double>(positive(*o.stream_thickness, "--stream-thickness") * units::mm)
+          : (base && !operating_point_changed ? base->stream_thickness : std::nullopt));
+  if (base) {  // per-condition overrides of the dataset row carry over
+    st.belt = base->belt;
+    st.plate = base->plate;
+    st.material = base->material;
+  }
+  return st;
+}
+
+}  // namespace
+
+Estimate estimate(const EstimateInput& o) {
+  const Station st = resolve_station(o);
+  std::vector<effects::EffectSetting> settings;
+  for (const auto& s : o.effects) settings.push_back(effects::parse_setting(s, false));
+  const auto fx = effects::instantiate(settings);
+  auto analysis = analytical::analyse_transfer(st, fx);
+  std::vector<validation::ConditionResult> predicted;
+  for (const auto& m : validation::make_models(validation::model_names()))
+    if (!m->expensive()) predicted.push_back({st.condition, m->name(), m->predict(st, fx, {{}, false})});
+  validation::apply_measurement_effects(fx, predicted);
+  ModelValues models;
+  for (const auto& p : predicted) models.emplace_back(p.model, p.prediction.values);
+  return {std::move(analysis), std::move(models), std::move(settings)};
+}
+
+}  // namespace chutelab::app

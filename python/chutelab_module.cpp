@@ -1,0 +1,328 @@
+// _chutelab: the compiled half of the Python package. It calls the functions the command line
+// calls (app/estimate.h, validation/, effects/) and hands back what those commands print or write
+// (the estimate's JSON, the CSV tables) so that Python sees the same names and the same numbers;
+// chutelab/__init__.py turns them into dicts, NumPy arrays and DataFrames. No physics here.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "app/dem_options.h"
+#include "app/effect_options.h"
+#include "app/estimate.h"
+#include "app/output.h"
+#include "core/input_error.h"
+#include "core/units.h"
+#include "effects/registry.h"
+#include "validation/dataset.h"
+#include "validation/diagnosis.h"
+#include "validation/harness.h"
+#include "validation/model.h"
+#include "validation/output_files.h"
+#include "validation/synthesize.h"
+#include "validation/tolerances.h"
+
+namespace py = pybind11;
+using namespace chutelab;
+
+namespace {
+
+constexpr double kDeg = 180.0 / 3.14159265358979323846;
+
+// The library names command-line flags ("--belt-speed"); in Python the same input is a keyword.
+std::string python_field(const std::string& field) {
+  if (field.rfind("--", 0) != 0) return field;
+  if (field == "--effect") return "effects";
+  std::string f = field.substr(2);
+  for (char& c : f)
+    if (c == '-') c = '_';
+  return f;
+}
+
+app::DemCli dem_cli(const std::string& quality, std::optional<int> threads, const std::string& cache,
+                    bool no_cache) {
+  app::DemCli d;
+  d.quality = quality;
+  d.threads = threads;
+  d.cache = cache;
+  d.no_cache = no_cache;
+  return d;
+}
+
+// Columns of a table in boundary units, named as in the dataset's CSV files.
+using Columns = std::vector<std::pair<std::string, py::list>>;
+Columns columns(std::initializer_list<const char*> names) {
+  Columns c;
+  for (const char* n : names) c.emplace_back(n, py::list());
+  return c;
+}
+py::dict as_dict(const Columns& cols) {
+  py::dict d;
+  for (const auto& [name, values] : cols) d[py::str(name)] = values;
+  return d;
+}
+// A file's value went to SI and back; 15 significant digits drop the conversion's last-bit noise,
+// so a table shows the number the file holds (41.9, not 41.900000000000006).
+double as_written(double v) { return std::isfinite(v) ? std::stod(fmt::format("{:.15g}", v)) : v; }
+py::object number_or_nan(const std::optional<double>& v) {
+  return py::float_(v ? as_written(*v) : std::nan(""));
+}
+
+py::dict conditions_table(const validation::Dataset& d) {
+  Columns c = columns({"condition", "belt_speed_mps", "mass_flow_tph", "plate_distance_mm", "plate_top_mm",
+                       "stream_thickness_mm", "plate_angle_deg", "belt_incline_deg"});
+  for (const auto& s : d.stations) {
+    c[0].second.append(s.condition);
+    c[1].second.append(as_written(s.belt_speed));
+    c[2].second.append(as_written(s.mass_flow / units::tph));
+    c[3].second.append(as_written(s.plate_distance / units::mm));
+    c[4].second.append(as_written(s.plate_top / units::mm));
+    c[5].second.append(number_or_nan(s.stream_thickness ? std::optional(*s.stream_thickness / units::mm)
+                                                        : std::nullopt));
+    c[6].second.append(as_written(s.plate.angle * kDeg));
+    c[7].second.append(as_written(s.belt.incline * kDeg));
+  }
+  return as_dict(c);
+}
+
+py::dict measurements_table(const validation::Dataset& d) {
+  Columns c = columns({"condition", "quantity", "value", "uncertainty"});
+  for (const auto& m : d.measurements) {
+    const double s = info(m.quantity).to_boundary;
+    c[0].second.append(m.condition);
+    c[1].second.append(std::string(name(m.quantity)));
+    c[2].second.append(as_written(m.value * s));
+    c[3].second.append(number_or_nan(m.uncertainty ? std::optional(*m.uncertainty * s) : std::nullopt));
+  }
+  return as_dict(c);
+}
+
+py::dict trajectory_table(const validation::Dataset& d) {
+  Columns c = columns({"condition", "boundary", "x_mm", "y_mm", "uncertainty_mm"});
+  for (const auto& p : d.trajectory) {
+    c[0].second.append(p.condition);
+    c[1].second.append(std::string(name(p.boundary)));
+    c[2].second.append(as_written(p.x / units::mm));
+    c[3].second.append(as_written(p.y / units::mm));
+    c[4].second.append(number_or_nan(p.uncertainty ? std::optional(*p.uncertainty / units::mm) : std::nullopt));
+  }
+  return as_dict(c);
+}
+
+// setup.toml as "section.key" -> value in the file's units (the rig-field table says which).
+py::dict setup_dict(const Setup& setup) {
+  py::dict d;
+  d["name"] = setup.name;
+  d["source"] = setup.source;
+  Setup copy = setup;
+  for (const auto& f : rig_fields()) {
+    const std::string key = f.section.empty() ? std::string(f.key) : fmt::format("{}.{}", f.section, f.key);
+    d[py::str(key)] = as_written(f.ref(copy) / f.to_si);
+  }
+  return d;
+}
+
+py::dict validate(const validation::Dataset& d, const std::vector<std::string>& model_names,
+                  const std::vector<std::string>& effect_args, const std::string& tolerances,
+                  const std::string& dem_quality, std::optional<int> dem_threads,
+                  const std::string& dem_cache, bool no_dem_cache) {
+  std::optional<validation::Tolerances> tol;
+  std::optional<validation::ValidationResult> result;
+  app::AppliedEffects applied;
+  {
+    py::gil_scoped_release free;
+    app::configure_dem_model(dem_cli(dem_quality, dem_threads, dem_cache, no_dem_cache), d.dir.string(), "");
+    const auto models = validation::make_models(model_names);
+    if (models.empty()) throw InputError("", 0, "--models", "no model given");
+    if (!tolerances.empty()) tol = validation::Tolerances::read(tolerances);
+    std::vector<validation::ModelPtr> cheap;
+    for (const auto& m : models)
+      if (!m->expensive()) cheap.push_back(m);
+    std::vector<reports::EffectDescription> described;
+    applied = app::resolve_effects(effect_args, d, cheap, described);
+    validation::ValidateOptions opts;
+    opts.tolerances = tol ? &*tol : nullptr;
+    opts.effects = applied.effects;
+    opts.effect_labels = applied.labels;
+    result = validation::validate(d, models, opts);
+  }
+  py::dict r;
+  r["predictions"] = validation::predictions_csv(*result);
+  r["errors"] = validation::errors_csv(*result);
+  r["summary"] = validation::summary_csv(*result);
+  r["models"] = result->models;
+  r["effects"] = result->effects;
+  r["notes"] = applied.notes;
+  r["brief"] = result->brief();
+  r["acceptance_checked"] = result->acceptance_checked;
+  r["acceptance_failed"] = result->acceptance_failed;
+  r["combined_rms_normalised_error"] = number_or_nan(result->combined_rms_normalised());
+  py::dict overall;
+  for (const auto& m : result->models) overall[py::str(m)] = number_or_nan(result->overall_rms_normalised(m));
+  r["rms_normalised_error"] = overall;
+  return r;
+}
+
+py::dict diagnose(const validation::Dataset& d, const std::vector<std::string>& model_names, double alpha,
+                  bool pairs, const std::string& dem_quality, std::optional<int> dem_threads,
+                  const std::string& dem_cache, bool no_dem_cache) {
+  std::optional<validation::DiagnosisResult> res;
+  {
+    py::gil_scoped_release free;
+    app::configure_dem_model(dem_cli(dem_quality, dem_threads, dem_cache, no_dem_cache), d.dir.string(), "");
+    const auto models = validation::make_models(model_names);
+    if (models.empty()) throw InputError("", 0, "--models", "no model given");
+    if (!(alpha >= 1e-6 && alpha <= 0.5))
+      throw InputError("", 0, "--alpha", fmt::format("must be in [1e-6, 0.5], got {}", alpha));
+    validation::DiagnoseOptions opt;
+    opt.alpha = alpha;
+    opt.pairs = pairs;
+    res = validation::diagnose(d, models, opt);
+  }
+  const auto& x = *res;
+  py::dict r;
+  r["ranking"] = validation::diagnosis_csv(x);
+  r["markdown"] = validation::diagnosis_markdown(x);
+  r["verdict"] = x.verdict;
+  r["models"] = x.models;
+  r["n_data"] = x.n_data;
+  r["n_without_uncertainty"] = x.n_without_uncertainty;
+  r["chi2_baseline"] = x.chi2_baseline;
+  r["baseline_p_value"] = x.baseline_p_value;
+  r["any_significant"] = x.any_significant;
+  r["convincing"] = x.convincing;
+  const auto* best = x.best();
+  r["best"] = best ? py::object(py::str(best->label())) : py::object(py::none());
+  r["failure_summary"] = x.failure_summary;
+  r["indistinguishable"] = x.indistinguishable;
+  r["discriminators"] = x.discriminators;
+  r["caveats"] = x.caveats;
+  Columns p = columns({"model", "quantity", "driver", "n", "mean_normalised", "rms_normalised", "correlation",
+                       "notable"});
+  for (const auto& q : x.patterns) {
+    p[0].second.append(q.model);
+    p[1].second.append(q.quantity);
+    p[2].second.append(q.driver);
+    p[3].second.append(q.n);
+    p[4].second.append(q.mean_normalised);
+    p[5].second.append(q.rms_normalised);
+    p[6].second.append(q.correlation);
+    p[7].second.append(q.notable);
+  }
+  r["patterns"] = as_dict(p);
+  return r;
+}
+
+void synthesize(const validation::Dataset& source, const std::vector<std::string>& effect_args,
+                std::uint64_t seed, double noise_scale, const std::filesystem::path& out) {
+  py::gil_scoped_release free;
+  if (!(noise_scale >= 0.0 && noise_scale <= 100.0))
+    throw InputError("", 0, "--noise-scale", fmt::format("must be in [0, 100], got {}", noise_scale));
+  std::vector<effects::EffectSetting> settings;
+  for (const auto& e : effect_args) settings.push_back(effects::parse_setting(e, false));
+  validation::SynthesizeOptions opt;
+  opt.effects = effects::instantiate(settings);
+  opt.seed = seed;
+  opt.noise_scale = noise_scale;
+  std::vector<validation::ModelPtr> models;
+  for (const auto& n : validation::model_names()) {
+    auto m = validation::make_model(n);
+    if (!m->expensive()) models.push_back(m);
+  }
+  validation::write_outputs(out, validation::synthesize(source, models, opt));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_chutelab, m) {
+  m.doc() = "chutelab's C++ core (use the chutelab package, not this module)";
+
+  // InputError(ValueError) carrying file, line (0 = none) and field, as the command line's
+  // one-line message names them.
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      const InputError shown(e.file(), e.line(), python_field(e.field()), e.problem());
+      py::object err = py::reinterpret_borrow<py::object>(input_error)(py::str(shown.what()));
+      err.attr("file") = shown.file();
+      err.attr("line") = shown.line();
+      err.attr("field") = shown.field();
+      err.attr("problem") = shown.problem();
+      PyErr_SetObject(input_error.ptr(), err.ptr());
+    }
+  });
+
+  m.attr("default_dataset") = std::string(CHUTELAB_DATASETS_DIR) + "/grima2010";
+
+  m.def(
+      "estimate_json",
+      [](std::optional<double> belt_speed, std::optional<double> mass_flow,
+         std::optional<double> plate_distance, std::optional<double> plate_top,
+         std::optional<double> stream_thickness, const std::string& dataset, const std::string& setup,
+         const std::string& condition, const std::vector<std::string>& effect_args) {
+        app::EstimateInput in;
+        in.dataset = dataset;
+        in.setup_file = setup;
+        in.condition = condition;
+        in.default_dataset = std::filesystem::path(CHUTELAB_DATASETS_DIR) / "grima2010";
+        in.belt_speed = belt_speed;
+        in.mass_flow = mass_flow;
+        in.plate_distance = plate_distance;
+        in.plate_top = plate_top;
+        in.stream_thickness = stream_thickness;
+        in.effects = effect_args;
+        const auto e = app::estimate(in);
+        return app::estimate_json(e.analysis, e.models, e.settings);
+      },
+      py::arg("belt_speed"), py::arg("mass_flow"), py::arg("plate_distance"), py::arg("plate_top"),
+      py::arg("stream_thickness"), py::arg("dataset"), py::arg("setup"), py::arg("condition"),
+      py::arg("effects"));
+
+  py::class_<validation::Dataset>(m, "Dataset")
+      .def_property_readonly("dir", [](const validation::Dataset& d) { return d.dir.string(); })
+      .def_property_readonly("name", [](const validation::Dataset& d) { return d.setup.name; })
+      .def_property_readonly("setup", [](const validation::Dataset& d) { return setup_dict(d.setup); })
+      .def("conditions", &conditions_table)
+      .def("measurements", &measurements_table)
+      .def("trajectory", &trajectory_table);
+
+  m.def(
+      "read_dataset",
+      [](const std::filesystem::path& dir, bool measurements_required) {
+        return validation::read_dataset(dir, measurements_required ? validation::MeasurementsRequired::yes
+                                                                   : validation::MeasurementsRequired::no);
+      },
+      py::arg("dir"), py::arg("measurements_required"));
+
+  m.def("validate", &validate, py::arg("dataset"), py::arg("models"), py::arg("effects"),
+        py::arg("tolerances"), py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"),
+        py::arg("no_dem_cache"));
+  m.def("diagnose", &diagnose, py::arg("dataset"), py::arg("models"), py::arg("alpha"), py::arg("pairs"),
+        py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"), py::arg("no_dem_cache"));
+  m.def("synthesize", &synthesize, py::arg("source"), py::arg("effects"), py::arg("seed"),
+        py::arg("noise_scale"), py::arg("out"));
+
+  m.def("model_names", &validation::model_names);
+  m.def("effect_library", [] {
+    py::list out;
+    for (const auto& e : effects::library()) {
+      py::dict d;
+      d["effect"] = e.name;
+      d["parameter"] = e.parameter;
+      d["unit"] = e.unit;
+      d["stage"] = e.stage;
+      d["neutral"] = e.neutral;
+      d["lower"] = e.lower;
+      d["upper"] = e.upper;
+      d["typical"] = e.typical;
+      d["physics"] = e.physics;
+      d["source"] = e.source;
+      out.append(d);
+    }
+    return out;
+  });
+}

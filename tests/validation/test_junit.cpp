@@ -1,0 +1,167 @@
+// `validate --junit FILE`: the JUnit XML a CI system shows, checked against the Ant/Jenkins layout
+// (tests/validation/junit.xsd) with xmllint, and for what it says.
+#define BOOST_TEST_MODULE junit
+#include <boost/test/unit_test.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <regex>
+#include <set>
+
+#include "../cli/cli_runner.h"
+
+using namespace chutelab::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kReference = std::string(CHUTELAB_SOURCE_DIR) + "/datasets/liggghts-rig";
+const std::string kSchema = std::string(CHUTELAB_SOURCE_DIR) + "/tests/validation/junit.xsd";
+
+bool have_xmllint() { return std::system("command -v xmllint >/dev/null 2>&1") == 0; }
+
+// xmllint's verdict on a file against the schema: true when it validates.
+bool schema_valid(const fs::path& xml, std::string* why = nullptr) {
+  const fs::path log = xml.string() + ".xmllint";
+  const std::string cmd = "xmllint --noout --schema '" + kSchema + "' '" + xml.string() + "' 2>'" +
+                          log.string() + "'";
+  const bool ok = std::system(cmd.c_str()) == 0;
+  if (why) *why = read_file(log);
+  return ok;
+}
+
+int count(const std::string& s, const std::string& what) {
+  int n = 0;
+  for (auto p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
+  return n;
+}
+
+std::string attribute(const std::string& xml, const std::string& element, const std::string& name) {
+  std::smatch m;
+  const std::regex re("<" + element + "[^>]* " + name + "=\"([^\"]*)\"");
+  return std::regex_search(xml, m, re) ? m[1].str() : std::string("<none>");
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(junit)
+
+BOOST_AUTO_TEST_CASE(the_schema_check_can_fail) {
+  if (!have_xmllint()) {
+    BOOST_TEST_MESSAGE("xmllint not installed (Debian libxml2-utils): skipped");
+    std::exit(CHUTELAB_SKIP_RETURN_CODE);
+  }
+  const fs::path dir = fresh_dir("junit-schema");
+  // The Ant layout: a test case needs a name, a suite its test count, counts are numbers.
+  write_file(dir / "good.xml",
+             "<testsuites><testsuite name=\"s\" tests=\"1\"><testcase name=\"c\" classname=\"k\" time=\"0\">"
+             "<failure message=\"m\" type=\"t\">text</failure></testcase></testsuite></testsuites>\n");
+  write_file(dir / "no-name.xml", "<testsuites><testsuite name=\"s\" tests=\"1\"><testcase/></testsuite></testsuites>\n");
+  write_file(dir / "no-count.xml", "<testsuites><testsuite name=\"s\"><testcase name=\"c\"/></testsuite></testsuites>\n");
+  write_file(dir / "bad-count.xml",
+             "<testsuites><testsuite name=\"s\" tests=\"one\"><testcase name=\"c\"/></testsuite></testsuites>\n");
+  write_file(dir / "skip-and-fail.xml",
+             "<testsuites><testsuite name=\"s\" tests=\"1\"><testcase name=\"c\"><skipped/><failure/></testcase>"
+             "</testsuite></testsuites>\n");
+  write_file(dir / "unknown.xml", "<testsuites><testrun name=\"s\"/></testsuites>\n");
+  BOOST_TEST(schema_valid(dir / "good.xml"));
+  for (const char* f : {"no-name.xml", "no-count.xml", "bad-count.xml", "skip-and-fail.xml", "unknown.xml"})
+    BOOST_TEST(!schema_valid(dir / f), f);
+}
+
+BOOST_AUTO_TEST_CASE(one_test_case_per_condition_model_and_quantity_with_a_tolerance) {
+  if (!have_xmllint()) std::exit(CHUTELAB_SKIP_RETURN_CODE);
+  // Korzen's R_n is within 4 % of the LIGGGHTS rig everywhere, its R_s 3-4 times the DEM's
+  // (test_acceptance): 8 passes and 8 failures. The upper stream limit of Booth/CEMA is within
+  // 50 mm of the rig's at its 4 points per condition; Korzen predicts no stream limits, so its
+  // trajectory tolerance (from "*") is skipped, never passed.
+  const fs::path dir = fresh_dir("junit-run");
+  write_file(dir / "tol.toml",
+             "[korzen]\nnormal_force_N = { relative = 0.05 }\nshear_force_N = { relative = 0.15 }\n"
+             "['*']\ntrajectory_upper_y_mm = { absolute = 50.0 }\n");
+  const fs::path xml = dir / "ci" / "junit.xml";
+  fs::create_directories(xml.parent_path());
+  const auto r = run_chutelab("validate --dataset '" + kReference + "' --tolerances '" + (dir / "tol.toml").string() +
+                              "' --out '" + (dir / "out").string() + "' --junit '" + xml.string() + "'");
+  BOOST_TEST(r.exit_code == 1, r.err);  // the shear limit fails
+  BOOST_TEST(r.out.find("junit: ") != std::string::npos);
+  const std::string x = read_file(xml);
+  std::string why;
+  BOOST_TEST(schema_valid(xml, &why), why);
+
+  BOOST_TEST(count(x, "<testcase ") == 8 + 8 + 8 + 8);
+  BOOST_TEST(count(x, "<failure ") == 8);
+  BOOST_TEST(count(x, "<skipped ") == 8);
+  BOOST_TEST(count(x, "<error ") == 0);
+  BOOST_TEST(attribute(x, "testsuites", "tests") == "32");
+  BOOST_TEST(attribute(x, "testsuites", "failures") == "8");
+  BOOST_TEST(attribute(x, "testsuites", "skipped") == "8");
+  BOOST_TEST(x.find("name=\"V2-26 shear_force_N\" classname=\"chutelab.liggghts-rig.korzen\"") !=
+             std::string::npos);
+  BOOST_TEST(x.find("name=\"V5-44 trajectory_upper_y_mm\" classname=\"chutelab.liggghts-rig.booth-cema\"") !=
+             std::string::npos);
+
+  // A failure carries measured, predicted, error and the limit, in the quantity's unit; the same
+  // numbers as errors.csv.
+  std::smatch m;
+  const std::regex fail("name=\"V2-26 shear_force_N\"[^>]*>\\s*<failure message=\"shear_force_N: measured "
+                        "([-0-9.e]+) N, predicted ([-0-9.e]+) N, error ([-0-9.e]+) N; limit \\|rel\\| "
+                        "([0-9.]+) &gt; 0.150\"");
+  BOOST_TEST_REQUIRE(std::regex_search(x, m, fail));
+  const double measured = std::stod(m[1]), predicted = std::stod(m[2]), error = std::stod(m[3]);
+  BOOST_TEST(measured == 2.335);  // measurements.csv
+  BOOST_TEST(error == predicted - measured, boost::test_tools::tolerance(1e-4));
+  const std::string errors = read_file(dir / "out" / "errors.csv");
+  BOOST_TEST(errors.find("V2-26,korzen,shear_force_N,2.335,0.023," + m[2].str() + "," + m[3].str() + ",") !=
+             std::string::npos);
+  BOOST_TEST(x.find("tolerance: |relative error| &lt;= 0.15") != std::string::npos);
+  // A passing case shows its numbers too.
+  BOOST_TEST(x.find("<system-out>tolerance: |error| &lt;= 50 mm\nx = 100 mm: measured 147.5 mm") !=
+             std::string::npos);
+
+  // Same inputs, same bytes.
+  const fs::path again = dir / "again.xml";
+  run_chutelab("validate --dataset '" + kReference + "' --tolerances '" + (dir / "tol.toml").string() +
+               "' --out '" + (dir / "out2").string() + "' --junit '" + again.string() + "'");
+  BOOST_TEST(read_file(again) == x);
+}
+
+BOOST_AUTO_TEST_CASE(nothing_checked_is_an_error_not_a_pass) {
+  if (!have_xmllint()) std::exit(CHUTELAB_SKIP_RETURN_CODE);
+  const fs::path dir = fresh_dir("junit-none");
+  // No tolerances at all.
+  const auto none = run_chutelab("validate --dataset '" + kReference + "' --out '" + (dir / "a").string() +
+                                 "' --junit '" + (dir / "a.xml").string() + "'");
+  BOOST_TEST(none.exit_code == 1);
+  BOOST_TEST(none.err.find("nothing was checked") != std::string::npos, none.err);
+  const std::string a = read_file(dir / "a.xml");
+  BOOST_TEST(schema_valid(dir / "a.xml"));
+  BOOST_TEST(attribute(a, "testsuites", "tests") == "1");
+  BOOST_TEST(attribute(a, "testsuites", "errors") == "1");
+  BOOST_TEST(a.find("<testcase name=\"acceptance\"") != std::string::npos);
+  BOOST_TEST(a.find("type=\"nothing-checked\"") != std::string::npos);
+  BOOST_TEST(a.find("no tolerances given") != std::string::npos);
+  // Tolerances only for a model that does not run.
+  write_file(dir / "dem-only.toml", "[dem]\nnormal_force_N = { relative = 0.1 }\n");
+  const auto other = run_chutelab("validate --dataset '" + kReference + "' --tolerances '" +
+                                  (dir / "dem-only.toml").string() + "' --out '" + (dir / "b").string() +
+                                  "' --junit '" + (dir / "b.xml").string() + "'");
+  BOOST_TEST(other.exit_code == 1);
+  const std::string b = read_file(dir / "b.xml");
+  BOOST_TEST(schema_valid(dir / "b.xml"));
+  BOOST_TEST(b.find("dem-only.toml applies to a value") != std::string::npos);
+  BOOST_TEST(count(b, "<error ") == 1);
+}
+
+BOOST_AUTO_TEST_CASE(the_junit_file_never_replaces_an_input) {
+  const fs::path dir = fresh_dir("junit-input");
+  fs::copy(kReference, dir / "ds", fs::copy_options::recursive);
+  const std::string before = read_file(dir / "ds" / "measurements.csv");
+  const auto r = run_chutelab("validate --dataset '" + (dir / "ds").string() + "' --out '" + (dir / "o").string() +
+                              "' --junit '" + (dir / "ds" / "measurements.csv").string() + "'");
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.err.find("--junit") != std::string::npos, r.err);
+  BOOST_TEST(read_file(dir / "ds" / "measurements.csv") == before);
+  BOOST_TEST(!fs::exists(dir / "o"));
+}
+
+BOOST_AUTO_TEST_SUITE_END()

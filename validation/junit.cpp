@@ -1,0 +1,184 @@
+#include "validation/junit.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <map>
+#include <tuple>
+
+#include "validation/output_files.h"
+
+namespace chutelab::validation {
+namespace {
+
+std::string xml_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    switch (c) {
+      case '&': o += "&amp;"; break;
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '"': o += "&quot;"; break;
+      case '\'': o += "&apos;"; break;
+      case '\n': o += "&#10;"; break;
+      default:
+        // XML 1.0 has no other control characters; a condition name should never carry one.
+        if (static_cast<unsigned char>(c) >= 0x20 || c == '\t') o += c;
+    }
+  }
+  return o;
+}
+
+// Text content keeps its line breaks.
+std::string xml_text(const std::string& s) {
+  std::string o;
+  for (char c : s) o += c == '\n' ? std::string("\n") : xml_escape(std::string(1, c));
+  return o;
+}
+
+std::string unit_of(const Comparison& c) {
+  return c.q ? std::string(info(*c.q).unit) : std::string("mm");
+}
+
+std::string describe(const Tolerance& t, const std::string& unit) {
+  std::vector<std::string> parts;
+  if (t.relative) parts.push_back(fmt::format("|relative error| <= {}", csv_number(*t.relative)));
+  if (t.normalised) parts.push_back(fmt::format("|E/u| <= {}", csv_number(*t.normalised)));
+  if (t.absolute) parts.push_back(fmt::format("|error| <= {} {}", csv_number(*t.absolute), unit));
+  return fmt::format("{}", fmt::join(parts, " and "));
+}
+
+std::string value(double si, double scale, const std::string& unit) {
+  return fmt::format("{} {}", csv_number(si * scale), unit);
+}
+
+// One line per compared value: what the CI view shows under the test case.
+std::string detail(const Comparison& c) {
+  const std::string u = unit_of(c);
+  std::string o;
+  if (c.boundary) o += fmt::format("x = {} mm: ", csv_number(c.x * 1e3));
+  o += fmt::format("measured {}", value(c.measured, c.scale, u));
+  if (c.uncertainty) o += fmt::format(" (u_D {})", value(*c.uncertainty, c.scale, u));
+  o += fmt::format(", predicted {}", value(*c.predicted, c.scale, u));
+  if (c.prediction_uncertainty) o += fmt::format(" (u_num {})", value(*c.prediction_uncertainty, c.scale, u));
+  o += fmt::format(", error {}", value(c.error(), c.scale, u));
+  if (auto rel = c.relative_error()) o += fmt::format(", relative error {}", csv_number(*rel));
+  if (auto z = c.normalised_error()) o += fmt::format(", E/u {}", csv_number(*z));
+  if (c.verdict.checked) o += c.verdict.passed ? ": within" : fmt::format(": FAILED, {}", c.verdict.limit);
+  return o;
+}
+
+struct Case {
+  std::string condition, quantity;
+  std::vector<const Comparison*> values;
+};
+
+struct Suite {
+  std::string model;
+  std::vector<Case> cases;
+  int failures = 0, skipped = 0;
+};
+
+}  // namespace
+
+std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSummary* out_summary) {
+  std::vector<Suite> suites;
+  for (const auto& m : r.models) {
+    Suite s;
+    s.model = m;
+    std::map<std::pair<std::string, std::string>, std::size_t> index;
+    for (const auto& c : r.comparisons) {
+      if (c.model != m || !tol || !tol->find(c.model, c.quantity)) continue;
+      auto [it, fresh] = index.emplace(std::pair{c.condition, c.quantity}, s.cases.size());
+      if (fresh) s.cases.push_back({c.condition, c.quantity, {}});
+      s.cases[it->second].values.push_back(&c);
+    }
+    if (!s.cases.empty()) suites.push_back(std::move(s));
+  }
+
+  JunitSummary sum;
+  const std::string dataset = xml_escape(r.dataset_name);
+  std::string body;
+  for (auto& s : suites) {
+    std::string cases;
+    for (const auto& k : s.cases) {
+      const Tolerance& t = *tol->find(s.model, k.quantity);
+      const std::string unit = unit_of(*k.values.front());
+      const std::string name = fmt::format("{} {}", k.condition, k.quantity);
+      cases += fmt::format("    <testcase name=\"{}\" classname=\"chutelab.{}.{}\">\n",
+                           xml_escape(name), dataset, xml_escape(s.model));
+      std::vector<const Comparison*> predicted, failed;
+      for (const Comparison* c : k.values) {
+        if (!c->predicted) continue;
+        predicted.push_back(c);
+        if (c->verdict.checked && !c->verdict.passed) failed.push_back(c);
+      }
+      const std::string limit = describe(t, unit);
+      std::string lines;
+      for (const Comparison* c : predicted) lines += detail(*c) + "\n";
+      if (predicted.empty()) {
+        ++s.skipped;
+        cases += fmt::format("      <skipped message=\"{}\"/>\n",
+                             xml_escape(fmt::format("{} does not predict {}; tolerance {} not checked",
+                                                    s.model, k.quantity, limit)));
+      } else if (!failed.empty()) {
+        ++s.failures;
+        // The message carries the worst value; the text lists every compared value.
+        const Comparison* worst = failed.front();
+        for (const Comparison* c : failed)
+          if (std::abs(c->error()) > std::abs(worst->error())) worst = c;
+        std::string msg = fmt::format("{}: measured {}, predicted {}, error {}; limit {}", k.quantity,
+                                      value(worst->measured, worst->scale, unit),
+                                      value(*worst->predicted, worst->scale, unit),
+                                      value(worst->error(), worst->scale, unit), worst->verdict.limit);
+        if (worst->boundary) msg += fmt::format(" at x = {} mm", csv_number(worst->x * 1e3));
+        if (failed.size() > 1) msg += fmt::format(" ({} of {} points outside)", failed.size(), predicted.size());
+        cases += fmt::format("      <failure message=\"{}\" type=\"tolerance\">tolerance: {}\n{}</failure>\n",
+                             xml_escape(msg), xml_text(limit), xml_text(lines));
+      } else {
+        cases += fmt::format("      <system-out>tolerance: {}\n{}</system-out>\n", xml_text(limit),
+                             xml_text(lines));
+      }
+      cases += "    </testcase>\n";
+    }
+    const int n = static_cast<int>(s.cases.size());
+    sum.tests += n;
+    sum.failures += s.failures;
+    sum.skipped += s.skipped;
+    body += fmt::format(
+        "  <testsuite name=\"{}.{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" skipped=\"{}\">\n",
+        dataset, xml_escape(s.model), n, s.failures, s.skipped);
+    body += "    <properties>\n";
+    body += fmt::format("      <property name=\"dataset\" value=\"{}\"/>\n", dataset);
+    body += fmt::format("      <property name=\"model\" value=\"{}\"/>\n", xml_escape(s.model));
+    body += fmt::format("      <property name=\"tolerances\" value=\"{}\"/>\n", xml_escape(tol->file()));
+    for (const auto& e : r.effects)
+      body += fmt::format("      <property name=\"effect\" value=\"{}\"/>\n", xml_escape(e));
+    body += "    </properties>\n" + cases + "  </testsuite>\n";
+  }
+
+  // Nothing checked is not a pass: one test case in error says why.
+  if (sum.tests == sum.skipped) {
+    const std::string why =
+        !tol ? "no tolerances given (no tolerances.toml in the dataset and no --tolerances): nothing was checked"
+             : fmt::format("no tolerance in {} applies to a value these models predict ({}): nothing was checked",
+                           tol->file(), fmt::format("{}", fmt::join(r.models, ", ")));
+    ++sum.tests;
+    ++sum.errors;
+    body += fmt::format(
+        "  <testsuite name=\"{}\" tests=\"1\" failures=\"0\" errors=\"1\" skipped=\"0\">\n"
+        "    <testcase name=\"acceptance\" classname=\"chutelab.{}\">\n"
+        "      <error message=\"{}\" type=\"nothing-checked\"/>\n"
+        "    </testcase>\n"
+        "  </testsuite>\n",
+        dataset, dataset, xml_escape(why));
+  }
+  if (out_summary) *out_summary = sum;
+  return fmt::format(
+             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+             "<testsuites name=\"chutelab validate {}\" tests=\"{}\" failures=\"{}\" errors=\"{}\" "
+             "skipped=\"{}\">\n",
+             dataset, sum.tests, sum.failures, sum.errors, sum.skipped) +
+         body + "</testsuites>\n";
+}
+
+}  // namespace chutelab::validation

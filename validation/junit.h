@@ -1,0 +1,29 @@
+#pragma once
+// Acceptance results as JUnit XML (`validate --junit FILE`), the format Jenkins and GitLab show in
+// their test views (the Ant/Jenkins layout; tests/validation/junit.xsd is the schema it is checked
+// against).
+//
+// One <testsuite> per model, one <testcase> per condition x quantity that a tolerance applies to:
+// - passed when every checked value is within its limits (a stream boundary is one test case over
+//   all its measured points);
+// - <failure> with measured, predicted, error E = S - D and the limit exceeded, in the quantity's
+//   unit;
+// - <skipped> when a tolerance applies but the model does not predict the quantity.
+// When no tolerance applied to any comparison, nothing was accepted: the file then holds a single
+// <testcase name="acceptance"> with an <error> saying why, so a CI view never shows it as green.
+#include <string>
+
+#include "validation/harness.h"
+#include "validation/tolerances.h"
+
+namespace chutelab::validation {
+
+struct JunitSummary {
+  int tests = 0, failures = 0, errors = 0, skipped = 0;
+  bool nothing_checked() const { return errors > 0; }
+};
+
+// tolerances may be null (none given); the text is deterministic for the same inputs.
+std::string junit_xml(const ValidationResult& r, const Tolerances* tolerances, JunitSummary* summary = nullptr);
+
+}  // namespace chutelab::validation
