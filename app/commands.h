@@ -17,6 +17,7 @@ void add_synthesize(CLI::App& app, Action& action);
 void add_simulate(CLI::App& app, Action& action);
 void add_calibrate(CLI::App& app, Action& action);
 void add_sensitivity(CLI::App& app, Action& action);
+void add_design(CLI::App& app, Action& action);
 
 // "a,b,,c" -> {"a", "b", "c"}: the comma lists of --models.
 std::vector<std::string> split_list(const std::string& s);

@@ -85,8 +85,10 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
   auto Y = [&](double y) { return cy + (y1 - y) * s; };
 
   Svg svg(W, H, "design-picture", id, "transfer station: streamlines, plate and impact point");
-  svg.title(fmt::format("{}: V_b = {} m/s, m_s = {} t/h, plate at x = {} mm", st.condition,
-                        num(st.belt_speed, 2), num(st.mass_flow * 3.6, 1), num(st.plate_distance * 1e3, 0)));
+  // A design typed on the command line has no condition name of its own ("cli").
+  svg.title(fmt::format("{}V_b = {} m/s, m_s = {} t/h, plate at x = {} mm",
+                        st.condition == "cli" ? std::string() : st.condition + ": ", num(st.belt_speed, 2),
+                        num(st.mass_flow * 3.6, 1), num(st.plate_distance * 1e3, 0)));
   const std::string clip = svg.clip(f);
   svg.rect(f.left, f.top, f.width, f.height, "fill=\"#fbfbfb\" stroke=\"#ccc\"");
   svg.raw(fmt::format("<g clip-path=\"url(#{})\">\n", clip));
