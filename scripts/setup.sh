@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make libeigen3-dev libgsl-dev libboost-test-dev libfmt-dev libfccp-dev
-          libtomlplusplus-dev libcli11-dev chromium)
+          libtomlplusplus-dev libcli11-dev chromium emscripten)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
