@@ -180,6 +180,20 @@ BOOST_AUTO_TEST_CASE(bad_input_shows_chutelabs_message_not_numbers) {
   BOOST_TEST(v.error.find("--belt-speed: must be a positive number") != std::string::npos, v.error);
 }
 
+BOOST_AUTO_TEST_CASE(design_checks_its_starting_rig_and_writes_nothing_on_bad_input) {
+  const fs::path dir = fresh_dir("design-cli");
+  write_file(dir / "bad.toml", "name = \"x\"\n[belt]\npulley_diameter_mm = -5\n");
+  const auto bad = run_chutelab("design --setup '" + (dir / "bad.toml").string() + "' --out '" + (dir / "out").string() + "'");
+  BOOST_TEST(bad.exit_code == 2);
+  BOOST_TEST(bad.err.find("bad.toml") != std::string::npos, bad.err);
+  BOOST_TEST(!fs::exists(dir / "out" / "design.html"));
+  const auto other = run_chutelab("design --dataset '" + std::string(CHUTELAB_SOURCE_DIR) + "/datasets/liggghts-rig' --out '" +
+                                  (dir / "rig").string() + "'");
+  BOOST_TEST_REQUIRE(other.exit_code == 0, other.err);
+  // The page starts from that rig: its setup.toml travels inside the page.
+  BOOST_TEST(read_file(dir / "rig" / "design.html").find("liggghts-rig") != std::string::npos);
+}
+
 }  // namespace chutelab::test
 
 int main(int argc, char* argv[]) {
