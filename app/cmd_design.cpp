@@ -9,6 +9,7 @@
 #include "app/design/page.h"
 #include "app/output.h"
 #include "core/input_error.h"
+#include "core/units.h"
 #include "validation/dataset.h"
 #include "validation/output_files.h"
 
@@ -16,7 +17,7 @@ namespace chutelab::app {
 namespace {
 
 struct DesignOptions {
-  std::string out, dataset, setup_file;
+  std::string out, dataset, setup_file, condition;
 };
 
 std::string slurp(const std::filesystem::path& p) {
@@ -24,6 +25,36 @@ std::string slurp(const std::filesystem::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// A dataset row as the page's inputs (its keys are those of the page's URL hash): the operating
+// point and every rig field with the row's overrides applied.
+std::string condition_inputs(const DesignOptions& o, const std::filesystem::path& setup_path) {
+  if (!o.setup_file.empty())
+    throw InputError("", 0, "--condition", "--condition picks a row of a dataset's conditions.csv; use --dataset");
+  const auto dir = o.dataset.empty() ? default_dataset() : std::filesystem::path(o.dataset);
+  const Setup setup = validation::read_setup(setup_path);
+  const Station* st = nullptr;
+  const auto rows = validation::read_conditions(dir / "conditions.csv", setup);
+  for (const auto& r : rows)
+    if (r.condition == o.condition) st = &r;
+  if (!st)
+    throw InputError((dir / "conditions.csv").string(), 0, "--condition", fmt::format("no condition named '{}'", o.condition));
+  std::string js = fmt::format("{{\"name\": {}, \"belt_speed\": {}, \"mass_flow\": {}, \"plate_distance\": {}, \"plate_top\": {}, "
+                               "\"stream_thickness\": {}",
+                               json_string(st->condition), json_number(st->belt_speed), json_number(st->mass_flow / units::tph),
+                               json_number(st->plate_distance * 1e3), json_number(st->plate_top * 1e3),
+                               st->stream_thickness ? json_number(*st->stream_thickness * 1e3) : "null");
+  Setup with_row = setup;
+  with_row.belt = st->belt;
+  with_row.plate = st->plate;
+  with_row.material = st->material;
+  with_row.gravity = st->gravity;
+  for (const auto& f : rig_fields())
+    js += fmt::format(", \"{}{}{}\": {}", f.section, f.section.empty() ? "" : ".", f.key, json_number(f.ref(with_row) / f.to_si));
+  js += "}";
+  for (std::size_t at = js.find("</"); at != std::string::npos; at = js.find("</", at + 3)) js.replace(at, 2, "<\\/");
+  return js;
 }
 
 int run_design(const DesignOptions& o) {
@@ -45,10 +76,13 @@ int run_design(const DesignOptions& o) {
   for (std::size_t at = literal.find("</"); at != std::string::npos; at = literal.find("</", at + 3))
     literal.replace(at, 2, "<\\/");  // a "</script>" inside the TOML must not end the page's script
   std::string html(*page);
-  const std::string marker = "/*CHUTELAB_SETUP*/null";
-  const auto at = html.find(marker);
-  if (at == std::string::npos) throw InputError("", 0, "design", "the built-in page has no setup slot (a build error)");
-  html.replace(at, marker.size(), literal);
+  auto fill = [&](const std::string& marker, const std::string& text) {
+    const auto at = html.find(marker);
+    if (at == std::string::npos) throw InputError("", 0, "design", "the built-in page has no slot " + marker + " (a build error)");
+    html.replace(at, marker.size(), text);
+  };
+  fill("/*CHUTELAB_SETUP*/null", literal);
+  if (!o.condition.empty()) fill("/*CHUTELAB_INPUTS*/null", condition_inputs(o, setup));
   std::error_code ec;
   if (fs::equivalent(fs::path(o.out) / "design.html", setup, ec))
     throw InputError(o.out, 0, "--out", "design.html there is this run's input; choose another folder");
@@ -70,6 +104,8 @@ void add_design(CLI::App& app, Action& action) {
   cmd->add_option("--out", o->out, "folder to write design.html into")->required();
   cmd->add_option("--dataset", o->dataset, "start from this dataset's setup.toml (default: the bundled rig)");
   cmd->add_option("--setup", o->setup_file, "start from this setup.toml");
+  cmd->add_option("--condition", o->condition,
+                  "start from this row of the dataset's conditions.csv (operating point and per-condition overrides)");
   cmd->callback([o, &action] { action = [o] { return run_design(*o); }; });
 }
 

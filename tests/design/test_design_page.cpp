@@ -85,17 +85,18 @@ std::optional<double> json_number(const std::string& json, const std::string& sc
   return std::stod(json.substr(k + key.size() + 4));
 }
 
-fs::path build_page(const std::string& name) {
+fs::path build_page(const std::string& name, const std::string& design_args = "") {
   const fs::path dir = fresh_dir("design-" + name);
-  const auto r = run_chutelab("design --out '" + (dir / "page").string() + "'");
+  const auto r = run_chutelab("design --out '" + (dir / "page").string() + "' " + design_args);
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   BOOST_TEST_REQUIRE(fs::exists(dir / "page" / "design.html"));
   return dir;
 }
 
 // The page against the CLI for one design given as a URL hash; `effects` are the matching flags.
-void check_design(const std::string& name, const std::string& hash, const std::string& effects) {
-  const fs::path dir = build_page(name);
+PageView check_design(const std::string& name, const std::string& hash, const std::string& effects,
+                      const std::string& design_args = "") {
+  const fs::path dir = build_page(name, design_args);
   const fs::path page = dir / "page" / "design.html";
   const PageView v = open_page(dir, page, hash);
   BOOST_TEST_REQUIRE(v.state == "ready", "page state '" << v.state << "', error: " << v.error << "; stderr: "
@@ -148,6 +149,7 @@ void check_design(const std::string& name, const std::string& hash, const std::s
   BOOST_TEST(lines == 4u);
   BOOST_TEST_MESSAGE(name << ": " << compared << " numbers equal estimate --format json; verdict "
                           << (stationary ? "stationary" : "no stationary flow"));
+  return v;
 }
 
 }  // namespace
@@ -171,6 +173,17 @@ BOOST_AUTO_TEST_CASE(changed_rig_with_effects_numbers_equal_estimate_json_and_sc
   BOOST_TEST_REQUIRE(fs::exists(shot));
   BOOST_TEST(fs::file_size(shot) > 50000u, "screenshot of " << fs::file_size(shot) << " bytes");
   BOOST_TEST_MESSAGE("screenshot: " << shot);
+}
+
+BOOST_AUTO_TEST_CASE(a_page_started_from_a_dataset_row_shows_that_rows_estimate) {
+  // The LIGGGHTS rig's V3-41 has a measured h_b of its own; the page opens on that row.
+  const std::string rig = std::string(CHUTELAB_SOURCE_DIR) + "/datasets/liggghts-rig";
+  const PageView v = check_design("V3-41", "", "", "--dataset '" + rig + "' --condition V3-41");
+  const auto row = run_chutelab("estimate --dataset '" + rig + "' --condition V3-41 --format json");
+  BOOST_TEST_REQUIRE(row.exit_code == 0);
+  for (const auto& [id, key] : {std::pair{"out-normal_force_N", "normal_force_N"}, {"out-impact_point_y_mm", "impact_point_y_mm"}})
+    BOOST_TEST(std::abs(std::stod(v.values.at(id)) - *json_number(row.out, "korzen", key)) <= 2e-9 * 100, id);
+  BOOST_TEST(std::stod(v.values.at("out-stream_thickness_mm")) == 34.0);
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_shows_chutelabs_message_not_numbers) {
