@@ -1,26 +1,186 @@
 // `chutelab estimate`: the analytical answer for one condition, in milliseconds, for a designer.
+#include <cmath>
+#include <fmt/format.h>
 #include <iostream>
+#include <optional>
 
+#include "analytical/transfer_station.h"
 #include "app/commands.h"
-#include "app/estimate.h"
+#include "app/output.h"
+#include "app/sweep.h"
 #include "core/input_error.h"
+#include "core/units.h"
+#include "effects/registry.h"
+#include "reports/design.h"
+#include "validation/dataset.h"
+#include "validation/harness.h"
+#include "validation/models/models.h"
+#include "validation/output_files.h"
 
 namespace chutelab::app {
 namespace {
 
-struct EstimateOptions : EstimateInput {
-  std::string format = "table";
+struct EstimateOptions {
+  std::string dataset, setup_file, condition, format = "table", svg, sweep;
+  std::optional<double> belt_speed, mass_flow, plate_distance, plate_top, stream_thickness;
+  std::vector<std::string> effects;
 };
 
-int run_estimate(EstimateOptions o) {
-  o.default_dataset = default_dataset();
-  const Estimate e = estimate(o);
+Station resolve_station(const EstimateOptions& o) {
+  namespace fs = std::filesystem;
+  if (!o.dataset.empty() && !o.setup_file.empty())
+    throw InputError("", 0, "--setup", "give either --dataset or --setup, not both");
+  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
+  const fs::path setup_path = o.setup_file.empty() ? dir / "setup.toml" : fs::path(o.setup_file);
+  const Setup setup = validation::read_setup(setup_path);
+
+  std::optional<Station> base;
+  if (!o.condition.empty()) {
+    if (!o.setup_file.empty())
+      throw InputError("", 0, "--condition", "--condition picks a row of a dataset's conditions.csv; use --dataset");
+    for (const auto& s : validation::read_conditions(dir / "conditions.csv", setup))
+      if (s.condition == o.condition) base = s;
+    if (!base)
+      throw InputError((dir / "conditions.csv").string(), 0, "--condition",
+                       fmt::format("no condition named '{}'", o.condition));
+  }
+  auto need = [&](const std::optional<double>& flag, const char* name, double from_base) {
+    if (flag) return *flag;
+    if (base) return from_base;
+    throw InputError("", 0, name, "is required (or pick a dataset row with --condition)");
+  };
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw InputError("", 0, name, fmt::format("must be a positive number, got {}", v));
+    return v;
+  };
+  // A row's stream_thickness was measured at the row's flow and speed; with another operating
+  // point it no longer describes the layer, so h_b comes from continuity unless given.
+  const bool operating_point_changed = o.mass_flow || o.belt_speed;
+  Station st = validation::make_station(
+      setup, base ? base->condition : "cli",
+      positive(need(o.belt_speed, "--belt-speed", base ? base->belt_speed : 0), "--belt-speed"),
+      positive(need(o.mass_flow, "--mass-flow", base ? base->mass_flow / units::tph : 0),
+               "--mass-flow") * units::tph,
+      positive(need(o.plate_distance, "--plate-distance", base ? base->plate_distance / units::mm : 0),
+               "--plate-distance") * units::mm,
+      (o.plate_top ? *o.plate_top : base ? base->plate_top / units::mm : 250.0) * units::mm,
+      o.stream_thickness
+          ? std::optional<double>(positive(*o.stream_thickness, "--stream-thickness") * units::mm)
+          : (base && !operating_point_changed ? base->stream_thickness : std::nullopt));
+  if (base) {  // per-condition overrides of the dataset row carry over
+    st.belt = base->belt;
+    st.plate = base->plate;
+    st.material = base->material;
+  }
+  return st;
+}
+
+EstimatePoint estimate_point(const Station& st, const analytical::EffectList& fx) {
+  EstimatePoint p{analytical::analyse_transfer(st, fx), {}};
+  std::vector<validation::ConditionResult> predicted;
+  for (const auto& m : validation::analytical_models())
+    predicted.push_back({st.condition, m->name(), m->predict(st, fx, {{}, false})});
+  validation::apply_measurement_effects(fx, predicted);
+  for (const auto& r : predicted) p.models.emplace_back(r.model, r.prediction.values);
+  return p;
+}
+
+// --svg FILE: never over a file this run reads, and never half-written.
+void write_svg(const EstimateOptions& o, const std::string& svg) {
+  namespace fs = std::filesystem;
+  const fs::path out = fs::absolute(o.svg);
+  std::vector<fs::path> read = {o.setup_file.empty() ? fs::path() : fs::path(o.setup_file)};
+  if (o.setup_file.empty()) {
+    const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
+    read = {dir / "setup.toml", dir / "conditions.csv"};
+  }
+  std::error_code ec;
+  for (const auto& r : read)
+    if (!r.empty() && fs::exists(out, ec) && fs::equivalent(out, r, ec))
+      throw InputError(o.svg, 0, "--svg", "is an input of this run; choose another file");
+  if (fs::is_directory(out, ec)) throw InputError(o.svg, 0, "--svg", "is a folder; give a file name");
+  validation::write_outputs(out.parent_path(), {{out.filename().string(), reports::standalone_svg(svg)}});
+}
+
+QuantityValues korzen_reading(const EstimatePoint& p) {
+  for (const auto& [m, v] : p.models)
+    if (m == "korzen") return v;
+  return {};
+}
+
+int run_sweep(const EstimateOptions& o, const analytical::EffectList& fixed,
+              const std::vector<effects::EffectSetting>& settings) {
+  const SweepSpec spec = parse_sweep(o.sweep);
+  if (spec.kind == SweepSpec::Kind::condition) {
+    const bool given = (spec.flag == "--belt-speed" && o.belt_speed) || (spec.flag == "--mass-flow" && o.mass_flow) ||
+                       (spec.flag == "--plate-distance" && o.plate_distance) ||
+                       (spec.flag == "--plate-top" && o.plate_top) ||
+                       (spec.flag == "--stream-thickness" && o.stream_thickness);
+    if (given)
+      throw InputError("", 0, "--sweep", fmt::format("{} is swept; leave out {}", spec.column, spec.flag));
+  }
+  if (spec.kind == SweepSpec::Kind::effect)
+    for (const auto& s : settings)
+      if (s.info == spec.effect)
+        throw InputError("", 0, "--sweep", fmt::format("{} is swept; leave out --effect {}=...", spec.effect->name,
+                                                       spec.effect->name));
+  std::vector<SweepRow> rows;
+  for (double v : spec.values()) {
+    EstimateOptions at = o;
+    if (spec.kind == SweepSpec::Kind::condition) {
+      std::optional<double>* slot = spec.flag == "--belt-speed"       ? &at.belt_speed
+                                    : spec.flag == "--mass-flow"      ? &at.mass_flow
+                                    : spec.flag == "--plate-distance" ? &at.plate_distance
+                                    : spec.flag == "--plate-top"      ? &at.plate_top
+                                                                      : &at.stream_thickness;
+      *slot = v;
+    }
+    // Inputs that are wrong at every point (a missing flag, a bad file) stop the sweep: exit 2.
+    Station st = resolve_station(at);
+    apply_sweep_value(spec, v, st);
+    analytical::EffectList fx = fixed;
+    if (spec.kind == SweepSpec::Kind::effect) fx.push_back(spec.effect->make(v));
+    SweepRow row{v, std::nullopt, {}};
+    try {
+      // A design with no answer at this point (the stream misses the plate, the load no longer
+      // fits the belt) is a result of the sweep, not bad input: the row says why.
+      row.point = estimate_point(st, fx);
+      if (!row.point->analysis.line(analytical::Streamline::korzen_centroid).hit->on_plate)
+        row.note = "the centroid meets the plate line off the plate";
+    } catch (const InputError& e) {
+      row.note = e.problem();
+    }
+    rows.push_back(std::move(row));
+  }
+  if (std::none_of(rows.begin(), rows.end(), [](const SweepRow& r) { return r.point.has_value(); }))
+    throw InputError("", 0, "--sweep", fmt::format("no point of the sweep has an answer: {}", rows.front().note));
+  if (!o.svg.empty()) write_svg(o, sweep_chart(spec, rows));
   if (o.format == "json")
-    std::cout << estimate_json(e.analysis, e.models, e.settings);
+    std::cout << sweep_json(spec, rows, settings);
   else if (o.format == "csv")
-    std::cout << estimate_csv(e.analysis, e.models);
+    std::cout << sweep_csv(spec, rows);
   else
-    std::cout << estimate_table(e.analysis, e.models, e.settings);
+    std::cout << sweep_table(spec, rows);
+  return kExitOk;
+}
+
+int run_estimate(const EstimateOptions& o) {
+  std::vector<effects::EffectSetting> settings;
+  for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false));
+  const auto fx = effects::instantiate(settings);
+  if (!o.sweep.empty()) return run_sweep(o, fx, settings);
+  const Station st = resolve_station(o);
+  const EstimatePoint p = estimate_point(st, fx);
+  if (!o.svg.empty()) {
+    write_svg(o, reports::design_svg(p.analysis, korzen_reading(p)));
+  }
+  if (o.format == "json")
+    std::cout << estimate_json(p.analysis, p.models, settings);
+  else if (o.format == "csv")
+    std::cout << estimate_csv(p.analysis, p.models);
+  else
+    std::cout << estimate_table(p.analysis, p.models, settings);
   return kExitOk;
 }
 
@@ -44,6 +204,14 @@ void add_estimate(CLI::App& app, Action& action) {
                   "else from continuity; --mass-flow or --belt-speed drops the row's value, so h_b "
                   "then comes from continuity)");
   cmd->add_option("--effect", o->effects, "add a physical effect: NAME=VALUE (repeatable)");
+  cmd->add_option("--svg", o->svg,
+                  "also draw the design (pulley, streamlines, plate, impact point, Korzen readout) as SVG "
+                  "into this file; with --sweep, the chart of impact points and plate forces");
+  cmd->add_option("--sweep", o->sweep,
+                  "NAME=FROM:TO:STEP: one row per value of an input, the rest held. NAME: belt_speed (m/s), "
+                  "mass_flow (t/h), plate_distance, plate_top, stream_thickness (mm), a conditions.csv "
+                  "override column (plate_angle_deg, belt_incline_deg, pulley_diameter_mm, friction_plate, ...) "
+                  "or an effect name (its strength)");
   cmd->add_option("--format", o->format, "output format")
       ->check(CLI::IsMember({"table", "csv", "json"}));
   cmd->callback([o, &action] { action = [o] { return run_estimate(*o); }; });

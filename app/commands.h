@@ -18,6 +18,7 @@ void add_simulate(CLI::App& app, Action& action);
 void add_calibrate(CLI::App& app, Action& action);
 void add_sensitivity(CLI::App& app, Action& action);
 void add_import_digitised(CLI::App& app, Action& action);
+void add_design(CLI::App& app, Action& action);
 
 // "a,b,,c" -> {"a", "b", "c"}: the comma lists of --models.
 std::vector<std::string> split_list(const std::string& s);

@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   app::add_calibrate(app, action);
   app::add_sensitivity(app, action);
   app::add_import_digitised(app, action);
+  app::add_design(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

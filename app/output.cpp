@@ -9,6 +9,7 @@ namespace chutelab::app {
 namespace {
 using analytical::Streamline;
 constexpr double kDeg = 180.0 / 3.14159265358979323846;
+}  // namespace
 
 std::string json_string(const std::string& s) {
   std::string out = "\"";
@@ -27,6 +28,8 @@ std::string json_string(const std::string& s) {
 
 std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
 
+namespace {
+
 std::string streamline_label(Streamline s) {
   switch (s) {
     case Streamline::lower: return "lower limit (e = 0)";
@@ -37,8 +40,9 @@ std::string streamline_label(Streamline s) {
   return "";
 }
 
-// One flat list of named values in boundary units: the CSV and JSON views share it.
-std::vector<std::pair<std::string, double>> scalars(const analytical::TransferAnalysis& a) {
+}  // namespace
+
+std::vector<std::pair<std::string, double>> estimate_scalars(const analytical::TransferAnalysis& a) {
   const auto& k = a.korzen;
   const auto& kc = *a.line(Streamline::korzen_centroid).hit;
   std::vector<std::pair<std::string, double>> v = {
@@ -72,6 +76,8 @@ std::vector<std::pair<std::string, double>> scalars(const analytical::TransferAn
   }
   return v;
 }
+
+namespace {
 
 std::string fmt_opt(const std::optional<double>& v, double scale, const char* spec) {
   return v ? fmt::format(fmt::runtime(spec), *v * scale) : std::string("-");
@@ -140,7 +146,7 @@ std::string estimate_table(const analytical::TransferAnalysis& a, const ModelVal
 
 std::string estimate_csv(const analytical::TransferAnalysis& a, const ModelValues& models) {
   std::string o = "condition,model,quantity,value\n";
-  for (const auto& [n, v] : scalars(a))
+  for (const auto& [n, v] : estimate_scalars(a))
     o += fmt::format("{},analysis,{},{:.10g}\n", a.station.condition, n, v);
   o += fmt::format("{},analysis,stationary_flow,{}\n", a.station.condition,
                    a.korzen.stationary_flow ? 1 : 0);

@@ -12,6 +12,14 @@ namespace chutelab::app {
 
 using ModelValues = std::vector<std::pair<std::string, QuantityValues>>;
 
+// JSON text for a string and a number (non-finite numbers are null).
+std::string json_string(const std::string& s);
+std::string json_number(double v);
+
+// One flat list of named values in boundary units (names with units): the CSV view and the sweep
+// table share it.
+std::vector<std::pair<std::string, double>> estimate_scalars(const analytical::TransferAnalysis& a);
+
 std::string estimate_table(const analytical::TransferAnalysis& a, const ModelValues& models,
                            const std::vector<effects::EffectSetting>& fx);
 std::string estimate_csv(const analytical::TransferAnalysis& a, const ModelValues& models);

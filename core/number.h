@@ -2,8 +2,11 @@
 // Reads a whole string as a number: the one rule for CSV cells, command-line lists and study files,
 // so "5.6mm" or "1,2" is never half-read. Infinity and NaN are numbers here; callers that need a
 // finite value say so in their own message.
+#include <cctype>
 #include <charconv>
+#include <cstdlib>
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace chutelab {
@@ -12,8 +15,20 @@ inline std::optional<double> parse_number(std::string_view s) {
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);  // from_chars takes no leading '+'
   if (s.empty()) return std::nullopt;
   double v = 0.0;
+#if defined(__EMSCRIPTEN__)
+  // The libc++ of Debian's emscripten (3.1.6) has no floating-point from_chars. strtod in the C
+  // locale (the page never sets another) reads the same numbers once what from_chars refuses
+  // (leading space, hexadecimal) is refused here first.
+  if (std::isspace(static_cast<unsigned char>(s.front())) || s.find_first_of("xX") != std::string_view::npos)
+    return std::nullopt;
+  const std::string copy(s);
+  char* end = nullptr;
+  v = std::strtod(copy.c_str(), &end);
+  if (end != copy.c_str() + copy.size()) return std::nullopt;
+#else
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
+#endif
   return v;
 }
 

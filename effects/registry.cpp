@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "core/number.h"
 
 namespace chutelab::effects {
 namespace {
@@ -50,9 +51,9 @@ EffectSetting parse_setting(const std::string& text, bool allow_fit) {
                        fmt::format("'{}': fitting needs measurements; give a value here", text));
     return {info, std::nullopt};
   }
-  double v = 0.0;
-  auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
-  if (ec != std::errc() || ptr != value.data() + value.size() || !std::isfinite(v))
+  const auto parsed = parse_number(value);
+  const double v = parsed.value_or(0.0);
+  if (!parsed || !std::isfinite(v))
     throw InputError("", 0, "--effect", fmt::format("'{}': '{}' is not a number", text, value));
   if (v < info->lower || v > info->upper)
     throw InputError("", 0, "--effect",

@@ -11,14 +11,15 @@
 namespace chutelab::validation {
 namespace {
 
-// The registry: adding a model is one factory and one line here. The order matters where models
+// The registry: the analytical models (models/analytical_models.cpp), then the expensive ones.
+// Adding a model is one factory and one line here or there. The order matters where models
 // overlap: fits and synthetic data take each quantity from the first model that predicts it.
-const std::vector<std::pair<std::string, std::function<ModelPtr()>>>& registry() {
-  static const std::vector<std::pair<std::string, std::function<ModelPtr()>>> models = {
-      {"booth-cema", make_booth_cema_model},
-      {"korzen", make_korzen_model},
-      {"dem", [] { return make_dem_model(); }},
-  };
+const std::vector<ModelFactory>& registry() {
+  static const std::vector<ModelFactory> models = [] {
+    auto all = analytical_model_registry();
+    all.push_back({"dem", [] { return make_dem_model(); }});
+    return all;
+  }();
   return models;
 }
 
@@ -42,15 +43,6 @@ std::vector<ModelPtr> make_models(const std::vector<std::string>& names) {
   std::vector<ModelPtr> out;
   for (const auto& n : names) out.push_back(make_model(n));
   return out;
-}
-
-Curve streamline_curve(const analytical::TransferAnalysis& a, analytical::Streamline s,
-                       std::string name) {
-  const auto& line = a.line(s);
-  const double t_end = line.hit ? line.hit->point.t : 1.0;
-  Curve c{std::move(name), {}};
-  for (const auto& p : line.trajectory.sample(t_end, 48)) c.points.push_back(p.position);
-  return c;
 }
 
 }  // namespace chutelab::validation

@@ -1,0 +1,10 @@
+# design.html = page.html with the WebAssembly module (JS with the wasm inlined) in its script slot.
+file(READ ${TEMPLATE} page)
+file(READ ${MODULE} module)
+string(FIND "${module}" "</script" bad)
+if(NOT bad EQUAL -1)
+  message(FATAL_ERROR "the module contains </script and cannot be inlined")
+endif()
+string(REPLACE "/*CHUTELAB_MODULE*/" "${module}" page "${page}")
+file(WRITE ${OUT}.partial "${page}")
+file(RENAME ${OUT}.partial ${OUT})

@@ -1,0 +1,124 @@
+// The designer's page runs `chutelab estimate` itself, compiled to WebAssembly: the page hands it
+// the arguments a user would type (a setup.toml it wrote into the module's in-memory file system,
+// the operating point, the effects) and shows what it prints. No physics lives in the page.
+#include <CLI/CLI.hpp>
+#include <emscripten/bind.h>
+#include <fmt/format.h>
+#include <iostream>
+#include <sstream>
+
+#include "app/commands.h"
+#include "app/output.h"
+#include "core/input_error.h"
+#include "core/rig.h"
+#include "effects/registry.h"
+#include "validation/dataset.h"
+
+namespace chutelab::app {
+// The bundled rig, packed into the module's file system at build time (em++ --embed-file).
+std::filesystem::path default_dataset() { return "/datasets/grima2010"; }
+}  // namespace chutelab::app
+
+namespace {
+using namespace chutelab;
+
+struct RunResult {
+  int code = 0;
+  std::string out, err;
+};
+
+// One `chutelab estimate ...` run, as main() does it: same parser, same messages, same exit codes.
+RunResult run(const std::vector<std::string>& args) {
+  RunResult r;
+  std::ostringstream out, err;
+  auto* old_out = std::cout.rdbuf(out.rdbuf());
+  auto* old_err = std::cerr.rdbuf(err.rdbuf());
+  try {
+    CLI::App app{"chutelab: conveyor transfer-station models against measurements"};
+    app.require_subcommand(1);
+    app::Action action;
+    app::add_estimate(app, action);
+    std::vector<std::string> argv = {"chutelab"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    std::vector<char*> ptrs;
+    for (auto& a : argv) ptrs.push_back(a.data());
+    try {
+      app.parse(static_cast<int>(ptrs.size()), ptrs.data());
+      r.code = action ? action() : kExitBadInput;
+    } catch (const CLI::CallForHelp& e) {
+      r.code = app.exit(e, out, err);
+    } catch (const CLI::ParseError& e) {
+      err << "chutelab: " << e.what() << " (see --help)\n";
+      r.code = kExitBadInput;
+    } catch (const InputError& e) {
+      err << "chutelab: " << e.what() << "\n";
+      r.code = kExitBadInput;
+    }
+  } catch (const std::exception& e) {
+    err << "chutelab: " << e.what() << "\n";
+    r.code = kExitBadInput;
+  }
+  std::cout.rdbuf(old_out);
+  std::cerr.rdbuf(old_err);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
+std::string number_or_null(std::optional<double> v) { return v ? app::json_number(*v) : "null"; }
+
+// The rig's parameters as the dataset reader knows them: the page builds its fields from this.
+std::string rig_fields_json() {
+  std::string o = "[";
+  for (const auto& f : rig_fields())
+    o += fmt::format("{}{{\"section\": {}, \"key\": {}, \"column\": {}, \"min\": {}, \"max\": {}, \"required\": {}, \"fallback\": {}}}",
+                     o.size() > 1 ? "," : "", app::json_string(std::string(f.section)), app::json_string(std::string(f.key)),
+                     app::json_string(std::string(f.column)), app::json_number(f.min), app::json_number(f.max),
+                     f.required ? "true" : "false", number_or_null(f.fallback));
+  return o + "]";
+}
+
+std::string effects_json() {
+  std::string o = "[";
+  for (const auto& e : effects::library())
+    o += fmt::format("{}{{\"name\": {}, \"parameter\": {}, \"unit\": {}, \"stage\": {}, \"physics\": {}, \"neutral\": {}, "
+                     "\"lower\": {}, \"upper\": {}, \"typical\": {}}}",
+                     o.size() > 1 ? "," : "", app::json_string(e.name), app::json_string(e.parameter),
+                     app::json_string(e.unit), app::json_string(e.stage), app::json_string(e.physics),
+                     app::json_number(e.neutral), app::json_number(e.lower), app::json_number(e.upper),
+                     app::json_number(e.typical));
+  return o + "]";
+}
+
+// A setup.toml read by the dataset reader, as boundary values keyed "section.key"; an error
+// comes back as {"error": "..."} with the reader's message.
+std::string setup_json(const std::string& path) {
+  try {
+    Setup s = validation::read_setup(path);
+    std::string o = fmt::format("{{\"name\": {}, \"source\": {}, \"values\": {{", app::json_string(s.name),
+                                app::json_string(s.source));
+    bool first = true;
+    for (const auto& f : rig_fields()) {
+      o += fmt::format("{}\"{}{}{}\": {}", first ? "" : ", ", f.section, f.section.empty() ? "" : ".", f.key,
+                       app::json_number(f.ref(s) / f.to_si));
+      first = false;
+    }
+    return o + "}}";
+  } catch (const InputError& e) {
+    return fmt::format("{{\"error\": {}}}", app::json_string(e.what()));
+  }
+}
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(chutelab_design) {
+  emscripten::register_vector<std::string>("StringList");
+  emscripten::value_object<RunResult>("RunResult")
+      .field("code", &RunResult::code)
+      .field("out", &RunResult::out)
+      .field("err", &RunResult::err);
+  emscripten::function("run", &run);
+  emscripten::function("rigFields", &rig_fields_json);
+  emscripten::function("effects", &effects_json);
+  emscripten::function("setup", &setup_json);
+}

@@ -1,0 +1,79 @@
+// A sweep over one input: where the stream meets the plate (top panel) and the plate forces
+// (bottom panel) against the swept value, on a shared x axis, with the current design marked.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "reports/design.h"
+#include "reports/svg.h"
+
+namespace chutelab::reports {
+namespace {
+
+void panel(Svg& svg, const Frame& f, const SweepChart& c, const std::vector<SweepSeries>& series,
+           std::string_view ylabel, std::string_view cls, bool x_labels) {
+  double lo = 1e300, hi = -1e300;
+  for (const auto& s : series)
+    for (const auto& y : s.y)
+      if (y && std::isfinite(*y)) { lo = std::min(lo, *y); hi = std::max(hi, *y); }
+  if (lo > hi) { lo = 0.0; hi = 1.0; }
+  if (hi - lo < 1e-9 * std::max(1.0, std::abs(hi))) { lo -= 1.0; hi += 1.0; }
+  const Ticks xt = nice_ticks(c.x.front(), c.x.back() == c.x.front() ? c.x.front() + 1.0 : c.x.back());
+  const Ticks yt = nice_ticks(lo, hi, 5);
+  const Scale X{xt.lo, xt.hi, f.left, f.right()}, Y{yt.lo, yt.hi, f.bottom(), f.top};
+  svg.axes(f, X, xt, Y, yt, x_labels ? std::string_view(c.x_label) : std::string_view(), ylabel);
+  // The x scale for a page that marks its current design on the chart.
+  svg.raw(fmt::format("<g class=\"x-scale\" data-d0=\"{}\" data-d1=\"{}\" data-r0=\"{}\" data-r1=\"{}\" "
+                      "data-top=\"{}\" data-bottom=\"{}\"></g>\n",
+                      xt.lo, xt.hi, px(f.left), px(f.right()), px(f.top), px(f.bottom())));
+  svg.raw(fmt::format("<g class=\"{}\">\n", cls));
+  for (const auto& s : series) {
+    // Gaps where a point has no answer: one polyline per run of answered points.
+    std::vector<std::pair<double, double>> run;
+    auto flush = [&] {
+      if (run.size() > 1)
+        svg.polyline(run, fmt::format("class=\"series\" stroke=\"{}\" stroke-width=\"2\"{}", s.colour,
+                                      s.dash.empty() ? "" : fmt::format(" stroke-dasharray=\"{}\"", s.dash)));
+      run.clear();
+    };
+    for (std::size_t i = 0; i < c.x.size() && i < s.y.size(); ++i) {
+      if (!s.y[i] || !std::isfinite(*s.y[i])) { flush(); continue; }
+      run.emplace_back(X(c.x[i]), Y(*s.y[i]));
+      svg.marker(Shape::circle, X(c.x[i]), Y(*s.y[i]), 4, s.colour, true,
+                 fmt::format("{}: {} at {}", s.label, fixed(*s.y[i], decimals_for(std::abs(*s.y[i]))),
+                             fixed(c.x[i], decimals_for(std::abs(c.x[i])))));
+    }
+    flush();
+  }
+  svg.raw("</g>\n");
+}
+
+}  // namespace
+
+std::string sweep_svg(const SweepChart& c, std::string_view id) {
+  const double W = 980.0, panel_h = 200.0;
+  std::vector<LegendEntry> top, bottom;
+  for (const auto& s : c.impact_mm) top.push_back({LegendEntry::Kind::line, s.label, s.colour, s.dash});
+  for (const auto& s : c.forces_N) bottom.push_back({LegendEntry::Kind::line, s.label, s.colour, s.dash});
+  const double left = 70.0, width = W - left - 20.0;
+  const double lt = legend_height(width, top), lb = legend_height(width, bottom);
+  const Frame f1{left, 34.0 + lt + 6.0, width, panel_h};
+  const Frame f2{left, f1.bottom() + 24.0 + lb + 6.0, width, panel_h};
+  const double H = f2.bottom() + 48.0;
+  Svg svg(W, H, "plot sweep-chart", id, "impact point and plate forces against " + c.x_label);
+  svg.title("Impact point and plate forces against " + c.x_label);
+  if (c.x.empty()) return svg.finish();
+  svg.legend(left, 30.0, width, top);
+  panel(svg, f1, c, c.impact_mm, "y on the plate (mm)", "impact-series", false);
+  svg.legend(left, f1.bottom() + 24.0, width, bottom);
+  panel(svg, f2, c, c.forces_N, "force on the plate (N)", "force-series", true);
+  return svg.finish();
+}
+
+std::string standalone_svg(std::string_view inline_svg) {
+  std::string s(inline_svg);
+  if (s.starts_with("<svg ")) s.insert(5, "xmlns=\"http://www.w3.org/2000/svg\" ");
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" + s;
+}
+
+}  // namespace chutelab::reports

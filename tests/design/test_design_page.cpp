@@ -1,0 +1,231 @@
+#define BOOST_TEST_MODULE design_page
+// The designer's page (`chutelab design`) in headless Chromium, opened from file:// as a designer
+// would: the inputs are set through the page's URL hash, the page computes with its WebAssembly
+// build of estimate, and every number it shows must equal what `chutelab estimate --format json`
+// prints for the design the page exports (its conditions.csv line and setup.toml, read back by the
+// strict dataset reader). A screenshot of the page is kept in the build tree for people to look at.
+// Our own main: without Chromium or without emscripten at build time nothing here can be checked,
+// and ctest shows that as skipped (SKIP_RETURN_CODE), not passed.
+#define BOOST_TEST_NO_MAIN
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <regex>
+#include <sstream>
+
+#include "../cli/cli_runner.h"
+
+namespace chutelab::test {
+namespace {
+namespace fs = std::filesystem;
+
+const fs::path kChromium = "/usr/bin/chromium";
+
+std::string html_unescape(std::string s) {
+  for (auto [from, to] : {std::pair{"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&#39;", "'"}, {"&amp;", "&"}}) {
+    for (auto at = s.find(from); at != std::string::npos; at = s.find(from, at + 1)) s.replace(at, std::string(from).size(), to);
+  }
+  return s;
+}
+
+std::string chromium(const fs::path& dir, const std::string& url, const std::string& mode) {
+  const fs::path profile = dir / "profile";
+  fs::remove_all(profile);
+  const std::string cmd = fmt::format(
+      "timeout 120 '{}' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+      "--disable-background-networking --disable-component-update --disable-sync --disable-extensions "
+      "--hide-scrollbars --user-data-dir='{}' --window-size=1400,1900 --virtual-time-budget=60000 {} '{}' "
+      ">'{}' 2>'{}' </dev/null",
+      kChromium.string(), profile.string(), mode, url, (dir / "stdout.txt").string(), (dir / "stderr.txt").string());
+  const int status = std::system(cmd.c_str());
+  BOOST_TEST_MESSAGE("chromium " << mode << " exit status " << status);
+  return read_file(dir / "stdout.txt");
+}
+
+struct PageView {
+  std::string dom, state;
+  std::map<std::string, std::string> values;  // output id -> data-value
+  std::map<std::string, std::string> shown;   // output id -> text shown
+  std::string conditions_csv, setup_toml, error;
+};
+
+PageView open_page(const fs::path& dir, const fs::path& page, const std::string& hash) {
+  PageView v;
+  // A second try only when the browser gave up before the module was even loaded (a machine so
+  // busy that the page's heartbeat did not cover the compile); a page in any other state is judged.
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    v.dom = chromium(dir, "file://" + fs::absolute(page).string() + "#" + hash, "--dump-dom");
+    if (v.dom.find("<body data-state=\"loading\"") == std::string::npos) break;
+    BOOST_TEST_MESSAGE("page still loading when the browser stopped; trying once more");
+  }
+  std::smatch m;
+  if (std::regex_search(v.dom, m, std::regex("<body data-state=\"([a-z]+)\""))) v.state = m[1];
+  const std::regex out("<output id=\"([A-Za-z_-]+)\"(?: class=\"[a-z]*\")? data-value=\"([^\"]*)\">([^<]*)</output>");
+  for (auto it = std::sregex_iterator(v.dom.begin(), v.dom.end(), out); it != std::sregex_iterator(); ++it) {
+    v.values[(*it)[1]] = (*it)[2];
+    v.shown[(*it)[1]] = html_unescape((*it)[3]);
+  }
+  auto textarea = [&](const std::string& id) {
+    std::smatch t;
+    return std::regex_search(v.dom, t, std::regex("<textarea id=\"" + id + "\"[^>]*>([^<]*)</textarea>"))
+               ? html_unescape(t[1]) : std::string();
+  };
+  v.conditions_csv = textarea("export-conditions");
+  v.setup_toml = textarea("export-setup");
+  if (std::regex_search(v.dom, m, std::regex("<div id=\"error\"[^>]*>([^<]*)</div>"))) v.error = html_unescape(m[1]);
+  return v;
+}
+
+// A number from estimate's JSON: the value after "key": inside the object that `scope` opens.
+std::optional<double> json_number(const std::string& json, const std::string& scope, const std::string& key) {
+  auto at = scope.empty() ? std::size_t{0} : json.find("\"" + scope + "\": {");
+  if (at == std::string::npos) return std::nullopt;
+  const auto end = scope.empty() ? json.size() : json.find('}', at);
+  const auto k = json.find("\"" + key + "\": ", at);
+  if (k == std::string::npos || k > end) return std::nullopt;
+  return std::stod(json.substr(k + key.size() + 4));
+}
+
+fs::path build_page(const std::string& name, const std::string& design_args = "") {
+  const fs::path dir = fresh_dir("design-" + name);
+  const auto r = run_chutelab("design --out '" + (dir / "page").string() + "' " + design_args);
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST_REQUIRE(fs::exists(dir / "page" / "design.html"));
+  return dir;
+}
+
+// The page against the CLI for one design given as a URL hash; `effects` are the matching flags.
+PageView check_design(const std::string& name, const std::string& hash, const std::string& effects,
+                      const std::string& design_args = "") {
+  const fs::path dir = build_page(name, design_args);
+  const fs::path page = dir / "page" / "design.html";
+  const PageView v = open_page(dir, page, hash);
+  BOOST_TEST_REQUIRE(v.state == "ready", "page state '" << v.state << "', error: " << v.error << "; stderr: "
+                                                        << read_file(dir / "stderr.txt").substr(0, 1500));
+  // The exported row is a dataset the strict reader takes; estimate on it is the reference.
+  write_file(dir / "exported" / "conditions.csv", v.conditions_csv);
+  write_file(dir / "exported" / "setup.toml", v.setup_toml);
+  const auto cli = run_chutelab("estimate --dataset '" + (dir / "exported").string() + "' --condition " + name + " " +
+                                effects + " --format json");
+  BOOST_TEST_REQUIRE(cli.exit_code == 0, cli.err << "\nexported setup:\n" << v.setup_toml << "\nconditions:\n" << v.conditions_csv);
+  const std::vector<std::tuple<std::string, std::string, std::string, int>> checks = {
+      // output id, JSON scope, JSON key, decimals shown
+      {"out-impact_velocity_mps", "korzen", "impact_velocity_mps", 3},
+      {"out-impact_angle_deg", "", "impact_angle_deg", 2},
+      {"out-exit_velocity_mps", "korzen", "exit_velocity_mps", 3},
+      {"out-normal_force_N", "korzen", "normal_force_N", 2},
+      {"out-shear_force_N", "korzen", "shear_force_N", 2},
+      {"out-resultant_force_N", "korzen", "resultant_force_N", 2},
+      {"out-impact_point_y_mm", "korzen", "impact_point_y_mm", 1},
+      {"out-cema_impact_point_y_mm", "booth-cema", "impact_point_y_mm", 1},
+      {"out-stream_thickness_mm", "condition", "stream_thickness_mm", 1}};
+  int compared = 0;
+  for (const auto& [id, scope, key, decimals] : checks) {
+    const auto expected = json_number(cli.out, scope, key);
+    BOOST_TEST_REQUIRE(v.values.count(id), "no output " << id);
+    if (!expected) {  // e.g. no V_a without stationary flow: the page must show none either
+      BOOST_TEST(v.values.at(id).empty(), id << " shows " << v.values.at(id) << " where estimate has none");
+      continue;
+    }
+    BOOST_TEST_REQUIRE(!v.values.at(id).empty(), id << " is empty; estimate says " << *expected);
+    const double shown = std::stod(v.values.at(id));
+    // Both print 10 significant digits of the same C++ computation; the browser's libm (musl, in
+    // the WebAssembly build) may round a sine or arctangent one ulp away from glibc's, which can
+    // move only the 10th digit.
+    BOOST_TEST(std::abs(shown - *expected) <= 2e-9 * std::max(1.0, std::abs(*expected)),
+               id << ": page " << v.values.at(id) << ", estimate " << *expected);
+    BOOST_TEST(v.shown.at(id) == fmt::format("{:.{}f}", *expected, decimals), id << " text " << v.shown.at(id));
+    ++compared;
+  }
+  BOOST_TEST(compared >= 8);
+  const bool stationary = cli.out.find("\"stationary_flow\": true") != std::string::npos;
+  BOOST_TEST(v.values.at("verdict") == (stationary ? "true" : "false"));
+  BOOST_TEST(v.shown.at("verdict") == (stationary ? "yes" : "no"));
+  // The drawing and the chart are chutelab's own SVGs, and the chart marks the current design.
+  BOOST_TEST(v.dom.find("class=\"design-picture\"") != std::string::npos);
+  BOOST_TEST(v.dom.find("class=\"plot sweep-chart\"") != std::string::npos);
+  BOOST_TEST(v.dom.find("class=\"current-design\"") != std::string::npos);
+  std::size_t lines = 0;
+  for (auto at = v.dom.find("class=\"streamline "); at != std::string::npos; at = v.dom.find("class=\"streamline ", at + 1)) ++lines;
+  BOOST_TEST(lines == 4u);
+  BOOST_TEST_MESSAGE(name << ": " << compared << " numbers equal estimate --format json; verdict "
+                          << (stationary ? "stationary" : "no stationary flow"));
+  return v;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(bundled_rig_at_4_mps_numbers_equal_estimate_json) {
+  check_design("T1", "belt_speed=4&mass_flow=35&plate_distance=450&name=T1", "");
+}
+
+BOOST_AUTO_TEST_CASE(changed_rig_with_effects_numbers_equal_estimate_json_and_screenshot) {
+  const std::string hash =
+      "belt_speed=1.6&mass_flow=22&plate_distance=320&plate_top=160&plate.angle_deg=10&"
+      "belt.pulley_diameter_mm=320&material.friction_plate=0.35&effect.air_drag=0.6&effect.plate_rebound=0.2&name=T2";
+  check_design("T2", hash, "--effect air_drag=0.6 --effect plate_rebound=0.2");
+  // The picture people look at: the page as it opens with this design.
+  const fs::path dir = build_page("shot");
+  const fs::path shot = fs::path(CHUTELAB_DESIGN_SCREENSHOT);
+  fs::create_directories(shot.parent_path());
+  fs::remove(shot);
+  chromium(dir, "file://" + fs::absolute(dir / "page" / "design.html").string() + "#" + hash,
+           "--screenshot='" + shot.string() + "'");
+  BOOST_TEST_REQUIRE(fs::exists(shot));
+  BOOST_TEST(fs::file_size(shot) > 50000u, "screenshot of " << fs::file_size(shot) << " bytes");
+  BOOST_TEST_MESSAGE("screenshot: " << shot);
+}
+
+BOOST_AUTO_TEST_CASE(a_page_started_from_a_dataset_row_shows_that_rows_estimate) {
+  // The LIGGGHTS rig's V3-41 has a measured h_b of its own; the page opens on that row.
+  const std::string rig = std::string(CHUTELAB_SOURCE_DIR) + "/datasets/liggghts-rig";
+  const PageView v = check_design("V3-41", "", "", "--dataset '" + rig + "' --condition V3-41");
+  const auto row = run_chutelab("estimate --dataset '" + rig + "' --condition V3-41 --format json");
+  BOOST_TEST_REQUIRE(row.exit_code == 0);
+  for (const auto& [id, key] : {std::pair{"out-normal_force_N", "normal_force_N"}, {"out-impact_point_y_mm", "impact_point_y_mm"}})
+    BOOST_TEST(std::abs(std::stod(v.values.at(id)) - *json_number(row.out, "korzen", key)) <= 2e-9 * 100, id);
+  BOOST_TEST(std::stod(v.values.at("out-stream_thickness_mm")) == 34.0);
+}
+
+BOOST_AUTO_TEST_CASE(bad_input_shows_chutelabs_message_not_numbers) {
+  const fs::path dir = build_page("bad");
+  const PageView v = open_page(dir, dir / "page" / "design.html", "belt_speed=-1&mass_flow=35&plate_distance=450");
+  BOOST_TEST(v.state == "error");
+  BOOST_TEST(v.error.find("--belt-speed: must be a positive number") != std::string::npos, v.error);
+}
+
+BOOST_AUTO_TEST_CASE(design_checks_its_starting_rig_and_writes_nothing_on_bad_input) {
+  const fs::path dir = fresh_dir("design-cli");
+  write_file(dir / "bad.toml", "name = \"x\"\n[belt]\npulley_diameter_mm = -5\n");
+  const auto bad = run_chutelab("design --setup '" + (dir / "bad.toml").string() + "' --out '" + (dir / "out").string() + "'");
+  BOOST_TEST(bad.exit_code == 2);
+  BOOST_TEST(bad.err.find("bad.toml") != std::string::npos, bad.err);
+  BOOST_TEST(!fs::exists(dir / "out" / "design.html"));
+  const auto other = run_chutelab("design --dataset '" + std::string(CHUTELAB_SOURCE_DIR) + "/datasets/liggghts-rig' --out '" +
+                                  (dir / "rig").string() + "'");
+  BOOST_TEST_REQUIRE(other.exit_code == 0, other.err);
+  // The page starts from that rig: its setup.toml travels inside the page.
+  BOOST_TEST(read_file(dir / "rig" / "design.html").find("liggghts-rig") != std::string::npos);
+}
+
+}  // namespace chutelab::test
+
+int main(int argc, char* argv[]) {
+  using chutelab::test::kChromium;
+  if (!CHUTELAB_DESIGN_PAGE_BUILT) {
+    std::cerr << "SKIPPED: this build has no designer's page (em++ from Debian's emscripten was not found or could "
+                 "not build; scripts/setup.sh installs it).\n";
+    return CHUTELAB_SKIP_RETURN_CODE;
+  }
+  if (!std::filesystem::exists(kChromium)) {
+    std::cerr << "SKIPPED: " << kChromium << " is not installed (scripts/setup.sh installs Debian's chromium); "
+                 "the designer's page was not checked in a browser.\n";
+    return CHUTELAB_SKIP_RETURN_CODE;
+  }
+  return boost::unit_test::unit_test_main(&init_unit_test, argc, argv);
+}
