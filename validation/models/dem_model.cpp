@@ -273,7 +273,8 @@ std::string canonical_station(const Station& s) {
   const auto& m = s.material;
   put("particle_diameter", m.particle_diameter);
   put("solid_density", m.solid_density);
-  put("bulk_density", m.bulk_density);
+  // The bulk density is a measurement of the layer the DEM forms, not one of its inputs (it feeds
+  // the mass flow by particles of the solid density): left out, like the stream thickness.
   put("youngs_modulus", m.youngs_modulus);
   put("poisson_ratio", m.poisson_ratio);
   put("friction_particle", m.friction_particle);
