@@ -7,6 +7,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
 #include <limits>
+#include <thread>
 
 #include "core/input_error.h"
 #include "validation/harness.h"
@@ -23,6 +24,15 @@ Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::Effec
   if (has_expensive())
     for (const auto& n : model_names())
       if (auto m = make_model(n); !m->expensive()) signature_.push_back(m);
+  if (has_expensive()) {
+    // The expensive baselines are independent: side by side, one per core.
+    std::vector<std::function<void()>> work;
+    for (std::size_t k = 0; k < models_.size(); ++k)
+      if (models_[k]->expensive())
+        for (std::size_t c = 0; c < d.stations.size(); ++c)
+          if (!expensive_cache_[{c, k}]) work.push_back([this, c, k] { (void)expensive_base(c, k); });
+    run_concurrently(work, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  }
   const auto base = predict_all({}, {});
   auto condition_index = [&](const std::string& c) {
     for (std::size_t i = 0; i < d.stations.size(); ++i)
