@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "core/campaign.h"
 #include "core/input_error.h"
 #include "validation/models/dem_model.h"
 
@@ -14,6 +15,7 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
   cmd.add_option("--dem-threads", o.threads, "OpenMP threads of the DEM (default: one per idle core)");
   cmd.add_option("--dem-cache", o.cache, "DEM result cache folder (default $XDG_CACHE_HOME/chutelab/dem)");
   cmd.add_flag("--no-dem-cache", o.no_cache, "run the DEM again even when a cached result exists");
+<<<<<<< HEAD
   cmd.add_option("--dem-ladder", o.ladder,
                  "on (default): two more runs per condition at 1.25 and 1.56 times the particle size give u_num's "
                  "discretisation part (GCI); off: statistical part only")
@@ -23,6 +25,17 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
       ->check(CLI::IsMember({"quick", "standard", "paper"}));
   cmd.add_flag("--dem-cache-only", o.cache_only,
                "never run the DEM: every run must be in the cache (recorded acceptance cases; exit 2 otherwise)");
+=======
+  add_jobs_option(cmd, o.jobs);
+}
+
+void add_jobs_option(CLI::App& cmd, int& jobs) {
+  cmd.add_option("--jobs", jobs,
+                 "independent DEM runs at a time in this process, each on one thread (under mpirun the ranks share "
+                 "the runs instead); results do not depend on it")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+>>>>>>> a1b7ee4 (Issue 14 parts 1 and 3: MPI campaigns (core/campaign.h, validation/campaign_runs.h) for validate/diagnose/sensitivity/calibrate with byte-identical outputs, --jobs threads, safe shared cache, timing files; --models external:NAME=DIR with strict readers and an example; mpirun ctest; README 'Running at scale'; bench/MPI.md)
 }
 
 void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir) {
@@ -43,16 +56,18 @@ void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const 
   dc.progress = true;
   dc.output_dir = output_dir;
   validation::set_dem_model_config(dc);
+  campaign::set_threads(o.jobs);
 }
 
 DemOutputStage::DemOutputStage(const std::string& out)
     : staging_(std::filesystem::path(out) / ".dem.partial"), final_(std::filesystem::path(out) / "dem") {
+  if (!campaign::output_rank()) return;  // rank 0 owns OUT
   std::error_code ec;
   std::filesystem::remove_all(staging_, ec);  // left by a run that was killed
 }
 
 DemOutputStage::~DemOutputStage() {
-  if (committed_) return;
+  if (committed_ || !campaign::output_rank()) return;
   std::error_code ec;
   std::filesystem::remove_all(staging_, ec);
 }
@@ -60,7 +75,7 @@ DemOutputStage::~DemOutputStage() {
 void DemOutputStage::commit() {
   namespace fs = std::filesystem;
   committed_ = true;
-  if (!fs::exists(staging_)) return;
+  if (!campaign::output_rank() || !fs::exists(staging_)) return;
   fs::remove_all(final_);
   fs::rename(staging_, final_);
 }
