@@ -15,7 +15,6 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
   cmd.add_option("--dem-threads", o.threads, "OpenMP threads of the DEM (default: one per idle core)");
   cmd.add_option("--dem-cache", o.cache, "DEM result cache folder (default $XDG_CACHE_HOME/chutelab/dem)");
   cmd.add_flag("--no-dem-cache", o.no_cache, "run the DEM again even when a cached result exists");
-<<<<<<< HEAD
   cmd.add_option("--dem-ladder", o.ladder,
                  "on (default): two more runs per condition at 1.25 and 1.56 times the particle size give u_num's "
                  "discretisation part (GCI); off: statistical part only")
@@ -25,8 +24,6 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
       ->check(CLI::IsMember({"quick", "standard", "paper"}));
   cmd.add_flag("--dem-cache-only", o.cache_only,
                "never run the DEM: every run must be in the cache (recorded acceptance cases; exit 2 otherwise)");
-=======
-  add_jobs_option(cmd, o.jobs);
 }
 
 void add_jobs_option(CLI::App& cmd, int& jobs) {
@@ -35,7 +32,6 @@ void add_jobs_option(CLI::App& cmd, int& jobs) {
                  "the runs instead); results do not depend on it")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
->>>>>>> a1b7ee4 (Issue 14 parts 1 and 3: MPI campaigns (core/campaign.h, validation/campaign_runs.h) for validate/diagnose/sensitivity/calibrate with byte-identical outputs, --jobs threads, safe shared cache, timing files; --models external:NAME=DIR with strict readers and an example; mpirun ctest; README 'Running at scale'; bench/MPI.md)
 }
 
 void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir) {
