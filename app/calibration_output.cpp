@@ -108,17 +108,25 @@ std::string rig_text(const CalibrationStudy& s) {
 std::string calibration_csv(const CalibrationContext& c, const CalibrationStudy& s) {
   std::string out =
       "shape,grain,rolling_friction,solid_density_kgm3,bulk_density_kgm3,pile_height_mm,repose_angle_deg,"
-      "peak_height_mm,fill_height_mm,particles,settled,run_seconds,target_distance,closest,dataset,quality\n";
+      "peak_height_mm,fill_height_mm,particles,settled,steps,target_distance,closest,dataset,quality\n";
   for (std::size_t k = 0; k < s.rows.size(); ++k) {
     const auto& r = s.rows[k];
     out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", name(r.shape), grain_label(s, r.shape),
                        csv_number(r.rolling_friction), csv_number(r.solid_density), csv_number(r.slump.bulk_density),
                        csv_number(r.slump.pile_height * 1e3), csv_number(r.slump.repose_angle_deg),
                        csv_number(r.slump.peak_height * 1e3), csv_number(r.slump.fill_height * 1e3), r.slump.particles, r.slump.settled ? 1 : 0,
-                       csv_number(r.slump.wall_seconds),
+                       r.slump.steps,
                        std::isfinite(r.distance) ? csv_number(r.distance) : std::string(),
                        static_cast<int>(k) == s.closest ? 1 : 0, c.setup.name, c.quality);
   }
+  return out;
+}
+
+std::string calibration_timing_csv(const CalibrationStudy& s) {
+  std::string out = "shape,rolling_friction,solid_density_kgm3,run_seconds\n";
+  for (const auto& r : s.rows)
+    out += fmt::format("{},{},{},{}\n", name(r.shape), csv_number(r.rolling_friction), csv_number(r.solid_density),
+                       csv_number(r.slump.wall_seconds));
   return out;
 }
 
@@ -175,8 +183,8 @@ std::string incline_csv(const CalibrationStudy& s) {
 
 std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& s) {
   std::string md = "# Slump-test calibration (seed Table 3)\n\n";
-  md += fmt::format("Dataset `{}` (`{}`), quality `{}`; {} slump tests in {:.0f} s.\n\n", reports::md_esc(c.setup.name),
-                    reports::md_esc(c.dataset), c.quality, s.rows.size(), s.wall_seconds);
+  md += fmt::format("Dataset `{}` (`{}`), quality `{}`; {} slump tests (run times: calibration-timing.csv).\n\n",
+                    reports::md_esc(c.setup.name), reports::md_esc(c.dataset), c.quality, s.rows.size());
   md += rig_text(s) + "\n\n";
   md += fmt::format("Held constant from the dataset: mu_s = {:g} (particle-particle), e = {:g}, E = {:g} MPa, nu = {:g}.\n\n",
                     c.setup.material.friction_particle, c.setup.material.restitution_particle,
@@ -186,16 +194,16 @@ std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& 
   md += table3_md(s);
   md += "\n## Every slump test\n\n";
   md += "| particle | rolling friction mu_r | solid density (kg/m^3) | bulk density (kg/m^3) | pile height (mm) | "
-        "angle of repose (deg) | grains | run (s) | distance to target |\n";
+        "angle of repose (deg) | grains | steps | distance to target |\n";
   md += "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (std::size_t k = 0; k < s.rows.size(); ++k) {
     const auto& r = s.rows[k];
     const bool best = static_cast<int>(k) == s.closest;
     const std::string b = best ? "**" : "";
-    md += fmt::format("| {b}{}{b}{} | {b}{:g}{b} | {b}{:g}{b} | {b}{:.0f}{b} | {b}{:.1f}{b} | {} | {} | {:.1f} | {} |\n",
+    md += fmt::format("| {b}{}{b}{} | {b}{:g}{b} | {b}{:g}{b} | {b}{:.0f}{b} | {b}{:.1f}{b} | {} | {} | {} | {} |\n",
                       grain_label(s, r.shape), best ? " ◀ closest" : "", r.rolling_friction, r.solid_density,
                       r.slump.bulk_density, r.slump.pile_height * 1e3, num(r.slump.repose_angle_deg, 1),
-                      r.slump.particles, r.slump.wall_seconds,
+                      r.slump.particles, r.slump.steps,
                       std::isfinite(r.distance) ? fmt::format("{:.1f} %", 100.0 * r.distance) : "–",
                       fmt::arg("b", b));
   }

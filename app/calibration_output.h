@@ -16,6 +16,8 @@ struct CalibrationContext {
 
 // Long form, one slump test a row, with the dataset's name and the quality on every row (the report
 // reads it back, reports/studies.h, and warns when it validates another dataset).
+// Wall-clock time of each slump test (differs run to run, so it stays out of the study's files).
+std::string calibration_timing_csv(const dem::rigs::CalibrationStudy& s);
 std::string calibration_csv(const CalibrationContext& c, const dem::rigs::CalibrationStudy& s);
 // The seed's Table 3 layout: a row per rolling friction x solid density, bulk density and pile height
 // per particle shape side by side, the target as the last row (Markdown).

@@ -12,6 +12,8 @@
 
 #include "app/calibration_output.h"
 #include "app/commands.h"
+#include "app/dem_options.h"
+#include "core/campaign.h"
 #include "core/input_error.h"
 #include "core/number.h"
 #include "dem/rigs/calibration.h"
@@ -30,6 +32,7 @@ struct CalibrateCli {
   // 2-core machine spend more time waiting at barriers than computing (measured: 4 s vs 15-100 s).
   int threads = 1;
   std::uint64_t seed = 1;
+  int jobs = 1;
 };
 
 std::vector<double> numbers(const std::string& list, const char* flag) {
@@ -76,6 +79,7 @@ int run_calibrate(const CalibrateCli& o) {
     if (o.target_pile_mm) plan.targets.pile_height = *o.target_pile_mm * 1e-3;
   }
   plan.incline = !o.no_incline;
+  campaign::set_threads(o.jobs);
 
   const int count = static_cast<int>(plan.shapes.size() * plan.rolling.size() * plan.density.size());
   std::cout << fmt::format("calibrate: {} slump tests ({} quality) on {} ({})\n", count, o.quality, ctx.setup.name,
@@ -111,7 +115,8 @@ int run_calibrate(const CalibrateCli& o) {
                                     {"incline.csv", incline_csv(study)},
                                     {"calibration.md", calibration_md(ctx, study)},
                                     {"calibration.html", calibration_html(ctx, study)},
-                                    {"material.toml", material_toml(ctx, study)}});
+                                    {"material.toml", material_toml(ctx, study)},
+                                    {"calibration-timing.csv", calibration_timing_csv(study)}});
   if (study.closest >= 0) {
     const auto& b = study.rows[static_cast<std::size_t>(study.closest)];
     std::cout << fmt::format("closest to the target: {} mu_r = {:g}, rho_s = {:g} kg/m^3 (bulk {:.0f} kg/m^3, pile {:.1f} mm; "
@@ -149,6 +154,7 @@ void add_calibrate(CLI::App& app, Action& action) {
   cmd->add_flag("--no-incline", o->no_incline, "skip the inclined-plane rig");
   cmd->add_option("--threads", o->threads, "OpenMP threads per run")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->add_option("--seed", o->seed, "random seed of the pour")->capture_default_str();
+  add_jobs_option(*cmd, o->jobs);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_calibrate(*o); }; });
 }

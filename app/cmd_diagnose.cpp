@@ -2,7 +2,11 @@
 #include <fmt/format.h>
 #include <iostream>
 
+#include <algorithm>
+#include <thread>
+
 #include "app/commands.h"
+#include "core/campaign.h"
 #include "app/dem_options.h"
 #include "app/effect_options.h"
 #include "core/input_error.h"
@@ -33,6 +37,8 @@ int run_diagnose(const DiagnoseCli& o) {
   // candidate it can represent (its own signature); the others take the analytical models'
   // signatures, and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
   configure_dem_model(o.dem, o.dataset, "");
+  // The baseline and confirmation runs go as campaigns (core/campaign.h) with the same --jobs.
+  campaign::set_threads(o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
   const auto models = validation::make_models(names);
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
   const auto r = validation::diagnose(d, models, opt);

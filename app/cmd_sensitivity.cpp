@@ -12,6 +12,9 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "app/dem_options.h"
+#include "core/campaign.h"
+#include "dem/station/cache.h"
 #include "reports/sensitivity_study.h"
 #include "core/input_error.h"
 #include "core/number.h"
@@ -35,6 +38,7 @@ struct SensitivityCli {
   std::optional<int> threads;
   std::optional<std::uint64_t> seed;
   double limit = 10.0;
+  int jobs = 1;
 };
 
 // Standard deviation of the load-cell samples inside the steady window: the force fluctuation.
@@ -80,6 +84,7 @@ int run_sensitivity(const SensitivityCli& o) {
   // One thread per run unless asked: on the shared 2-core machine a second OpenMP thread made runs
   // slower, not faster (bench/STATION.md), and results do not depend on it.
   ov.threads = o.threads.value_or(1);
+  campaign::set_threads(o.jobs);
   ov.seed = o.seed;
   const st::DemTable table = st::read_dem_table(setup_file.string());
   const st::RunSettings base = st::resolve(table, ov);
@@ -145,6 +150,9 @@ int run_sensitivity(const SensitivityCli& o) {
                            station->condition, o.quality, variants[0].label);
   for (const auto& n : reports::run_notes(study)) std::cout << "note: " << n << "\n";
   std::cout << std::flush;
+  // One campaign job per variant (core/campaign.h): in order in one process, side by side with
+  // --jobs, or spread over the ranks of mpirun; each result comes back as the run's full text.
+  std::vector<campaign::Job> jobs;
   for (std::size_t k = 0; k < variants.size(); ++k) {
     const SensitivityVariant& v = variants[k];
     st::RunSettings s = base;
@@ -154,11 +162,30 @@ int run_sensitivity(const SensitivityCli& o) {
     s.dt_fraction = v.dt_fraction;
     s.rayleigh_fraction = v.rayleigh_fraction;
     s.shear_modulus_scale = b.modulus_scale * v.modulus_scale;
-    st::RunOptions ro;
-    ro.settings = s;
-    ro.geometry = table;
-    ro.progress = st::ProgressPrinter(fmt::format("[{}/{}] {}", k + 1, variants.size(), v.key));
-    const st::StationResult r = st::run_station(*station, ro);
+    campaign::Job j;
+    j.key = v.key;
+    // Relative cost, to hand out the dear runs first: particles ~ d^-3 and steps ~ 1/dt ~ 1/d; a
+    // step of Hertz contacts ~ E^(2/5); a two-sphere clump ~ 2.7 spheres (bench/SENSITIVITY.md).
+    j.cost = std::pow(base_d / v.diameter, 4.0) * (b.dt_fraction / v.dt_fraction) * std::pow(v.modulus_scale, 0.4) *
+             (v.shape == "clump" ? 2.7 : 1.0);
+    const std::string label = fmt::format("[{}/{}] {}", k + 1, variants.size(), v.key);
+    j.run = [s, &table, station, label](const campaign::JobContext& ctx) {
+      st::RunOptions ro;
+      ro.settings = s;
+      ro.geometry = table;
+      if (ctx.progress) ro.progress = st::ProgressPrinter(label);
+      return st::to_text(st::run_station(*station, ro));
+    };
+    jobs.push_back(std::move(j));
+  }
+  campaign::Options co;
+  co.label = "sensitivity";
+  const std::vector<std::string> texts = campaign::run_campaign(jobs, co);
+  for (std::size_t k = 0; k < variants.size(); ++k) {
+    const SensitivityVariant& v = variants[k];
+    const std::optional<st::StationResult> parsed = st::from_text(texts[k]);
+    if (!parsed) throw std::logic_error("a DEM result text does not read back");
+    const st::StationResult& r = *parsed;
     SensitivityRow row;
     row.variant = v;
     VariantOutcome& out = row.outcome;
@@ -186,7 +213,8 @@ int run_sensitivity(const SensitivityCli& o) {
   study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   validation::write_outputs(o.out, {{"sensitivity.csv", reports::sensitivity_csv(study)},
                                     {"sensitivity.md", reports::sensitivity_md(study)},
-                                    {"sensitivity.html", reports::sensitivity_html(study)}});
+                                    {"sensitivity.html", reports::sensitivity_html(study)},
+                                    {"sensitivity-timing.csv", reports::sensitivity_timing_csv(study)}});
   std::cout << study.verdict.text << "\n";
   std::cout << fmt::format("{:.0f} s; written: {}\n", study.wall_seconds, (fs::path(o.out) / "sensitivity.html").string());
   return kExitOk;
@@ -215,6 +243,7 @@ void add_sensitivity(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "OpenMP threads per run (default 1; results do not depend on it)");
   cmd->add_option("--seed", o->seed, "feed random seed");
+  add_jobs_option(*cmd, o->jobs);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_sensitivity(*o); }; });
 }

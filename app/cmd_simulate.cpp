@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "core/campaign.h"
 #include "core/input_error.h"
 #include "dem/station/cache.h"
 #include "dem/station/progress.h"
@@ -77,6 +78,10 @@ int run_simulate(const SimulateCli& o) {
   for (const auto& e : o.effects) fx_settings.push_back(effects::parse_setting(e, false));
   const auto fx = validation::dem_effect_inputs(*station, effects::instantiate(fx_settings));
 
+  if (campaign::ranks() > 1)
+    throw InputError("", 0, "mpirun",
+                     "simulate is one DEM run, which does not split over MPI ranks: run it as one process (--threads "
+                     "for OpenMP); validate, diagnose, sensitivity and calibrate spread their runs over the ranks");
   if (o.vtk_every && !(*o.vtk_every > 0.0)) throw InputError("", 0, "--vtk-every", "must be > 0 s");
   if (o.vtk_every && o.out.empty()) throw InputError("", 0, "--vtk-every", "needs --out DIR");
   st::RunOptions ro;

@@ -156,6 +156,7 @@ void add_validate(CLI::App& app, Action& action) {
   cmd->add_flag("--diagnose", o->diagnose,
                 "also rank the candidate missing effects (always done when --effect is given)");
   add_dem_options(*cmd, o->dem);
+  add_jobs_option(*cmd, o->dem.jobs);
   cmd->add_option("--studies", o->studies,
                   "folders of `chutelab calibrate` / `sensitivity` runs (comma list or repeated): their tables "
                   "and charts become report sections")

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "core/campaign.h"
 #include "core/input_error.h"
 #include "validation/models/dem_model.h"
 
@@ -25,6 +26,14 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
                "never run the DEM: every run must be in the cache (recorded acceptance cases; exit 2 otherwise)");
 }
 
+void add_jobs_option(CLI::App& cmd, int& jobs) {
+  cmd.add_option("--jobs", jobs,
+                 "independent DEM runs at a time in this process, each on one thread (under mpirun the ranks share "
+                 "the runs instead); results do not depend on it")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+}
+
 void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir) {
   namespace fs = std::filesystem;
   validation::DemModelConfig dc;
@@ -43,16 +52,18 @@ void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const 
   dc.progress = true;
   dc.output_dir = output_dir;
   validation::set_dem_model_config(dc);
+  campaign::set_threads(o.jobs);
 }
 
 DemOutputStage::DemOutputStage(const std::string& out)
     : staging_(std::filesystem::path(out) / ".dem.partial"), final_(std::filesystem::path(out) / "dem") {
+  if (!campaign::output_rank()) return;  // rank 0 owns OUT
   std::error_code ec;
   std::filesystem::remove_all(staging_, ec);  // left by a run that was killed
 }
 
 DemOutputStage::~DemOutputStage() {
-  if (committed_) return;
+  if (committed_ || !campaign::output_rank()) return;
   std::error_code ec;
   std::filesystem::remove_all(staging_, ec);
 }
@@ -60,7 +71,7 @@ DemOutputStage::~DemOutputStage() {
 void DemOutputStage::commit() {
   namespace fs = std::filesystem;
   committed_ = true;
-  if (!fs::exists(staging_)) return;
+  if (!campaign::output_rank() || !fs::exists(staging_)) return;
   fs::remove_all(final_);
   fs::rename(staging_, final_);
 }

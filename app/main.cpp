@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "core/campaign.h"
 #include "core/input_error.h"
 
 namespace chutelab::app {
@@ -27,6 +28,12 @@ std::filesystem::path default_dataset() {
 
 int main(int argc, char** argv) {
   using namespace chutelab;
+  // Under mpirun every rank runs the command; rank 0 alone prints and writes (core/campaign.h).
+  campaign::Session session(argc, argv);
+  if (!session.refusal().empty()) {
+    std::cerr << "chutelab: " << session.refusal() << "\n";
+    return kExitBadInput;
+  }
   CLI::App app{"chutelab: conveyor transfer-station models against measurements"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "chutelab 0.1.0");

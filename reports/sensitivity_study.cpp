@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -242,7 +243,7 @@ SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
       file, {"variant", "group", "contact", "shape", "diameter_mm", "dt_s", "dt_fraction", "collision_time_s",
              "modulus_scale", "normal_force_N", "normal_force_se_N", "shear_force_N", "shear_force_se_N",
              "resultant_force_N", "resultant_force_se_N", "fluctuation_normal_N", "fluctuation_shear_N",
-             "fluctuation_resultant_N", "run_seconds", "simulated_s", "steps", "peak_particles", "steady", "condition",
+             "fluctuation_resultant_N", "simulated_s", "steps", "peak_particles", "steady", "condition",
              "belt_speed_mps", "mass_flow_tph", "quality", "change_limit_pct"});
   const std::string f = file.string();
   if (t.rows().empty()) throw InputError(f, 0, "variant", "no variants in the file (a header only)");
@@ -313,14 +314,24 @@ SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
     o.fluct_normal = opt(r, "fluctuation_normal_N");
     o.fluct_shear = opt(r, "fluctuation_shear_N");
     o.fluct_resultant = opt(r, "fluctuation_resultant_N");
-    o.wall_seconds = num(r, "run_seconds");
+    o.wall_seconds = number_or(r, "run_seconds", std::nan(""));  // in files written before the timing file
     o.simulated = num(r, "simulated_s");
     o.steps = static_cast<long long>(num(r, "steps"));
     o.particles = static_cast<std::size_t>(num(r, "peak_particles"));
     o.steady = num(r, "steady") != 0.0;
-    s.wall_seconds += o.wall_seconds;
     s.rows.push_back(row);
   }
+  // Wall-clock times live beside the study (sensitivity-timing.csv), so the study's own files are
+  // the same bytes from one process or many.
+  if (const auto timing = file.parent_path() / "sensitivity-timing.csv"; std::filesystem::exists(timing)) {
+    const CsvTable tt = CsvTable::read(timing, {"variant", "run_seconds"});
+    for (const auto& tr : tt.rows())
+      for (auto& row : s.rows)
+        if (row.variant.key == tt.text(tr, tt.require("variant")))
+          row.outcome.wall_seconds = tt.number(tr, tt.require("run_seconds"));
+  }
+  s.wall_seconds = 0.0;
+  for (const auto& row : s.rows) s.wall_seconds += row.outcome.wall_seconds;
   // Labels are not stored (they hold commas); the variants of the base as it ran give them back.
   const SensitivityRow& b = s.rows.front();
   s.base.diameter = b.outcome.diameter;
@@ -344,7 +355,7 @@ std::string sensitivity_csv(const SensitivityStudy& s) {
       "variant,group,contact,shape,diameter_mm,dt_s,dt_fraction,collision_time_s,modulus_scale,"
       "normal_force_N,normal_force_se_N,shear_force_N,shear_force_se_N,resultant_force_N,resultant_force_se_N,"
       "fluctuation_normal_N,fluctuation_shear_N,fluctuation_resultant_N,change_resultant_pct,change_se_pct,"
-      "run_seconds,simulated_s,steps,peak_particles,steady,condition,belt_speed_mps,mass_flow_tph,quality,"
+      "simulated_s,steps,peak_particles,steady,condition,belt_speed_mps,mass_flow_tph,quality,"
       "change_limit_pct,dataset,rayleigh_fraction,modulus_scale_of_dataset,sizes_left_out_mm,variants_left_out\n";
   std::vector<std::string> left_out;
   for (double d : s.sizes_left_out) left_out.push_back(mm(d));
@@ -353,14 +364,14 @@ std::string sensitivity_csv(const SensitivityStudy& s) {
   for (const auto& r : s.rows) {
     const auto& v = r.variant;
     const auto& o = r.outcome;
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},",
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},",
                        v.key, name(v.group),
                        v.contact, v.shape, csv_number(o.diameter * 1e3), csv_number(o.dt), csv_number(v.dt_fraction),
                        csv_number(o.collision_time), csv_number(v.modulus_scale), csv_number(o.normal.value),
                        csv_number(o.normal.se), csv_number(o.shear.value), csv_number(o.shear.se),
                        csv_number(o.resultant.value), csv_number(o.resultant.se), csv_number(o.fluct_normal),
                        csv_number(o.fluct_shear), csv_number(o.fluct_resultant), csv_number(r.change.value),
-                       csv_number(r.change.se), csv_number(o.wall_seconds), csv_number(o.simulated), o.steps, o.particles,
+                       csv_number(r.change.se), csv_number(o.simulated), o.steps, o.particles,
                        o.steady ? 1 : 0, s.condition, csv_number(s.belt_speed), csv_number(s.mass_flow * 3.6), s.quality,
                        csv_number(s.limit_percent));
     out += fmt::format("{},{},{},{},{}\n", s.dataset_name, csv_number(v.rayleigh_fraction),
@@ -370,14 +381,20 @@ std::string sensitivity_csv(const SensitivityStudy& s) {
   return out;
 }
 
+std::string sensitivity_timing_csv(const SensitivityStudy& s) {
+  std::string out = "variant,run_seconds\n";
+  for (const auto& r : s.rows) out += fmt::format("{},{}\n", r.variant.key, csv_number(r.outcome.wall_seconds));
+  return out;
+}
+
 std::string sensitivity_md(const SensitivityStudy& s) {
   std::string md = "# Sensitivity of the plate force (seed Table 6)\n\n";
-  md += fmt::format("Dataset {}, condition `{}` (V_b = {:g} m/s, {:.1f} t/h), quality `{}`; {} DEM runs in {:.0f} s.\n\n",
+  md += fmt::format("Dataset {}, condition `{}` (V_b = {:g} m/s, {:.1f} t/h), quality `{}`; {} DEM runs.\n\n",
                     dataset_text(s, true), md_esc(s.condition), s.belt_speed, s.mass_flow * 3.6,
-                    s.quality, s.rows.size(), s.wall_seconds);
+                    s.quality, s.rows.size());
   md += s.verdict.text + "\n\n";
   md += "| variant | what changes | d (mm) | dt (µs) | dt / t_c | R_n (N) | R_s (N) | R (N) | sd R_n (N) | sd R_s (N) | sd R (N) | "
-        "change of R vs base (%) | run (s) |\n";
+        "change of R vs base (%) | work (10⁶ particle-steps) |\n";
   md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : s.rows) {
     const auto& o = r.outcome;
@@ -388,10 +405,12 @@ std::string sensitivity_md(const SensitivityStudy& s) {
                       o.normal.se, o.shear.value, o.shear.se, o.resultant.value, o.resultant.se, o.fluct_normal,
                       o.fluct_shear, o.fluct_resultant,
                       &r == &s.rows[0] ? std::string("—") : fmt::format("{:+.1f} ± {:.1f}", r.change.value, r.change.se),
-                      o.wall_seconds);
+                      static_cast<double>(o.steps) * static_cast<double>(o.particles) * 1e-6);
   }
   md += "\nMeans are over the steady window of the plate load cell with block standard errors (±); sd is the "
-        "standard deviation of the load-cell samples in that window (the fluctuation); change = R / R_base - 1.\n";
+        "standard deviation of the load-cell samples in that window (the fluctuation); change = R / R_base - 1; work = "
+        "steps x peak particles, a measure of cost that does not depend on the machine (wall-clock times are in "
+        "sensitivity-timing.csv, which differs from run to run).\n";
   std::vector<std::string> notes = run_notes(s);
   for (const auto& r : s.rows) {
     if (!r.outcome.steady) notes.push_back(fmt::format("{}: no steady window within the time limit (means uncertain)", r.variant.key));
@@ -473,8 +492,8 @@ std::string sensitivity_html(const SensitivityStudy& s) {
   const std::string md = sensitivity_md(s);
   std::string body = "<h1>Sensitivity of the plate force (seed Table 6)</h1>\n";
   body += fmt::format("<p>Dataset {}, condition <code>{}</code> (V<sub>b</sub> = {:g} m/s, {:.1f} t/h), "
-                      "quality <code>{}</code>; {} DEM runs in {:.0f} s.</p>\n",
-                      esc(dataset_text(s, false)), esc(s.condition), s.belt_speed, s.mass_flow * 3.6, esc(s.quality), n, s.wall_seconds);
+                      "quality <code>{}</code>; {} DEM runs.</p>\n",
+                      esc(dataset_text(s, false)), esc(s.condition), s.belt_speed, s.mass_flow * 3.6, esc(s.quality), n);
   body += fmt::format("<p class=\"verdict {}\">{}</p>\n", s.verdict.reproduced() ? "ok" : "not", esc(s.verdict.text));
   body += sensitivity_chart(s, "sensitivity-chart") + "\n<table>\n";
   std::size_t pos = 0;

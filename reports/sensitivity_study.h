@@ -118,7 +118,11 @@ std::string dataset_text(const SensitivityStudy& s, bool markdown);
 // Notes on what really ran that a label cannot say: a step set by the Rayleigh cap, sizes left out.
 std::vector<std::string> run_notes(const SensitivityStudy& s);
 
+// The study's numbers: no wall-clock time, so one process and an MPI run write the same bytes.
 std::string sensitivity_csv(const SensitivityStudy& s);
+// sensitivity-timing.csv: variant,run_seconds (wall clock of each DEM run; differs run to run).
+// read_sensitivity_csv takes the times from it when it lies beside the study.
+std::string sensitivity_timing_csv(const SensitivityStudy& s);
 // Reads back what sensitivity_csv wrote (the report's "Sensitivity" section) and evaluates it again;
 // bad or missing columns and values throw InputError naming the file, line and column.
 SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file);

@@ -43,10 +43,15 @@ std::vector<CalibrationPoint> read_calibration_csv(const fs::path& file) {
   using validation::CsvTable;
   const CsvTable t = CsvTable::read(file, {"shape", "grain", "rolling_friction", "solid_density_kgm3",
                                            "bulk_density_kgm3", "pile_height_mm", "repose_angle_deg", "particles",
-                                           "settled", "run_seconds", "target_distance", "closest"});
+                                           "settled", "target_distance", "closest"});
   if (t.rows().empty()) throw InputError(file.string(), 0, "shape", "no slump tests in the file (a header only)");
   auto col = [&](std::string_view c) { return t.require(c); };
   std::vector<CalibrationPoint> out;
+  std::vector<double> timing;
+  if (const auto tf = file.parent_path() / "calibration-timing.csv"; fs::exists(tf)) {
+    const CsvTable tt = CsvTable::read(tf, {"run_seconds"});
+    for (const auto& r : tt.rows()) timing.push_back(tt.number(r, tt.require("run_seconds")));
+  }
   for (const auto& r : t.rows()) {
     CalibrationPoint p;
     p.shape = t.text(r, col("shape"));
@@ -60,13 +65,15 @@ std::vector<CalibrationPoint> read_calibration_csv(const fs::path& file) {
     p.repose_angle_deg = t.optional_number(r, col("repose_angle_deg")).value_or(std::nan(""));
     p.particles = static_cast<long>(t.number(r, col("particles")));
     p.settled = t.number(r, col("settled")) != 0.0;
-    p.run_seconds = t.number(r, col("run_seconds"));
+    // Older files carry the time; newer ones keep it in calibration-timing.csv beside them.
+    p.run_seconds = t.column("run_seconds") ? t.number(r, col("run_seconds")) : std::nan("");
     p.distance = t.optional_number(r, col("target_distance"));
     p.closest = t.number(r, col("closest")) != 0.0;
     // Provenance columns came later: optional, so a study written before them still reads.
     if (const auto c = t.column("dataset")) p.dataset = t.text(r, *c);
     if (const auto c = t.column("quality")) p.quality = t.text(r, *c);
     if (!(p.solid_density > 0.0)) throw InputError(file.string(), r.line, "solid_density_kgm3", "must be > 0");
+    if (timing.size() == t.rows().size()) p.run_seconds = timing[out.size()];
     out.push_back(p);
   }
   return out;
@@ -85,8 +92,8 @@ StudySection calibration_section(const fs::path& csv_file, std::string_view suff
   }
   s.paragraphs.push_back(fmt::format(
       "Swing-arm slump tests (seed Fig. 5) over particle-particle rolling friction, solid density and particle "
-      "shape, from {} ({} tests, {:.0f} s of DEM). Loose-poured bulk density and pile height as the seed's Table 3.",
-      csv_file.string(), pts.size(), seconds));
+      "shape, from {} ({} tests{}). Loose-poured bulk density and pile height as the seed's Table 3.",
+      csv_file.string(), pts.size(), std::isfinite(seconds) ? fmt::format(", {:.0f} s of DEM", seconds) : std::string()));
   for (auto& p : provenance_paragraphs("calibration", pts.front().dataset, pts.front().quality, validated))
     s.paragraphs.push_back(std::move(p));
   if (best)
@@ -132,9 +139,10 @@ StudySection sensitivity_section(const fs::path& csv_file, std::string_view suff
   s.verdict = st.verdict.text;
   s.paragraphs.push_back(fmt::format(
       "The transfer-station DEM at condition {} (V_b = {:g} m/s, {:.1f} t/h, {} quality) with one modelling shortcut "
-      "changed at a time, from {} ({} runs, {:.0f} s of DEM). Means over the steady window with block standard "
+      "changed at a time, from {} ({} runs{}). Means over the steady window with block standard "
       "errors; fluctuation = standard deviation of the load-cell samples in that window; change = R / R_base − 1.",
-      st.condition, st.belt_speed, st.mass_flow * 3.6, st.quality, csv_file.string(), st.rows.size(), st.wall_seconds));
+      st.condition, st.belt_speed, st.mass_flow * 3.6, st.quality, csv_file.string(), st.rows.size(),
+      std::isfinite(st.wall_seconds) ? fmt::format(", {:.0f} s of DEM", st.wall_seconds) : std::string()));
   for (auto& p : provenance_paragraphs("sensitivity", st.dataset_name, st.quality, validated))
     s.paragraphs.push_back(std::move(p));
   Table& t = s.table;
@@ -159,7 +167,7 @@ StudySection sensitivity_section(const fs::path& csv_file, std::string_view suff
                       num_cell(k == 0 ? std::string(kDash)
                                       : std::isfinite(r.change.value) ? fmt::format("{:+.1f} ± {:.1f}", r.change.value, r.change.se)
                                                                        : std::string(kDash)),
-                      num_cell(num(o.wall_seconds, 0))});
+                      num_cell(std::isfinite(o.wall_seconds) ? num(o.wall_seconds, 0) : std::string(kDash))});
   }
   for (const auto& r : st.rows)
     if (!r.outcome.steady) t.notes.push_back(r.variant.key + ": no steady window within the time limit (means uncertain).");

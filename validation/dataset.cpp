@@ -288,10 +288,12 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
 
 namespace {
 
-// The condition column of measurement-like files must name a row of conditions.csv.
-std::string known_condition(const CsvTable& t, const CsvRow& row, std::size_t col, const Dataset& d) {
+// The condition column of measurement-like files must name a row of conditions.csv (without a
+// dataset, e.g. another code's predictions read before the dataset is known: any name).
+std::string known_condition(const CsvTable& t, const CsvRow& row, std::size_t col, const Dataset* d) {
   const std::string& c = t.text(row, col);
-  if (!d.station(c))
+  if (c.empty()) throw InputError(t.file(), row.line, t.header()[col], "empty condition");
+  if (d && !d->station(c))
     throw InputError(t.file(), row.line, t.header()[col],
                      fmt::format("condition '{}' is not in conditions.csv", c));
   return c;
@@ -310,7 +312,9 @@ std::optional<double> uncertainty_cell(const CsvTable& t, const CsvRow& row,
   return *u * scale;
 }
 
-std::vector<Measurement> read_measurements(const fs::path& path, const Dataset& d) {
+}  // namespace
+
+std::vector<Measurement> read_measurements(const fs::path& path, const Dataset* d) {
   const CsvTable t = CsvTable::read(path, {"condition", "quantity", "value"});
   const std::size_t c_id = t.require("condition");
   const std::size_t c_q = t.require("quantity");
@@ -346,7 +350,7 @@ std::vector<Measurement> read_measurements(const fs::path& path, const Dataset& 
   return out;
 }
 
-std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset& d) {
+std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset* d) {
   const CsvTable t = CsvTable::read(path, {"condition", "boundary", "x_mm", "y_mm"});
   const std::size_t c_id = t.require("condition");
   const std::size_t c_b = t.require("boundary");
@@ -378,8 +382,6 @@ std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset
   return out;
 }
 
-}  // namespace
-
 Dataset read_dataset(const fs::path& dir, MeasurementsRequired need) {
   if (!fs::is_directory(dir)) throw InputError(dir.string(), 0, "", "dataset folder not found");
   Dataset d;
@@ -390,11 +392,11 @@ Dataset read_dataset(const fs::path& dir, MeasurementsRequired need) {
                                setup_uncertainty);
   const fs::path meas = dir / "measurements.csv";
   if (fs::exists(meas))
-    d.measurements = read_measurements(meas, d);
+    d.measurements = read_measurements(meas, &d);
   else if (need == MeasurementsRequired::yes)
     throw InputError(meas.string(), 0, "", "file not found (a dataset to validate needs measurements)");
   const fs::path traj = dir / "trajectory.csv";
-  if (fs::exists(traj)) d.trajectory = read_trajectory(traj, d);
+  if (fs::exists(traj)) d.trajectory = read_trajectory(traj, &d);
   return d;
 }
 

@@ -74,6 +74,12 @@ std::vector<Station> read_conditions(const std::filesystem::path& file, const Se
                                      std::vector<InputUncertainties>* uncertainties = nullptr,
                                      const InputUncertainties& defaults = {});
 
+// The measurement-like files (measurements.csv, trajectory.csv; also another code's exported
+// predictions, validation/models/external_model.h), checked as strictly. With `d`, every condition
+// must be one of its conditions; without, any non-empty name is taken.
+std::vector<Measurement> read_measurements(const std::filesystem::path& file, const Dataset* d);
+std::vector<TrajectoryPoint> read_trajectory(const std::filesystem::path& file, const Dataset* d);
+
 // Station from a setup and explicit operating values (all SI).
 Station make_station(const Setup& setup, std::string condition, double belt_speed,
                      double mass_flow, double plate_distance, double plate_top,

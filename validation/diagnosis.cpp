@@ -402,26 +402,33 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
   }
   out.used_surrogate = m.has_expensive();
   if (out.used_surrogate) {
-    std::vector<std::string> slow, slow_none;
+    std::vector<std::string> slow, slow_none, fixed;
     for (const auto& mm : models)
-      if (mm->expensive()) slow.push_back(mm->name());
+      if (mm->expensive()) (mm->runs_with_effects() ? slow : fixed).push_back(mm->name());
+    for (const auto& mm : models)
+      if (mm->expensive() && !mm->runs_with_effects())
+        out.caveats.push_back(fmt::format(
+            "{} is another code's exported results ({}): chutelab cannot re-run it, so every {} prediction with a "
+            "candidate effect is its result plus the analytical models' response to the effect (DESIGN.md §5), "
+            "including the recommended fit's, which no run confirms.",
+            mm->name(), mm->description(), mm->name()));
     std::vector<std::string> own, cheap;
     for (const auto& e : lib)
       (m.signature(e) == Misfit::Signature::own_runs ? own : m.signature(e) == Misfit::Signature::cheap_models ? cheap
                                                                                                            : slow_none)
           .push_back(e.name);
-    if (!own.empty())
+    if (!own.empty() && !slow.empty())
       out.caveats.push_back(fmt::format(
           "{}'s response to {} comes from its own runs, one per condition with the effect at a probe strength "
           "(twice its typical value) and the baseline's seed, carried to other strengths along the analytical "
           "models' response.",
           fmt::join(slow, ", "), fmt::join(own, ", ")));
-    if (!cheap.empty())
+    if (!cheap.empty() && !slow.empty())
       out.caveats.push_back(fmt::format(
           "{} cannot represent {}: their signatures are the analytical models' response applied as a difference "
           "(DESIGN.md §5), marked \"analytical only\" in the ranking.",
           fmt::join(slow, ", "), fmt::join(cheap, ", ")));
-    if (const EffectFit* b = out.best()) {
+    if (const EffectFit* b = out.best(); b && !slow.empty()) {
       std::vector<const effects::EffectInfo*> fx;
       for (const auto& n : b->effects) fx.push_back(effects::find(n));
       m.prepare_exact(fx, b->estimate, jobs);

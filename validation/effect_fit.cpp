@@ -10,9 +10,11 @@
 #include <thread>
 
 #include "core/input_error.h"
+#include "validation/campaign_runs.h"
 #include "validation/harness.h"
 #include "validation/input_uncertainty.h"
 #include "validation/parallel_runs.h"
+#include "validation/models/external_model.h"
 
 namespace chutelab::validation {
 
@@ -24,15 +26,8 @@ Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::Effec
   if (has_expensive())
     for (const auto& n : model_names())
       if (auto m = make_model(n); !m->expensive()) signature_.push_back(m);
-  if (has_expensive()) {
-    // The expensive baselines are independent: side by side, one per core.
-    std::vector<std::function<void()>> work;
-    for (std::size_t k = 0; k < models_.size(); ++k)
-      if (models_[k]->expensive())
-        for (std::size_t c = 0; c < d.stations.size(); ++c)
-          if (!expensive_cache_[{c, k}]) work.push_back([this, c, k] { (void)expensive_base(c, k); });
-    run_concurrently(work, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
-  }
+  check_external_models(models_, d);
+  run_expensive(fixed_);  // the baseline runs, as one campaign (MPI ranks, --jobs)
   const auto base = predict_all({}, {});
   auto condition_index = [&](const std::string& c) {
     for (std::size_t i = 0; i < d.stations.size(); ++i)
@@ -337,8 +332,20 @@ bool Misfit::has_expensive() const {
   return false;
 }
 
+void Misfit::run_expensive(const analytical::EffectList& effects) const {
+  std::vector<ModelRun> runs;
+  for (std::size_t c = 0; c < d_->stations.size(); ++c)
+    for (const auto& m : models_)
+      if (m->expensive() && m->runs_with_effects())
+        runs.push_back({m, d_->stations[c], effects, d_->station_lines[c].file, d_->station_lines[c].line});
+  run_models(runs, {"diagnose"});
+}
+
 double Misfit::chi2_exact(std::span<const effects::EffectInfo* const> fx,
                           std::span<const double> strengths) const {
+  analytical::EffectList list = fixed_;
+  for (std::size_t i = 0; i < fx.size(); ++i) list.push_back(fx[i]->make(strengths[i]));
+  run_expensive(list);  // the confirmation runs, as one campaign
   return chi2_of(predict(fx, strengths, Evaluation::exact));
 }
 

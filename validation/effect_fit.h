@@ -74,6 +74,9 @@ class Misfit {
   std::vector<double> residuals_of(const std::vector<std::vector<ModelPrediction>>& pred) const;
   double chi2_of(const std::vector<std::vector<ModelPrediction>>& pred) const;
   const ModelPrediction& expensive_base(std::size_t condition, std::size_t model) const;
+  // Every condition of the expensive models with these effects, run as one campaign
+  // (validation/campaign_runs.h) before they are predicted one by one.
+  void run_expensive(const analytical::EffectList& effects) const;
   const ModelPrediction& cheap_base(std::size_t condition, const ModelPtr& model) const;
   const ModelPrediction& expensive_probe(std::size_t condition, std::size_t model, const effects::EffectInfo& e) const;
   // The expensive model without candidates, made the way its probe runs are (their reference).

@@ -9,6 +9,8 @@
 
 #include "core/input_error.h"
 #include "validation/input_uncertainty.h"
+#include "validation/campaign_runs.h"
+#include "validation/models/external_model.h"
 
 namespace chutelab::validation {
 
@@ -145,14 +147,21 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
   for (const auto& m : models) r.models.push_back(m->name());
   r.effects = options.effect_labels;
 
+  check_external_models(models, d);  // before anything runs: a bad condition name is bad input
+  // The expensive models' runs first, as one campaign (spread over MPI ranks or --jobs threads);
+  // the loop below then finds each one done.
+  std::vector<ModelRun> runs;
+  for (std::size_t i = 0; i < d.stations.size(); ++i)
+    for (const auto& m : models)
+      if (m->expensive())
+        runs.push_back({m, d.stations[i], options.effects, d.station_lines[i].file, d.station_lines[i].line});
+  run_models(runs, {"validate"});
+
   for (std::size_t i = 0; i < d.stations.size(); ++i) {
     const Station& st = d.stations[i];
     const auto queries = trajectory_queries(d, st.condition);
     const std::size_t first = r.predictions.size();
     for (const auto& m : models) {
-      if (!options.quiet && m->expensive())
-        std::cerr << fmt::format("{}: condition {} ({}/{})\n", m->name(), st.condition, i + 1,
-                                 d.stations.size());
       ModelPrediction p;
       try {
         p = m->predict(st, options.effects, {queries, true});

@@ -6,6 +6,7 @@
 
 #include "core/input_error.h"
 #include "validation/models/dem_model.h"
+#include "validation/models/external_model.h"
 #include "validation/models/models.h"
 
 namespace chutelab::validation {
@@ -32,10 +33,11 @@ std::vector<std::string> model_names() {
 }
 
 ModelPtr make_model(const std::string& name) {
+  if (name.rfind(kExternalPrefix, 0) == 0) return std::make_shared<ExternalModel>(name.substr(kExternalPrefix.size()));
   for (const auto& [n, f] : registry())
     if (n == name) return f();
   throw InputError("", 0, "--models",
-                   fmt::format("unknown model '{}' (known: {})", name,
+                   fmt::format("unknown model '{}' (known: {}, external:NAME=DIR)", name,
                                fmt::join(model_names(), ", ")));
 }
 

@@ -2,6 +2,7 @@
 // A model predicts one condition in the measurement vocabulary (DESIGN.md §2). The harness,
 // the diagnosis and the report see models only through this interface.
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "analytical/effect.h"
+#include "core/campaign.h"
 #include "core/quantity.h"
 #include "core/rig.h"
 
@@ -61,6 +63,16 @@ struct ModelPrediction {
   std::vector<std::string> notes;                 // e.g. "R_s from Eq 7 (no stationary flow)"
 };
 
+// An expensive model's prediction of one condition as a campaign job (core/campaign.h): `job`
+// runs anywhere (any MPI rank or worker thread) and returns the run's complete result as text;
+// `accept` hands that text to the model on every rank, after which predict() of the same station
+// and effects uses it instead of running (validation/campaign_runs.h).
+struct ModelJob {
+  std::string id;  // identity of the run (e.g. its cache key): equal ids are one run
+  campaign::Job job;
+  std::function<void(const std::string&)> accept;
+};
+
 class Model {
  public:
   virtual ~Model() = default;
@@ -83,13 +95,22 @@ class Model {
   }
   virtual ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
                                   const PredictRequest& request) const = 0;
+  // False for fixed results (another code's exported predictions): predict() cannot honour a
+  // candidate effect, so the diagnosis keeps using signatures for it instead of confirming by a run.
+  virtual bool runs_with_effects() const { return true; }
+  // The run predict(station, effects, ...) would do, as a job; none for a model that answers at once.
+  virtual std::optional<ModelJob> campaign_job(const Station& /*station*/,
+                                               const analytical::EffectList& /*effects*/) const {
+    return std::nullopt;
+  }
 };
 
 using ModelPtr = std::shared_ptr<const Model>;
 
 // All models chutelab knows, in report order.
 std::vector<std::string> model_names();
-// Throws InputError (field "--models") naming the unknown model and the known ones.
+// Throws InputError (field "--models") naming the unknown model and the known ones. Besides the
+// registry's names: "external:NAME=DIR", another code's results (validation/models/external_model.h).
 ModelPtr make_model(const std::string& name);
 std::vector<ModelPtr> make_models(const std::vector<std::string>& names);
 

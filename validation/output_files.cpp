@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <fstream>
 
+#include "core/campaign.h"
 #include "core/input_error.h"
 
 namespace chutelab::validation {
@@ -70,6 +71,11 @@ std::string summary_csv(const ValidationResult& r) {
 
 void write_outputs(const std::filesystem::path& dir, const std::vector<OutputFile>& files) {
   namespace fs = std::filesystem;
+  // Under mpirun every rank reaches here with the same files; rank 0 alone writes them. (The
+  // designer's page compiles this file to WebAssembly, where there are no ranks.)
+#ifndef __EMSCRIPTEN__
+  if (!campaign::output_rank()) return;
+#endif
   std::error_code ec;
   if (fs::exists(dir) && !fs::is_directory(dir))
     throw InputError(dir.string(), 0, "--out", "exists and is not a folder");

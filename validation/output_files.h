@@ -17,6 +17,7 @@ using OutputFile = std::pair<std::string, std::string>;  // file name, content
 
 // Writes every file to a temporary name first and renames them into `dir` only when all were
 // written: an interrupted or failed run leaves the previous result (or nothing), never a mix.
+// Under mpirun only rank 0 writes (core/campaign.h).
 void write_outputs(const std::filesystem::path& dir, const std::vector<OutputFile>& files);
 
 // Number formatting shared by every CSV: enough digits to round-trip what matters, no noise.

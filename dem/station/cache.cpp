@@ -1,7 +1,11 @@
 #include "dem/station/cache.h"
 
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
+#include <thread>
+#include <unistd.h>
 #include <fstream>
 #include <sstream>
 
@@ -10,7 +14,12 @@
 namespace chutelab::dem::station {
 namespace {
 
-constexpr const char* kMagic = "chutelab-dem-result 2";
+// Version 3 ends with an "end" line, so a file cut short (a writer that died, a file system that
+// shows a rename before the data) is a miss, not a result with half its series. Version 2 files
+// (no end line, written by an atomic rename only) are still read.
+constexpr const char* kMagic = "chutelab-dem-result 3";
+constexpr const char* kMagicV2 = "chutelab-dem-result 2";
+constexpr const char* kEnd = "end\n";
 
 std::string num(double v) { return fmt::format("{:.17g}", v); }
 
@@ -189,12 +198,19 @@ std::optional<StationResult> ResultCache::load(const std::string& key) const {
   // Layout: magic line, "key <bytes>" line, the key, then the result.
   std::istringstream in(text);
   std::string magic, head;
-  if (!std::getline(in, magic) || magic != kMagic || !std::getline(in, head) || head.rfind("key ", 0) != 0)
+  if (!std::getline(in, magic) || (magic != kMagic && magic != kMagicV2) || !std::getline(in, head) ||
+      head.rfind("key ", 0) != 0)
     return std::nullopt;
   const std::size_t bytes = std::strtoull(head.c_str() + 4, nullptr, 10);
   const std::size_t at = static_cast<std::size_t>(in.tellg());
   if (at + bytes > text.size() || text.compare(at, bytes, key) != 0) return std::nullopt;
-  return from_text(text.substr(at + bytes));
+  std::size_t body_end = text.size();
+  if (magic == kMagic) {
+    const std::size_t end_len = std::char_traits<char>::length(kEnd);
+    if (text.size() < at + bytes + end_len || text.compare(text.size() - end_len, end_len, kEnd) != 0) return std::nullopt;
+    body_end -= end_len;
+  }
+  return from_text(text.substr(at + bytes, body_end - at - bytes));
 }
 
 bool ResultCache::store(const std::string& key, const StationResult& r) const {
@@ -203,15 +219,27 @@ bool ResultCache::store(const std::string& key, const StationResult& r) const {
   fs::create_directories(dir_, ec);
   if (ec) return false;
   const std::string path = path_for(key);
-  const std::string tmp = path + fmt::format(".tmp{}", static_cast<unsigned long>(fnv1a64(path + std::to_string(r.wall_seconds))));
+  // A name no other writer uses, even ranks of one job on other hosts sharing the folder (host, pid,
+  // thread, a counter), then an atomic rename: a reader sees the old file or the new one, whole.
+  static std::atomic<unsigned> counter{0};
+  char host[256] = "host";
+  ::gethostname(host, sizeof host - 1);
+  const std::string tmp = path + fmt::format(".{}.{}.{:x}.{}.tmp", host, static_cast<long>(::getpid()),
+                                             std::hash<std::thread::id>{}(std::this_thread::get_id()), counter++);
   {
-    std::ofstream f(tmp);
+    std::ofstream f(tmp, std::ios::binary);
     if (!f) return false;
-    f << kMagic << "\nkey " << key.size() << "\n" << key << to_text(r);
-    if (!f) return false;
+    f << kMagic << "\nkey " << key.size() << "\n" << key << to_text(r) << kEnd;
+    f.close();
+    if (!f) {
+      fs::remove(tmp, ec);
+      return false;
+    }
   }
   fs::rename(tmp, path, ec);
-  return !ec;
+  if (!ec) return true;
+  fs::remove(tmp, ec);
+  return false;
 }
 
 }  // namespace chutelab::dem::station

@@ -5,11 +5,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "core/campaign.h"
 #include "dem/station/cache.h"
 #include "dem/station/progress.h"
 #include "dem/station/run.h"
@@ -73,6 +76,28 @@ std::optional<st::Estimate> trajectory_estimate(const std::vector<st::Trajectory
   return std::nullopt;
 }
 
+// Results of campaign jobs (validation/campaign_runs.h) by cache key: "cached 0|1\n" + to_text.
+// Every rank holds the same texts, so predict() sees the same numbers on every rank.
+std::mutex& ready_mutex() {
+  static std::mutex m;
+  return m;
+}
+std::map<std::string, std::string>& ready() {
+  static std::map<std::string, std::string> r;
+  return r;
+}
+
+std::string result_text(const st::StationResult& r, bool from_cache) {
+  return std::string(from_cache ? "cached 1\n" : "cached 0\n") + st::to_text(r);
+}
+
+std::optional<std::pair<st::StationResult, bool>> parse_result(const std::string& text) {
+  if (text.rfind("cached ", 0) != 0 || text.size() < 9) return std::nullopt;
+  auto r = st::from_text(text.substr(9));
+  if (!r) return std::nullopt;
+  return std::make_pair(std::move(*r), text[7] == '1');
+}
+
 class DemModel final : public Model {
  public:
   explicit DemModel(DemModelConfig c) : c_(std::move(c)) {}
@@ -105,7 +130,7 @@ class DemModel final : public Model {
     bool from_cache = false;
     std::string cache_file;
     const st::StationResult r = run_or_load(station, fx, settings, table, &from_cache, &cache_file);
-    if (!c_.output_dir.empty()) {
+    if (!c_.output_dir.empty() && campaign::output_rank()) {
       const auto dir = std::filesystem::path(c_.output_dir) / station.condition;
       st::write_result_files(dir.string(), r);
       st::write_side_view_vtk((dir / "side_view.vtk").string(), r.side_view);
@@ -122,6 +147,14 @@ class DemModel final : public Model {
     const std::string key = dem_cache_key(fx, settings, table);
     const st::ResultCache cache(c_.cache_dir.empty() ? st::ResultCache::default_dir() : c_.cache_dir);
     if (cache_file) *cache_file = cache.path_for(key);
+    {  // a campaign's result (validation/campaign_runs.h): the same text on every rank
+      const std::lock_guard<std::mutex> lock(ready_mutex());
+      if (auto it = ready().find(key); it != ready().end())
+        if (auto got = parse_result(it->second)) {
+          if (from_cache) *from_cache = got->second;
+          return std::move(got->first);
+        }
+    }
     if (c_.use_cache)
       if (auto cached = cache.load(key)) {
         if (from_cache) *from_cache = true;
@@ -146,8 +179,44 @@ class DemModel final : public Model {
               : fmt::format("dem {}", station.condition));
     st::StationResult r = st::run_station(fx.station, o);
     if (c_.use_cache) cache.store(key, r);
-    return r;
+    // Read back from its text, as a campaign's result is: the same numbers to the last bit.
+    return *st::from_text(st::to_text(r));
   }
+
+ public:
+  std::optional<ModelJob> campaign_job(const Station& station, const analytical::EffectList& effects) const override {
+    const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file);
+    st::SettingsOverrides over = c_.overrides;
+    // Runs side by side (ranks, --jobs) each take one thread unless told; results do not depend on it.
+    if (!over.threads && campaign::concurrent()) over.threads = 1;
+    const st::RunSettings settings = st::resolve(table, over);
+    const DemEffectInputs fx = dem_effect_inputs(station, effects);
+    const std::string key = dem_cache_key(fx, settings, table);
+    {
+      const std::lock_guard<std::mutex> lock(ready_mutex());
+      if (ready().count(key)) return std::nullopt;
+    }
+    ModelJob j;
+    j.id = key;
+    j.job.key = fmt::format("dem {}", station.condition);
+    // Particles in the rig scale with the feed over d^3 and steps with 1/dt ~ 1/d: enough to put
+    // the dear runs first; the numbers are never compared with a clock.
+    const double d = settings.particle_diameter > 0.0 ? settings.particle_diameter : fx.station.material.particle_diameter;
+    j.job.cost = fx.station.mass_flow * settings.max_time / std::pow(d / 0.01, 4.0) *
+                 (settings.particle_shape == st::ParticleShape::clump ? 2.7 : 1.0);
+    j.job.run = [this, station, fx, settings, table](const campaign::JobContext&) {
+      bool from_cache = false;
+      const st::StationResult r = run_or_load(station, fx, settings, table, &from_cache, nullptr);
+      return result_text(r, from_cache);
+    };
+    j.accept = [key](const std::string& text) {
+      const std::lock_guard<std::mutex> lock(ready_mutex());
+      ready()[key] = text;
+    };
+    return j;
+  }
+
+ private:
 
   // u_num's discretisation part from a ladder of particle sizes d, r d, r^2 d (everything else as
   // the quality sets it): the DEM's "grid" is its particle, so coarser particles are coarser
