@@ -125,6 +125,7 @@ class DemModel final : public Model {
     if (c_.use_cache)
       if (auto cached = cache.load(key)) {
         if (from_cache) *from_cache = true;
+        cached->wear = settings.wear;  // the cache keeps the maps' sums; the rates use these wear inputs
         return std::move(*cached);
       }
     if (c_.cache_only)
