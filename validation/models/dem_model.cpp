@@ -73,6 +73,26 @@ std::optional<st::Estimate> trajectory_estimate(const std::vector<st::Trajectory
   return std::nullopt;
 }
 
+// The plate map's value at a point of the face: the triangle whose (z, y) projection holds it.
+std::optional<double> plate_value(const st::StationResult& r, const PlateQuery& q) {
+  if (r.maps.empty()) return std::nullopt;
+  for (const auto& c : r.maps.front().cells) {
+    const Eigen::Vector2d a(c.corners[0].z(), c.corners[0].y()), b(c.corners[1].z(), c.corners[1].y()),
+        d(c.corners[2].z(), c.corners[2].y()), x(q.z, q.y);
+    auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+    const double s0 = cross(b - a, x - a), s1 = cross(d - b, x - b), s2 = cross(a - d, x - d);
+    const bool inside = (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
+    if (!inside || !(std::abs(cross(b - a, d - a)) > 0.0)) continue;
+    const double rate = c.archard_rate(r.wear) + c.finnie_rate(r.wear);
+    if (q.quantity == "plate_pressure_Pa") return c.pressure();
+    if (q.quantity == "plate_shear_stress_Pa") return c.shear_stress();
+    if (q.quantity == "wear_rate_um_per_h") return rate;
+    if (q.quantity == "wear_depth_um" && r.wear.exposure_hours > 0.0) return rate * r.wear.exposure_hours * 3600.0;
+    return std::nullopt;
+  }
+  return std::nullopt;  // off the plate
+}
+
 class DemModel final : public Model {
  public:
   explicit DemModel(DemModelConfig c) : c_(std::move(c)) {}
@@ -224,6 +244,22 @@ class DemModel final : public Model {
       }
       if (!pts.points.empty()) p.curves.push_back(std::move(pts));
     }
+    // Pressure and wear maps: for the report's pictures, and at the plate points a dataset measured.
+    for (const auto& m : r.maps) {
+      SurfaceMap sm;
+      sm.name = m.wall;
+      for (const auto& c : m.cells) {
+        sm.cells.push_back({Eigen::Vector2d(c.corners[0].z(), c.corners[0].y()),
+                            Eigen::Vector2d(c.corners[1].z(), c.corners[1].y()),
+                            Eigen::Vector2d(c.corners[2].z(), c.corners[2].y())});
+        sm.pressure.push_back(c.pressure());
+        sm.wear_rate.push_back(c.archard_rate(r.wear) + c.finnie_rate(r.wear));
+      }
+      sm.peak_pressure_y = st::peak_pressure_y(m);
+      sm.pressure_centre_y = st::pressure_centre_y(m);
+      p.maps.push_back(std::move(sm));
+    }
+    for (const auto& q : request.plate) p.plate.push_back(plate_value(r, q));
     p.notes = r.notes;
     if (r.impact_velocity_fast.ok())
       p.notes.push_back(fmt::format("free-stream particles alone (v_x > V_b/2) arrive at {:.3f} m/s; the V_p slab lies "
