@@ -46,7 +46,7 @@ std::string heat_map(const std::vector<Panel>& panels, bool wear, std::string_vi
   const int rows = (static_cast<int>(panels.size()) + cols - 1) / cols;
   const double gap = 18.0, pw = (width - gap * (cols + 1)) / cols;
   const double k = pw / (z1 - z0), ph = (y1 - y0) * k;  // equal scales: the plate face as it is
-  const double head = 20.0, bar = 44.0;
+  const double head = 20.0, bar = 50.0;
   Svg svg(width, rows * (ph + head + gap) + bar + gap, "plate-map", id,
           wear ? "wear rate maps of the plate" : "pressure maps of the plate");
   for (std::size_t n = 0; n < panels.size(); ++n) {
@@ -85,21 +85,19 @@ std::string heat_map(const std::vector<Panel>& panels, bool wear, std::string_vi
                  fmt::format("{} impact point y_R = {:.1f} mm", p.model, *p.impact_point * 1e3));
     }
   }
-  // Colour bar: one scale for every panel.
+  // Colour bar: one scale for every panel, labelled at its ends and middle.
   const double by = rows * (ph + head + gap) + gap, bw = 40.0;
   const std::string what = wear ? "wear rate (um/h)" : "normal pressure (Pa)";
   svg.text(gap, by + 10, what, "start", "font-size=\"12\"");
-  double x = gap + text_width(what, 12) + 10;
-  for (std::size_t b = 0; b < kRamp.size(); ++b) {
+  const double x = gap + text_width(what, 12) + 10;
+  for (std::size_t b = 0; b < kRamp.size(); ++b)
     svg.raw(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"10\" fill=\"{}\"/>\n", px(x + b * bw), px(by),
                         px(bw), kRamp[b]));
-    const double edge = hi * static_cast<double>(b) / kRamp.size() * (wear ? kUmPerHour : 1.0);
-    svg.text(x + b * bw, by + 24, fmt::format("{:.3g}", edge), "middle", "font-size=\"10\"");
-  }
-  svg.text(x + kRamp.size() * bw, by + 24, fmt::format("{:.3g}", hi * (wear ? kUmPerHour : 1.0)), "middle",
-           "font-size=\"10\"");
+  const double top = hi * (wear ? kUmPerHour : 1.0);
+  for (int j = 0; j <= 2; ++j)
+    svg.text(x + j * 0.5 * kRamp.size() * bw, by + 24, fmt::format("{:.3g}", top * 0.5 * j), "middle", "font-size=\"10\"");
   if (!wear)
-    svg.text(x + kRamp.size() * bw + 30, by + 10,
+    svg.text(gap, by + 40,
              "dashed: analytical impact zone and centroid; red ticks: peak of the map's pressure profile; "
              "triangle: the model's impact point y_R",
              "start", "font-size=\"11\"");
