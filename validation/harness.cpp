@@ -239,6 +239,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       c.measured = pt.value;
       c.uncertainty = pt.uncertainty;
       c.predicted = cr->prediction.plate[k];
+      if (k < cr->prediction.plate_uncertainty.size()) c.prediction_uncertainty = cr->prediction.plate_uncertainty[k];
       r.comparisons.push_back(std::move(c));
     }
   }

@@ -84,6 +84,7 @@ struct ModelPrediction {
   std::vector<std::optional<double>> trajectory_input_uncertainty;  // m per query (harness)
   std::vector<Curve> curves;
   std::vector<std::optional<double>> plate;       // SI per plate query, absent where not predicted
+  std::vector<std::optional<double>> plate_uncertainty;  // SI, one sd, per plate query (may be shorter)
   std::vector<SurfaceMap> maps;                   // pressure and wear maps (DEM)
   std::optional<PlateZone> plate_zone;            // the analytical impact zone
   std::vector<std::string> notes;                 // e.g. "R_s from Eq 7 (no stationary flow)"

@@ -10,7 +10,7 @@
 namespace chutelab::dem::station {
 namespace {
 
-constexpr const char* kMagic = "chutelab-dem-result 3";  // 3: plate maps
+constexpr const char* kMagic = "chutelab-dem-result 4";  // 3: plate maps; 4: their block means
 
 std::string num(double v) { return fmt::format("{:.17g}", v); }
 
@@ -90,9 +90,13 @@ std::string to_text(const StationResult& r) {
     for (const auto& c : m.cells) {
       o += "cell";
       for (const auto& p : c.corners) o += fmt::format(" {} {} {}", num(p.x()), num(p.y()), num(p.z()));
-      o += fmt::format(" {} {} {} {} {} {} {} {} {} {} {} {}\n", num(c.normal.x()), num(c.normal.y()), num(c.normal.z()),
+      o += fmt::format(" {} {} {} {} {} {} {} {} {} {} {} {}", num(c.normal.x()), num(c.normal.y()), num(c.normal.z()),
                        num(c.area), num(c.force.x()), num(c.force.y()), num(c.force.z()), num(c.impact_power),
                        num(c.sliding_power), num(c.load_slip), num(c.finnie_measure), num(c.impacts));
+      o += fmt::format(" {}", c.block_normal.size());
+      for (std::size_t b = 0; b < c.block_normal.size(); ++b)
+        o += fmt::format(" {} {} {}", num(c.block_normal[b]), num(c.block_load_slip[b]), num(c.block_finnie[b]));
+      o += "\n";
     }
   }
   for (const auto& n : r.notes) o += "note " + n + "\n";
@@ -184,6 +188,15 @@ std::optional<StationResult> from_text(const std::string& text) {
       c.force = v3();
       c.impact_power = rd(in); c.sliding_power = rd(in); c.load_slip = rd(in); c.finnie_measure = rd(in);
       c.impacts = rd(in);
+      std::size_t nb = 0;
+      in >> nb;
+      if (!in || nb > 10000) return std::nullopt;
+      for (std::size_t b = 0; b < nb; ++b) {
+        const double fn = rd(in), ls = rd(in), fi = rd(in);
+        c.block_normal.push_back(fn);
+        c.block_load_slip.push_back(ls);
+        c.block_finnie.push_back(fi);
+      }
       if (!in) return std::nullopt;
       r.maps.back().cells.push_back(c);
     } else if (tag == "side") {

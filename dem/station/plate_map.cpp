@@ -25,6 +25,35 @@ double MapCell::finnie_rate(const WearInputs& w) const {
   return area > 0.0 ? wear::finnie_volume(w.finnie, finnie_measure) / area : 0.0;
 }
 
+namespace {
+// sd / sqrt(n) of the block values, NaN with fewer than two.
+double batch_se(const std::vector<double>& v) {
+  const auto n = static_cast<double>(v.size());
+  if (v.size() < 2) return std::numeric_limits<double>::quiet_NaN();
+  double m = 0.0, q = 0.0;
+  for (double x : v) m += x;
+  m /= n;
+  for (double x : v) q += (x - m) * (x - m);
+  return std::sqrt(q / (n - 1.0) / n);
+}
+}  // namespace
+
+double MapCell::pressure_se() const {
+  if (!(area > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> p;
+  for (double f : block_normal) p.push_back(f / area);
+  return batch_se(p);
+}
+
+double MapCell::wear_rate_se(const WearInputs& w) const {
+  if (!(area > 0.0) || block_load_slip.size() != block_finnie.size()) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> r;
+  for (std::size_t b = 0; b < block_load_slip.size(); ++b)
+    r.push_back((wear::archard_volume(w.archard, block_load_slip[b]) + wear::finnie_volume(w.finnie, block_finnie[b])) /
+                area);
+  return batch_se(r);
+}
+
 Vec3 PlateMap::total_force() const {
   Vec3 f = Vec3::Zero();
   for (const auto& c : cells) f += c.force;
@@ -91,18 +120,30 @@ void PlateMapRecorder::end_sample(double t) {
     it = it->second < last_step_ - 1 ? last_touch_.erase(it) : std::next(it);
 }
 
-PlateMap PlateMapRecorder::reduce(double start, double end) const {
+PlateMap PlateMapRecorder::reduce(double start, double end, double block) const {
   PlateMap m;
   m.wall = name_;
   const std::size_t nt = corners_.size();
   std::vector<double> sum(nt * kChannels, 0.0);
   constexpr double eps = 1e-9;
+  const std::size_t nb = block > 0.0 ? static_cast<std::size_t>(std::floor((end - start) / block + eps)) : 0;
+  std::vector<double> bsum(nb * nt * 3, 0.0), bdur(nb, 0.0);  // per mean block: normal N s, N m, Finnie
   for (std::size_t b = 0; b < block_t1_.size(); ++b) {
     // As the load cell's means (block_mean): a sample belongs to the window by its end time.
     if (block_t1_[b] <= start + eps || block_t1_[b] > end + eps) continue;
     m.duration += block_t1_[b] - block_t0_[b];
     const double* s = store_.data() + b * nt * kChannels;
     for (std::size_t k = 0; k < nt * kChannels; ++k) sum[k] += s[k];
+    const auto j = static_cast<std::size_t>(std::floor((end - block_t1_[b]) / block + eps));
+    if (j >= nb) continue;
+    bdur[j] += block_t1_[b] - block_t0_[b];
+    for (std::size_t t = 0; t < nt; ++t) {
+      const double* c = s + t * kChannels;
+      const Vec3 f(c[0], c[1], c[2]);
+      bsum[(j * nt + t) * 3 + 0] += f.dot(normals_[t]);
+      bsum[(j * nt + t) * 3 + 1] += c[5];
+      bsum[(j * nt + t) * 3 + 2] += c[6];
+    }
   }
   const double inv = m.duration > 0.0 ? 1.0 / m.duration : 0.0;
   for (std::size_t t = 0; t < nt; ++t) {
@@ -120,6 +161,13 @@ PlateMap PlateMapRecorder::reduce(double start, double end) const {
     c.load_slip = s[5] * inv;
     c.finnie_measure = s[6] * inv;
     c.impacts = s[7] * inv;
+    const double sign = s[8] < 0.0 ? -1.0 : 1.0;
+    for (std::size_t j = 0; j < nb; ++j) {
+      if (!(bdur[j] > 0.0)) continue;
+      c.block_normal.push_back(sign * bsum[(j * nt + t) * 3 + 0] / bdur[j]);
+      c.block_load_slip.push_back(bsum[(j * nt + t) * 3 + 1] / bdur[j]);
+      c.block_finnie.push_back(bsum[(j * nt + t) * 3 + 2] / bdur[j]);
+    }
     m.cells.push_back(c);
   }
   return m;

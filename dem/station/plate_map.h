@@ -36,6 +36,9 @@ struct MapCell {
   double load_slip = 0.0;        // N m/s: Archard's F_n |v_t| summed per second
   double finnie_measure = 0.0;   // kg m^2/s^3: Finnie's M v^n f(alpha) summed per second
   double impacts = 0.0;          // impacts per second
+  // The same means over each `block` of the window (counted back from its end), for the standard
+  // errors (batch means, as the load cell's, steady_state.h): normal force N, N m/s, kg m^2/s^3.
+  std::vector<double> block_normal, block_load_slip, block_finnie;
   Vec3 centroid() const { return (corners[0] + corners[1] + corners[2]) / 3.0; }
   double pressure() const { return area > 0.0 ? force.dot(normal) / area : 0.0; }  // Pa
   double shear_stress() const {                                                      // Pa
@@ -43,6 +46,10 @@ struct MapCell {
   }
   double archard_rate(const WearInputs& w) const;  // m/s of depth
   double finnie_rate(const WearInputs& w) const;   // m/s of depth
+  // Standard errors of pressure() and of the total wear rate from the block means (NaN with fewer
+  // than two blocks).
+  double pressure_se() const;
+  double wear_rate_se(const WearInputs& w) const;
 };
 
 struct PlateMap {
@@ -58,8 +65,9 @@ class PlateMapRecorder {
   void observe(const WallContact& c);
   // Closes the force sample ending at t (the recorder's block boundaries follow the samples).
   void end_sample(double t);
-  // Means over the samples with t in (start, end].
-  PlateMap reduce(double start, double end) const;
+  // Means over the samples with t in (start, end], and per `block` s counted back from end
+  // (0: no blocks).
+  PlateMap reduce(double start, double end, double block = 0.0) const;
 
  private:
   // Fx Fy Fz (N s), impact J, sliding J, Archard N m, Finnie, impacts, contact normal . face normal (s)

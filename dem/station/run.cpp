@@ -189,7 +189,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
 
   // --- maps over the steady window ---
   r.wear = s.wear;
-  for (const auto& m : maps) r.maps.push_back(m->reduce(a, b));
+  for (const auto& m : maps) r.maps.push_back(m->reduce(a, b, blk));
 
   // --- snapshot sensors ---
   std::vector<double> tn, vp, vpw, vpf, vpfw, ls, lh, lsw, th;

@@ -182,6 +182,15 @@ BOOST_AUTO_TEST_CASE(map_sums_to_the_plate_force_and_R_n) {
                                     << " +- " << r.normal_force.se << ", R_s " << r.shear_force.value);
   BOOST_TEST(normal == r.normal_force.value, tt::tolerance(1e-9));
   BOOST_TEST(m.total_force().x() == r.normal_force.value, tt::tolerance(1e-9));
+  // The cells' block means (0.1 s, counted back from the window's end as the load cell's) add up to
+  // the load cell's block means, so their standard errors are the same batch means.
+  BOOST_REQUIRE_EQUAL(m.cells.front().block_normal.size(), static_cast<std::size_t>(r.window.blocks));
+  std::vector<double> blocks(static_cast<std::size_t>(r.window.blocks), 0.0);
+  for (const auto& c : m.cells)
+    for (std::size_t b = 0; b < blocks.size(); ++b) blocks[b] += c.block_normal[b];
+  double mean = 0.0;
+  for (double b : blocks) mean += b / static_cast<double>(blocks.size());
+  BOOST_TEST(mean == r.normal_force.value, tt::tolerance(0.01));  // blocks of 33 or 34 samples
   BOOST_TEST(shear_down == r.shear_force.value, tt::tolerance(1e-9));
   // Centre of pressure = the load cell's impact point (moment / force), up to the rolling couples the
   // load cell also feels (tolerance 2 mm, under a sixth of a particle).

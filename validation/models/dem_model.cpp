@@ -73,9 +73,10 @@ std::optional<st::Estimate> trajectory_estimate(const std::vector<st::Trajectory
   return std::nullopt;
 }
 
-// The plate map's value at a point of the face: the triangle whose (z, y) projection holds it.
-std::optional<double> plate_value(const st::StationResult& r, const PlateQuery& q) {
-  if (r.maps.empty()) return std::nullopt;
+// The plate map's value at a point of the face (the triangle whose (z, y) projection holds it) and
+// its standard error from the cell's block means.
+std::pair<std::optional<double>, std::optional<double>> plate_value(const st::StationResult& r, const PlateQuery& q) {
+  if (r.maps.empty()) return {};
   for (const auto& c : r.maps.front().cells) {
     const Eigen::Vector2d a(c.corners[0].z(), c.corners[0].y()), b(c.corners[1].z(), c.corners[1].y()),
         d(c.corners[2].z(), c.corners[2].y()), x(q.z, q.y);
@@ -84,13 +85,18 @@ std::optional<double> plate_value(const st::StationResult& r, const PlateQuery& 
     const bool inside = (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
     if (!inside || !(std::abs(cross(b - a, d - a)) > 0.0)) continue;
     const double rate = c.archard_rate(r.wear) + c.finnie_rate(r.wear);
-    if (q.quantity == "plate_pressure_Pa") return c.pressure();
-    if (q.quantity == "plate_shear_stress_Pa") return c.shear_stress();
-    if (q.quantity == "wear_rate_um_per_h") return rate;
-    if (q.quantity == "wear_depth_um" && r.wear.exposure_hours > 0.0) return rate * r.wear.exposure_hours * 3600.0;
-    return std::nullopt;
+    auto se = [](double v) { return std::isfinite(v) ? std::optional<double>(v) : std::nullopt; };
+    if (q.quantity == "plate_pressure_Pa") return {c.pressure(), se(c.pressure_se())};
+    if (q.quantity == "plate_shear_stress_Pa") return {c.shear_stress(), std::nullopt};
+    if (q.quantity == "wear_rate_um_per_h") return {rate, se(c.wear_rate_se(r.wear))};
+    if (q.quantity == "wear_depth_um" && r.wear.exposure_hours > 0.0) {
+      const double h = r.wear.exposure_hours * 3600.0;
+      const auto u = se(c.wear_rate_se(r.wear));
+      return {rate * h, u ? std::optional<double>(*u * h) : std::nullopt};
+    }
+    return {};
   }
-  return std::nullopt;  // off the plate
+  return {};  // off the plate
 }
 
 class DemModel final : public Model {
@@ -259,7 +265,11 @@ class DemModel final : public Model {
       sm.pressure_centre_y = st::pressure_centre_y(m);
       p.maps.push_back(std::move(sm));
     }
-    for (const auto& q : request.plate) p.plate.push_back(plate_value(r, q));
+    for (const auto& q : request.plate) {
+      const auto [v, u] = plate_value(r, q);
+      p.plate.push_back(v);
+      p.plate_uncertainty.push_back(u);
+    }
     p.notes = r.notes;
     if (r.impact_velocity_fast.ok())
       p.notes.push_back(fmt::format("free-stream particles alone (v_x > V_b/2) arrive at {:.3f} m/s; the V_p slab lies "
