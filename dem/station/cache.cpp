@@ -11,6 +11,7 @@ namespace chutelab::dem::station {
 namespace {
 
 constexpr const char* kMagic = "chutelab-dem-result 4";  // 3: plate maps; 4: their block means
+constexpr const char* kMagicWithoutMaps = "chutelab-dem-result 2";
 
 std::string num(double v) { return fmt::format("{:.17g}", v); }
 
@@ -234,7 +235,10 @@ std::optional<StationResult> ResultCache::load(const std::string& key) const {
   // Layout: magic line, "key <bytes>" line, the key, then the result.
   std::istringstream in(text);
   std::string magic, head;
-  if (!std::getline(in, magic) || magic != kMagic || !std::getline(in, head) || head.rfind("key ", 0) != 0)
+  // Runs cached before the plate maps (format 2) still load, without maps: a standard or paper run
+  // is too dear to repeat for a picture (--no-dem-cache does).
+  if (!std::getline(in, magic) || (magic != kMagic && magic != kMagicWithoutMaps) || !std::getline(in, head) ||
+      head.rfind("key ", 0) != 0)
     return std::nullopt;
   const std::size_t bytes = std::strtoull(head.c_str() + 4, nullptr, 10);
   const std::size_t at = static_cast<std::size_t>(in.tellg());
