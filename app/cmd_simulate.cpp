@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
+#include <map>
 
 #include "app/commands.h"
 #include "core/campaign.h"
@@ -23,8 +24,9 @@ namespace st = dem::station;
 struct SimulateCli {
   std::string dataset, condition, out, quality, contact, shape;
   std::optional<double> diameter_mm, shear_modulus_scale, dt_fraction, max_time, vtk_every;
-  std::optional<int> threads;
+  std::optional<int> threads, plate_cells;
   std::optional<std::uint64_t> seed;
+  std::map<std::string, double> wear;  // wear_fields() key -> value given on the command line
   std::vector<std::string> effects;
   bool no_cache = false;
 };
@@ -71,6 +73,8 @@ int run_simulate(const SimulateCli& o) {
   ov.threads = o.threads;
   ov.seed = o.seed;
   ov.max_time = o.max_time;
+  ov.plate_cells = o.plate_cells;
+  for (const auto& [k, v] : o.wear) ov.wear.emplace_back(k, v);
   const st::DemTable table = st::read_dem_table(setup_file.string());
   const st::RunSettings settings = st::resolve(table, ov);
 
@@ -129,6 +133,23 @@ int run_simulate(const SimulateCli& o) {
   std::cout << row("momentum the stream delivers", r.momentum_balance, 1, "N", 3);
   std::cout << fmt::format("mass: inserted {:.3f} kg = discharged {:.3f} + escaped {:.3f} + in the rig {:.3f} kg\n",
                            r.inserted, r.discharged, r.escaped, r.in_domain);
+  if (!r.maps.empty() && !r.maps.front().cells.empty()) {
+    const st::PlateMap& m = r.maps.front();
+    double peak_p = 0.0, peak_w = 0.0, wear_sum = 0.0, area = 0.0, normal = 0.0;
+    for (const auto& c : m.cells) {
+      normal += c.pressure() * c.area;
+      peak_p = std::max(peak_p, c.pressure());
+      const double wr = c.archard_rate(r.wear) + c.finnie_rate(r.wear);
+      peak_w = std::max(peak_w, wr);
+      wear_sum += wr * c.area;
+      area += c.area;
+    }
+    std::cout << fmt::format(
+        "plate map ({} triangles, {:.2f} s): peak pressure {:.0f} Pa at y = {:.1f} mm (profile across the plate), centre of "
+        "pressure y = {:.1f} mm, peak wear {:.3g} um/h, mean {:.3g} um/h, normal load of the map {:.3f} N\n",
+        m.cells.size(), m.duration, peak_p, st::peak_pressure_y(m) * 1e3, st::pressure_centre_y(m) * 1e3,
+        peak_w * 3.6e9, area > 0.0 ? wear_sum / area * 3.6e9 : 0.0, normal);
+  }
   for (const auto& n : r.notes) std::cout << "note: " << n << "\n";
   for (const auto& n : fx.notes) std::cout << "note: " << n << "\n";
   if (!o.out.empty()) std::cout << fmt::format("files: {}\n", o.out);
@@ -157,6 +178,15 @@ void add_simulate(CLI::App& app, Action& action) {
   cmd->add_option("--out", o->out, "output folder: CSV series, steady means, side view, VTK");
   cmd->add_option("--vtk-every", o->vtk_every, "write particle VTK files every this many simulated seconds");
   cmd->add_flag("--no-cache", o->no_cache, "do not store the result in the DEM cache");
+  cmd->add_option("--plate-cells", o->plate_cells,
+                  "rows of cells down the generated plate for the pressure and wear maps (0: two triangles)");
+  for (const auto& f : st::wear_fields()) {
+    std::string flag = std::string("--") + f.key;
+    for (auto& ch : flag) ch = ch == '_' ? '-' : ch;
+    const std::string key = f.key;
+    cmd->add_option_function<double>(flag, [o, key](double v) { o->wear[key] = v; },
+                                     std::string(f.help) + " ([dem.wear] " + key + ")");
+  }
   cmd->callback([o, &action] { action = [o] { return run_simulate(*o); }; });
 }
 

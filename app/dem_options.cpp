@@ -24,6 +24,8 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
       ->check(CLI::IsMember({"quick", "standard", "paper"}));
   cmd.add_flag("--dem-cache-only", o.cache_only,
                "never run the DEM: every run must be in the cache (recorded acceptance cases; exit 2 otherwise)");
+  cmd.add_option("--dem-plate-cells", o.plate_cells,
+                 "rows of cells down the generated plate for the DEM's pressure and wear maps (0: two triangles)");
 }
 
 void add_jobs_option(CLI::App& cmd, int& jobs) {
@@ -43,6 +45,7 @@ void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const 
     if (!dc.overrides.quality) throw InputError("", 0, "--dem-quality", "must be quick, standard or paper");
   }
   dc.overrides.threads = o.threads;
+  dc.overrides.plate_cells = o.plate_cells;
   dc.use_cache = !o.no_cache;
   dc.cache_only = o.cache_only;
   dc.ladder = o.ladder != "off";

@@ -12,7 +12,7 @@ namespace chutelab::app {
 
 struct DemCli {
   std::string quality, cache;
-  std::optional<int> threads;
+  std::optional<int> threads, plate_cells;
   bool no_cache = false;
   bool cache_only = false;
   std::string ladder = "on";  // "on" | "off": the particle-size ladder for u_num's discretisation part

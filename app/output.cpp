@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "analytical/impact_zone.h"
 #include "core/units.h"
 
 namespace chutelab::app {
@@ -65,6 +66,14 @@ std::vector<std::pair<std::string, double>> estimate_scalars(const analytical::T
       {"resultant_force_N", k.resultant_force},
   };
   if (k.exit_speed) v.emplace_back("exit_velocity_mps", *k.exit_speed);
+  const auto z = analytical::impact_zone(a);
+  v.emplace_back("impact_zone_top_mm", z.top_y * 1e3);
+  v.emplace_back("impact_zone_bottom_mm", z.bottom_y * 1e3);
+  v.emplace_back("impact_zone_centroid_mm", z.centroid_y * 1e3);
+  v.emplace_back("impact_zone_width_mm", z.width * 1e3);
+  v.emplace_back("impact_zone_area_mm2", z.area * 1e6);
+  v.emplace_back("mean_pressure_Pa", z.mean_pressure);
+  v.emplace_back("mean_shear_stress_Pa", z.mean_shear_stress);
   for (Streamline s : analytical::kAllStreamlines) {
     const auto& l = a.line(s);
     if (!l.hit) continue;
@@ -130,8 +139,15 @@ std::string estimate_table(const analytical::TransferAnalysis& a, const ModelVal
                    k.tangential_speed,
                    k.exit_speed ? fmt::format("{:.3f} m/s (Eq 4, {} iterations)", *k.exit_speed, k.iterations)
                                 : std::string("none (Eq 4 has a negative root)"));
-  o += fmt::format("  R_n = {:.2f} N (Eq 5), R_s = {:.2f} N ({}), R = {:.2f} N\n\n", k.normal_force,
+  o += fmt::format("  R_n = {:.2f} N (Eq 5), R_s = {:.2f} N ({}), R = {:.2f} N\n", k.normal_force,
                    k.shear_force, name(k.shear_equation), k.resultant_force);
+  const auto z = analytical::impact_zone(a);
+  o += fmt::format("  impact zone: y = {:.1f} to {:.1f} mm on the face ({:.0f} mm x {:.0f} mm{}{}), "
+                   "mean pressure {:.0f} Pa, mean shear {:.0f} Pa\n\n",
+                   z.top_y * 1e3, z.bottom_y * 1e3, z.length() * 1e3, z.width * 1e3,
+                   z.top_clipped ? "; part of the stream passes above the top edge" : "",
+                   z.bottom_clipped ? "; part of the stream falls past the foot" : "", z.mean_pressure,
+                   z.mean_shear_stress);
   o += fmt::format("  {:<12}", "model");
   for (Quantity q : kAllQuantities) o += fmt::format(" {:>20}", name(q));
   o += "\n";
@@ -154,6 +170,10 @@ std::string estimate_csv(const analytical::TransferAnalysis& a, const ModelValue
                    a.thickness_from_continuity ? 1 : 0);
   o += fmt::format("{},analysis,discharge_high_speed,{}\n", a.station.condition,
                    a.line(Streamline::cema_centroid).release.high_speed ? 1 : 0);
+  const auto z = analytical::impact_zone(a);
+  o += fmt::format("{},analysis,impact_zone_top_clipped,{}\n", a.station.condition, z.top_clipped ? 1 : 0);
+  o += fmt::format("{},analysis,impact_zone_bottom_clipped,{}\n", a.station.condition,
+                   z.bottom_clipped ? 1 : 0);
   for (const auto& [m, vals] : models)
     for (Quantity q : kAllQuantities)
       if (vals[q])
@@ -191,6 +211,16 @@ std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValu
   o += fmt::format("  \"impact_angle_deg\": {},\n",
                    json_number(a.line(Streamline::korzen_centroid).hit->alpha * kDeg));
   o += fmt::format("  \"shear_equation\": {},\n", json_string(std::string(name(k.shear_equation))));
+  const auto z = analytical::impact_zone(a);
+  o += fmt::format(
+      "  \"impact_zone\": {{\"impact_zone_top_mm\": {}, \"impact_zone_bottom_mm\": {}, "
+      "\"impact_zone_centroid_mm\": {}, \"impact_zone_width_mm\": {}, \"impact_zone_area_mm2\": {}, "
+      "\"mean_pressure_Pa\": {}, \"mean_shear_stress_Pa\": {}, \"top_clipped\": {}, "
+      "\"bottom_clipped\": {}}},\n",
+      json_number(z.top_y * 1e3), json_number(z.bottom_y * 1e3), json_number(z.centroid_y * 1e3),
+      json_number(z.width * 1e3), json_number(z.area * 1e6), json_number(z.mean_pressure),
+      json_number(z.mean_shear_stress), z.top_clipped ? "true" : "false",
+      z.bottom_clipped ? "true" : "false");
   o += "  \"streamlines\": {";
   first = true;
   for (Streamline s : analytical::kAllStreamlines) {

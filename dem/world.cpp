@@ -326,6 +326,7 @@ void World::step(std::int64_t n) {
     if (!inserters_.empty() || !sinks_.empty()) insert_and_delete();
     if (needs_rebuild()) rebuild();
     compute_forces();
+    if (!wall_observers_.empty()) report_wall_contacts();
     const std::size_t np2 = p_.size();
     const bool check = (step_ + 1) % settings_.check_every == 0;
     const double vlim2 = max_speed_ * max_speed_;

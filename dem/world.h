@@ -21,6 +21,7 @@
 #include "dem/timestep.h"
 #include "dem/types.h"
 #include "dem/walls/wall.h"
+#include "dem/walls/wall_contact.h"
 
 namespace chutelab::dem {
 
@@ -133,6 +134,8 @@ class World {
   int add_inserter(Inserter inserter);
   int add_sink(Sink sink);
   void set_body_force(BodyForceHook hook) { body_force_ = std::move(hook); }
+  // Calls `fn` for every contact on wall `wall` at the end of every step (dem/walls/wall_contact.h).
+  void observe_wall(int wall, WallContactObserver fn);
   // Removes particles for which pred(index) is true (e.g. by id or region); a clump goes as a whole
   // when any of its spheres is selected.
   void remove_particles_if(const std::function<bool(std::size_t)>& pred);
@@ -195,6 +198,7 @@ class World {
   void remove_whole_clumps(std::vector<char>& gone);
   bool try_insert_clump(Inserter& in, std::vector<std::size_t>& near);
   void warn(const std::string& msg);
+  void report_wall_contacts() const;  // dem/wall_observers.cpp
   int thread_count() const;
   double wall_displacement_since_rebuild(const Wall& w) const;
 
@@ -205,6 +209,7 @@ class World {
   std::vector<Inserter> inserters_;
   std::vector<Sink> sinks_;
   BodyForceHook body_force_;
+  std::vector<WallContactObserver> wall_observers_;  // by wall; empty = none observed
   ClumpBodies clumps_;
   std::int64_t next_clump_id_ = 0;
   NeighborList nl_;

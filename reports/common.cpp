@@ -81,6 +81,14 @@ QuantityName quantity_name(std::string_view n) {
     out.scale = 1e3;
     return out;
   }
+  for (const auto& [pq, scale] : validation::plate_quantities())
+    if (n == pq) {
+      out.symbol = pq.substr(0, pq.rfind('_'));
+      out.label = "plate map: " + out.symbol;
+      out.unit = pq.substr(pq.find('_', pq.find('_') + 1) + 1);
+      out.scale = scale;
+      return out;
+    }
   out.symbol = out.name;
   out.label = out.name;
   return out;

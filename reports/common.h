@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 // What the report's sections share: the conditions in display order, how each model is drawn,
 // quantity names for headings, look-ups into a ValidationResult, and a table model that renders
 // to both HTML and Markdown (so the two reports cannot disagree on a number or a failing cell).
@@ -39,6 +40,9 @@ Context make_context(const ReportInput& in);
 inline constexpr double kPairChartWidth = 640.0;
 
 inline constexpr std::string_view kMeasuredColour = "#111111";
+// Values drawn as colour use bins of a perceptually uniform ramp (viridis, dark = low).
+inline constexpr std::array<std::string_view, 8> kRamp = {"#440154", "#46327e", "#365c8d", "#277f8e",
+                                                          "#1fa187", "#4ac16d", "#a0da39", "#fde725"};
 inline constexpr std::string_view kBandColour = "#dde6d5";
 
 // Headings for a comparison quantity: the six of DESIGN.md §2 and the trajectory boundaries.
@@ -117,6 +121,17 @@ inline constexpr std::string_view kDash = "\u2014";   // no value
 inline constexpr std::string_view kFailMark = "\u2717";  // outside tolerance
 
 // ---- Sections' building blocks (one file each) ------------------------------------------------
+
+// plot_plate_map.cpp: "Plate loading and wear" — the models' pressure and wear maps of the plate
+// face on shared colour scales, the analytical impact zone on top, and a table per condition.
+// Empty when no model gave a map.
+struct PlateSection {
+  std::string pressure_svg, wear_svg;
+  Table table;
+  bool empty() const { return pressure_svg.empty(); }
+};
+PlateSection plate_section(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                           double width);
 
 // tables.cpp
 Table force_table(const Context& c, const validation::ValidationResult& r, std::string_view id);

@@ -23,10 +23,8 @@ Shape boundary_shape(Boundary b) {
   return Shape::circle;
 }
 
-// Point clouds (a DEM's particles) are coloured by their value in bins of a perceptually uniform
-// ramp (viridis, dark = slow), one shared scale over all panels so that the colours compare.
-constexpr std::array<std::string_view, 8> kRamp = {"#440154", "#46327e", "#365c8d", "#277f8e",
-                                                   "#1fa187", "#4ac16d", "#a0da39", "#fde725"};
+// Point clouds (a DEM's particles) are coloured by their value in bins of kRamp (dark = slow), one
+// shared scale over all panels so that the colours compare.
 
 struct ValueScale {
   double lo = 0.0, hi = 0.0;

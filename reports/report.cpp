@@ -336,6 +336,22 @@ Doc assemble(const ReportInput& in) {
     x.table(trend_table(c, *v.result, "trends-" + v.suffix));
   });
 
+  // ---- Plate loading and wear (only when a model gave a map) ----
+  {
+    const PlateSection ps = plate_section(c, *in.baseline, "platemap", 980.0);
+    if (!ps.empty()) {
+      d.h(2, "plate", "Plate loading and wear");
+      d.p("The mean normal pressure and the wear rate on the plate face over each run's steady window, per triangle "
+          "of the plate mesh (setup.toml [dem] plate_cells refines it), seen from the pulley: z across, y up. One "
+          "colour scale per quantity for every condition. The dashed box is the analytical impact zone (Booth/CEMA "
+          "upper and lower limits, loaded width; Korzen's R_n spread over it as a mean pressure), the dotted line "
+          "its centroid streamline.");
+      d.figure(ps.pressure_svg, "Normal pressure on the plate face per condition");
+      d.figure(ps.wear_svg, "Wear rate (Archard sliding + Finnie impact) on the plate face per condition");
+      d.table(ps.table);
+    }
+  }
+
   if (in.findings && !in.findings->empty()) {
     d.h(2, "findings", "The seed's findings");
     d.table(findings_table(*in.findings));

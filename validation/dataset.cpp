@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <iostream>
+#include <algorithm>
 #include <map>
 #include <set>
 #include <toml++/toml.h>
@@ -382,6 +383,57 @@ std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset
   return out;
 }
 
+std::vector<PlatePoint> read_plate_map(const fs::path& path, const Dataset& d) {
+  const CsvTable t = CsvTable::read(path, {"condition", "y_mm", "z_mm", "quantity", "value"});
+  const std::size_t c_id = t.require("condition");
+  const std::size_t c_y = t.require("y_mm");
+  const std::size_t c_z = t.require("z_mm");
+  const std::size_t c_q = t.require("quantity");
+  const std::size_t c_v = t.require("value");
+  const auto c_u = t.column("uncertainty");
+  std::vector<PlatePoint> out;
+  std::map<std::tuple<std::string, std::string, double, double>, long> seen;
+  for (const auto& row : t.rows()) {
+    PlatePoint p;
+    p.where = {t.file(), row.line};
+    p.condition = known_condition(t, row, c_id, &d);
+    p.quantity = t.text(row, c_q);
+    const auto& qs = plate_quantities();
+    const auto q = std::find_if(qs.begin(), qs.end(), [&](const auto& e) { return e.first == p.quantity; });
+    if (q == qs.end()) {
+      std::string known;
+      for (const auto& e : qs) known += (known.empty() ? "" : ", ") + e.first;
+      throw InputError(t.file(), row.line, "quantity",
+                       fmt::format("unknown plate quantity '{}' (known: {})", p.quantity, known));
+    }
+    p.scale = q->second;
+    p.y = t.number(row, c_y) * units::mm;
+    p.z = t.number(row, c_z) * units::mm;
+    const double v = t.number(row, c_v);
+    if (v < 0.0 && p.quantity != "plate_shear_stress_Pa")
+      throw InputError(t.file(), row.line, "value", fmt::format("{} cannot be negative, got {}", p.quantity, v));
+    p.value = v / p.scale;
+    p.uncertainty = uncertainty_cell(t, row, c_u, 1.0 / p.scale);
+    if (auto [it, fresh] = seen.emplace(std::tuple{p.condition, p.quantity, p.y, p.z}, row.line); !fresh)
+      throw InputError(t.file(), row.line, "y_mm",
+                       fmt::format("duplicate row: {} of '{}' at y = {} mm, z = {} mm is already on line {}",
+                                   p.quantity, p.condition, p.y * 1e3, p.z * 1e3, it->second));
+    out.push_back(p);
+  }
+  return out;
+}
+
+
+const std::vector<std::pair<std::string, double>>& plate_quantities() {
+  static const std::vector<std::pair<std::string, double>> q = {
+      {"plate_pressure_Pa", 1.0},
+      {"plate_shear_stress_Pa", 1.0},
+      {"wear_depth_um", 1e6},
+      {"wear_rate_um_per_h", 1e6 * 3600.0},
+  };
+  return q;
+}
+
 Dataset read_dataset(const fs::path& dir, MeasurementsRequired need) {
   if (!fs::is_directory(dir)) throw InputError(dir.string(), 0, "", "dataset folder not found");
   Dataset d;
@@ -397,6 +449,8 @@ Dataset read_dataset(const fs::path& dir, MeasurementsRequired need) {
     throw InputError(meas.string(), 0, "", "file not found (a dataset to validate needs measurements)");
   const fs::path traj = dir / "trajectory.csv";
   if (fs::exists(traj)) d.trajectory = read_trajectory(traj, &d);
+  const fs::path plate = dir / "plate_map.csv";
+  if (fs::exists(plate)) d.plate_map = read_plate_map(plate, d);
   return d;
 }
 

@@ -45,6 +45,20 @@ struct InputUncertainties {
     return !belt_speed && !mass_flow && !plate_distance && !plate_top && !stream_thickness && rig.empty();
   }
 };
+// A measured value on the plate face (optional plate_map.csv): pressure-sensitive film, a wear
+// survey. Quantities (unit in the name): plate_pressure_Pa, plate_shear_stress_Pa, wear_depth_um
+// (over the [dem.wear] exposure_h of operation), wear_rate_um_per_h.
+struct PlatePoint {
+  std::string condition;
+  std::string quantity;                // boundary name
+  double y = 0.0, z = 0.0;             // m, point on the face
+  double value = 0.0;                  // SI (Pa; m; m/s)
+  std::optional<double> uncertainty;   // SI
+  double scale = 1.0;                  // SI -> boundary unit
+  SourceLine where;
+};
+// The plate quantities and their SI -> boundary factor.
+const std::vector<std::pair<std::string, double>>& plate_quantities();
 
 struct Dataset {
   std::filesystem::path dir;
@@ -54,6 +68,7 @@ struct Dataset {
   std::vector<Measurement> measurements;
   std::vector<TrajectoryPoint> trajectory;
   std::vector<InputUncertainties> input_uncertainty;  // parallel to stations
+  std::vector<PlatePoint> plate_map;
 
   const Station* station(std::string_view condition) const;
   const SourceLine* station_line(std::string_view condition) const;

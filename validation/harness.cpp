@@ -86,6 +86,13 @@ std::string ValidationResult::brief() const {
   return s;
 }
 
+std::vector<PlateQuery> plate_queries(const Dataset& d, const std::string& condition) {
+  std::vector<PlateQuery> q;
+  for (const auto& p : d.plate_map)
+    if (p.condition == condition) q.push_back({p.quantity, p.y, p.z});
+  return q;
+}
+
 std::vector<TrajectoryQuery> trajectory_queries(const Dataset& d, const std::string& condition) {
   std::vector<TrajectoryQuery> q;
   for (const auto& p : d.trajectory)
@@ -160,11 +167,14 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
   for (std::size_t i = 0; i < d.stations.size(); ++i) {
     const Station& st = d.stations[i];
     const auto queries = trajectory_queries(d, st.condition);
+    const auto plate = plate_queries(d, st.condition);
     const std::size_t first = r.predictions.size();
     for (const auto& m : models) {
       ModelPrediction p;
       try {
-        p = m->predict(st, options.effects, {queries, true});
+        PredictRequest req{queries, true};
+        req.plate = plate;
+        p = m->predict(st, options.effects, req);
       } catch (const InputError& e) {
         throw e.located(d.station_lines[i].file, d.station_lines[i].line);
       }
@@ -221,6 +231,28 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
     }
   }
 
+  // Plate-map points (pressure film, wear surveys), compared like the other measurements.
+  for (const auto& m : models) {
+    std::map<std::string, std::size_t> next;
+    for (const auto& pt : d.plate_map) {
+      const ConditionResult* cr = r.prediction(pt.condition, m->name());
+      const std::size_t k = next[pt.condition]++;
+      if (!cr || k >= cr->prediction.plate.size() || !cr->prediction.plate[k]) continue;
+      Comparison c;
+      c.condition = pt.condition;
+      c.model = m->name();
+      c.quantity = pt.quantity;
+      c.plate_y = pt.y;
+      c.plate_z = pt.z;
+      c.scale = pt.scale;
+      c.measured = pt.value;
+      c.uncertainty = pt.uncertainty;
+      c.predicted = cr->prediction.plate[k];
+      if (k < cr->prediction.plate_uncertainty.size()) c.prediction_uncertainty = cr->prediction.plate_uncertainty[k];
+      r.comparisons.push_back(std::move(c));
+    }
+  }
+
   if (options.tolerances) {
     r.acceptance_checked = true;
     for (auto& c : r.comparisons) {
@@ -233,6 +265,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
   std::vector<std::string> quantities;
   for (Quantity q : kAllQuantities) quantities.emplace_back(name(q));
   for (Boundary b : kAllBoundaries) quantities.push_back(trajectory_quantity(b));
+  for (const auto& [q, scale] : plate_quantities()) quantities.push_back(q);
   for (const auto& m : r.models)
     for (const auto& qn : quantities) {
       SummaryRow s;

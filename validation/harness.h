@@ -27,6 +27,7 @@ struct Comparison {
   std::optional<Quantity> q;     // set for the quantities of DESIGN.md §2
   std::optional<Boundary> boundary;  // set for trajectory points
   double x = 0.0;                // m, trajectory points only
+  std::optional<double> plate_y, plate_z;  // m, plate-map points only
   double scale = 1.0;            // SI -> boundary unit
   double measured = 0.0;         // SI
   std::optional<double> uncertainty;       // u_D, SI
@@ -96,5 +97,7 @@ void apply_measurement_effects(const analytical::EffectList& effects,
 
 // The trajectory points a condition asks models for.
 std::vector<TrajectoryQuery> trajectory_queries(const Dataset& d, const std::string& condition);
+// The plate points (plate_map.csv) a condition asks models for, in dataset order.
+std::vector<PlateQuery> plate_queries(const Dataset& d, const std::string& condition);
 
 }  // namespace chutelab::validation

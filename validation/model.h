@@ -2,6 +2,7 @@
 // A model predicts one condition in the measurement vocabulary (DESIGN.md §2). The harness,
 // the diagnosis and the report see models only through this interface.
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -32,6 +33,29 @@ struct Curve {
   std::string value_label{};    // e.g. "speed (m/s)"
 };
 
+// A point of the plate face where a quantity of dataset.h's plate_quantities() is wanted.
+struct PlateQuery {
+  std::string quantity;
+  double y = 0.0, z = 0.0;  // m
+};
+
+// A wall's map for pictures (the report's heat maps): triangles in the face's (z, y) plane, m.
+struct SurfaceMap {
+  std::string name;                                  // "plate"
+  std::vector<std::array<Eigen::Vector2d, 3>> cells;  // corners (z, y)
+  std::vector<double> pressure;                      // Pa, per cell
+  std::vector<double> wear_rate;                     // m/s of depth, per cell (all wear models)
+  double peak_pressure_y = 0.0;                      // m, peak of the profile across the face
+  double pressure_centre_y = 0.0;                    // m
+};
+
+// The analytical band a stream strikes (analytical/impact_zone.h), for pictures and comparisons.
+struct PlateZone {
+  double top_y = 0.0, bottom_y = 0.0, centroid_y = 0.0;  // m
+  double width = 0.0;                                     // m, centred on z = 0
+  double mean_pressure = 0.0;                             // Pa
+};
+
 // What a caller wants besides the quantities.
 struct PredictRequest {
   std::span<const TrajectoryQuery> trajectory;  // stream points to predict
@@ -42,6 +66,7 @@ struct PredictRequest {
   // A run for an effect's signature (a difference of two such runs): an expensive model may make it
   // at a cheaper setting than its predictions (the DEM's --signature-quality).
   bool signature = false;
+  std::span<const PlateQuery> plate = {};       // plate points to predict
 };
 
 // The uncertainties are standard uncertainties (one sd), SI, of V&V 20's parts: `uncertainty` and
@@ -60,6 +85,10 @@ struct ModelPrediction {
   QuantityValues input_uncertainty;                              // SI, u_input (harness)
   std::vector<std::optional<double>> trajectory_input_uncertainty;  // m per query (harness)
   std::vector<Curve> curves;
+  std::vector<std::optional<double>> plate;       // SI per plate query, absent where not predicted
+  std::vector<std::optional<double>> plate_uncertainty;  // SI, one sd, per plate query (may be shorter)
+  std::vector<SurfaceMap> maps;                   // pressure and wear maps (DEM)
+  std::optional<PlateZone> plate_zone;            // the analytical impact zone
   std::vector<std::string> notes;                 // e.g. "R_s from Eq 7 (no stationary flow)"
 };
 

@@ -14,6 +14,9 @@ std::string csv_number(const std::optional<double>& v) { return v ? csv_number(*
 
 namespace {
 std::string x_mm(const Comparison& c) { return c.boundary ? csv_number(c.x * 1e3) : ""; }
+std::string yz_mm(const Comparison& c) {
+  return c.plate_y ? fmt::format("{},{}", csv_number(*c.plate_y * 1e3), csv_number(*c.plate_z * 1e3)) : ",";
+}
 }  // namespace
 
 std::string predictions_csv(const ValidationResult& r) {
@@ -40,7 +43,7 @@ std::string predictions_csv(const ValidationResult& r) {
 std::string errors_csv(const ValidationResult& r) {
   std::string o =
       "condition,model,quantity,measured,uncertainty,predicted,error,relative_error,"
-      "normalised_error,x_mm,validation_uncertainty,vv20_ratio,tolerance,u_num_stat,u_num_disc,u_input\n";
+      "normalised_error,x_mm,validation_uncertainty,vv20_ratio,tolerance,u_num_stat,u_num_disc,u_input,y_mm,z_mm\n";
   for (const auto& c : r.comparisons) {
     const double s = c.scale;
     auto scaled = [s](const std::optional<double>& v) {
@@ -49,12 +52,12 @@ std::string errors_csv(const ValidationResult& r) {
     const std::string tol = !c.verdict.checked ? "" : c.verdict.passed ? "pass" : "fail: " + c.verdict.limit;
     // The parts of u_val only beside a prediction: without one nothing was propagated.
     auto part = [&](const std::optional<double>& v) { return c.predicted ? scaled(v) : std::string(); };
-    o += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.condition, c.model, c.quantity,
+    o += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.condition, c.model, c.quantity,
                      csv_number(c.measured * s), scaled(c.uncertainty), scaled(c.predicted),
                      c.predicted ? csv_number(c.error() * s) : "", csv_number(c.relative_error()),
                      csv_number(c.normalised_error()), x_mm(c), scaled(c.validation_uncertainty()),
                      csv_number(c.vv20_ratio()), tol, part(c.u_num_stat()), part(c.u_num_disc),
-                     part(c.u_input));
+                     part(c.u_input), yz_mm(c));
   }
   return o;
 }

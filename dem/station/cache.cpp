@@ -14,12 +14,15 @@
 namespace chutelab::dem::station {
 namespace {
 
-// Version 3 ends with an "end" line, so a file cut short (a writer that died, a file system that
-// shows a rename before the data) is a miss, not a result with half its series. Version 2 files
-// (no end line, written by an atomic rename only) are still read.
-constexpr const char* kMagic = "chutelab-dem-result 3";
+// Version 5 ends with an "end" line, so a file cut short (a writer that died, a file system that
+// shows a rename before the data) is a miss, not a result with half its series, and carries the
+// plate maps with their block means (the versions 3 and 4 of two branches had one each). Version 2
+// files (no end line, no maps, written by an atomic rename only) are still read: a standard or
+// paper run is too dear to repeat for a picture (--no-dem-cache does).
+constexpr const char* kMagic = "chutelab-dem-result 5";
 constexpr const char* kMagicV2 = "chutelab-dem-result 2";
-constexpr const char* kEnd = "end\n";
+constexpr const char* kEnd = "end
+";
 
 std::string num(double v) { return fmt::format("{:.17g}", v); }
 
@@ -93,6 +96,21 @@ std::string to_text(const StationResult& r) {
                      num(s.vp_fast_sum), s.vp_fast_n, num(s.layer_speed_sum), num(s.layer_height_sum), s.layer_n,
                      num(s.stream_thickness));
   for (const auto& p : r.side_view) o += fmt::format("side {} {} {} {}\n", p.x, p.y, p.z, p.speed);
+  // The wear inputs are not stored: the maps keep their sums, the reader applies its own inputs.
+  for (const auto& m : r.maps) {
+    o += fmt::format("map {} {}\n", num(m.duration), m.wall);
+    for (const auto& c : m.cells) {
+      o += "cell";
+      for (const auto& p : c.corners) o += fmt::format(" {} {} {}", num(p.x()), num(p.y()), num(p.z()));
+      o += fmt::format(" {} {} {} {} {} {} {} {} {} {} {} {}", num(c.normal.x()), num(c.normal.y()), num(c.normal.z()),
+                       num(c.area), num(c.force.x()), num(c.force.y()), num(c.force.z()), num(c.impact_power),
+                       num(c.sliding_power), num(c.load_slip), num(c.finnie_measure), num(c.impacts));
+      o += fmt::format(" {}", c.block_normal.size());
+      for (std::size_t b = 0; b < c.block_normal.size(); ++b)
+        o += fmt::format(" {} {} {}", num(c.block_normal[b]), num(c.block_load_slip[b]), num(c.block_finnie[b]));
+      o += "\n";
+    }
+  }
   for (const auto& n : r.notes) o += "note " + n + "\n";
   return o;
 }
@@ -163,6 +181,36 @@ std::optional<StationResult> from_text(const std::string& text) {
       s.stream_thickness = rd(in);
       if (!in) return std::nullopt;
       r.snapshots.push_back(s);
+    } else if (tag == "map") {
+      PlateMap m;
+      m.duration = rd(in);
+      in >> std::ws;
+      std::getline(in, m.wall);
+      r.maps.push_back(std::move(m));
+    } else if (tag == "cell") {
+      if (r.maps.empty()) return std::nullopt;
+      MapCell c;
+      auto v3 = [&] {  // in order: function arguments are evaluated in no fixed order
+        const double x = rd(in), y = rd(in), z = rd(in);
+        return Vec3(x, y, z);
+      };
+      for (auto& p : c.corners) p = v3();
+      c.normal = v3();
+      c.area = rd(in);
+      c.force = v3();
+      c.impact_power = rd(in); c.sliding_power = rd(in); c.load_slip = rd(in); c.finnie_measure = rd(in);
+      c.impacts = rd(in);
+      std::size_t nb = 0;
+      in >> nb;
+      if (!in || nb > 10000) return std::nullopt;
+      for (std::size_t b = 0; b < nb; ++b) {
+        const double fn = rd(in), ls = rd(in), fi = rd(in);
+        c.block_normal.push_back(fn);
+        c.block_load_slip.push_back(ls);
+        c.block_finnie.push_back(fi);
+      }
+      if (!in) return std::nullopt;
+      r.maps.back().cells.push_back(c);
     } else if (tag == "side") {
       SidePoint p{};
       in >> p.x >> p.y >> p.z >> p.speed;

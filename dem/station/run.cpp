@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -72,6 +73,18 @@ StationResult run_station(const Station& st, const RunOptions& o) {
   const SteadyParams sp{s.detect_block, s.detect_tail, s.mean_block};
 
   std::vector<double> ts, fn, fs, mz;
+  // Maps of the plate and the [dem.stl] walls, from every contact of every step (plate_map.h).
+  std::vector<std::unique_ptr<PlateMapRecorder>> maps;
+  {
+    std::vector<int> mapped = {sc.plate_wall};
+    mapped.insert(mapped.end(), sc.map_walls.begin(), sc.map_walls.end());
+    const auto max_samples = static_cast<std::size_t>(max_steps / steps_per_sample + 2);
+    for (int wi : mapped) {
+      auto rec = std::make_unique<PlateMapRecorder>(w.walls()[static_cast<std::size_t>(wi)], s.wear.finnie, max_samples);
+      w.observe_wall(wi, [p = rec.get()](const WallContact& c) { p->observe(c); });
+      maps.push_back(std::move(rec));
+    }
+  }
   std::vector<FaceParticle> face;
   namespace fs_ = std::filesystem;
   if (!o.vtk_dir.empty()) {
@@ -99,6 +112,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
     force /= static_cast<double>(steps_per_sample);
     moment /= static_cast<double>(steps_per_sample);
     const double t = w.time();
+    for (auto& m : maps) m->end_sample(t);
     ts.push_back(t);
     fn.push_back(force.dot(sc.plate.into));
     fs.push_back(force.dot(sc.plate.down));
@@ -172,6 +186,10 @@ StationResult run_station(const Station& st, const RunOptions& o) {
       r.impact_point_y.se = up.se * std::cos(sc.plate.angle);
     }
   }
+
+  // --- maps over the steady window ---
+  r.wear = s.wear;
+  for (const auto& m : maps) r.maps.push_back(m->reduce(a, b, blk));
 
   // --- snapshot sensors ---
   std::vector<double> tn, vp, vpw, vpf, vpfw, ls, lh, lsw, th;
@@ -363,6 +381,10 @@ void write_result_files(const std::string& dir, const StationResult& r) {
                      r.simulated_time, r.steps, r.rebuilds, r.wall_seconds, r.early_stop, r.peak_particles, r.window.found,
                      r.window.start, r.window.end, r.window.blocks, r.inserted, r.discharged, r.escaped, r.in_domain);
     for (const auto& n : r.notes) f << "note = " << n << "\n";
+  }
+  if (!r.maps.empty()) {
+    write_plate_map_csv((d / "plate_map.csv").string(), r.maps, r.wear, r.condition);
+    write_plate_map_vtk((d / "plate_map.vtk").string(), r.maps, r.wear);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/rig.h"
+#include "dem/station/plate_map.h"
 #include "dem/station/scene.h"
 #include "dem/station/sensors.h"
 #include "dem/station/settings.h"
@@ -49,6 +50,10 @@ struct StationResult {
   Estimate momentum_balance;
   std::vector<TrajectoryRow> trajectory;
 
+  // --- pressure and wear maps (plate_map.h): the plate first, then [dem.stl] walls ---
+  std::vector<PlateMap> maps;
+  WearInputs wear;  // the wear models' inputs the rates are computed with
+
   // --- mass at the end, kg ---
   double inserted = 0.0, discharged = 0.0, escaped = 0.0, in_domain = 0.0;
 
@@ -81,7 +86,8 @@ struct RunOptions {
 // Throws InputError for impossible input, dem::SimulationError if the run blows up.
 StationResult run_station(const Station& st, const RunOptions& options);
 
-// Writes OUT/timeseries.csv, OUT/sensors.csv, OUT/steady.csv, OUT/trajectory.csv, OUT/side_view.csv.
+// Writes OUT/timeseries.csv, OUT/sensors.csv, OUT/steady.csv, OUT/trajectory.csv, OUT/side_view.csv,
+// OUT/plate_map.csv and OUT/plate_map.vtk.
 void write_result_files(const std::string& dir, const StationResult& r);
 
 // A VTK point cloud (ParaView) of the side view, coloured by speed.

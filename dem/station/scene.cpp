@@ -306,7 +306,25 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   } else {
     const Vec3 lat = 0.5 * pf.width * Vec3::UnitZ();
     const Vec3 top = pf.top_edge, bot = pf.bottom_edge();
-    Wall p = Wall::mesh("plate", quad(top - lat, bot - lat, bot + lat, top + lat, "generated plate"), mplate);
+    TriangleMesh mesh = quad(top - lat, bot - lat, bot + lat, top + lat, "generated plate");
+    if (s.plate_cells > 0) {
+      // A grid of near-square cells for the pressure and wear maps; each cell as the plate's quad.
+      const int rows = s.plate_cells;
+      const int cols = std::max(1, static_cast<int>(std::lround(rows * pf.width / pf.height)));
+      std::vector<std::array<Vec3, 3>> soup;
+      auto at = [&](int r, int c) {
+        return top + (pf.height * r / rows) * pf.down + (pf.width * c / cols - 0.5 * pf.width) * Vec3::UnitZ();
+      };
+      for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+          soup.push_back({at(r, c), at(r + 1, c), at(r + 1, c + 1)});
+          soup.push_back({at(r, c), at(r + 1, c + 1), at(r, c + 1)});
+        }
+      mesh = TriangleMesh::from_soup(soup, "generated plate");
+      sc.notes.push_back(fmt::format("plate meshed as {} x {} cells of {:.1f} x {:.1f} mm for the maps", rows, cols,
+                                     pf.height / rows * 1e3, pf.width / cols * 1e3));
+    }
+    Wall p = Wall::mesh("plate", std::move(mesh), mplate);
     p.load_point = pf.reference;
     sc.plate_wall = w.add_wall(std::move(p));
   }
@@ -321,7 +339,7 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
                             mside));
     }
   }
-  for (const auto& f : geometry.stl_walls) w.add_wall(Wall::mesh(f, read_stl(f, 1e-3), mside));
+  for (const auto& f : geometry.stl_walls) sc.map_walls.push_back(w.add_wall(Wall::mesh(f, read_stl(f, 1e-3), mside)));
 
   // --- feed ---
   {

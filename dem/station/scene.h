@@ -32,6 +32,7 @@ struct Scene {
   BeltFrame belt;
   PlateFrame plate;
   int plate_wall = -1;
+  std::vector<int> map_walls;        // [dem.stl] extra walls, mapped like the plate (plate_map.h)
   int inserter = -1;
   int plate_sink = -1;               // the World's sink at the floor (catches what a batch missed)
   std::vector<int> boundary_sinks;   // domain faces: anything there escaped the rig

@@ -76,6 +76,42 @@ RunSettings preset(Quality q) {
   return s;
 }
 
+const std::vector<WearField>& wear_fields() {
+  using A = wear::ArchardParams;
+  using F = wear::FinnieParams;
+  static const std::vector<WearField> f = {
+      {"archard_coefficient", "Archard wear coefficient k_A (dimensionless)", nullptr, &A::coefficient, nullptr, false},
+      {"hardness_Pa", "plate hardness H for Archard, Pa", nullptr, &A::hardness, nullptr, false},
+      {"finnie_flow_pressure_Pa", "plate plastic flow pressure p for Finnie, Pa", nullptr, nullptr, &F::flow_pressure, false},
+      {"finnie_force_ratio", "Finnie's K, vertical/horizontal force on the cutting tip", nullptr, nullptr, &F::force_ratio, false},
+      {"finnie_depth_ratio", "Finnie's psi, contact length / depth of cut", nullptr, nullptr, &F::depth_ratio, false},
+      {"finnie_cutting_fraction", "Finnie's c, fraction of particles that cut", nullptr, nullptr, &F::cutting_fraction, false},
+      {"finnie_velocity_exponent", "Finnie speed exponent n (theory 2)", nullptr, nullptr, &F::velocity_exponent, false},
+      {"exposure_h", "hours of operation a measured wear depth covers (wear_depth_um)", &WearInputs::exposure_hours,
+       nullptr, nullptr, true},
+  };
+  return f;
+}
+
+void set_wear(WearInputs& w, const std::string& key, double value, const std::string& file, long line,
+              const std::string& field) {
+  const std::string where = field.empty() ? key : field;
+  for (const auto& f : wear_fields()) {
+    if (key != f.key) continue;
+    if (!std::isfinite(value) || value < 0.0 || (!f.allow_zero && value == 0.0))
+      throw InputError(file, line, where, fmt::format("must be a {} number, got {}", f.allow_zero ? "non-negative" : "positive", value));
+    if (key == "finnie_cutting_fraction" && value > 1.0)
+      throw InputError(file, line, where, fmt::format("is a fraction in (0, 1], got {}", value));
+    if (key == "finnie_velocity_exponent" && value > 5.0)
+      throw InputError(file, line, where, fmt::format("must be in (0, 5], got {}", value));
+    f.ref(w) = value;
+    return;
+  }
+  std::string known;
+  for (const auto& f : wear_fields()) known += (known.empty() ? "" : ", ") + std::string(f.key);
+  throw InputError(file, line, where, "unknown key (known: " + known + ")");
+}
+
 int effective_threads(int threads) {
   if (threads > 0) return threads;
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -210,6 +246,22 @@ DemTable read_dem_table(const std::string& file) {
       t.rolling_lever_effective = *v == "effective";
     } else if (kv == "feed") {
       read_feed_table(node, file, key, t.feed);
+    } else if (kv == "plate_cells") {
+      const auto v = node.value<std::int64_t>();
+      if (!v || !node.is_integer() || *v < 0 || *v > 400)
+        throw InputError(file, line_of(node), key, "must be an integer from 0 (the plate as two triangles) to 400");
+      t.plate_cells = static_cast<int>(*v);
+    } else if (kv == "wear") {
+      const toml::table* wt = node.as_table();
+      if (!wt) throw InputError(file, line_of(node), key, "must be a table ([dem.wear])");
+      for (const auto& [wk, wn] : *wt) {
+        const std::string wkey = key + "." + std::string(wk.str());
+        const auto v = wn.value<double>();
+        if (!v || !wn.is_number()) throw InputError(file, line_of(wn), wkey, "must be a number");
+        WearInputs probe;
+        set_wear(probe, std::string(wk.str()), *v, file, line_of(wn), wkey);
+        t.wear.emplace_back(std::string(wk.str()), *v);
+      }
     } else if (kv == "stl") {
       const toml::table* stl = node.as_table();
       if (!stl) throw InputError(file, line_of(node), key, "must be a table ([dem.stl])");
@@ -229,8 +281,8 @@ DemTable read_dem_table(const std::string& file) {
     } else {
       throw InputError(file, line_of(node), key,
                        "unknown key (known: quality, particle_diameter_mm, shear_modulus_scale, dt_fraction, "
-                       "contact, shape, seed, max_time_s, min_window_s, feed_length_mm, skin_fraction, rolling_lever, "
-                       "[dem.feed], [dem.stl])");
+                       "contact, shape, seed, max_time_s, min_window_s, feed_length_mm, skin_fraction, rolling_lever, plate_cells, "
+                       "[dem.feed], [dem.stl], [dem.wear])");
     }
   }
   return t;
@@ -261,6 +313,8 @@ void apply(const DemTable& t, RunSettings& s) {
   if (f.relax_all) s.relax_all = *f.relax_all;
   if (f.relax_from_face) s.relax_from_face = *f.relax_from_face;
   if (f.belt_start_x) s.belt_start_x = *f.belt_start_x;
+  if (t.plate_cells) s.plate_cells = *t.plate_cells;
+  for (const auto& [k, v] : t.wear) set_wear(s.wear, k, v, t.file, 0, "dem.wear." + k);
 }
 
 RunSettings resolve(const DemTable& table, const SettingsOverrides& o, Quality fallback) {
@@ -274,6 +328,8 @@ RunSettings resolve(const DemTable& table, const SettingsOverrides& o, Quality f
   if (o.shape) s.particle_shape = *o.shape;
   if (o.seed) s.seed = *o.seed;
   if (o.threads) s.threads = *o.threads;
+  if (o.plate_cells) s.plate_cells = *o.plate_cells;
+  for (const auto& [k, v] : o.wear) set_wear(s.wear, k, v, "", 0, "--" + k);
   if (o.max_time) {
     s.max_time = *o.max_time;
     s.min_time = std::min(s.min_time, s.max_time);
@@ -296,6 +352,7 @@ void check(const RunSettings& s) {
   need(s.particle_shape == ParticleShape::sphere || s.particle_shape == ParticleShape::clump, "shape",
        "must be sphere or clump");
   need(s.threads >= 0 && s.threads <= 256, "--threads", "must be between 0 (all) and 256");
+  need(s.plate_cells >= 0 && s.plate_cells <= 400, "--plate-cells", fmt::format("must be from 0 to 400, got {}", s.plate_cells));
   need(s.max_time > 0.0 && s.max_time <= 100.0, "max_time_s", fmt::format("must be in (0, 100] s, got {}", s.max_time));
   need(s.min_window > 0.0 && s.min_window < s.max_time, "min_window_s",
        fmt::format("steady window {} s must be shorter than the simulated time {} s", s.min_window, s.max_time));
@@ -349,6 +406,13 @@ std::string canonical(const RunSettings& s) {
   }
   if (std::isfinite(s.face_width)) put("face_width", s.face_width);
   if (std::isfinite(s.belt_start_x)) put("belt_start_x", s.belt_start_x);
+  // Keys of runs without a finer plate or a Finnie model of their own stay as they were. Finnie's
+  // K and n enter the per-impact sums; every other wear input only scales the stored sums.
+  if (s.plate_cells > 0) o += fmt::format("plate_cells = {}\n", s.plate_cells);
+  const wear::FinnieParams finnie_default;
+  if (s.wear.finnie.force_ratio != finnie_default.force_ratio) put("finnie_force_ratio", s.wear.finnie.force_ratio);
+  if (s.wear.finnie.velocity_exponent != finnie_default.velocity_exponent)
+    put("finnie_velocity_exponent", s.wear.finnie.velocity_exponent);
   // threads are left out on purpose: 1 and N threads give bit-identical results (dem/world.h).
   return o;
 }

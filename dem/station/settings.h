@@ -9,7 +9,33 @@
 #include <string_view>
 #include <vector>
 
+#include "dem/wear/archard.h"
+#include "dem/wear/finnie.h"
+
 namespace chutelab::dem::station {
+
+// Inputs of the wear models of the plate maps (dem/station/plate_map.h): [dem.wear] and simulate's
+// flags. Defaults in dem/wear/archard.h and dem/wear/finnie.h.
+struct WearInputs {
+  wear::ArchardParams archard;
+  wear::FinnieParams finnie;
+  double exposure_hours = 0.0;  // h of operation a measured wear depth covers; 0 = no wear_depth_um
+};
+
+// One settable wear input: its [dem.wear] key (= the flag without "--" and with '-' for '_'),
+// what it means, and where it lives.
+struct WearField {
+  const char* key;
+  const char* help;
+  double WearInputs::*top;
+  double wear::ArchardParams::*archard;
+  double wear::FinnieParams::*finnie;
+  bool allow_zero;
+  double& ref(WearInputs& w) const {
+    return top ? w.*top : archard ? w.archard.*archard : w.finnie.*finnie;
+  }
+};
+const std::vector<WearField>& wear_fields();
 
 enum class Quality { quick, standard, paper };
 std::string_view name(Quality q);
@@ -105,6 +131,13 @@ struct RunSettings {
   // the plate: mid-flight, upstream of the cushion of slowed particles in front of the plate (both
   // DEMs show the stream slowing within ~0.1 m of the plate, README "DEM").
   double momentum_plane_fraction = 0.5;
+
+  // --- plate maps ---
+  // Rows of cells down the generated plate (two triangles a cell, columns chosen for square cells);
+  // 0 = the plate as two triangles (the maps then have two cells). The mesh changes round-off
+  // only, not the physics, but it is part of the cache key.
+  int plate_cells = 0;
+  WearInputs wear;
 };
 
 // The presets. quick: for tests and first looks (13.6 mm spheres, soft, short belt, short time);
@@ -140,6 +173,8 @@ struct DemTable {
              relax_rate || relax_past || belt_start_x || relax_all || relax_from_face;
     }
   } feed;
+  std::optional<int> plate_cells;
+  std::vector<std::pair<std::string, double>> wear;  // [dem.wear] key -> value (checked)
   // STL meshes (mm, DESIGN.md frame) replacing generated parts; absolute paths after reading.
   std::optional<std::string> stl_plate, stl_belt, stl_pulley;
   std::vector<std::string> stl_walls;        // extra static walls (side panels, skirts, chute)
@@ -163,6 +198,8 @@ struct SettingsOverrides {
   std::optional<std::uint64_t> seed;
   std::optional<int> threads;
   std::optional<double> max_time;           // s
+  std::optional<int> plate_cells;
+  std::vector<std::pair<std::string, double>> wear;  // wear_fields() key -> value
 };
 
 // preset(quality) < [dem] table < overrides; the quality itself: overrides, then the table, then
@@ -174,5 +211,10 @@ void check(const RunSettings& s);
 
 // One line per field, "key = value" with full precision: the settings' share of a cache key.
 std::string canonical(const RunSettings& s);
+
+// Sets a wear input by its key; throws InputError (file, line, field) for an unknown key or a value
+// out of range.
+void set_wear(WearInputs& w, const std::string& key, double value, const std::string& file = "", long line = 0,
+              const std::string& field = "");
 
 }  // namespace chutelab::dem::station

@@ -59,7 +59,10 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_line_and_exit_2) {
                                   "simulate --dataset " + ds + " --condition T3 --quality fast",
                                   "simulate --dataset " + ds + " --condition T3 --contact rubber",
                                   "simulate --dataset " + ds + " --condition T3 --dt-fraction 3",
-                                  "simulate --dataset " + ds + " --condition T3 --diameter-mm 60"}) {
+                                  "simulate --dataset " + ds + " --condition T3 --diameter-mm 60",
+                                  "simulate --dataset " + ds + " --condition T3 --plate-cells 999",
+                                  "simulate --dataset " + ds + " --condition T3 --archard-coefficient -1",
+                                  "simulate --dataset " + ds + " --condition T3 --finnie-cutting-fraction 2"}) {
     const auto r = run_chutelab(args);
     BOOST_TEST(r.exit_code == 2, args);
     BOOST_TEST(count_lines(r.err) == 1, args << ": " << r.err);
@@ -69,8 +72,8 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_line_and_exit_2) {
 // A run writes the series, the steady means, the side view and VTK, and prints the means.
 BOOST_AUTO_TEST_CASE(simulate_writes_series_means_and_vtk) {
   const fs::path out = fresh_dir("sim-out");
-  const auto r = run_chutelab("simulate --dataset " + tiny_dataset().string() + " --condition T3 --no-cache --vtk-every 0.2 --out " +
-                              out.string());
+  const auto r = run_chutelab("simulate --dataset " + tiny_dataset().string() + " --condition T3 --no-cache --vtk-every 0.2 --plate-cells 8 "
+                              "--archard-coefficient 2e-6 --out " + out.string());
   BOOST_TEST_MESSAGE(r.out);
   BOOST_REQUIRE(r.exit_code == 0);
   BOOST_TEST(r.out.find("plate normal force R_n") != std::string::npos);
@@ -79,6 +82,13 @@ BOOST_AUTO_TEST_CASE(simulate_writes_series_means_and_vtk) {
     BOOST_TEST(fs::exists(out / f), f);
   BOOST_TEST(read_file(out / "steady.csv").find("normal_force_N,") != std::string::npos);
   BOOST_TEST(count_lines(read_file(out / "timeseries.csv")) > 100);
+  // The plate map: one row per triangle, units in the column names, and its VTK.
+  BOOST_TEST(r.out.find("plate map (") != std::string::npos);
+  BOOST_TEST(fs::exists(out / "plate_map.vtk"));
+  const std::string map = read_file(out / "plate_map.csv");
+  BOOST_TEST(map.rfind("condition,wall,triangle,x_mm,y_mm,z_mm,area_mm2,pressure_Pa,shear_stress_Pa,", 0) == 0);
+  BOOST_TEST(map.find("archard_wear_rate_um_per_h") != std::string::npos);
+  BOOST_TEST(count_lines(map) > 2 * 8 + 1);
 }
 
 // validate --models dem runs the DEM once; the second validate comes from the cache, at once, with
@@ -98,6 +108,9 @@ BOOST_AUTO_TEST_CASE(validate_with_dem_is_cached) {
   BOOST_TEST_MESSAGE("first validate " << s1 << " s, second " << s2 << " s");
   BOOST_TEST(s2 < 2.0);
   BOOST_TEST(s2 < 0.5 * s1);
+  // The plate map comes back from the cache too: both reports have the section.
+  BOOST_TEST(read_file(a / "report.md").find("## Plate loading and wear") != std::string::npos);
+  BOOST_TEST(read_file(b / "report.md").find("## Plate loading and wear") != std::string::npos);
   const std::string p = read_file(a / "predictions.csv");
   BOOST_TEST(p == read_file(b / "predictions.csv"));
   BOOST_TEST(p.find(",dem,") != std::string::npos);

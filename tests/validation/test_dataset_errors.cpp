@@ -64,6 +64,20 @@ BOOST_AUTO_TEST_CASE(each_error_class_names_file_line_field_and_writes_nothing) 
        replace_line("trajectory.csv", 2, "V2-26,upper,100.0,inf,1.0"), "trajectory.csv:2: y_mm"},
       {"unknown boundary", "trajectory.csv",
        replace_line("trajectory.csv", 3, "V2-26,middle,150.0,133.1,1.0"), "trajectory.csv:3: boundary"},
+      {"plate map: missing column", "plate_map.csv", "condition,y_mm,quantity,value\nV2-26,50,plate_pressure_Pa,100\n",
+       "plate_map.csv:1: z_mm"},
+      {"plate map: unknown quantity", "plate_map.csv",
+       "condition,y_mm,z_mm,quantity,value,uncertainty\nV2-26,50,0,plate_pressure_Pa,100,5\nV2-26,50,0,pressure_kPa,1,\n",
+       "plate_map.csv:3: quantity"},
+      {"plate map: non-number", "plate_map.csv",
+       "condition,y_mm,z_mm,quantity,value,uncertainty\nV2-26,fifty,0,plate_pressure_Pa,100,5\n", "plate_map.csv:2: y_mm"},
+      {"plate map: negative wear", "plate_map.csv",
+       "condition,y_mm,z_mm,quantity,value,uncertainty\nV2-26,50,0,wear_depth_um,-3,1\n", "plate_map.csv:2: value"},
+      {"plate map: unknown condition", "plate_map.csv",
+       "condition,y_mm,z_mm,quantity,value,uncertainty\nV9-99,50,0,plate_pressure_Pa,100,5\n", "plate_map.csv:2: condition"},
+      {"plate map: duplicate point", "plate_map.csv",
+       "condition,y_mm,z_mm,quantity,value,uncertainty\nV2-26,50,0,plate_pressure_Pa,100,5\nV2-26,50,0,plate_pressure_Pa,90,5\n",
+       "plate_map.csv:3: y_mm"},
       {"malformed TOML", "setup.toml", "name = \"x\"\n[belt\npulley_diameter_mm = 250\n", "setup.toml:2"},
       {"missing TOML key", "setup.toml",
        "name = \"x\"\n[belt]\npulley_diameter_mm = 250.0\n", "setup.toml: belt.belt_thickness_mm"},
@@ -133,6 +147,32 @@ BOOST_AUTO_TEST_CASE(plate_below_or_above_the_stream_is_blamed_on_its_height) {
       BOOST_TEST(!fs::exists(d / "out"));
     }
   }
+}
+
+// Measured plate pressures (a pressure film) are compared like every measurement: korzen predicts
+// its mean pressure inside the analytical impact zone and none outside; errors.csv carries the point.
+BOOST_AUTO_TEST_CASE(plate_map_points_are_compared) {
+  const fs::path d = dataset_with("platemap", "plate_map.csv",
+                                  "condition,y_mm,z_mm,quantity,value,uncertainty\n"
+                                  "V3-41,60,0,plate_pressure_Pa,4000,400\n"
+                                  "V3-41,200,0,plate_pressure_Pa,10,5\n"
+                                  "V3-41,60,0,wear_depth_um,3,1\n");
+  const fs::path out = d / "out";
+  const auto r = run_chutelab("validate --dataset '" + d.string() + "' --models korzen --out '" + out.string() + "'");
+  BOOST_TEST(r.exit_code == 0, r.err);
+  std::ifstream f(out / "errors.csv");
+  std::string line, inside, outside;
+  bool wear = false;
+  while (std::getline(f, line)) {
+    if (line.rfind("V3-41,korzen,plate_pressure_Pa,4000", 0) == 0) inside = line;
+    if (line.rfind("V3-41,korzen,plate_pressure_Pa,10", 0) == 0) outside = line;
+    wear = wear || line.find("wear_depth_um") != std::string::npos;
+  }
+  // Zone of V3-41 (estimate): y = 76.8 ... 42.8 mm, mean pressure 5024.5 Pa.
+  BOOST_TEST(inside.find(",5024.5") != std::string::npos, inside);
+  BOOST_TEST(inside.find(",60,0") != std::string::npos, inside);
+  BOOST_TEST(outside.find(",10,5,0,") != std::string::npos, outside);
+  BOOST_TEST(!wear);  // korzen does not predict wear: no row
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -98,6 +98,32 @@ std::optional<std::pair<st::StationResult, bool>> parse_result(const std::string
   return std::make_pair(std::move(*r), text[7] == '1');
 }
 
+// The plate map's value at a point of the face (the triangle whose (z, y) projection holds it) and
+// its standard error from the cell's block means.
+std::pair<std::optional<double>, std::optional<double>> plate_value(const st::StationResult& r, const PlateQuery& q) {
+  if (r.maps.empty()) return {};
+  for (const auto& c : r.maps.front().cells) {
+    const Eigen::Vector2d a(c.corners[0].z(), c.corners[0].y()), b(c.corners[1].z(), c.corners[1].y()),
+        d(c.corners[2].z(), c.corners[2].y()), x(q.z, q.y);
+    auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+    const double s0 = cross(b - a, x - a), s1 = cross(d - b, x - b), s2 = cross(a - d, x - d);
+    const bool inside = (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
+    if (!inside || !(std::abs(cross(b - a, d - a)) > 0.0)) continue;
+    const double rate = c.archard_rate(r.wear) + c.finnie_rate(r.wear);
+    auto se = [](double v) { return std::isfinite(v) ? std::optional<double>(v) : std::nullopt; };
+    if (q.quantity == "plate_pressure_Pa") return {c.pressure(), se(c.pressure_se())};
+    if (q.quantity == "plate_shear_stress_Pa") return {c.shear_stress(), std::nullopt};
+    if (q.quantity == "wear_rate_um_per_h") return {rate, se(c.wear_rate_se(r.wear))};
+    if (q.quantity == "wear_depth_um" && r.wear.exposure_hours > 0.0) {
+      const double h = r.wear.exposure_hours * 3600.0;
+      const auto u = se(c.wear_rate_se(r.wear));
+      return {rate * h, u ? std::optional<double>(*u * h) : std::nullopt};
+    }
+    return {};
+  }
+  return {};  // off the plate
+}
+
 class DemModel final : public Model {
  public:
   explicit DemModel(DemModelConfig c) : c_(std::move(c)) {}
@@ -158,6 +184,7 @@ class DemModel final : public Model {
     if (c_.use_cache)
       if (auto cached = cache.load(key)) {
         if (from_cache) *from_cache = true;
+        cached->wear = settings.wear;  // the cache keeps the maps' sums; the rates use these wear inputs
         return std::move(*cached);
       }
     if (c_.cache_only)
@@ -291,6 +318,26 @@ class DemModel final : public Model {
         pts.value.push_back(s.speed);
       }
       if (!pts.points.empty()) p.curves.push_back(std::move(pts));
+    }
+    // Pressure and wear maps: for the report's pictures, and at the plate points a dataset measured.
+    for (const auto& m : r.maps) {
+      SurfaceMap sm;
+      sm.name = m.wall;
+      for (const auto& c : m.cells) {
+        sm.cells.push_back({Eigen::Vector2d(c.corners[0].z(), c.corners[0].y()),
+                            Eigen::Vector2d(c.corners[1].z(), c.corners[1].y()),
+                            Eigen::Vector2d(c.corners[2].z(), c.corners[2].y())});
+        sm.pressure.push_back(c.pressure());
+        sm.wear_rate.push_back(c.archard_rate(r.wear) + c.finnie_rate(r.wear));
+      }
+      sm.peak_pressure_y = st::peak_pressure_y(m);
+      sm.pressure_centre_y = st::pressure_centre_y(m);
+      p.maps.push_back(std::move(sm));
+    }
+    for (const auto& q : request.plate) {
+      const auto [v, u] = plate_value(r, q);
+      p.plate.push_back(v);
+      p.plate_uncertainty.push_back(u);
     }
     p.notes = r.notes;
     if (r.impact_velocity_fast.ok())

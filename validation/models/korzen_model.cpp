@@ -1,7 +1,9 @@
 // The Korzen impact-plate model (seed Eqs 1-7) as a harness model: plate forces, V_p, V_a and the
 // impact point on Korzen's own centroid assumption (0.5 h_b).
+#include <cmath>
 #include <fmt/format.h>
 
+#include "analytical/impact_zone.h"
 #include "analytical/transfer_station.h"
 #include "validation/models/models.h"
 
@@ -28,6 +30,16 @@ class KorzenModel final : public Model {
     if (k.exit_speed) p.values[Quantity::exit_velocity] = *k.exit_speed;
     p.values[Quantity::impact_point_y] = hit.point.position.y();
     p.trajectory.assign(request.trajectory.size(), std::nullopt);
+    // The band the stream strikes, Korzen's forces spread evenly over it (analytical/impact_zone.h):
+    // the mean pressure inside, none outside.
+    const auto z = analytical::impact_zone(a);
+    p.plate_zone = PlateZone{z.top_y, z.bottom_y, z.centroid_y, z.width, z.mean_pressure};
+    for (const auto& q : request.plate) {
+      const bool inside = q.y <= z.top_y && q.y >= z.bottom_y && std::abs(q.z) <= 0.5 * z.width;
+      if (q.quantity == "plate_pressure_Pa") p.plate.emplace_back(inside ? z.mean_pressure : 0.0);
+      else if (q.quantity == "plate_shear_stress_Pa") p.plate.emplace_back(inside ? z.mean_shear_stress : 0.0);
+      else p.plate.emplace_back(std::nullopt);
+    }
     if (request.curves)
       p.curves.push_back(streamline_curve(a, Streamline::korzen_centroid, "centre (0.5 h_b)"));
     p.notes.push_back(k.stationary_flow

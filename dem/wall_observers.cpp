@@ -1,0 +1,41 @@
+// The wall-contact observers (dem/walls/wall_contact.h), kept out of the force loop: one serial pass
+// over the contact list after the forces of a step, only when some wall is observed.
+#include <fmt/format.h>
+
+#include "core/input_error.h"
+#include "dem/world.h"
+
+namespace chutelab::dem {
+
+void World::observe_wall(int wall, WallContactObserver fn) {
+  if (wall < 0 || static_cast<std::size_t>(wall) >= walls_.size())
+    throw InputError("", 0, "observe_wall", fmt::format("no wall {}", wall));
+  wall_observers_.resize(walls_.size());
+  wall_observers_[static_cast<std::size_t>(wall)] = std::move(fn);
+}
+
+void World::report_wall_contacts() const {
+  WallContact c;
+  c.step = step_;
+  c.dt = dt_;
+  for (std::size_t q = 0; q < wc_.touch.size(); ++q) {
+    if (!wc_.touch[q]) continue;
+    const auto wi = static_cast<std::size_t>(wc_.wall[q]);
+    if (wi >= wall_observers_.size() || !wall_observers_[wi]) continue;
+    const auto i = static_cast<std::size_t>(wc_.owner[q]);
+    const Wall& wl = walls_[wi];
+    c.wall = static_cast<int>(wi);
+    c.element = wc_.element[q];
+    c.particle = p_.id[i];
+    c.point = wc_.out_point[q];
+    c.normal = (c.point - p_.x[i]).normalized();
+    c.force = -wc_.out_f[q];
+    // The slip velocity the contact law saw: the sphere's surface point against the wall's.
+    c.velocity = p_.v[i] + (p_.radius[i] * p_.w[i]).cross(c.normal) - wl.velocity_at(c.point);
+    c.mass = p_.contact_mass[i];
+    c.radius = p_.radius[i];
+    wall_observers_[wi](c);
+  }
+}
+
+}  // namespace chutelab::dem
