@@ -112,6 +112,7 @@ LogSummary read_log(const std::string& path) {
   std::string line;
   bool thermo = false;
   while (std::getline(f, line)) {
+    if (s.version.empty() && line.rfind("LIGGGHTS (Version", 0) == 0) s.version = line;
     if (s.error.empty() && line.rfind("ERROR", 0) == 0) s.error = line;
     const auto w = words(line);
     if (w.size() >= 2 && w[0] == "Step" && w[1] == "Atoms") {

@@ -44,6 +44,7 @@ struct LogSummary {
   std::size_t peak_atoms = 0, final_atoms = 0;
   double inserted_mass = 0.0;  // kg, the last "inserted so far" report
   std::string error;           // the first "ERROR" line, if any
+  std::string version;         // the first line, "LIGGGHTS (Version ...)"
 };
 LogSummary read_log(const std::string& path);
 

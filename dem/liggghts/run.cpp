@@ -123,7 +123,21 @@ st::StationResult run_station(const Station& station, const Options& o) {
     throw InputError(log_path, 0, "liggghts",
                      fmt::format("'{}' failed (exit status {}){}; the deck is {}", cmd, status,
                                  log.error.empty() ? "" : ": " + log.error, (dir / Deck::input_file).string()));
+  st::StationResult r = measure_run(station, o, o.work_dir);
+  r.wall_seconds = now() - t_start;
+  if (o.progress) o.progress({r.simulated_time, sim_time, r.wall_seconds, log.final_atoms, true});
+  return r;
+}
 
+st::StationResult measure_run(const Station& station, const Options& o, const std::string& run_dir) {
+  namespace fs = std::filesystem;
+  const st::RunSettings& s = o.settings;
+  st::Scene sc = st::build_scene(station, s, o.geometry, o.external);
+  const Deck deck = make_deck(station, sc, s, o.sim_time > 0.0 ? o.sim_time : s.max_time);
+  const fs::path dir(run_dir);
+  const std::string log_path = (dir / Deck::log_file).string();
+  const LogSummary log = read_log(log_path);
+  const std::string ver = log.version.empty() ? "LIGGGHTS" : log.version;
   const std::vector<PlateSample> plate = read_plate_file((dir / Deck::plate_file).string());
   DumpReader dump((dir / Deck::dump_file).string());
   st::Sensors sensors(sc, s.momentum_plane_fraction);
@@ -185,12 +199,10 @@ st::StationResult run_station(const Station& station, const Options& o) {
   }
   r.notes.push_back(fmt::format(
       "LIGGGHTS {}: {} ({}), {:.1f} mm spheres, dt {:.3g} s ({:.2f} of the collision time {:.3g} s, {:.2f} of the "
-      "Rayleigh time), {:.2f} s simulated, steady window {:.2f}-{:.2f} s ({} blocks of {:.1f} s); deck in {}",
-      r.quality, ver, cmd, r.diameter * 1e3, r.dt, r.dt / r.collision_time, r.collision_time,
+      "Rayleigh time), {:.2f} s simulated, steady window {:.2f}-{:.2f} s ({} blocks of {:.1f} s); run in {}",
+      r.quality, ver, launcher(o), r.diameter * 1e3, r.dt, r.dt / r.collision_time, r.collision_time,
       r.dt / r.rayleigh_time, r.simulated_time, r.window.start, r.window.end, r.window.blocks, s.mean_block,
       dir.string()));
-  r.wall_seconds = now() - t_start;
-  if (o.progress) o.progress({r.simulated_time, sim_time, r.wall_seconds, log.final_atoms, true});
   return r;
 }
 

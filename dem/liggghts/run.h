@@ -52,4 +52,9 @@ Deck deck_for(const Station& st, const Options& o);
 // the log and LIGGGHTS' error line).
 station::StationResult run_station(const Station& st, const Options& o);
 
+// Measures a finished run in `run_dir` (its plate file, dump and log, as the deck of `st` and `o`
+// writes them): what run_station does after LIGGGHTS returns, also for a deck run elsewhere, by
+// hand or on a cluster.
+station::StationResult measure_run(const Station& st, const Options& o, const std::string& run_dir);
+
 }  // namespace chutelab::dem::liggghts
