@@ -50,7 +50,8 @@ std::string program_of(const std::string& command) {
 
 std::string version(const std::string& program) {
   if (program.empty()) return "";
-  FILE* p = popen((quoted(program) + " -h </dev/null 2>/dev/null").c_str(), "r");
+  // -log none: LIGGGHTS opens log.liggghts in the working directory before it reads -h.
+  FILE* p = popen((quoted(program) + " -log none -h </dev/null 2>/dev/null").c_str(), "r");
   if (!p) return "";
   std::string first;
   char buf[512];

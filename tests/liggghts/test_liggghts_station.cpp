@@ -91,3 +91,19 @@ BOOST_AUTO_TEST_CASE(agrees_with_the_builtin_dem) {
   BOOST_TEST(std::abs(a.normal_force.value / b.normal_force.value - 1.0) < 0.05);
   BOOST_TEST(std::abs(a.impact_point_y.value - b.impact_point_y.value) < 0.005);
 }
+
+// Asking LIGGGHTS for its version (every cache key does) leaves nothing behind in the working
+// directory: LIGGGHTS opens log.liggghts there unless told not to.
+BOOST_AUTO_TEST_CASE(version_probe_writes_no_log) {
+  require_liggghts();
+  namespace fs = std::filesystem;
+  const fs::path here = fs::current_path();
+  const fs::path dir = fs::temp_directory_path() / "chutelab-test-liggghts-version";
+  fs::create_directories(dir);
+  fs::remove(dir / "log.liggghts");
+  fs::current_path(dir);
+  const std::string v = liggghts::version(program());
+  fs::current_path(here);
+  BOOST_TEST(v.find("LIGGGHTS") != std::string::npos);
+  BOOST_TEST(!fs::exists(dir / "log.liggghts"));
+}
