@@ -109,7 +109,17 @@ Deck make_deck(const Station& st, const station::Scene& sc, const station::RunSe
   // Wall-wall pairs never meet; LIGGGHTS needs a restitution in (0, 1] for them all the same.
   pair_table("m_e", "coefficientRestitution", [](const PairCoeffs& p) { return std::clamp(p.restitution, 1e-3, 1.0); });
   pair_table("m_mu", "coefficientFriction", [](const PairCoeffs& p) { return p.friction; });
-  pair_table("m_mur", "coefficientRollingFriction", [](const PairCoeffs& p) { return p.rolling_friction; });
+  // cdt's lever is the effective radius R_i R_j / (R_i + R_j): R/2 between the deck's equal spheres, R
+  // against a wall. The scene's coefficients are for the lever R_i (with rolling_lever = "effective"
+  // it holds half the dataset's), so the same torque needs twice them between particles.
+  o += "\n# rolling friction: particle-particle coefficients doubled for cdt's effective radius (deck.cpp)";
+  for (int a = 0; a < nt; ++a)
+    if (a != ins.material && mt.material(a).density > 0.0)
+      throw InputError("", 0, "dem", "the LIGGGHTS deck expects one particle material");
+  o += fmt::format("\nfix m_mur all property/global coefficientRollingFriction peratomtypepair {}", nt);
+  for (int a = 0; a < nt; ++a)
+    for (int b = 0; b < nt; ++b)
+      o += " " + num(mt.pair(a, b).rolling_friction * (a == ins.material && b == ins.material ? 2.0 : 1.0));
   o += "\npair_style gran model hertz tangential history rolling_friction cdt\npair_coeff * *\n";
   o += fmt::format("timestep {}\n", num(sc.dt));
   const Vec3 g = w.settings().gravity;
@@ -175,14 +185,15 @@ Deck make_deck(const Station& st, const station::Scene& sc, const station::RunSe
   const station::FeederRelaxation& fr = sc.feeder;
   if (fr.rate > 0.0) {
     const Vec3 T = fr.belt.tangent_point, A = fr.belt.along, U = fr.belt.up;
-    o += "# feeder relaxation F = m k (V_b t - v) in the zone, a falling particle keeping its fall "
-         "(dem/station/feeder_relaxation.h)\n";
+    o += fmt::format("# feeder relaxation F = m k (V_b t - v) in the zone{} (dem/station/feeder_relaxation.h)\n",
+                     fr.all_components ? ", every component" : ", a falling particle keeping its fall");
     o += fmt::format("variable fr_s atom (x-({}))*({})+(y-({}))*({})\n", num(T.x()), num(A.x()), num(T.y()), num(A.y()));
     o += fmt::format("variable fr_h atom (x-({}))*({})+(y-({}))*({})\n", num(T.x()), num(U.x()), num(T.y()), num(U.y()));
     o += fmt::format("variable fr_in atom (v_fr_s>={})*(v_fr_s<={})*(v_fr_h<={})\n", num(fr.s_begin), num(fr.s_end),
                      num(fr.h_max));
     o += fmt::format("variable fr_vn atom vx*({})+vy*({})\n", num(U.x()), num(U.y()));
-    o += "variable fr_fall atom v_fr_vn*(v_fr_vn<0)\n";
+    // A falling particle keeps its fall, unless the dataset's feeder relaxed every component.
+    o += fr.all_components ? "variable fr_fall atom 0\n" : "variable fr_fall atom v_fr_vn*(v_fr_vn<0)\n";
     o += fmt::format("variable fr_fx atom mass*{}*v_fr_in*({}-vx+v_fr_fall*({}))\n", num(fr.rate),
                      num(fr.belt_speed * A.x()), num(U.x()));
     o += fmt::format("variable fr_fy atom mass*{}*v_fr_in*({}-vy+v_fr_fall*({}))\n", num(fr.rate),

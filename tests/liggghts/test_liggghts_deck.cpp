@@ -63,6 +63,24 @@ BOOST_AUTO_TEST_CASE(deck_has_the_station) {
   BOOST_TEST(d.samples_per_snapshot == 3);
 }
 
+// cdt's lever between equal spheres is R/2, the built-in's R (or, with rolling_lever = "effective",
+// the built-in halves the coefficient instead): the deck doubles the scene's particle-particle
+// coefficient, so both give the same torque; against walls both levers are R.
+BOOST_AUTO_TEST_CASE(deck_rolling_friction_matches_the_builtin_torque) {
+  auto s = test::tiny_settings();
+  BOOST_TEST(has(tiny_deck(s).input, "coefficientRollingFriction peratomtypepair 4 0.2 0.1 0.1 0.1"));
+  s.rolling_lever_effective = true;  // the scene holds 0.05: LIGGGHTS gets the dataset's 0.1
+  BOOST_TEST(has(tiny_deck(s).input, "coefficientRollingFriction peratomtypepair 4 0.1 0.1 0.1 0.1"));
+}
+
+// A feeder that relaxed every component (datasets/liggghts-rig [dem.feed]) relaxes the fall too.
+BOOST_AUTO_TEST_CASE(deck_relaxes_the_fall_when_the_feeder_did) {
+  auto s = test::tiny_settings();
+  BOOST_TEST(has(tiny_deck(s).input, "variable fr_fall atom v_fr_vn*(v_fr_vn<0)"));
+  s.relax_all = true;
+  BOOST_TEST(has(tiny_deck(s).input, "variable fr_fall atom 0\n"));
+}
+
 BOOST_AUTO_TEST_CASE(deck_refuses_what_liggghts_cannot_run) {
   auto s = test::tiny_settings();
   s.particle_shape = dem::station::ParticleShape::clump;

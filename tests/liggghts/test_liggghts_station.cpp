@@ -81,8 +81,8 @@ BOOST_AUTO_TEST_CASE(plate_force_equals_momentum_flux) {
 }
 
 // Two engines, one station: R_n within 5 % (the statistical error of each is ~1 %; the engines
-// differ in the rolling-friction lever, cdt's effective radius against the seed's R_i, and in how
-// inserted particles start, README "LIGGGHTS on a cluster"), the impact point within 5 mm (0.4 d).
+// differ in how inserted particles start and in their contact details, README "LIGGGHTS on a
+// cluster"), the impact point within 5 mm (0.4 d).
 BOOST_AUTO_TEST_CASE(agrees_with_the_builtin_dem) {
   require_liggghts();
   const auto &a = lig(), &b = builtin();
