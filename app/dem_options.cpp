@@ -5,6 +5,7 @@
 #include "core/campaign.h"
 #include "core/input_error.h"
 #include "validation/models/dem_model.h"
+#include "validation/models/liggghts_model.h"
 
 namespace chutelab::app {
 
@@ -26,6 +27,13 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
                "never run the DEM: every run must be in the cache (recorded acceptance cases; exit 2 otherwise)");
   cmd.add_option("--dem-plate-cells", o.plate_cells,
                  "rows of cells down the generated plate for the DEM's pressure and wear maps (0: two triangles)");
+  cmd.add_option("--liggghts-ranks", o.liggghts_ranks, "MPI ranks of each LIGGGHTS run (mpirun -n K liggghts; default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--liggghts-command", o.liggghts_command,
+                 "launcher and program that run a LIGGGHTS deck, e.g. \"srun liggghts\" (replaces mpirun -n K liggghts)");
+  cmd.add_option("--liggghts-time", o.liggghts_time,
+                 "seconds simulated per LIGGGHTS run (default: the quality's maximum, 1.3 s at standard)")
+      ->check(CLI::PositiveNumber);
 }
 
 void add_jobs_option(CLI::App& cmd, int& jobs) {
@@ -56,6 +64,12 @@ void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const 
   dc.output_dir = output_dir;
   validation::set_dem_model_config(dc);
   campaign::set_threads(o.jobs);
+  validation::LiggghtsModelConfig lc;
+  lc.dem = dc;
+  lc.ranks = o.liggghts_ranks;
+  lc.command = o.liggghts_command;
+  lc.sim_time = o.liggghts_time;
+  validation::set_liggghts_model_config(lc);
 }
 
 DemOutputStage::DemOutputStage(const std::string& out)

@@ -1,6 +1,6 @@
 #pragma once
 // The DEM flags that validate and diagnose share (--dem-quality, --dem-threads, --dem-cache,
-// --no-dem-cache): both may run "dem" from --models, and a diagnosis after a validate must find
+// --no-dem-cache, and --liggghts-ranks, --liggghts-command, --liggghts-time for "liggghts"): both may run "dem" from --models, and a diagnosis after a validate must find
 // the validate's runs in the same cache.
 #include <filesystem>
 #include <optional>
@@ -18,6 +18,9 @@ struct DemCli {
   std::string ladder = "on";  // "on" | "off": the particle-size ladder for u_num's discretisation part
   std::string signature_quality;  // "" = the predictions' quality
   int jobs = 1;  // DEM runs at a time in one process (core/campaign.h)
+  int liggghts_ranks = 1;
+  std::string liggghts_command;
+  double liggghts_time = 0.0;
 };
 
 void add_dem_options(CLI::App& cmd, DemCli& o);

@@ -7,6 +7,7 @@
 #include "core/input_error.h"
 #include "validation/models/dem_model.h"
 #include "validation/models/external_model.h"
+#include "validation/models/liggghts_model.h"
 #include "validation/models/models.h"
 
 namespace chutelab::validation {
@@ -19,6 +20,7 @@ const std::vector<ModelFactory>& registry() {
   static const std::vector<ModelFactory> models = [] {
     auto all = analytical_model_registry();
     all.push_back({"dem", [] { return make_dem_model(); }});
+    all.push_back({"liggghts", [] { return make_liggghts_model(); }});
     return all;
   }();
   return models;

@@ -150,6 +150,52 @@ StationResult run_station(const Station& st, const RunOptions& o) {
   r.rebuilds = w.rebuild_count();
   r.peak_particles = std::max(r.peak_particles, w.particles().size());
 
+  reduce_series(sc, sensors, s, StationSeries{std::move(ts), std::move(fn), std::move(fs), std::move(mz),
+                                              std::move(face), sample_dt},
+                r);
+  const double a = r.window.start, b = r.window.end, blk = s.mean_block;
+
+  // --- mass accounting ---
+  r.inserted = w.inserters()[static_cast<std::size_t>(sc.inserter)].inserted_mass;
+  r.discharged = sc.discharged + w.sinks()[static_cast<std::size_t>(sc.plate_sink)].removed_mass;
+  for (int k : sc.boundary_sinks) r.escaped += w.sinks()[static_cast<std::size_t>(k)].removed_mass;
+  for (double m : w.particles().mass) r.in_domain += m;
+
+  r.side_view = sensors.side_view(w, o.side_view_points);
+  r.side_view_time = w.time();
+  if (!o.vtk_dir.empty())
+    write_vtk_particles((fs_::path(o.vtk_dir) / "particles_final.vtk").string(), w.particles());
+
+  // --- notes ---
+  r.notes.push_back(fmt::format(
+      "DEM {}: {}, dt {:.3g} s ({:.2f} of the collision time {:.3g} s, {:.2f} of the Rayleigh time), "
+      "{:.2f} s simulated{}, steady window {:.2f}-{:.2f} s ({} blocks of {:.1f} s)",
+      r.quality,
+      sc.shape == ParticleShape::clump
+          ? fmt::format("two-sphere clumps (seed Fig. 4c) of {:.1f} mm spheres, {} bodies at the peak", r.diameter * 1e3,
+                        peak_bodies)
+          : fmt::format("{:.1f} mm spheres", r.diameter * 1e3),
+      r.dt, r.dt / r.collision_time, r.collision_time, r.dt / r.rayleigh_time,
+      r.simulated_time, r.early_stop ? " (stopped when steady)" : "", a, b, r.window.blocks, blk));
+  if (r.escaped > 0.0)
+    r.notes.push_back(fmt::format("{:.3g} kg left the rig through the domain's faces (not the discharge)", r.escaped));
+  for (const auto& m : *sc.warnings) r.notes.push_back("DEM warning: " + m);
+
+  r.wall_seconds = now() - t_start;
+  if (o.progress) o.progress({r.simulated_time, s.max_time, r.wall_seconds, w.particles().size(), true});
+  return r;
+}
+
+void reduce_series(const Scene& sc, const Sensors& sensors, const RunSettings& s, const StationSeries& series,
+                   StationResult& r) {
+  const std::vector<double>& ts = series.t;
+  const std::vector<double>& fn = series.normal;
+  const std::vector<double>& fs = series.shear;
+  const std::vector<double>& mz = series.moment;
+  const std::vector<FaceParticle>& face = series.face;
+  const double sample_dt = series.sample_dt;
+  const SteadyParams sp{s.detect_block, s.detect_tail, s.mean_block};
+
   // --- the steady window ---
   r.window = detect_steady(ts, fn, sp);
   if (!r.window.found || r.window.end - r.window.start < s.min_window - 1e-9) {
@@ -271,41 +317,12 @@ StationResult run_station(const Station& st, const RunOptions& o) {
     r.trajectory.push_back(row);
   }
 
-  // --- mass accounting ---
-  r.inserted = w.inserters()[static_cast<std::size_t>(sc.inserter)].inserted_mass;
-  r.discharged = sc.discharged + w.sinks()[static_cast<std::size_t>(sc.plate_sink)].removed_mass;
-  for (int k : sc.boundary_sinks) r.escaped += w.sinks()[static_cast<std::size_t>(k)].removed_mass;
-  for (double m : w.particles().mass) r.in_domain += m;
-
-  r.side_view = sensors.side_view(w, o.side_view_points);
-  r.side_view_time = w.time();
-  if (!o.vtk_dir.empty())
-    write_vtk_particles((fs_::path(o.vtk_dir) / "particles_final.vtk").string(), w.particles());
-
-  // --- notes ---
-  r.notes.push_back(fmt::format(
-      "DEM {}: {}, dt {:.3g} s ({:.2f} of the collision time {:.3g} s, {:.2f} of the Rayleigh time), "
-      "{:.2f} s simulated{}, steady window {:.2f}-{:.2f} s ({} blocks of {:.1f} s)",
-      r.quality,
-      sc.shape == ParticleShape::clump
-          ? fmt::format("two-sphere clumps (seed Fig. 4c) of {:.1f} mm spheres, {} bodies at the peak", r.diameter * 1e3,
-                        peak_bodies)
-          : fmt::format("{:.1f} mm spheres", r.diameter * 1e3),
-      r.dt, r.dt / r.collision_time, r.collision_time, r.dt / r.rayleigh_time,
-      r.simulated_time, r.early_stop ? " (stopped when steady)" : "", a, b, r.window.blocks, blk));
   if (r.layer_speed.ok() && std::abs(r.layer_speed.value / sc.belt_speed - 1.0) > 0.02)
     r.notes.push_back(fmt::format("the layer reaches the pulley at {:.3f} m/s, not at belt speed {:.3f} m/s",
                                   r.layer_speed.value, sc.belt_speed));
   if (r.mass_flux.ok() && std::abs(r.mass_flux.value / sc.mass_flow - 1.0) > 0.05)
     r.notes.push_back(fmt::format("free-stream mass flux {:.3f} kg/s differs from the feed {:.3f} kg/s",
                                   r.mass_flux.value, sc.mass_flow));
-  if (r.escaped > 0.0)
-    r.notes.push_back(fmt::format("{:.3g} kg left the rig through the domain's faces (not the discharge)", r.escaped));
-  for (const auto& m : *sc.warnings) r.notes.push_back("DEM warning: " + m);
-
-  r.wall_seconds = now() - t_start;
-  if (o.progress) o.progress({r.simulated_time, s.max_time, r.wall_seconds, w.particles().size(), true});
-  return r;
 }
 
 void write_result_files(const std::string& dir, const StationResult& r) {

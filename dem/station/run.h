@@ -83,6 +83,19 @@ struct RunOptions {
   std::size_t side_view_points = 3000;
 };
 
+// What a run of any engine recorded: the plate load cell every sample interval (averages over the
+// interval ending at t) and the particles near the face at every snapshot (for V_a).
+struct StationSeries {
+  std::vector<double> t, normal, shear, moment;  // s, N, N, N m
+  std::vector<FaceParticle> face;
+  double sample_dt = 0.0;  // s
+};
+
+// The steady window and every steady mean of `r` (r.forces, r.snapshots and r.simulated_time set)
+// from the series, the same way for the built-in DEM and for another code's output.
+void reduce_series(const Scene& sc, const Sensors& sensors, const RunSettings& s, const StationSeries& series,
+                   StationResult& r);
+
 // Throws InputError for impossible input, dem::SimulationError if the run blows up.
 StationResult run_station(const Station& st, const RunOptions& options);
 

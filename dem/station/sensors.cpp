@@ -31,15 +31,19 @@ Sensors::Sensors(const Scene& scene, double momentum_plane_fraction) : sc_(&scen
   y_s_ = pf.bottom_edge().y() - 0.05;
 }
 
-SnapshotStats Sensors::measure(const World& w, std::vector<FaceParticle>& face) const {
-  const Scene& sc = *sc_;
+ParticleView ParticleView::of(const World& w) {
   const Particles& p = w.particles();
+  return {w.time(), p.size(), p.x.data(), p.v.data(), p.mass.data(), p.id.data()};
+}
+
+SnapshotStats Sensors::measure(const ParticleView& p, std::vector<FaceParticle>& face) const {
+  const Scene& sc = *sc_;
   const PlateFrame& pf = sc.plate;
   const BeltFrame& bf = sc.belt;
   const double vb = sc.belt_speed;
   const double d = sc.diameter;
   SnapshotStats s;
-  s.t = w.time();
+  s.t = p.t;
   s.particles = p.size();
   const std::size_t nq = xq_.size();
   std::vector<std::vector<double>> bucket(nq);
@@ -100,8 +104,7 @@ SnapshotStats Sensors::measure(const World& w, std::vector<FaceParticle>& face) 
   return s;
 }
 
-void Sensors::count_crossings(const World& w, ForceSample& s) {
-  const Particles& p = w.particles();
+void Sensors::count_crossings(const ParticleView& p, ForceSample& s) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     const auto id = static_cast<std::size_t>(p.id[i]);
     if (id >= prev_x_.size()) {
@@ -127,9 +130,8 @@ void Sensors::count_crossings(const World& w, ForceSample& s) {
   }
 }
 
-std::vector<SidePoint> Sensors::side_view(const World& w, std::size_t max_points) const {
+std::vector<SidePoint> Sensors::side_view(const ParticleView& p, std::size_t max_points) const {
   const Scene& sc = *sc_;
-  const Particles& p = w.particles();
   std::vector<std::size_t> pick;
   for (std::size_t i = 0; i < p.size(); ++i)
     if (sc.belt.s(p.x[i]) > -0.25) pick.push_back(i);

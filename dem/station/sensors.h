@@ -64,6 +64,19 @@ struct FaceParticle {
   float v_into;   // velocity into the plate, m/s
 };
 
+// The particles the snapshot sensors read: a live World's, or a snapshot that another DEM code
+// wrote (dem/liggghts reads LIGGGHTS dumps), so both are measured by the same code.
+struct ParticleView {
+  double t = 0.0;  // s
+  std::size_t n = 0;
+  const Vec3* x = nullptr;             // m
+  const Vec3* v = nullptr;             // m/s
+  const double* mass = nullptr;        // kg
+  const std::int64_t* id = nullptr;    // persistent across snapshots, >= 0
+  std::size_t size() const { return n; }
+  static ParticleView of(const World& w);
+};
+
 // A particle of the side-view picture.
 struct SidePoint {
   float x, y, z, speed;
@@ -79,11 +92,18 @@ class Sensors {
   double momentum_plane_x() const { return x_c_; }
   double momentum_floor_y() const { return y_s_; }
 
-  SnapshotStats measure(const World& w, std::vector<FaceParticle>& face) const;
+  SnapshotStats measure(const ParticleView& p, std::vector<FaceParticle>& face) const;
+  SnapshotStats measure(const World& w, std::vector<FaceParticle>& face) const {
+    return measure(ParticleView::of(w), face);
+  }
   // Adds to `s` what crossed the planes since the previous call (particles matched by id).
-  void count_crossings(const World& w, ForceSample& s);
+  void count_crossings(const ParticleView& p, ForceSample& s);
+  void count_crossings(const World& w, ForceSample& s) { count_crossings(ParticleView::of(w), s); }
   // Up to max_points particles of the rig downstream of the feed (deterministic subsample).
-  std::vector<SidePoint> side_view(const World& w, std::size_t max_points) const;
+  std::vector<SidePoint> side_view(const ParticleView& p, std::size_t max_points) const;
+  std::vector<SidePoint> side_view(const World& w, std::size_t max_points) const {
+    return side_view(ParticleView::of(w), max_points);
+  }
 
  private:
   const Scene* sc_;

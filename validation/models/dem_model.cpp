@@ -281,78 +281,85 @@ class DemModel final : public Model {
  private:
   static ModelPrediction to_prediction(const st::StationResult& r, const DemEffectInputs& fx,
                                        const PredictRequest& request, bool from_cache, const std::string& cache_file) {
-    ModelPrediction p;
-    auto set = [&](Quantity q, const st::Estimate& e) {
-      if (!e.ok()) return;
-      p.values[q] = e.value;
-      if (std::isfinite(e.se)) p.uncertainty[q] = e.se;
-    };
-    set(Quantity::normal_force, r.normal_force);
-    set(Quantity::shear_force, r.shear_force);
-    set(Quantity::resultant_force, r.resultant_force);
-    set(Quantity::impact_velocity, r.impact_velocity);
-    set(Quantity::exit_velocity, r.exit_velocity);
-    set(Quantity::impact_point_y, r.impact_point_y);
-    set(Quantity::belt_layer_velocity, r.layer_speed);
-    set(Quantity::stream_mass_flow, r.mass_flux);
-    p.trajectory.reserve(request.trajectory.size());
-    for (const auto& q : request.trajectory) {
-      p.trajectory.push_back(trajectory_at(r.trajectory, q.boundary, q.x));
-      // The stream limit's standard error (snapshot to snapshot), u_num's statistical part.
-      const auto e = trajectory_estimate(r.trajectory, q.boundary, q.x);
-      p.trajectory_uncertainty.push_back(e && std::isfinite(e->se) ? std::optional<double>(e->se) : std::nullopt);
-    }
-    if (request.curves) {
-      for (Boundary b : {Boundary::upper, Boundary::centre, Boundary::lower}) {
-        Curve c{b == Boundary::upper ? "upper" : b == Boundary::lower ? "lower" : "centre (mean)", {}};
-        for (const auto& row : r.trajectory) {
-          const st::Estimate& e = b == Boundary::upper ? row.upper : b == Boundary::lower ? row.lower : row.centre;
-          if (e.ok()) c.points.emplace_back(row.x, e.value);
-        }
-        if (!c.points.empty()) p.curves.push_back(std::move(c));
-      }
-      // Side view of the steady stream (seed Fig. 9): particle centres coloured by speed.
-      Curve pts{"particles", {}, Curve::Kind::points, {}, "speed (m/s)"};
-      for (const auto& s : r.side_view) {
-        pts.points.emplace_back(s.x, s.y);
-        pts.value.push_back(s.speed);
-      }
-      if (!pts.points.empty()) p.curves.push_back(std::move(pts));
-    }
-    // Pressure and wear maps: for the report's pictures, and at the plate points a dataset measured.
-    for (const auto& m : r.maps) {
-      SurfaceMap sm;
-      sm.name = m.wall;
-      for (const auto& c : m.cells) {
-        sm.cells.push_back({Eigen::Vector2d(c.corners[0].z(), c.corners[0].y()),
-                            Eigen::Vector2d(c.corners[1].z(), c.corners[1].y()),
-                            Eigen::Vector2d(c.corners[2].z(), c.corners[2].y())});
-        sm.pressure.push_back(c.pressure());
-        sm.wear_rate.push_back(c.archard_rate(r.wear) + c.finnie_rate(r.wear));
-      }
-      sm.peak_pressure_y = st::peak_pressure_y(m);
-      sm.pressure_centre_y = st::pressure_centre_y(m);
-      p.maps.push_back(std::move(sm));
-    }
-    for (const auto& q : request.plate) {
-      const auto [v, u] = plate_value(r, q);
-      p.plate.push_back(v);
-      p.plate_uncertainty.push_back(u);
-    }
-    p.notes = r.notes;
-    if (r.impact_velocity_fast.ok())
-      p.notes.push_back(fmt::format("free-stream particles alone (v_x > V_b/2) arrive at {:.3f} m/s; the V_p slab lies "
-                                    "partly in the layer on the plate", r.impact_velocity_fast.value));
-    for (const auto& n : fx.notes) p.notes.push_back(n);
+    ModelPrediction p = dem_station_prediction(r, fx, request);
     p.notes.push_back(from_cache ? fmt::format("from the DEM cache ({})", cache_file)
                                  : fmt::format("DEM run of {:.0f} s wall time, cached as {}", r.wall_seconds, cache_file));
     return p;
   }
 
+ private:
   DemModelConfig c_;
 };
 
 }  // namespace
+
+ModelPrediction dem_station_prediction(const st::StationResult& r, const DemEffectInputs& fx,
+                                       const PredictRequest& request) {
+  ModelPrediction p;
+  auto set = [&](Quantity q, const st::Estimate& e) {
+    if (!e.ok()) return;
+    p.values[q] = e.value;
+    if (std::isfinite(e.se)) p.uncertainty[q] = e.se;
+  };
+  set(Quantity::normal_force, r.normal_force);
+  set(Quantity::shear_force, r.shear_force);
+  set(Quantity::resultant_force, r.resultant_force);
+  set(Quantity::impact_velocity, r.impact_velocity);
+  set(Quantity::exit_velocity, r.exit_velocity);
+  set(Quantity::impact_point_y, r.impact_point_y);
+  set(Quantity::belt_layer_velocity, r.layer_speed);
+  set(Quantity::stream_mass_flow, r.mass_flux);
+  p.trajectory.reserve(request.trajectory.size());
+  for (const auto& q : request.trajectory) {
+    p.trajectory.push_back(trajectory_at(r.trajectory, q.boundary, q.x));
+    // The stream limit's standard error (snapshot to snapshot), u_num's statistical part.
+    const auto e = trajectory_estimate(r.trajectory, q.boundary, q.x);
+    p.trajectory_uncertainty.push_back(e && std::isfinite(e->se) ? std::optional<double>(e->se) : std::nullopt);
+  }
+  if (request.curves) {
+    for (Boundary b : {Boundary::upper, Boundary::centre, Boundary::lower}) {
+      Curve c{b == Boundary::upper ? "upper" : b == Boundary::lower ? "lower" : "centre (mean)", {}};
+      for (const auto& row : r.trajectory) {
+        const st::Estimate& e = b == Boundary::upper ? row.upper : b == Boundary::lower ? row.lower : row.centre;
+        if (e.ok()) c.points.emplace_back(row.x, e.value);
+      }
+      if (!c.points.empty()) p.curves.push_back(std::move(c));
+    }
+    // Side view of the steady stream (seed Fig. 9): particle centres coloured by speed.
+    Curve pts{"particles", {}, Curve::Kind::points, {}, "speed (m/s)"};
+    for (const auto& s : r.side_view) {
+      pts.points.emplace_back(s.x, s.y);
+      pts.value.push_back(s.speed);
+    }
+    if (!pts.points.empty()) p.curves.push_back(std::move(pts));
+  }
+  // Pressure and wear maps: for the report's pictures, and at the plate points a dataset measured.
+  for (const auto& m : r.maps) {
+    SurfaceMap sm;
+    sm.name = m.wall;
+    for (const auto& c : m.cells) {
+      sm.cells.push_back({Eigen::Vector2d(c.corners[0].z(), c.corners[0].y()),
+                          Eigen::Vector2d(c.corners[1].z(), c.corners[1].y()),
+                          Eigen::Vector2d(c.corners[2].z(), c.corners[2].y())});
+      sm.pressure.push_back(c.pressure());
+      sm.wear_rate.push_back(c.archard_rate(r.wear) + c.finnie_rate(r.wear));
+    }
+    sm.peak_pressure_y = st::peak_pressure_y(m);
+    sm.pressure_centre_y = st::pressure_centre_y(m);
+    p.maps.push_back(std::move(sm));
+  }
+  for (const auto& q : request.plate) {
+    const auto [v, u] = plate_value(r, q);
+    p.plate.push_back(v);
+    p.plate_uncertainty.push_back(u);
+  }
+  p.notes = r.notes;
+  if (r.impact_velocity_fast.ok())
+    p.notes.push_back(fmt::format("free-stream particles alone (v_x > V_b/2) arrive at {:.3f} m/s; the V_p slab lies "
+                                  "partly in the layer on the plate", r.impact_velocity_fast.value));
+  for (const auto& n : fx.notes) p.notes.push_back(n);
+  return p;
+}
 
 void set_dem_model_config(const DemModelConfig& c) { config_storage() = c; }
 const DemModelConfig& dem_model_config() { return config_storage(); }

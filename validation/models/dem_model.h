@@ -19,6 +19,7 @@
 #include <string>
 
 #include "analytical/effect.h"
+#include "dem/station/run.h"
 #include "dem/station/scene.h"
 #include "dem/station/settings.h"
 #include "validation/model.h"
@@ -60,6 +61,11 @@ DemEffectInputs dem_effect_inputs(const Station& st, const analytical::EffectLis
 // settings, the contents of STL files and the effect inputs.
 std::string dem_cache_key(const DemEffectInputs& fx, const dem::station::RunSettings& settings,
                           const dem::station::DemTable& table);
+
+// A finished station run (either engine) as the harness's prediction: the steady means with their
+// standard errors, the stream limits at the requested points, curves and side view, and notes.
+ModelPrediction dem_station_prediction(const dem::station::StationResult& r, const DemEffectInputs& fx,
+                                       const PredictRequest& request);
 
 // Canonical text of a station (every field, full precision), for cache keys.
 std::string canonical_station(const Station& st);
