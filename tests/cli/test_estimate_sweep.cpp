@@ -45,7 +45,7 @@ BOOST_AUTO_TEST_CASE(each_sweep_row_is_the_single_estimate_at_that_value) {
   for (const auto& h : header)  // units in every numeric column's name (flags and the note aside)
     if (h != "note" && h != "stationary_flow" && h != "discharge_high_speed" && h != "stream_thickness_from_continuity" &&
         h != "poisson_ratio" && h.find("ratio_K") == std::string::npos)
-      BOOST_TEST((h.ends_with("_mm") || h.ends_with("_mps") || h.ends_with("_deg") || h.ends_with("_N") ||
+      BOOST_TEST((h.ends_with("_mm") || h.ends_with("_mps") || h.ends_with("_deg") || h.ends_with("_N") || h.ends_with("_Pa") || h.ends_with("_mm2") ||
                   h.ends_with("_s") || h.ends_with("_tph") || h.ends_with("_mm2")), "column without a unit: " << h);
   for (std::size_t row = 1; row < lines.size(); ++row) {
     const auto cells = split(lines[row], ',');

@@ -348,11 +348,11 @@ BOOST_AUTO_TEST_CASE(validate_carries_the_parts_into_u_val_and_errors_csv) {
   const std::string header = csv.substr(0, csv.find('\n'));
   BOOST_TEST(header ==
              "condition,model,quantity,measured,uncertainty,predicted,error,relative_error,normalised_error,"
-             "x_mm,validation_uncertainty,vv20_ratio,tolerance,u_num_stat,u_num_disc,u_input");
+             "x_mm,validation_uncertainty,vv20_ratio,tolerance,u_num_stat,u_num_disc,u_input,y_mm,z_mm");
   // Each row has as many cells as the header.
   std::istringstream lines(csv);
   std::string line;
-  while (std::getline(lines, line)) BOOST_TEST(std::count(line.begin(), line.end(), ',') == 15);
+  while (std::getline(lines, line)) BOOST_TEST(std::count(line.begin(), line.end(), ',') == 17);
   // Discretisation and statistical parts of a model's prediction reach the comparison.
   struct WithNum final : public Model {
     std::string name() const override { return "num"; }
