@@ -21,8 +21,7 @@ namespace {
 // paper run is too dear to repeat for a picture (--no-dem-cache does).
 constexpr const char* kMagic = "chutelab-dem-result 5";
 constexpr const char* kMagicV2 = "chutelab-dem-result 2";
-constexpr const char* kEnd = "end
-";
+constexpr const char* kEnd = "end\n";
 
 std::string num(double v) { return fmt::format("{:.17g}", v); }
 

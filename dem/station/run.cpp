@@ -154,6 +154,8 @@ StationResult run_station(const Station& st, const RunOptions& o) {
                                               std::move(face), sample_dt},
                 r);
   const double a = r.window.start, b = r.window.end, blk = s.mean_block;
+  // --- maps over the steady window ---
+  for (const auto& m : maps) r.maps.push_back(m->reduce(a, b, blk));
 
   // --- mass accounting ---
   r.inserted = w.inserters()[static_cast<std::size_t>(sc.inserter)].inserted_mass;
@@ -235,7 +237,6 @@ void reduce_series(const Scene& sc, const Sensors& sensors, const RunSettings& s
 
   // --- maps over the steady window ---
   r.wear = s.wear;
-  for (const auto& m : maps) r.maps.push_back(m->reduce(a, b, blk));
 
   // --- snapshot sensors ---
   std::vector<double> tn, vp, vpw, vpf, vpfw, ls, lh, lsw, th;
