@@ -6,6 +6,7 @@
 
 #include "analytical/transfer_station.h"
 #include "app/commands.h"
+#include "app/estimate.h"
 #include "app/output.h"
 #include "app/sweep.h"
 #include "core/input_error.h"
@@ -20,71 +21,10 @@
 namespace chutelab::app {
 namespace {
 
-struct EstimateOptions {
-  std::string dataset, setup_file, condition, format = "table", svg, sweep;
-  std::optional<double> belt_speed, mass_flow, plate_distance, plate_top, stream_thickness;
-  std::vector<std::string> effects;
+// The estimate's inputs (app/estimate.h) and what only the command line adds.
+struct EstimateOptions : EstimateInput {
+  std::string format = "table", svg, sweep;
 };
-
-Station resolve_station(const EstimateOptions& o) {
-  namespace fs = std::filesystem;
-  if (!o.dataset.empty() && !o.setup_file.empty())
-    throw InputError("", 0, "--setup", "give either --dataset or --setup, not both");
-  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
-  const fs::path setup_path = o.setup_file.empty() ? dir / "setup.toml" : fs::path(o.setup_file);
-  const Setup setup = validation::read_setup(setup_path);
-
-  std::optional<Station> base;
-  if (!o.condition.empty()) {
-    if (!o.setup_file.empty())
-      throw InputError("", 0, "--condition", "--condition picks a row of a dataset's conditions.csv; use --dataset");
-    for (const auto& s : validation::read_conditions(dir / "conditions.csv", setup))
-      if (s.condition == o.condition) base = s;
-    if (!base)
-      throw InputError((dir / "conditions.csv").string(), 0, "--condition",
-                       fmt::format("no condition named '{}'", o.condition));
-  }
-  auto need = [&](const std::optional<double>& flag, const char* name, double from_base) {
-    if (flag) return *flag;
-    if (base) return from_base;
-    throw InputError("", 0, name, "is required (or pick a dataset row with --condition)");
-  };
-  auto positive = [](double v, const char* name) {
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw InputError("", 0, name, fmt::format("must be a positive number, got {}", v));
-    return v;
-  };
-  // A row's stream_thickness was measured at the row's flow and speed; with another operating
-  // point it no longer describes the layer, so h_b comes from continuity unless given.
-  const bool operating_point_changed = o.mass_flow || o.belt_speed;
-  Station st = validation::make_station(
-      setup, base ? base->condition : "cli",
-      positive(need(o.belt_speed, "--belt-speed", base ? base->belt_speed : 0), "--belt-speed"),
-      positive(need(o.mass_flow, "--mass-flow", base ? base->mass_flow / units::tph : 0),
-               "--mass-flow") * units::tph,
-      positive(need(o.plate_distance, "--plate-distance", base ? base->plate_distance / units::mm : 0),
-               "--plate-distance") * units::mm,
-      (o.plate_top ? *o.plate_top : base ? base->plate_top / units::mm : 250.0) * units::mm,
-      o.stream_thickness
-          ? std::optional<double>(positive(*o.stream_thickness, "--stream-thickness") * units::mm)
-          : (base && !operating_point_changed ? base->stream_thickness : std::nullopt));
-  if (base) {  // per-condition overrides of the dataset row carry over
-    st.belt = base->belt;
-    st.plate = base->plate;
-    st.material = base->material;
-  }
-  return st;
-}
-
-EstimatePoint estimate_point(const Station& st, const analytical::EffectList& fx) {
-  EstimatePoint p{analytical::analyse_transfer(st, fx), {}};
-  std::vector<validation::ConditionResult> predicted;
-  for (const auto& m : validation::analytical_models())
-    predicted.push_back({st.condition, m->name(), m->predict(st, fx, {{}, false})});
-  validation::apply_measurement_effects(fx, predicted);
-  for (const auto& r : predicted) p.models.emplace_back(r.model, r.prediction.values);
-  return p;
-}
 
 // --svg FILE: never over a file this run reads, and never half-written.
 void write_svg(const EstimateOptions& o, const std::string& svg) {
@@ -92,7 +32,7 @@ void write_svg(const EstimateOptions& o, const std::string& svg) {
   const fs::path out = fs::absolute(o.svg);
   std::vector<fs::path> read = {o.setup_file.empty() ? fs::path() : fs::path(o.setup_file)};
   if (o.setup_file.empty()) {
-    const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
+    const fs::path dir = o.dataset.empty() ? o.default_dataset : fs::path(o.dataset);
     read = {dir / "setup.toml", dir / "conditions.csv"};
   }
   std::error_code ec;
@@ -165,7 +105,8 @@ int run_sweep(const EstimateOptions& o, const analytical::EffectList& fixed,
   return kExitOk;
 }
 
-int run_estimate(const EstimateOptions& o) {
+int run_estimate(EstimateOptions o) {
+  o.default_dataset = default_dataset();
   std::vector<effects::EffectSetting> settings;
   for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false));
   const auto fx = effects::instantiate(settings);

@@ -7,10 +7,9 @@
 #include "core/units.h"
 #include "validation/dataset.h"
 #include "validation/harness.h"
-#include "validation/model.h"
+#include "validation/models/models.h"
 
 namespace chutelab::app {
-namespace {
 
 Station resolve_station(const EstimateInput& o) {
   namespace fs = std::filesystem;
@@ -62,21 +61,22 @@ Station resolve_station(const EstimateInput& o) {
   return st;
 }
 
-}  // namespace
+EstimatePoint estimate_point(const Station& st, const analytical::EffectList& fx) {
+  EstimatePoint p{analytical::analyse_transfer(st, fx), {}};
+  std::vector<validation::ConditionResult> predicted;
+  for (const auto& m : validation::analytical_models())
+    predicted.push_back({st.condition, m->name(), m->predict(st, fx, {{}, false})});
+  validation::apply_measurement_effects(fx, predicted);
+  for (const auto& r : predicted) p.models.emplace_back(r.model, r.prediction.values);
+  return p;
+}
 
 Estimate estimate(const EstimateInput& o) {
   const Station st = resolve_station(o);
   std::vector<effects::EffectSetting> settings;
   for (const auto& s : o.effects) settings.push_back(effects::parse_setting(s, false));
-  const auto fx = effects::instantiate(settings);
-  auto analysis = analytical::analyse_transfer(st, fx);
-  std::vector<validation::ConditionResult> predicted;
-  for (const auto& m : validation::make_models(validation::model_names()))
-    if (!m->expensive()) predicted.push_back({st.condition, m->name(), m->predict(st, fx, {{}, false})});
-  validation::apply_measurement_effects(fx, predicted);
-  ModelValues models;
-  for (const auto& p : predicted) models.emplace_back(p.model, p.prediction.values);
-  return {std::move(analysis), std::move(models), std::move(settings)};
+  EstimatePoint p = estimate_point(st, effects::instantiate(settings));
+  return {std::move(p.analysis), std::move(p.models), std::move(settings)};
 }
 
 }  // namespace chutelab::app

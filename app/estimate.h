@@ -20,6 +20,19 @@ struct EstimateInput {
   std::vector<std::string> effects;       // "NAME=VALUE"
 };
 
+// What one point of an estimate gives: the analysis and each analytical model's reading.
+struct EstimatePoint {
+  analytical::TransferAnalysis analysis;
+  ModelValues models;
+};
+
+// The station the inputs describe: a dataset row (--condition) with the flags on top, or the flags
+// on a setup. Throws InputError naming the flag.
+Station resolve_station(const EstimateInput& input);
+
+// The analytical chain and every analytical model at one station, measurement effects applied.
+EstimatePoint estimate_point(const Station& station, const analytical::EffectList& effects);
+
 struct Estimate {
   analytical::TransferAnalysis analysis;
   ModelValues models;                      // the analytical models' values, effects applied

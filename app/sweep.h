@@ -5,17 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "app/estimate.h"
 #include "app/output.h"
 #include "core/rig.h"
 #include "effects/registry.h"
 
 namespace chutelab::app {
-
-// What one point of an estimate gives: the analysis and each analytical model's reading.
-struct EstimatePoint {
-  analytical::TransferAnalysis analysis;
-  ModelValues models;
-};
 
 struct SweepSpec {
   enum class Kind { condition, rig, effect };
