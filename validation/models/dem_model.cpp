@@ -162,7 +162,7 @@ class DemModel final : public Model {
       st::write_side_view_vtk((dir / "side_view.vtk").string(), r.side_view);
     }
     ModelPrediction p = to_prediction(r, fx, request, from_cache, cache_file);
-    if (request.discretisation && c_.ladder) add_ladder(p, station, fx, settings, table, r, request);
+    if (request.discretisation && c_.ladder) add_ladder(p, station, fx, settings, table, request);
     return p;
   }
 
@@ -251,7 +251,7 @@ class DemModel final : public Model {
   // uncertainty of the run's own value. The modulus and the time step are held at the quality's
   // values; their part is not in this estimate (the report says so).
   void add_ladder(ModelPrediction& p, const Station& station, const DemEffectInputs& fx,
-                  const st::RunSettings& settings, const st::DemTable& table, const st::StationResult& fine,
+                  const st::RunSettings& settings, const st::DemTable& table,
                   const PredictRequest& request) const {
     const double d1 = settings.particle_diameter > 0 ? settings.particle_diameter : station.material.particle_diameter;
     std::vector<st::StationResult> levels;
