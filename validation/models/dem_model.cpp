@@ -39,8 +39,9 @@ std::string file_key(const std::string& path) {
   return fmt::format("{} {:016x}", path, st::fnv1a64(ss.str()));
 }
 
-// Linear interpolation in the DEM's trajectory grid (10 mm apart); none outside it.
-std::optional<double> trajectory_at(const std::vector<st::TrajectoryRow>& rows, Boundary b, double x) {
+// The DEM's stream limit at x (value and standard error), linear between the grid's rows (10 mm
+// apart); none outside the grid or across a gap in it.
+std::optional<st::Estimate> trajectory_estimate(const std::vector<st::TrajectoryRow>& rows, Boundary b, double x) {
   auto pick = [&](const st::TrajectoryRow& r) -> const st::Estimate& {
     return b == Boundary::upper ? r.upper : b == Boundary::lower ? r.lower : r.centre;
   };
@@ -51,28 +52,17 @@ std::optional<double> trajectory_at(const std::vector<st::TrajectoryRow>& rows, 
     const auto &ya = pick(a), &yc = pick(c);
     if (!ya.ok() || !yc.ok()) return std::nullopt;
     const double f = (x - a.x) / (c.x - a.x);
-    return ya.value + f * (yc.value - ya.value);
-  }
-  if (rows.size() == 1 && std::abs(rows[0].x - x) < 1e-9 && pick(rows[0]).ok()) return pick(rows[0]).value;
-  return std::nullopt;
-}
-
-// The DEM's trajectory estimate (value and standard error) at x, interpolated like trajectory_at.
-std::optional<st::Estimate> trajectory_estimate(const std::vector<st::TrajectoryRow>& rows, Boundary b, double x) {
-  auto pick = [&](const st::TrajectoryRow& r) -> const st::Estimate& {
-    return b == Boundary::upper ? r.upper : b == Boundary::lower ? r.lower : r.centre;
-  };
-  for (std::size_t k = 0; k + 1 < rows.size(); ++k) {
-    const auto &a = rows[k], &c = rows[k + 1];
-    if (x < a.x - 1e-9 || x > c.x + 1e-9 || c.x - a.x > 0.0105) continue;
-    const auto &ya = pick(a), &yc = pick(c);
-    if (!ya.ok() || !yc.ok()) return std::nullopt;
-    const double f = (x - a.x) / (c.x - a.x);
     st::Estimate e;
     e.value = ya.value + f * (yc.value - ya.value);
     e.se = std::hypot((1 - f) * ya.se, f * yc.se);
     return e;
   }
+  if (rows.size() == 1 && std::abs(rows[0].x - x) < 1e-9 && pick(rows[0]).ok()) return pick(rows[0]);
+  return std::nullopt;
+}
+
+std::optional<double> trajectory_at(const std::vector<st::TrajectoryRow>& rows, Boundary b, double x) {
+  if (const auto e = trajectory_estimate(rows, b, x)) return e->value;
   return std::nullopt;
 }
 
