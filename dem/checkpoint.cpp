@@ -14,7 +14,7 @@ namespace chutelab::dem {
 namespace {
 
 constexpr char kMagic[8] = {'C', 'H', 'L', 'D', 'E', 'M', 'C', 'K'};
-constexpr std::uint32_t kVersion = 3;  // 2: block force layout; 3: clumps
+constexpr std::uint32_t kVersion = 4;  // 2: block force layout; 3: clumps; 4: held particles
 
 struct Writer {
   std::ofstream out;
@@ -91,7 +91,7 @@ void World::save_checkpoint(const std::string& path) const {
   }
   for (const auto& s : sinks_) { w.pod(s.removed_mass); w.pod(s.removed_count); }
   // Clumps: member links and body state (shapes belong to the scene and are checked by count).
-  w.vec(p_.clump); w.vec(p_.body_offset); w.vec(p_.contact_mass);
+  w.vec(p_.clump); w.vec(p_.body_offset); w.vec(p_.contact_mass); w.vec(p_.held_by);
   w.pod(static_cast<std::uint64_t>(clumps_.shapes.size()));
   w.pod(next_clump_id_);
   const ClumpBodies& b = clumps_;
@@ -173,6 +173,11 @@ void World::load_checkpoint(const std::string& path) {
   for (auto& s : sinks_) { r.pod(s.removed_mass, "sink"); r.pod(s.removed_count, "sink"); }
   r.vec(p_.clump, "clump links"); r.vec(p_.body_offset, "clump links"); r.vec(p_.contact_mass, "clump links");
   if (p_.clump.size() != n || p_.body_offset.size() != n || p_.contact_mass.size() != n) throw InputError(path, 0, "clumps", "clump link arrays have the wrong length");
+  r.vec(p_.held_by, "held particles");
+  if (p_.held_by.size() != n) throw InputError(path, 0, "held particles", "array has the wrong length");
+  for (auto h : p_.held_by)
+    if (h >= static_cast<std::int32_t>(inserters_.size())) throw InputError(path, 0, "held particles", "inserter index out of range");
+  count_held();
   std::uint64_t nshapes;
   r.pod(nshapes, "clump shapes");
   if (nshapes != clumps_.shapes.size()) mismatch("clump shapes", nshapes, clumps_.shapes.size());

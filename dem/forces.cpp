@@ -563,6 +563,18 @@ void World::compute_forces_impl() {
 }
 
 void World::compute_forces() {
+  compute_forces_by_model();
+  // A held particle (Inserter::hold_to_face) feels nothing: with no force the kicks leave its
+  // velocity as set, so the drift moves it rigidly. Its partners still feel it.
+  if (held_count_ > 0)
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      if (p_.held_by[i] >= 0) {
+        p_.f[i] = Vec3::Zero();
+        p_.t[i] = Vec3::Zero();
+      }
+}
+
+void World::compute_forces_by_model() {
   using HM = HertzMindlin;
   using LSD = LinearSpringDashpot;
   using CH = CoulombHistorySpring;

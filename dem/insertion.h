@@ -23,6 +23,13 @@ struct Inserter {
   // >= 0: insert clumps of this shape (World::add_clump_shape) in random orientations instead of spheres,
   // scaled so that their largest sphere has the drawn radius.
   int clump_shape = -1;
+  // A stream inserter (what LIGGGHTS' fix insert/stream does with a face and an extrusion): a
+  // placed sphere is held, moved rigidly at the velocity's component along hold_axis with no force
+  // acting on it (though it pushes what it touches), until its centre crosses the region's face on
+  // that axis that the velocity points through; there it is released with the full velocity. So
+  // every particle starts free on that face. Spheres only; velocity[hold_axis] must not be zero.
+  bool hold_to_face = false;
+  int hold_axis = 1;
 
   // --- state, maintained by World ---
   std::uint64_t rng_state = 0;

@@ -27,6 +27,8 @@ struct Particles {
   std::vector<std::int32_t> clump;
   std::vector<Vec3> body_offset;
   std::vector<double> contact_mass;  // kg the contact laws use: the sphere's mass, or its clump's
+  // >= 0: held by that inserter (Inserter::hold_to_face): moved at its velocity v, never kicked.
+  std::vector<std::int32_t> held_by;
 
   std::size_t size() const { return x.size(); }
 
@@ -46,6 +48,7 @@ struct Particles {
     clump.push_back(-1);
     body_offset.push_back(Vec3::Zero());
     contact_mass.push_back(m);
+    held_by.push_back(-1);
   }
 
   // Reorders every array: out[k] = in[order[k]] (order may also drop entries). threads > 1 gathers
@@ -65,6 +68,7 @@ struct Particles {
     gather(clump, order, threads);
     gather(body_offset, order, threads);
     gather(contact_mass, order, threads);
+    gather(held_by, order, threads);
   }
 
  private:

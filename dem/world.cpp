@@ -111,6 +111,12 @@ int World::add_inserter(Inserter in) {
     in.clump_shape = add_clump_shape(base.scaled(in.radius_max / base.largest_sphere_radius()));
     reach = clumps_.shapes[static_cast<std::size_t>(in.clump_shape)].bounding_radius;
   }
+  if (in.hold_to_face) {
+    if (in.clump_shape >= 0) throw InputError("", 0, field, "a stream inserter (hold_to_face) inserts spheres only");
+    if (in.hold_axis < 0 || in.hold_axis > 2) throw InputError("", 0, field, "hold_axis must be 0, 1 or 2");
+    if (!(std::abs(in.velocity[in.hold_axis]) > 0.0))
+      throw InputError("", 0, field, "a stream inserter (hold_to_face) needs a velocity through its face");
+  }
   const Vec3 size = in.region.hi - in.region.lo;
   if (size.minCoeff() < 2.0 * reach)
     throw InputError("", 0, field, "insertion region is narrower than one particle diameter");
@@ -142,6 +148,7 @@ void World::remove_particles_if(const std::function<bool(std::size_t)>& pred) {
     }
   if (keep.size() == n) return;
   p_.permute(keep);
+  if (held_count_ > 0) count_held();
   for (auto& m : index_map_)
     if (m >= 0) m = remap[static_cast<std::size_t>(m)];
   list_dirty_ = true;
@@ -385,6 +392,11 @@ void World::report_bad(std::size_t i) const {
                                             vec_str(p_.x[i]), vec_str(settings_.domain.lo), vec_str(settings_.domain.hi)) + hint);
 }
 
+void World::count_held() {
+  held_count_ = 0;
+  for (auto h : p_.held_by) held_count_ += h >= 0 ? 1 : 0;
+}
+
 void World::insert_and_delete() {
   // Sinks first, so that their mass counts and indices are settled before new particles arrive.
   if (!sinks_.empty()) {
@@ -416,7 +428,21 @@ void World::insert_and_delete() {
       remove_particles_if([&](std::size_t i) { return sink_of[i] >= 0; });
     }
   }
-  for (auto& in : inserters_) {
+  // Held particles whose centre has crossed their inserter's face go free with its full velocity.
+  if (held_count_ > 0)
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+      const std::int32_t k = p_.held_by[i];
+      if (k < 0) continue;
+      const Inserter& in = inserters_[static_cast<std::size_t>(k)];
+      const int a = in.hold_axis;
+      const bool through = in.velocity[a] < 0.0 ? p_.x[i][a] <= in.region.lo[a] : p_.x[i][a] >= in.region.hi[a];
+      if (!through) continue;
+      p_.v[i] = in.velocity;
+      p_.held_by[i] = -1;
+      --held_count_;
+    }
+  for (std::size_t k = 0; k < inserters_.size(); ++k) {
+    Inserter& in = inserters_[k];
     if (time_ < in.start_time || time_ - dt_ >= in.end_time) continue;
     in.pending_mass += in.mass_rate * dt_;
     if (time_ + 0.5 * dt_ < in.next_time) continue;
@@ -451,9 +477,17 @@ void World::insert_and_delete() {
         ParticleSpec spec;
         spec.position = pos;
         spec.velocity = in.velocity;
+        if (in.hold_to_face) {
+          spec.velocity = Vec3::Zero();
+          spec.velocity[in.hold_axis] = in.velocity[in.hold_axis];
+        }
         spec.radius = r;
         spec.material = in.material;
         add_particle(spec);
+        if (in.hold_to_face) {
+          p_.held_by.back() = static_cast<std::int32_t>(k);
+          ++held_count_;
+        }
         near.push_back(p_.size() - 1);
         const double m = rho * 4.0 / 3.0 * std::numbers::pi * r * r * r;
         in.pending_mass -= m;

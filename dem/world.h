@@ -185,6 +185,8 @@ class World {
   template <class Model>
   void compute_forces_impl();
   void compute_forces();
+  void compute_forces_by_model();
+  void count_held();  // held_count_ from p_.held_by
   void rebuild();
   bool needs_rebuild() const;
   void insert_and_delete();
@@ -224,6 +226,7 @@ class World {
   double max_speed_ = 0.0;
   double max_disp_ = 0.0;                // largest particle displacement since the rebuild
   std::int64_t step_ = 0;
+  std::size_t held_count_ = 0;           // particles held by a stream inserter (Inserter::hold_to_face)
   std::int64_t next_id_ = 0;
   std::int64_t rebuilds_ = 0;
   bool initialised_ = false;

@@ -105,9 +105,13 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   const double wing_rise = trough ? std::max(0.0, 0.5 * W - c_half) * std::tan(lam) : 0.0;
   const double ins_low = std::max(s.insert_low, 2.5 * d) + wing_rise;
   const double ins_depth = std::max(s.insert_depth, 3.5 * d);
-  // Free fall of a particle inserted at the top of the box onto the bare belt: where the last
-  // inserted particles land, the relaxation must still act (feeder_relaxation.h).
-  const double fall_h = ins_low + ins_depth, v0 = s.insert_speed_down;
+  if (s.insert_at_face && !(s.insert_speed_down > 0.0))
+    throw InputError("", 0, "dem.feed.insert_speed_down_mps", "insertion = \"face\" needs a downward insertion speed (> 0)");
+  if (s.insert_at_face && s.particle_shape == ParticleShape::clump)
+    throw InputError("", 0, "dem.feed.insertion", "insertion = \"face\" feeds spheres only; use \"box\" for clumps");
+  // Free fall of a particle inserted at the top of the box (or released at its face) onto the bare
+  // belt: where the last inserted particles land, the relaxation must still act (feeder_relaxation.h).
+  const double fall_h = s.insert_at_face ? ins_low : ins_low + ins_depth, v0 = s.insert_speed_down;
   const double t_land = (-v0 + std::sqrt(v0 * v0 + 2.0 * g * fall_h)) / g;
   if (std::isfinite(s.face_end)) {
     // The dataset's feeder places the face itself; the relaxation follows from it.
@@ -360,6 +364,10 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     }
     in.velocity = vb * sc.belt.along + Vec3(0.0, -s.insert_speed_down, 0.0);
     in.interval = s.insert_interval;
+    in.hold_to_face = s.insert_at_face;
+    // A held batch crosses the face in (box height - d) / v_down: the next one follows it then, so
+    // the face releases a steady stream (as LIGGGHTS' insert/stream refills its extrusion).
+    if (s.insert_at_face) in.interval = std::max(ins_depth - 2.0 * r, r) / s.insert_speed_down;
     in.seed = s.seed * 0x9e3779b97f4a7c15ULL + 1;
     in.max_attempts = 400;
     sc.inserter = w.add_inserter(in);

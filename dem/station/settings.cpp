@@ -174,12 +174,13 @@ void read_feed_table(const toml::node& node, const std::string& file, const std:
     } else if (kv == "relax_past_mm") f.relax_past = finite_number(n, file, fk) * 1e-3;
     else if (kv == "relax_components") f.relax_all = choice("all", "along");
     else if (kv == "relax_end") f.relax_from_face = choice("face", "landing");
+    else if (kv == "insertion") f.insert_at_face = choice("face", "box");
     else if (kv == "belt_start_mm") f.belt_start_x = finite_number(n, file, fk) * 1e-3;
     else
       throw InputError(file, line_of(n), fk,
                        "unknown key (known: face_length_mm, face_width_mm, face_low_mm, face_high_mm, face_end_mm, "
-                       "face_end_time_s, insert_speed_down_mps, relax_rate_per_s, relax_components, relax_end, "
-                       "relax_past_mm, belt_start_mm)");
+                       "face_end_time_s, insert_speed_down_mps, insertion, relax_rate_per_s, relax_components, "
+                       "relax_end, relax_past_mm, belt_start_mm)");
   }
   if (f.face_low && f.face_high && !(*f.face_high > *f.face_low))
     throw InputError(file, line_of(node), key + ".face_high_mm", "must be above face_low_mm");
@@ -312,6 +313,7 @@ void apply(const DemTable& t, RunSettings& s) {
   if (f.relax_past) s.relax_past = *f.relax_past;
   if (f.relax_all) s.relax_all = *f.relax_all;
   if (f.relax_from_face) s.relax_from_face = *f.relax_from_face;
+  if (f.insert_at_face) s.insert_at_face = *f.insert_at_face;
   if (f.belt_start_x) s.belt_start_x = *f.belt_start_x;
   if (t.plate_cells) s.plate_cells = *t.plate_cells;
   for (const auto& [k, v] : t.wear) set_wear(s.wear, k, v, t.file, 0, "dem.wear." + k);
@@ -400,6 +402,7 @@ std::string canonical(const RunSettings& s) {
   if (s.rolling_lever_effective) o += "rolling_lever = effective\n";
   if (s.relax_all) o += "relax_all = true\n";
   if (s.relax_from_face) o += "relax_from_face = true\n";
+  if (s.insert_at_face) o += "insert_at_face = true\n";
   if (std::isfinite(s.face_end)) {
     put("face_end", s.face_end);
     put("face_end_time", s.face_end_time);

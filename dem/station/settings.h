@@ -95,6 +95,12 @@ struct RunSettings {
   // relax_from_face: the relaxation ends relax_past after the insertion face's downstream end, not
   // after the landing of the last inserted particles.
   bool relax_from_face = false;
+  // insert_at_face: particles enter through the insertion box's lower face, the way a stream
+  // inserter through a face does (LIGGGHTS' fix insert/stream): placed in the box, they move
+  // rigidly straight down at insert_speed_down, pushing what they touch but pushed by nothing, and
+  // are released with the full insertion velocity where their centre crosses the face. Unset: they
+  // are free from where they are placed in the box.
+  bool insert_at_face = false;
   // Where the insertion face ends, upstream of the pulley's tangent point: face_end + V_b *
   // face_end_time (m; the LIGGGHTS rig: 0.15 m + 0.075 s V_b). Set: free_belt is not used.
   double face_end = std::numeric_limits<double>::quiet_NaN();
@@ -167,10 +173,10 @@ struct DemTable {
   struct Feed {
     std::optional<double> face_length, face_width, face_low, face_high, face_end, face_end_time;
     std::optional<double> insert_speed_down, relax_rate, relax_past, belt_start_x;
-    std::optional<bool> relax_all, relax_from_face;
+    std::optional<bool> relax_all, relax_from_face, insert_at_face;
     bool any() const {
       return face_length || face_width || face_low || face_high || face_end || face_end_time || insert_speed_down ||
-             relax_rate || relax_past || belt_start_x || relax_all || relax_from_face;
+             relax_rate || relax_past || belt_start_x || relax_all || relax_from_face || insert_at_face;
     }
   } feed;
   std::optional<int> plate_cells;

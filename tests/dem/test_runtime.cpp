@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include "core/input_error.h"
@@ -161,6 +162,98 @@ BOOST_AUTO_TEST_CASE(insertion_at_mass_flow_and_sink_deletion) {
   BOOST_TEST(std::abs(present + w.sinks()[0].removed_mass - I.inserted_mass) < 1e-12);
   BOOST_TEST(w.sinks()[0].removed_count > 100);  // the 0.3 m drop takes 0.25 s: most have left
   for (const auto& x : w.particles().x) BOOST_TEST(x.z() >= 0.0);
+}
+
+// Stream insertion through a face (Inserter::hold_to_face, LIGGGHTS' insert/stream): sparse spheres
+// are moved rigidly at the velocity's normal part, (0, 0, -1) m/s, exactly and without spin while
+// their centre is above the face z = 0.3 m, and are released there with the full velocity (2, 0,
+// -1) m/s. Below the face each is a free projectile: v_x stays 2 m/s and v_z^2 = 1 + 2 g (0.3 - z)
+// within what one step's release position and the Verlet error allow.
+BOOST_AUTO_TEST_CASE(stream_insertion_holds_then_releases_at_the_face) {
+  Settings s = quiet_settings(2e-5, 2.0);
+  s.gravity = Vec3(0, 0, -9.81);
+  World w(s);
+  const int pe = w.materials().add({"pellet", 2.5e7, 0.38, 1000});
+  Inserter ins;
+  ins.region = Box{Vec3(0, 0, 0.3), Vec3(0.5, 0.5, 0.4)};
+  ins.mass_rate = 0.05;  // ~130 spheres/s in 0.25 m^2: they never touch
+  ins.radius_min = ins.radius_max = 4e-3;
+  ins.material = pe;
+  ins.velocity = Vec3(2, 0, -1);
+  ins.hold_to_face = true;
+  ins.hold_axis = 2;
+  ins.interval = 0.092;  // (box height - d) / 1 m/s
+  w.add_inserter(ins);
+  w.initialise();
+  const double g = 9.81;
+  int held = 0, free = 0;
+  for (int k = 0; k < 20; ++k) {
+    w.step(1000);
+    const Particles& p = w.particles();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.x[i].z() > 0.3) {
+        ++held;
+        BOOST_TEST((p.v[i] == Vec3(0, 0, -1)));
+        BOOST_TEST(p.w[i].isZero(0.0));
+      } else {
+        ++free;
+        BOOST_TEST(std::abs(p.v[i].x() - 2.0) < 1e-12);
+        BOOST_TEST(p.v[i].y() == 0.0);
+        const double expect = 1.0 + 2.0 * g * (0.3 - p.x[i].z());
+        BOOST_TEST(std::abs(p.v[i].z() * p.v[i].z() - expect) < 2.0 * g * 1.0 * 2e-5 + 1e-9);
+      }
+    }
+  }
+  BOOST_TEST(held > 100);
+  BOOST_TEST(free > 100);
+  // A velocity along the face is refused: nothing would ever cross it.
+  Inserter bad = ins;
+  bad.velocity = Vec3(2, 0, 0);
+  BOOST_CHECK_THROW(w.add_inserter(bad), chutelab::InputError);
+}
+
+// A held sphere pushes what it meets but is not pushed: moving down at 1 m/s onto a free sphere at
+// rest (no gravity), it keeps (0, 0, -1) m/s exactly through the contact, while the free sphere is
+// driven ahead of it, faster than the held one (a collision with a body that does not give way).
+BOOST_AUTO_TEST_CASE(held_sphere_pushes_and_is_not_pushed) {
+  Settings s = quiet_settings(2e-5, 2.0);
+  s.gravity = Vec3::Zero();
+  World w(s);
+  const int pe = w.materials().add({"pellet", 2.5e7, 0.38, 1000});
+  Interaction it;
+  it.restitution = 0.7;
+  w.materials().set_interaction(pe, pe, it);
+  const double r = 4e-3;
+  w.add_particle({Vec3(0.05, 0.05, 0.31), Vec3::Zero(), Vec3::Zero(), r, pe});
+  Inserter ins;
+  ins.region = Box{Vec3(0.05 - 1.02 * r, 0.05 - 1.02 * r, 0.3), Vec3(0.05 + 1.02 * r, 0.05 + 1.02 * r, 0.4)};
+  const double m = 1000.0 * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  ins.mass_rate = m / 0.01;
+  ins.end_time = 0.01 - 1e-9;  // owes one sphere's mass in all
+  ins.interval = 1.0;
+  ins.radius_min = ins.radius_max = r;
+  ins.material = pe;
+  ins.velocity = Vec3(0, 0, -1);
+  ins.hold_to_face = true;
+  ins.hold_axis = 2;
+  w.add_inserter(ins);
+  w.initialise();
+  bool touched = false;
+  for (int k = 0; k < 5000 && w.particles().size() < 2; ++k) w.step(1);
+  BOOST_TEST_REQUIRE(w.particles().size() == 2u);
+  for (int k = 0; k < 5000; ++k) {
+    w.step(1);
+    const Particles& p = w.particles();
+    const std::size_t h = p.id[0] == 1 ? 0 : 1;  // the inserted sphere has id 1
+    if (p.x[h].z() <= 0.3) break;                 // released
+    BOOST_TEST_REQUIRE((p.v[h] == Vec3(0, 0, -1)));
+    if ((p.x[0] - p.x[1]).norm() < 2.0 * r) touched = true;
+  }
+  BOOST_TEST(touched);
+  const Particles& p = w.particles();
+  const std::size_t f = p.id[0] == 0 ? 0 : 1;
+  BOOST_TEST_MESSAGE("free sphere after the push: v_z = " << p.v[f].z() << " m/s");
+  BOOST_TEST(p.v[f].z() < -1.2);
 }
 
 // Body-force hook: a drag force -c v added per particle (what the air-drag effect will do) gives the

@@ -158,6 +158,35 @@ BOOST_AUTO_TEST_CASE(dem_table_and_presets) {
   BOOST_CHECK_THROW(resolve(DemTable{}, bad), InputError);
 }
 
+// [dem.feed] insertion = "face": the stream inserter (Inserter::hold_to_face) with a batch every
+// (box height - d) / v_down, so that each held batch has crossed the face when the next arrives;
+// "box" and no key keep the free insertion and the recipe's cache key; a clump feed refuses it.
+BOOST_AUTO_TEST_CASE(dem_feed_insertion_through_the_face) {
+  const fs::path d = temp_dir("feed-face");
+  std::ofstream(d / "setup.toml") << "[dem.feed]\nface_low_mm = 62.0\nface_high_mm = 94.0\ninsertion = \"face\"\n";
+  const DemTable t = read_dem_table((d / "setup.toml").string());
+  RunSettings s = resolve(t, {}, Quality::standard);
+  BOOST_TEST(s.insert_at_face);
+  BOOST_TEST(canonical(s).find("insert_at_face = true") != std::string::npos);
+  BOOST_TEST(canonical(preset(Quality::standard)).find("insert_at_face") == std::string::npos);
+  Station st = test::tiny_station();
+  s.particle_diameter = 0.0136;
+  s.threads = 1;
+  const Scene sc = build_scene(st, s, t, {});
+  const dem::Inserter& in = sc.world->inserters()[static_cast<std::size_t>(sc.inserter)];
+  BOOST_TEST(in.hold_to_face);
+  BOOST_TEST(in.hold_axis == 1);
+  BOOST_TEST(std::abs(in.region.lo.y() - (sc.belt.tangent_point.y() + 0.062)) < 1e-12);
+  BOOST_TEST(std::abs(in.interval - (3.5 * 0.0136 - 0.0136) / 1.0) < 1e-12);  // the box is at least 3.5 d high
+  std::ofstream(d / "box.toml") << "[dem.feed]\ninsertion = \"box\"\n";
+  BOOST_TEST(!resolve(read_dem_table((d / "box.toml").string()), {}, Quality::standard).insert_at_face);
+  std::ofstream(d / "bad.toml") << "[dem.feed]\ninsertion = \"stream\"\n";
+  BOOST_CHECK_THROW(read_dem_table((d / "bad.toml").string()), InputError);
+  RunSettings clump = s;
+  clump.particle_shape = ParticleShape::clump;
+  BOOST_CHECK_THROW(build_scene(st, clump, t, {}), InputError);
+}
+
 // [dem.feed]: the dataset's own feeder. The LIGGGHTS rig's face ends 0.15 + 0.075 V_b m before the
 // pulley and its relaxation (of the whole velocity) ends 50 mm past the face; the belt starts at the
 // declared x. Without the table the scene and the cache key are the recipe's.
