@@ -1,10 +1,12 @@
 // One design as a designer sees it on a trajectory calculator: the head pulley with the belt and its
 // load, the four streamlines from the belt over the pulley to the plate, the plate, the impact
-// points, and the Korzen readout beside it. Equal aspect, so angles and distances look as they are.
+// points, the analytical impact zone on the plate face, and the Korzen readout beside it. Equal
+// aspect, so angles and distances look as they are.
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
+#include "analytical/impact_zone.h"
 #include "reports/design.h"
 #include "reports/svg.h"
 
@@ -121,6 +123,23 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
                       num(plate_top.x(), 0), num(plate_top.y(), 0), num(st.plate.height * 1e3, 0),
                       num(st.plate.angle * kDeg, 1)));
 
+  // The analytical impact zone (analytical/impact_zone.h): the band of the face between the hits of
+  // Booth's outer streamlines, with Korzen's R_n spread over it; drawn on the face, in front of the
+  // plate, so a designer sees where the wear will be before any DEM map exists.
+  const analytical::ImpactZone zone = analytical::impact_zone(a);
+  {
+    const Pt down(std::sin(st.plate.angle), -std::cos(st.plate.angle));
+    const Pt z0 = plate_top + zone.top_along * 1e3 * down, z1 = plate_top + zone.bottom_along * 1e3 * down;
+    svg.raw(fmt::format("<line class=\"impact-zone\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#ff7f0e\" "
+                        "stroke-opacity=\"0.55\" stroke-width=\"12\" stroke-linecap=\"butt\"><title>analytical impact zone: y = "
+                        "{} to {} mm on the face, {} mm wide; mean pressure {} Pa, mean shear stress {} Pa (Korzen R_n, R_s "
+                        "spread over it){}</title></line>\n",
+                        px(X(z0.x()) - 3), px(Y(z0.y())), px(X(z1.x()) - 3), px(Y(z1.y())), num(zone.top_y * 1e3, 1),
+                        num(zone.bottom_y * 1e3, 1), num(zone.width * 1e3, 0), num(zone.mean_pressure, 0),
+                        num(zone.mean_shear_stress, 0),
+                        zone.top_clipped || zone.bottom_clipped ? "; part of the stream misses the plate" : ""));
+  }
+
   for (Streamline which : analytical::kAllStreamlines) {
     const auto i = static_cast<std::size_t>(which);
     const auto sty = style(which);
@@ -162,6 +181,9 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
     svg.text(tx + 32, ty + 9, sty.label, "start", "font-size=\"12\"");
     ty += 18;
   }
+  svg.line(tx, ty + 5, tx + 26, ty + 5, "stroke=\"#ff7f0e\" stroke-opacity=\"0.55\" stroke-width=\"10\"");
+  svg.text(tx + 32, ty + 9, "impact zone (Booth limits)", "start", "font-size=\"12\"");
+  ty += 18;
   ty += 10;
   const auto& kc = *a.line(Streamline::korzen_centroid).hit;
   const auto& k = a.korzen;
@@ -190,6 +212,10 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
   row(symbol_svg("R_s") + " = " + esc(val(Quantity::shear_force, 2) + " (" + std::string(name(k.shear_equation)) + ")"), "rs");
   row("R = " + esc(val(Quantity::resultant_force, 2)), "r");
   row(esc("impact y = " + val(Quantity::impact_point_y, 1) + (kc.on_plate ? "" : " (off the plate)")), "impact");
+  row(esc(fmt::format("zone y = {} to {} mm", num(zone.bottom_y * 1e3, 1), num(zone.top_y * 1e3, 1)) +
+          (zone.top_clipped || zone.bottom_clipped ? " (clipped)" : "")),
+      "zone");
+  row(esc(fmt::format("mean pressure = {} Pa", num(zone.mean_pressure, 0))), "zone-pressure");
   return svg.finish();
 }
 

@@ -123,7 +123,10 @@ PageView check_design(const std::string& name, const std::string& hash, const st
       {"out-resultant_force_N", "korzen", "resultant_force_N", 2},
       {"out-impact_point_y_mm", "korzen", "impact_point_y_mm", 1},
       {"out-cema_impact_point_y_mm", "booth-cema", "impact_point_y_mm", 1},
-      {"out-stream_thickness_mm", "condition", "stream_thickness_mm", 1}};
+      {"out-stream_thickness_mm", "condition", "stream_thickness_mm", 1},
+      {"out-impact_zone_top_mm", "impact_zone", "impact_zone_top_mm", 1},
+      {"out-impact_zone_bottom_mm", "impact_zone", "impact_zone_bottom_mm", 1},
+      {"out-mean_pressure_Pa", "impact_zone", "mean_pressure_Pa", 0}};
   int compared = 0;
   for (const auto& [id, scope, key, decimals] : checks) {
     const auto expected = json_number(cli.out, scope, key);
@@ -148,6 +151,8 @@ PageView check_design(const std::string& name, const std::string& hash, const st
   BOOST_TEST(v.shown.at("verdict") == (stationary ? "yes" : "no"));
   // The drawing and the chart are chutelab's own SVGs, and the chart marks the current design.
   BOOST_TEST(v.dom.find("class=\"design-picture\"") != std::string::npos);
+  // The analytical impact zone is drawn on the plate face (issue: plate pressure and wear maps).
+  BOOST_TEST(v.dom.find("class=\"impact-zone\"") != std::string::npos);
   BOOST_TEST(v.dom.find("class=\"plot sweep-chart\"") != std::string::npos);
   BOOST_TEST(v.dom.find("class=\"current-design\"") != std::string::npos);
   std::size_t lines = 0;
