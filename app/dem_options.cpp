@@ -17,8 +17,9 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
   cmd.add_option("--dem-cache", o.cache, "DEM result cache folder (default $XDG_CACHE_HOME/chutelab/dem)");
   cmd.add_flag("--no-dem-cache", o.no_cache, "run the DEM again even when a cached result exists");
   cmd.add_option("--dem-ladder", o.ladder,
-                 "on (default): two more runs per condition at 1.25 and 1.56 times the particle size give u_num's "
-                 "discretisation part (GCI); off: statistical part only")
+                 "on (default): u_num's discretisation part from more runs per condition: one at twice the time "
+                 "step, and two at 1.25 and 1.56 times the particle size when it is coarser than the dataset's (GCI); "
+                 "off: statistical part only")
       ->check(CLI::IsMember({"on", "off"}));
   cmd.add_option("--signature-quality", o.signature_quality,
                  "quality of the DEM's own effect-signature runs in diagnose (default: the --dem-quality)")

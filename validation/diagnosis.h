@@ -39,6 +39,9 @@ struct EffectFit {
   // With an expensive baseline: where its response to the effect came from ("own runs", "analytical
   // only": it cannot represent the effect, "exact": a measurement effect applied to its output).
   std::string signature;
+  // With an expensive baseline that runs with effects: chi^2 from the signatures, when a real run at
+  // the fitted strength replaced it in chi2_after (and in what follows from it).
+  std::optional<double> chi2_from_signatures;
   std::string label() const;              // "air_drag" or "air_drag + belt_slip"
 };
 
@@ -80,6 +83,9 @@ struct DiagnoseOptions {
   // the measured quantities in proportion: these data cannot tell them apart.
   double proportional_cosine = 0.98;
   int jobs = 0;                  // expensive runs side by side (0 = one per core)
+  // With an expensive baseline: how many of the leading significant single candidates are re-run
+  // at their fitted strengths before the ranking is final (the best pair is always re-run).
+  int confirm = 3;
 };
 
 DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,

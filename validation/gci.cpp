@@ -90,17 +90,29 @@ GciEstimate gci_estimate(std::span<const LadderLevel> in, const GciOptions& o) {
                            g.order);
   };
 
+  // A difference the noise hides: the error estimate e / (r^p - 1) of the widest pair and its own
+  // standard error, in quadrature, is already a standard uncertainty (no Fs, no coverage factor).
+  auto statistical = [&](const LadderLevel& a, const LadderLevel& b, std::string why) {
+    g.kind = GciCase::noise_dominated;
+    g.order = o.assumed_order;
+    g.safety_factor = 1.0;
+    const double r = b.h / a.h, e = b.value - a.value, se = std::hypot(a.standard_error, b.standard_error);
+    g.u_disc = std::hypot(e, se) / (std::pow(r, g.order) - 1.0);
+    g.gci_fine = o.coverage_k * g.u_disc;
+    g.method = fmt::format("{}; u = sqrt(e^2 + se^2) / (r^p - 1) of the widest pair (e = {:.3g}, se = {:.3g}, "
+                           "r = {:.3g}), p = {:g} assumed",
+                           why, std::abs(e), se, r, g.order);
+  };
+
   if (lv.size() == 2) {
-    bound(GciCase::two_level, "two levels");
-    if (res21) {
-      const double rp = std::pow(r21, g.order);
-      g.extrapolated = (rp * l1.value - l2.value) / (rp - 1.0);
-    } else {
-      g.kind = GciCase::noise_dominated;
-      g.method = fmt::format("two levels, difference {:.3g} not resolved against its standard error "
-                             "{:.3g}; GCI bound on {:g} standard errors, p = {:g} assumed, Fs = 3",
-                             std::abs(e21), se21, o.resolution_k, g.order);
+    if (!res21) {
+      statistical(l1, l2, "two levels, difference not resolved against its standard error");
+      finish();
+      return g;
     }
+    bound(GciCase::two_level, "two levels");
+    const double rp = std::pow(r21, g.order);
+    g.extrapolated = (rp * l1.value - l2.value) / (rp - 1.0);
     finish();
     return g;
   }
@@ -112,10 +124,10 @@ GciEstimate gci_estimate(std::span<const LadderLevel> in, const GciOptions& o) {
   const bool res32 = std::abs(e32) > o.resolution_k * se32;
 
   if (!res21 || !res32) {
-    bound(GciCase::noise_dominated,
-          fmt::format("three levels, {} not resolved against the statistical error (|e| <= {:g} se)",
-                      !res21 && !res32 ? "both differences" : !res21 ? "the fine difference" : "the coarse difference",
-                      o.resolution_k));
+    statistical(l1, l3,
+                fmt::format("three levels, {} not resolved against the statistical error (|e| <= {:g} se)",
+                            !res21 && !res32 ? "both differences" : !res21 ? "the fine difference" : "the coarse difference",
+                            o.resolution_k));
     finish();
     return g;
   }
@@ -175,7 +187,10 @@ LadderUncertainty ladder_uncertainty(std::span<const LadderRun> runs, const GciO
     auto& e = out.estimate[static_cast<std::size_t>(q)];
     e = estimate([q](const ModelPrediction& p) { return p.values[q]; },
                  [q](const ModelPrediction& p) { return p.uncertainty[q]; });
-    if (e) out.u_disc[q] = e->u_disc;
+    if (e) {
+      out.u_disc[q] = e->u_disc;
+      out.methods[static_cast<std::size_t>(q)].push_back(e->method);
+    }
   }
   out.trajectory.resize(queries);
   out.trajectory_estimate.resize(queries);
@@ -187,12 +202,40 @@ LadderUncertainty ladder_uncertainty(std::span<const LadderRun> runs, const GciO
   return out;
 }
 
+LadderUncertainty combine_ladders(std::span<const LadderUncertainty> parts) {
+  LadderUncertainty out;
+  if (parts.empty()) return out;
+  auto rss = [](std::optional<double>& acc, const std::optional<double>& v) {
+    if (v) acc = acc ? std::hypot(*acc, *v) : *v;
+  };
+  std::size_t queries = 0;
+  for (const auto& p : parts) queries = std::max(queries, p.trajectory.size());
+  out.trajectory.resize(queries);
+  out.trajectory_estimate.resize(queries);
+  for (const auto& p : parts) {
+    for (Quantity q : kAllQuantities) {
+      const auto k = static_cast<std::size_t>(q);
+      std::optional<double> acc = out.u_disc[q];
+      rss(acc, p.u_disc[q]);
+      if (acc) out.u_disc[q] = *acc;
+      if (!out.estimate[k]) out.estimate[k] = p.estimate[k];
+      out.methods[k].insert(out.methods[k].end(), p.methods[k].begin(), p.methods[k].end());
+    }
+    for (std::size_t t = 0; t < p.trajectory.size(); ++t) {
+      rss(out.trajectory[t], p.trajectory[t]);
+      if (!out.trajectory_estimate[t] && t < p.trajectory_estimate.size()) out.trajectory_estimate[t] = p.trajectory_estimate[t];
+    }
+  }
+  return out;
+}
+
 void apply_discretisation(ModelPrediction& fine, const LadderUncertainty& u) {
   fine.discretisation = u.u_disc;
   fine.trajectory_discretisation = u.trajectory;
-  for (Quantity q : kAllQuantities)
-    if (const auto& e = u.estimate[static_cast<std::size_t>(q)])
-      fine.notes.push_back(fmt::format("u_num,disc of {}: {}", info(q).symbol, e->method));
+  for (Quantity q : kAllQuantities) {
+    const auto& m = u.methods[static_cast<std::size_t>(q)];
+    if (!m.empty()) fine.notes.push_back(fmt::format("u_num,disc of {}: {}", info(q).symbol, fmt::join(m, "; plus ")));
+  }
 }
 
 }  // namespace chutelab::validation

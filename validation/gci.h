@@ -17,13 +17,15 @@
 //   [0.5, 2]). Outside them the ladder is not in the asymptotic range: p is clamped to the nearer
 //   bound and Fs = 3, so the GCI is a bound rather than an estimate. Clamping a high p down and a
 //   low p up: the first is conservative; the second is not, which is why Fs goes to 3 as well.
-// - When the three-level estimate cannot be made — a difference not resolved against the noise
-//   (noise dominated), differences of opposite sign (oscillatory), or differences that grow with
-//   refinement (diverging) — the fallback is the two-level GCI of the finest pair with the assumed
-//   order and Fs = 3, taking as its difference max(|e21|, k se21): what was seen, or the largest
-//   difference the noise could hide, whichever is larger. For oscillation the result is at least
-//   Fs times half the range of the three values (the half-range is the oscillation's own amplitude,
-//   a spread no power law describes). No extrapolated value is given in these cases.
+// - A difference not resolved against the noise (noise dominated): the ladder saw no error larger
+//   than its own scatter. The estimate is then statistical, not a band: the error estimate of the
+//   widest pair, e / (r^p - 1), and its standard error, se_e / (r^p - 1), in quadrature, with the
+//   assumed order. That is a standard uncertainty as it stands, so no Fs and no coverage factor
+//   (a safety factor on a bound of 2 standard errors would count the noise six times over).
+// - Differences of opposite sign (oscillatory) or growing with refinement (diverging): the
+//   two-level GCI of the finest pair with the assumed order and Fs = 3. For oscillation the result
+//   is at least Fs times half the range of the three values (the half-range is the oscillation's
+//   own amplitude, a spread no power law describes). No extrapolated value is given in these cases.
 // - The assumed order for two levels and fallbacks defaults to 1: a granular flow resolves its
 //   walls and free surfaces to about one particle diameter, so errors in layer thickness, stream
 //   limits and the point of application scale with d (chutelab's choice; callers may set it).
@@ -60,7 +62,7 @@ enum class GciCase {
   three_level,          // observed order within bounds, Fs = 1.25
   order_bounded,        // observed order outside the bounds, clamped, Fs = 3
   two_level,            // two levels, assumed order, Fs = 3
-  noise_dominated,      // a difference not resolved against the statistical errors: bound
+  noise_dominated,      // a difference not resolved against the statistical errors: statistical estimate
   oscillatory,          // differences of opposite sign: bound
   diverging,            // differences grow with refinement: bound
 };
@@ -97,11 +99,16 @@ struct LadderUncertainty {
   std::vector<std::optional<double>> trajectory;            // m per query
   std::array<std::optional<GciEstimate>, kQuantityCount> estimate{};  // per quantity, for notes
   std::vector<std::optional<GciEstimate>> trajectory_estimate;
+  std::array<std::vector<std::string>, kQuantityCount> methods;  // per quantity, one line per ladder
 };
 
 // The GCI of every value that at least two runs predict (the finest run is the one the estimate
 // is for: u_disc belongs to the prediction at the smallest h).
 LadderUncertainty ladder_uncertainty(std::span<const LadderRun> runs, const GciOptions& options = {});
+
+// Several one-factor ladders of the same run (e.g. time step and particle size): per value the
+// root sum of squares of the parts that estimate it; their methods are kept for the notes.
+LadderUncertainty combine_ladders(std::span<const LadderUncertainty> parts);
 
 // Sets `fine.discretisation` and `fine.trajectory_discretisation` from `u`, and adds one note per
 // quantity with the method used.

@@ -3,8 +3,8 @@
 // Errors follow ASME V&V 20-2009: comparison error E = S - D (prediction minus data) and the
 // validation uncertainty u_val = sqrt(u_num_stat^2 + u_num_disc^2 + u_input^2 + u_D^2): u_num is
 // what the model states about its own prediction, split into the statistical part (the DEM's
-// standard error of the mean) and the discretisation part (a GCI over a ladder of particle sizes,
-// validation/gci.h), both absent for analytical models; u_input is propagated from the dataset's
+// standard error of the mean) and the discretisation part (one-factor ladders of the run's numerical
+// choices: time step, and particle size when coarse-grained; validation/gci.h), both absent for analytical models; u_input is propagated from the dataset's
 // stated input uncertainties (validation/input_uncertainty.h); u_D is the measurement's. A part
 // that was not estimated is absent and counts as 0 in u_val (the report says which).
 #include <optional>

@@ -71,8 +71,8 @@ struct PredictRequest {
 
 // The uncertainties are standard uncertainties (one sd), SI, of V&V 20's parts: `uncertainty` and
 // `trajectory_uncertainty` the statistical part of u_num (e.g. a DEM mean's standard error),
-// `discretisation` and `trajectory_discretisation` its discretisation part (e.g. a GCI over a
-// particle-size ladder, validation/gci.h); absent = not estimated. `input_uncertainty` and
+// `discretisation` and `trajectory_discretisation` its discretisation part (e.g. GCI-style
+// ladders in time step and particle size, validation/gci.h); absent = not estimated. `input_uncertainty` and
 // `trajectory_input_uncertainty` (u_input) are filled by the harness from the dataset's stated
 // input uncertainties (validation/input_uncertainty.h), not by the model.
 struct ModelPrediction {

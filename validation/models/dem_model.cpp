@@ -235,36 +235,67 @@ class DemModel final : public Model {
 
  private:
 
-  // u_num's discretisation part from a ladder of particle sizes d, r d, r^2 d (everything else as
-  // the quality sets it): the DEM's "grid" is its particle, so coarser particles are coarser
-  // grids, and the Richardson/GCI estimate of validation/gci.h turns the three levels into an
-  // uncertainty of the run's own value. The modulus and the time step are held at the quality's
-  // values; their part is not in this estimate (the report says so).
+  // u_num's discretisation part: what the run's numerical parameters, the ones it chooses rather
+  // than takes from the dataset, change (validation/gci.h). Each is a one-factor ladder, and their
+  // parts add in quadrature (one-factor estimates of independent choices):
+  // - the time step, always: one more run at twice dt (h = dt / dt_run: 1, 2);
+  // - the particle size, only when the run coarse-grains the dataset's particles: two more runs
+  //   at r d and r^2 d, with h = d / d_data - 1 (the error vanishes at the dataset's own size, not
+  //   at d = 0; a run at the dataset's size has no size error to estimate).
+  // The contact modulus is not laddered: a run that softens the dataset's modulus (quick) says so
+  // in its notes, and the report lists the part as not estimated.
   void add_ladder(ModelPrediction& p, const Station& station, const DemEffectInputs& fx,
                   const st::RunSettings& settings, const st::DemTable& table,
                   const PredictRequest& request) const {
-    const double d1 = settings.particle_diameter > 0 ? settings.particle_diameter : station.material.particle_diameter;
-    std::vector<st::StationResult> levels;
-    for (int k = 1; k <= 2; ++k) {
-      st::RunSettings s = settings;
-      s.particle_diameter = d1 * std::pow(c_.ladder_ratio, k);
-      try {
-        levels.push_back(run_or_load(station, fx, s, table, nullptr, nullptr));
-      } catch (const InputError& e) {
-        if (c_.cache_only) throw;
-        p.notes.push_back(fmt::format("no discretisation estimate: the ladder's {:.1f} mm particles do not fit this "
-                                      "rig ({})", s.particle_diameter * 1e3, e.what()));
-        return;
-      }
-    }
-    const std::array<double, 3> h = {d1, d1 * c_.ladder_ratio, d1 * c_.ladder_ratio * c_.ladder_ratio};
     PredictRequest plain = request;
     plain.curves = false;
-    const ModelPrediction p2 = to_prediction(levels[0], fx, plain, true, ""), p3 = to_prediction(levels[1], fx, plain, true, "");
-    const std::vector<LadderRun> runs = {{h[0], &p}, {h[1], &p2}, {h[2], &p3}};
-    apply_discretisation(p, ladder_uncertainty(runs));
-    p.notes.push_back(fmt::format("u_num discretisation from the particle-size ladder {:.1f} / {:.1f} / {:.1f} mm",
-                                  h[0] * 1e3, h[1] * 1e3, h[2] * 1e3));
+    auto level = [&](const st::RunSettings& s, const char* what) -> std::optional<ModelPrediction> {
+      try {
+        return to_prediction(run_or_load(station, fx, s, table, nullptr, nullptr), fx, plain, true, "");
+      } catch (const InputError& e) {
+        if (c_.cache_only) throw;
+        p.notes.push_back(fmt::format("no {} part of u_num,disc: its ladder run cannot be made ({})", what, e.what()));
+        return std::nullopt;
+      }
+    };
+    std::vector<LadderUncertainty> parts;
+    std::vector<std::string> ladders;
+    {
+      st::RunSettings s = settings;
+      s.dt_fraction *= 2.0;
+      s.rayleigh_fraction *= 2.0;
+      if (const auto coarse = level(s, "time-step")) {
+        const std::vector<LadderRun> runs = {{1.0, &p}, {2.0, &*coarse}};
+        parts.push_back(ladder_uncertainty(runs));
+        ladders.push_back("time step dt, 2 dt");
+      }
+    }
+    const double d_data = station.material.particle_diameter;
+    const double d1 = settings.particle_diameter > 0 ? settings.particle_diameter : d_data;
+    if (d1 > d_data * (1.0 + 1e-9)) {
+      std::vector<ModelPrediction> coarse;
+      for (int k = 1; k <= 2; ++k) {
+        st::RunSettings s = settings;
+        s.particle_diameter = d1 * std::pow(c_.ladder_ratio, k);
+        auto lv = level(s, "particle-size");
+        if (!lv) break;
+        coarse.push_back(std::move(*lv));
+      }
+      if (coarse.size() == 2) {
+        const double r = c_.ladder_ratio;
+        auto h = [&](double d) { return d / d_data - 1.0; };
+        const std::vector<LadderRun> runs = {{h(d1), &p}, {h(d1 * r), &coarse[0]}, {h(d1 * r * r), &coarse[1]}};
+        parts.push_back(ladder_uncertainty(runs));
+        ladders.push_back(fmt::format("particle size {:.1f} / {:.1f} / {:.1f} mm towards the dataset's {:.1f} mm",
+                                      d1 * 1e3, d1 * r * 1e3, d1 * r * r * 1e3, d_data * 1e3));
+      }
+    }
+    if (parts.empty()) return;
+    apply_discretisation(p, combine_ladders(parts));
+    p.notes.push_back(fmt::format("u_num discretisation from the ladders: {}", fmt::join(ladders, "; ")));
+    if (settings.shear_modulus_scale < 1.0)
+      p.notes.push_back(fmt::format("u_num discretisation: the softened contact modulus (x{:g}) is not in it",
+                                    settings.shear_modulus_scale));
   }
 
 

@@ -31,7 +31,8 @@ struct DemModelConfig {
   std::string setup_file;    // the dataset's setup.toml, for its optional [dem] table
   bool use_cache = true;
   bool cache_only = false;   // a run missing from the cache is an error, not a run
-  // u_num's discretisation part from two more runs at r d and r^2 d (validation/gci.h).
+  // u_num's discretisation part (validation/gci.h): one more run at 2 dt, and, when the run
+  // coarse-grains the dataset's particles, two more at r d and r^2 d.
   bool ladder = true;
   double ladder_ratio = 1.25;
   // Settings of the runs that give effect signatures (PredictRequest::signature); unset: the
