@@ -11,17 +11,21 @@ void run_models(std::span<const ModelRun> runs, const RunModelsOptions& options)
   std::set<std::string> seen;
   for (const auto& r : runs) {
     if (!r.model) continue;
-    std::optional<ModelJob> j = r.model->campaign_job(r.station, r.effects);
-    if (!j || !seen.insert(j->id).second) continue;
-    if (!r.file.empty())
-      j->job.run = [run = std::move(j->job.run), file = r.file, line = r.line](const campaign::JobContext& ctx) {
-        try {
-          return run(ctx);
-        } catch (const InputError& e) {
-          throw e.located(file, line);
-        }
-      };
-    jobs.push_back(std::move(*j));
+    PredictRequest request;
+    request.signature = r.signature;
+    request.discretisation = r.discretisation;
+    for (ModelJob& j : r.model->campaign_jobs(r.station, r.effects, request)) {
+      if (!seen.insert(j.id).second) continue;
+      if (!r.file.empty())
+        j.job.run = [run = std::move(j.job.run), file = r.file, line = r.line](const campaign::JobContext& ctx) {
+          try {
+            return run(ctx);
+          } catch (const InputError& e) {
+            throw e.located(file, line);
+          }
+        };
+      jobs.push_back(std::move(j));
+    }
   }
   if (jobs.empty()) return;
   std::vector<campaign::Job> work;

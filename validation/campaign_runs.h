@@ -10,7 +10,7 @@
 //   validation::run_models(runs);   // collective: every rank calls it with the same list
 //   dem->predict(st, effects, request);  // afterwards: no run, the campaign's result
 //
-// Runs of models that answer at once (no campaign_job), runs whose result this process already
+// Runs of models that answer at once (no campaign_jobs), runs whose result this process already
 // holds and repeated runs are left out, so a caller can list everything it will predict.
 #include <span>
 #include <string>
@@ -28,6 +28,10 @@ struct ModelRun {
   analytical::EffectList effects;
   std::string file;  // where a bad-input error of this run is located (e.g. conditions.csv), optional
   long line = 0;
+  // What the prediction will ask for: a signature run (a cheaper quality) and whether its
+  // discretisation ladder is wanted too (its runs join the campaign).
+  bool signature = false;
+  bool discretisation = true;
 };
 
 struct RunModelsOptions {

@@ -27,7 +27,7 @@ Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::Effec
     for (const auto& n : model_names())
       if (auto m = make_model(n); !m->expensive()) signature_.push_back(m);
   check_external_models(models_, d);
-  run_expensive(fixed_);  // the baseline runs, as one campaign (MPI ranks, --jobs)
+  run_expensive(fixed_, true);  // the baseline runs and their ladders, as one campaign (MPI ranks, --jobs)
   const auto base = predict_all({}, {});
   auto condition_index = [&](const std::string& c) {
     for (std::size_t i = 0; i < d.stations.size(); ++i)
@@ -278,6 +278,24 @@ const ModelPrediction& Misfit::exact_run(std::size_t c, std::size_t k, std::span
 }
 
 void Misfit::prepare_signatures(std::span<const effects::EffectInfo* const> candidates, int jobs) const {
+  // The runs themselves as campaigns (spread over MPI ranks or --jobs); the predictions below then
+  // read their results. Probe runs go at the signature quality, where the model has a cheaper one.
+  bool any_own = false;
+  for (const auto* e : candidates) any_own = any_own || signature(*e) == Signature::own_runs;
+  if (any_own) {
+    run_expensive(fixed_, false, true);
+    std::vector<ModelRun> runs;
+    for (const auto* e : candidates)
+      if (signature(*e) == Signature::own_runs) {
+        analytical::EffectList with = fixed_;
+        with.push_back(e->make(probe_strength(*e)));
+        for (std::size_t c = 0; c < d_->stations.size(); ++c)
+          for (const auto& m : models_)
+            if (m->expensive() && m->runs_with_effects())
+              runs.push_back({m, d_->stations[c], with, d_->station_lines[c].file, d_->station_lines[c].line, true, false});
+      }
+    run_models(runs, {"diagnose"});
+  }
   std::vector<std::function<void()>> work;
   // The baselines first, slots created here: the maps are not touched while the runs go on.
   for (std::size_t k = 0; k < models_.size(); ++k)
@@ -305,6 +323,11 @@ void Misfit::prepare_signatures(std::span<const effects::EffectInfo* const> cand
 
 void Misfit::prepare_exact(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
                            int jobs) const {
+  {
+    analytical::EffectList list = fixed_;
+    for (std::size_t i = 0; i < fx.size(); ++i) list.push_back(fx[i]->make(strengths[i]));
+    run_expensive(list, false);  // the runs as one campaign; the predictions below read them
+  }
   std::vector<std::function<void()>> work;
   const std::string key = strengths_key(fx, strengths);
   for (std::size_t k = 0; k < models_.size(); ++k)
@@ -332,12 +355,13 @@ bool Misfit::has_expensive() const {
   return false;
 }
 
-void Misfit::run_expensive(const analytical::EffectList& effects) const {
+void Misfit::run_expensive(const analytical::EffectList& effects, bool discretisation, bool signature) const {
   std::vector<ModelRun> runs;
   for (std::size_t c = 0; c < d_->stations.size(); ++c)
     for (const auto& m : models_)
-      if (m->expensive() && m->runs_with_effects())
-        runs.push_back({m, d_->stations[c], effects, d_->station_lines[c].file, d_->station_lines[c].line});
+      if (m->expensive() && m->runs_with_effects() && (!signature || m->cheaper_signatures()))
+        runs.push_back({m, d_->stations[c], effects, d_->station_lines[c].file, d_->station_lines[c].line, signature,
+                        discretisation});
   run_models(runs, {"diagnose"});
 }
 
@@ -345,7 +369,7 @@ double Misfit::chi2_exact(std::span<const effects::EffectInfo* const> fx,
                           std::span<const double> strengths) const {
   analytical::EffectList list = fixed_;
   for (std::size_t i = 0; i < fx.size(); ++i) list.push_back(fx[i]->make(strengths[i]));
-  run_expensive(list);  // the confirmation runs, as one campaign
+  run_expensive(list, false);  // the confirmation runs, as one campaign
   return chi2_of(predict(fx, strengths, Evaluation::exact));
 }
 

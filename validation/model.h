@@ -127,10 +127,11 @@ class Model {
   // False for fixed results (another code's exported predictions): predict() cannot honour a
   // candidate effect, so the diagnosis keeps using signatures for it instead of confirming by a run.
   virtual bool runs_with_effects() const { return true; }
-  // The run predict(station, effects, ...) would do, as a job; none for a model that answers at once.
-  virtual std::optional<ModelJob> campaign_job(const Station& /*station*/,
-                                               const analytical::EffectList& /*effects*/) const {
-    return std::nullopt;
+  // The runs predict(station, effects, request) would do, as jobs (the run and, for u_num's
+  // discretisation part, its ladder's); none for a model that answers at once.
+  virtual std::vector<ModelJob> campaign_jobs(const Station& /*station*/, const analytical::EffectList& /*effects*/,
+                                              const PredictRequest& /*request*/) const {
+    return {};
   }
 };
 

@@ -93,7 +93,9 @@ BOOST_AUTO_TEST_CASE(validate_with_dem_is_byte_identical_under_mpirun) {
   same_files(one, jobs, {"predictions.csv", "errors.csv", "summary.csv", "dem/T4/timeseries.csv"});
   // Rank 0 alone prints: one summary line, and the campaign's balance line.
   BOOST_TEST(count_lines(b.out) == count_lines(a.out));
-  BOOST_TEST(b.err.find("2 jobs on 2 MPI ranks") != std::string::npos);
+  // Two conditions, each with its ladder for u_num's discretisation part (2 dt, and two coarser
+  // particle sizes: quick coarse-grains the dataset's particles): eight runs spread over the ranks.
+  BOOST_TEST(b.err.find("8 jobs on 2 MPI ranks") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(diagnose_with_a_dem_baseline_is_byte_identical_under_mpirun) {
@@ -105,6 +107,12 @@ BOOST_AUTO_TEST_CASE(diagnose_with_a_dem_baseline_is_byte_identical_under_mpirun
   BOOST_REQUIRE(b.exit_code == 0);
   same_files(one, two, {"diagnosis.csv", "diagnosis.md"});
   BOOST_TEST(a.out.substr(0, a.out.find('\n')) == b.out.substr(0, b.out.find('\n')));  // the verdict
+  // Every list of runs goes over the ranks: the baseline with its ladders, and the DEM's own
+  // signature runs (one probe per candidate it represents and condition).
+  std::size_t campaigns = 0;
+  for (auto at = b.err.find("jobs on 2 MPI ranks"); at != std::string::npos; at = b.err.find("jobs on 2 MPI ranks", at + 1))
+    ++campaigns;
+  BOOST_TEST(campaigns >= 2u, b.err);
 }
 
 BOOST_AUTO_TEST_CASE(sensitivity_is_byte_identical_under_mpirun) {

@@ -130,18 +130,23 @@ class DemModel final : public Model {
     return dem_effect_inputs(station, fixed).key != dem_effect_inputs(station, with_candidate).key;
   }
 
-  ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
-                          const PredictRequest& request) const override {
-    const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file);
+  // The settings a request runs at: the command line's, or for a signature at a cheaper quality
+  // that quality's own preset (the dataset's table goes on top in resolve).
+  st::SettingsOverrides overrides_for(const PredictRequest& request) const {
     st::SettingsOverrides over = c_.overrides;
     if (request.signature && c_.signature_quality) {
-      // A signature at a cheaper quality: that quality's own preset, the dataset's table on top.
       over = {};
       over.quality = c_.signature_quality;
       over.seed = c_.overrides.seed;
       over.threads = c_.overrides.threads;
     }
-    const st::RunSettings settings = st::resolve(table, over);
+    return over;
+  }
+
+  ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
+                          const PredictRequest& request) const override {
+    const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file);
+    const st::RunSettings settings = st::resolve(table, overrides_for(request));
     const DemEffectInputs fx = dem_effect_inputs(station, effects);
     bool from_cache = false;
     std::string cache_file;
@@ -201,13 +206,30 @@ class DemModel final : public Model {
   }
 
  public:
-  std::optional<ModelJob> campaign_job(const Station& station, const analytical::EffectList& effects) const override {
+  // The runs a prediction of this request needs, as campaign jobs (validation/campaign_runs.h):
+  // the run itself and, when it asks for u_num's discretisation part, its ladder's runs.
+  std::vector<ModelJob> campaign_jobs(const Station& station, const analytical::EffectList& effects,
+                                      const PredictRequest& request) const override {
     const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file);
-    st::SettingsOverrides over = c_.overrides;
+    st::SettingsOverrides over = overrides_for(request);
     // Runs side by side (ranks, --jobs) each take one thread unless told; results do not depend on it.
     if (!over.threads && campaign::concurrent()) over.threads = 1;
     const st::RunSettings settings = st::resolve(table, over);
     const DemEffectInputs fx = dem_effect_inputs(station, effects);
+    std::vector<ModelJob> out;
+    if (auto j = job_for(station, fx, settings, table, false)) out.push_back(std::move(*j));
+    if (request.discretisation && c_.ladder)
+      for (const auto& s : ladder_settings(station, settings))
+        if (auto j = job_for(station, fx, s, table, true)) out.push_back(std::move(*j));
+    return out;
+  }
+
+ private:
+  // One run as a campaign job; none when this process already holds its result. A ladder run that
+  // cannot be made (its coarser particles do not fit the rig) is not the command's failure: its
+  // job returns no result, and the prediction notes that the part is missing (add_ladder).
+  std::optional<ModelJob> job_for(const Station& station, const DemEffectInputs& fx, const st::RunSettings& settings,
+                                  const st::DemTable& table, bool optional_run) const {
     const std::string key = dem_cache_key(fx, settings, table);
     {
       const std::lock_guard<std::mutex> lock(ready_mutex());
@@ -220,17 +242,42 @@ class DemModel final : public Model {
     // the dear runs first; the numbers are never compared with a clock.
     const double d = settings.particle_diameter > 0.0 ? settings.particle_diameter : fx.station.material.particle_diameter;
     j.job.cost = fx.station.mass_flow * settings.max_time / std::pow(d / 0.01, 4.0) *
-                 (settings.particle_shape == st::ParticleShape::clump ? 2.7 : 1.0);
-    j.job.run = [this, station, fx, settings, table](const campaign::JobContext&) {
+                 (settings.particle_shape == st::ParticleShape::clump ? 2.7 : 1.0) * (0.1 / settings.dt_fraction);
+    j.job.run = [this, station, fx, settings, table, optional_run](const campaign::JobContext&) -> std::string {
       bool from_cache = false;
-      const st::StationResult r = run_or_load(station, fx, settings, table, &from_cache, nullptr);
-      return result_text(r, from_cache);
+      try {
+        const st::StationResult r = run_or_load(station, fx, settings, table, &from_cache, nullptr);
+        return result_text(r, from_cache);
+      } catch (const InputError&) {
+        if (!optional_run || c_.cache_only) throw;
+        return std::string();
+      }
     };
     j.accept = [key](const std::string& text) {
+      if (text.empty()) return;
       const std::lock_guard<std::mutex> lock(ready_mutex());
       ready()[key] = text;
     };
     return j;
+  }
+
+  // The ladder's runs for a run at `settings` (add_ladder): twice the time step, and coarser
+  // particles when the run coarse-grains the dataset's.
+  std::vector<st::RunSettings> ladder_settings(const Station& station, const st::RunSettings& settings) const {
+    std::vector<st::RunSettings> out;
+    st::RunSettings s = settings;
+    s.dt_fraction *= 2.0;
+    s.rayleigh_fraction *= 2.0;
+    out.push_back(s);
+    const double d_data = station.material.particle_diameter;
+    const double d1 = settings.particle_diameter > 0 ? settings.particle_diameter : d_data;
+    if (d1 > d_data * (1.0 + 1e-9))
+      for (int k = 1; k <= 2; ++k) {
+        st::RunSettings c = settings;
+        c.particle_diameter = d1 * std::pow(c_.ladder_ratio, k);
+        out.push_back(c);
+      }
+    return out;
   }
 
  private:
@@ -260,28 +307,22 @@ class DemModel final : public Model {
     };
     std::vector<LadderUncertainty> parts;
     std::vector<std::string> ladders;
-    {
-      st::RunSettings s = settings;
-      s.dt_fraction *= 2.0;
-      s.rayleigh_fraction *= 2.0;
-      if (const auto coarse = level(s, "time-step")) {
-        const std::vector<LadderRun> runs = {{1.0, &p}, {2.0, &*coarse}};
-        parts.push_back(ladder_uncertainty(runs));
-        ladders.push_back("time step dt, 2 dt");
-      }
+    const std::vector<st::RunSettings> rungs = ladder_settings(station, settings);
+    if (const auto coarse = level(rungs[0], "time-step")) {
+      const std::vector<LadderRun> runs = {{1.0, &p}, {2.0, &*coarse}};
+      parts.push_back(ladder_uncertainty(runs));
+      ladders.push_back("time step dt, 2 dt");
     }
-    const double d_data = station.material.particle_diameter;
-    const double d1 = settings.particle_diameter > 0 ? settings.particle_diameter : d_data;
-    if (d1 > d_data * (1.0 + 1e-9)) {
+    if (rungs.size() == 3) {
       std::vector<ModelPrediction> coarse;
-      for (int k = 1; k <= 2; ++k) {
-        st::RunSettings s = settings;
-        s.particle_diameter = d1 * std::pow(c_.ladder_ratio, k);
-        auto lv = level(s, "particle-size");
+      for (std::size_t k = 1; k < 3; ++k) {
+        auto lv = level(rungs[k], "particle-size");
         if (!lv) break;
         coarse.push_back(std::move(*lv));
       }
       if (coarse.size() == 2) {
+        const double d_data = station.material.particle_diameter;
+        const double d1 = settings.particle_diameter > 0 ? settings.particle_diameter : d_data;
         const double r = c_.ladder_ratio;
         auto h = [&](double d) { return d / d_data - 1.0; };
         const std::vector<LadderRun> runs = {{h(d1), &p}, {h(d1 * r), &coarse[0]}, {h(d1 * r * r), &coarse[1]}};
