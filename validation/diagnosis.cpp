@@ -346,7 +346,12 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
   for (std::size_t i = 0; i < out.singles.size(); ++i) out.singles[i].rank = static_cast<int>(i) + 1;
   out.any_significant = !out.singles.empty() && out.singles.front().significant;
 
-  if (opt.pairs && out.any_significant) {
+  // A pair is sought only when the best single leaves more misfit than noise would (chi^2 of its
+  // n - 1 degrees of freedom at the same false-alarm rate): a second effect cannot be told from
+  // noise once the first explains the data.
+  const bool misfit_left = !out.singles.empty() &&
+                           gsl_cdf_chisq_Q(out.singles.front().chi2_after, std::max(1.0, n_data - 1.0)) < opt.alpha;
+  if (opt.pairs && out.any_significant && misfit_left) {
     // A pair must beat the best single effect: its extra parameter is tested against that single
     // (likelihood ratio, one degree of freedom), Bonferroni over all pairs, and by a clear BIC margin.
     const EffectFit& top = out.singles.front();
