@@ -23,6 +23,12 @@ void add_design(CLI::App& app, Action& action);
 // "a,b,,c" -> {"a", "b", "c"}: the comma lists of --models.
 std::vector<std::string> split_list(const std::string& s);
 
+// "; did you mean 'validate'?" for a mistyped command or flag on this command line ("" if none).
+std::string suggestion(CLI::App& app, int argc, char** argv);
+
+// What a command reads from a dataset folder: the folder itself (--out may not be it) and its files.
+std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& dir);
+
 // The bundled default rig, found next to the source tree this binary was built from.
 std::filesystem::path default_dataset();
 

@@ -3,6 +3,9 @@
 // Reading either gives a complete, checked Dataset or throws one InputError naming file, line and
 // field; nothing is half-read.
 #include <filesystem>
+#include <memory>
+#include <mutex>
+#include <unordered_map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -70,8 +73,18 @@ struct Dataset {
   std::vector<InputUncertainties> input_uncertainty;  // parallel to stations
   std::vector<PlatePoint> plate_map;
 
-  const Station* station(std::string_view condition) const;
+  const Station* station(std::string_view condition) const;  // by hash: called per value by reports
   const SourceLine* station_line(std::string_view condition) const;
+
+  // Name -> index of `stations`, rebuilt when the vector changed; shared by copies, guarded by its
+  // own mutex so that concurrent readers are safe.
+  struct StationIndex {
+    std::mutex m;
+    const Station* data = nullptr;
+    std::size_t size = 0;
+    std::unordered_map<std::string, std::size_t> at;
+  };
+  std::shared_ptr<StationIndex> station_index = std::make_shared<StationIndex>();
 };
 
 enum class MeasurementsRequired { no, yes };

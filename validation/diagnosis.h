@@ -80,6 +80,7 @@ struct DiagnoseOptions {
   // the measured quantities in proportion: these data cannot tell them apart.
   double proportional_cosine = 0.98;
   int jobs = 0;                  // expensive runs side by side (0 = one per core)
+  bool progress = false;         // one line per fit on stderr for datasets of 500 conditions or more
 };
 
 DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,

@@ -1,4 +1,5 @@
 #include "validation/synthesize.h"
+#include "core/csv_field.h"
 
 #include <charconv>
 #include <cmath>
@@ -142,7 +143,7 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       written /= s;
       const std::string u = two_significant(
           (given ? it->second : default_uncertainty(q, written)) * opt.noise_scale * s);
-      meas += fmt::format("{},{},{},{}\n", st.condition, name(q), value, u);
+      meas += fmt::format("{},{},{},{}\n", csv_field(st.condition), name(q), value, u);
     }
     for (std::size_t k = 0; k < queries.size(); ++k) {
       std::optional<double> truth;
@@ -151,7 +152,7 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
           truth = s.prediction.trajectory[k];
       if (!truth) continue;
       const double u = traj_u[k] * opt.noise_scale;
-      traj += fmt::format("{},{},{:.1f},{:.3f},{:.3f}\n", st.condition, name(queries[k].boundary),
+      traj += fmt::format("{},{},{:.1f},{:.3f},{:.3f}\n", csv_field(st.condition), name(queries[k].boundary),
                           queries[k].x * 1e3, (*truth + u * noise.next()) * 1e3, u * 1e3);
     }
   }

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Builds the whole test suite with AddressSanitizer + UndefinedBehaviorSanitizer (g++, the main
+# compiler) in build-asan/ and runs it. Any sanitizer report fails the run (halt_on_error, and UBSan
+# does not recover). Usage: scripts/sanitize.sh [ctest args], e.g. scripts/sanitize.sh -LE dem_long
+# Result of the last recorded run: tests/SANITIZERS.md.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bdir=${CHUTELAB_ASAN_BUILD:-build-asan}
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g -O1"
+cmake -S . -B "$bdir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" -DCHUTELAB_FUZZ=OFF \
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
+cmake --build "$bdir" -j"${JOBS:-2}" >/dev/null
+# OpenMP's runtime keeps thread pools alive at exit: leaks from libgomp are not ours.
+supp=$(mktemp)
+trap 'rm -f "$supp"' EXIT
+printf 'leak:libgomp\n' >"$supp"
+export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:abort_on_error=0:strict_string_checks=1"
+export LSAN_OPTIONS="suppressions=$supp"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+ctest --test-dir "$bdir" -j"${JOBS:-2}" --output-on-failure --timeout 3000 "$@"
