@@ -58,6 +58,8 @@ int run_calibrate(const CalibrateCli& o) {
   ctx.quality = o.quality;
   ctx.setup = validation::read_setup(dir / "setup.toml");
   OutputFolder out(o.out, dataset_inputs(dir));  // checked before minutes of slump tests
+  check_entries(out, {"calibration.csv", "incline.csv", "calibration.md", "calibration.html", "material.toml",
+                      "calibration-timing.csv"});
 
   CalibrationPlan plan;
   plan.rolling = numbers(o.rolling, "--rolling");

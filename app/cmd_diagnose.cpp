@@ -29,7 +29,10 @@ int run_diagnose(const DiagnoseCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.dataset);
   const auto d = validation::read_dataset(dir);
-  OutputFolder out(o.out, dataset_inputs(dir));
+  auto inputs = dataset_inputs(dir);
+  for (auto& p : model_inputs(o.models)) inputs.push_back(std::move(p));
+  OutputFolder out(o.out, inputs);
+  check_entries(out, {"diagnosis.csv", "diagnosis.md"});
   const auto names = split_list(o.models);
   validation::DiagnoseOptions opt;
   opt.alpha = o.alpha;

@@ -71,6 +71,7 @@ int run_sensitivity(const SensitivityCli& o) {
   const Setup setup = validation::read_setup(setup_file);
   const auto stations = validation::read_conditions(dir / "conditions.csv", setup);
   OutputFolder out(o.out, dataset_inputs(dir));  // checked before minutes of DEM runs
+  check_entries(out, {"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity-timing.csv"});
   const Station* station = nullptr;
   for (const auto& s : stations)
     if (s.condition == o.condition) station = &s;

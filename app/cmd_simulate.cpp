@@ -97,6 +97,8 @@ int run_simulate(const SimulateCli& o) {
       if (*s) inputs.emplace_back(**s);
     for (const auto& w : table.stl_walls) inputs.emplace_back(w);
     out.emplace(o.out, inputs);
+    check_entries(*out, {"timeseries.csv", "sensors.csv", "side_view.vtk"});
+    if (o.vtk_every) out->check_entry("vtk", true);
   }
   st::RunOptions ro;
   ro.settings = settings;

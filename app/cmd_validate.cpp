@@ -1,4 +1,5 @@
 // `chutelab validate`: every condition through every model, compared with the measurements.
+#include <algorithm>
 #include <fmt/format.h>
 #include <iostream>
 
@@ -71,11 +72,16 @@ int run_validate(const ValidateCli& o) {
     inputs.emplace_back(fs::path(s) / "sensitivity.csv");
     if (!fs::is_directory(fs::symlink_status(s))) inputs.emplace_back(s);
   }
+  for (auto& p : model_inputs(o.models)) inputs.push_back(std::move(p));
   OutputFolder out(o.out, inputs);
   // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.
   configure_dem_model(o.dem, o.dataset, (out.staging() / "dem").string());
   const auto models = validation::make_models(split_list(o.models));
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
+  check_entries(out, {"predictions.csv", "errors.csv", "summary.csv", "report.md", "report.html"});
+  if (o.diagnose || !o.effects.empty()) check_entries(out, {"diagnosis.csv", "diagnosis.md"});
+  if (std::any_of(models.begin(), models.end(), [](const auto& m) { return m->expensive(); }))
+    out.check_entry("dem", true);
 
   validation::ValidateOptions base_opts;
   base_opts.tolerances = tol ? &*tol : nullptr;

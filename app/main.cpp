@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -55,14 +56,17 @@ std::optional<std::string> closest(std::string_view typed, const std::vector<std
 }
 }  // namespace
 
-std::string suggestion(CLI::App& app, int argc, char** argv) {
+std::optional<std::string> misspelt(CLI::App& app, int argc, char** argv) {
   std::vector<std::string> commands;
   for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) commands.push_back(sub->get_name());
   CLI::App* sub = nullptr;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a.rfind("-", 0) == 0) {
+    if (a == "--") break;
+    if (a.size() > 1 && a[0] == '-') {
       if (!sub) continue;
+      // A negative number is a value (--plate-top -50), not a flag.
+      if (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.') continue;
       const std::string flag = a.substr(0, a.find('='));
       std::vector<std::string> flags;
       bool known = false;
@@ -71,26 +75,43 @@ std::string suggestion(CLI::App& app, int argc, char** argv) {
           flags.push_back("--" + l);
           known = known || flags.back() == flag;
         }
+        for (const auto& n : o->get_snames()) known = known || "-" + n == flag;
       }
       if (known) continue;
-      if (auto c = closest(flag, flags)) return fmt::format("; did you mean {}?", *c);
-      return {};
+      if (auto c = closest(flag, flags))
+        return fmt::format("{}: unknown option {}; did you mean {}?", sub->get_name(), flag, *c);
+      return fmt::format("{}: unknown option {} (see chutelab {} --help)", sub->get_name(), flag, sub->get_name());
     }
     if (!sub) {
       try {
         sub = app.get_subcommand(a);
       } catch (const CLI::OptionNotFound&) {
-        if (auto c = closest(a, commands)) return fmt::format("; did you mean '{}'?", *c);
-        return fmt::format("; commands: {}", fmt::join(commands, ", "));
+        if (auto c = closest(a, commands)) return fmt::format("unknown command '{}'; did you mean '{}'?", a, *c);
+        return fmt::format("unknown command '{}' (commands: {})", a, fmt::join(commands, ", "));
       }
     }
   }
-  return {};
+  return std::nullopt;
 }
 
 std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& dir) {
   return {dir, dir / "setup.toml", dir / "conditions.csv", dir / "measurements.csv", dir / "trajectory.csv",
-          dir / "tolerances.toml", dir / "README.md"};
+          dir / "plate_map.csv", dir / "tolerances.toml", dir / "README.md"};
+}
+
+std::vector<std::filesystem::path> model_inputs(const std::string& models) {
+  std::vector<std::filesystem::path> out;
+  for (const auto& m : split_list(models))
+    if (m.rfind("external:", 0) == 0)
+      if (const auto eq = m.find('='); eq != std::string::npos) {
+        const std::filesystem::path d = m.substr(eq + 1);
+        for (const char* f : {"", "predictions.csv", "trajectory.csv", "README.md"}) out.push_back(*f ? d / f : d);
+      }
+  return out;
+}
+
+void check_entries(const OutputFolder& out, std::initializer_list<const char*> files) {
+  for (const char* f : files) out.check_entry(f, false);
 }
 
 std::filesystem::path default_dataset() {
@@ -145,7 +166,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "chutelab: " << e.what() << app::suggestion(app, argc, argv) << " (see --help)\n";
+    // A misspelt command or flag is the cause of whatever CLI11 says next ("--dataset is required"
+    // after --datset): name it first, with the nearest real one.
+    if (auto m = app::misspelt(app, argc, argv)) std::cerr << "chutelab: " << *m << "\n";
+    else std::cerr << "chutelab: " << e.what() << " (see --help)\n";
     return kExitBadInput;
   }
   // The one exception barrier: bad input is exit 2 with file:line:field; a file-system failure on a

@@ -175,6 +175,21 @@ void OutputFolder::check_not_input(const fs::path& dest, bool is_dir) const {
   }
 }
 
+bool OutputFolder::check_entry(const std::string& name, bool is_dir) const {
+  const fs::path dest = out_ / name;
+  check_not_input(dest, is_dir);
+  std::error_code ec;
+  const auto st = fs::symlink_status(dest, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    throw InputError(dest.string(), 0, flag_, fmt::format("cannot replace: {}", ec.message()));
+  if (!fs::exists(st)) return false;
+  if (fs::is_directory(st) && !is_dir)
+    throw InputError(dest.string(), 0, flag_, "is a folder where chutelab writes a file; move it away");
+  if (!fs::is_directory(st) && is_dir)
+    throw InputError(dest.string(), 0, flag_, "is a file where chutelab writes a folder; move it away");
+  return true;
+}
+
 void OutputFolder::write(const std::string& name, std::string_view content) {
   check_not_input(out_ / name, false);
   if (!writer_) return;
@@ -201,19 +216,7 @@ void OutputFolder::commit() {
   // Check every entry before moving any, so that nothing is half-replaced by a foreseeable problem.
   for (const auto& e : fs::directory_iterator(staging_, ec)) {
     Entry en{e.path(), out_ / e.path().filename(), staging_ / ".replaced" / e.path().filename()};
-    const bool dir = e.is_directory();
-    check_not_input(en.dest, dir);
-    std::error_code sec;
-    const auto st = fs::symlink_status(en.dest, sec);
-    if (sec && sec != std::errc::no_such_file_or_directory)
-      throw InputError(en.dest.string(), 0, flag_, fmt::format("cannot replace: {}", sec.message()));
-    if (fs::exists(st)) {
-      if (fs::is_directory(st) && !dir)
-        throw InputError(en.dest.string(), 0, flag_, "is a folder where chutelab writes a file; move it away");
-      if (!fs::is_directory(st) && dir)
-        throw InputError(en.dest.string(), 0, flag_, "is a file where chutelab writes a folder; move it away");
-      en.replaced = true;
-    }
+    en.replaced = check_entry(e.path().filename().string(), e.is_directory());
     entries.push_back(std::move(en));
   }
   if (ec) throw InputError(staging_.string(), 0, flag_, fmt::format("cannot list the staged files: {}", ec.message()));

@@ -32,6 +32,9 @@ class OutputFolder {
   const std::filesystem::path& out() const { return out_; }
   // Writes one file (name relative to --out) into the staging folder.
   void write(const std::string& name, std::string_view content);
+  // Whether entry `name` of --out (a file, or a folder when is_dir) can be replaced: throws the
+  // InputError commit() would, so that a command can refuse before its long runs; true when it exists.
+  bool check_entry(const std::string& name, bool is_dir) const;
   // Moves every staged entry into --out, all or none. Throws InputError naming the entry that
   // cannot be placed (then --out is as it was).
   void commit();

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "core/input_error.h"
+#include "core/utf8.h"
 #include "validation/harness.h"
 
 namespace chutelab::validation {
@@ -158,16 +159,18 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
   }
   const std::string readme = fmt::format(
       "# Synthetic dataset\n\n"
-      "Made by `chutelab synthesize` from the rig and conditions of `{}` (copied unchanged as\n"
-      "`setup.toml` and `conditions.csv`), random seed {}. `measurements.csv` and `trajectory.csv` hold\n"
+      "Made by `chutelab synthesize` from the rig and conditions of `{}` (copied unchanged, in UTF-8,\n"
+      "as `setup.toml` and `conditions.csv`), random seed {}. `measurements.csv` and `trajectory.csv` hold\n"
       "values computed by chutelab's analytical models with Gaussian noise of one stated uncertainty\n"
       "added to each; magnitudes (R, V_p, V_a) never read below zero, their noise is the normal\n"
       "truncated there. Each uncertainty is computed from the written value (two significant\n"
       "figures). What else went into the generating model is deliberately not recorded here, so\n"
       "the dataset can serve as a blind test of `chutelab diagnose`.\n",
       src.setup.name.empty() ? src.dir.filename().string() : src.setup.name, opt.seed);
-  return {{"setup.toml", slurp(src.dir / "setup.toml")},
-          {"conditions.csv", slurp(src.dir / "conditions.csv")},
+  // Copied as read, but in UTF-8 like the files written beside them: a Latin-1 conditions.csv
+  // would otherwise make one dataset of two encodings.
+  return {{"setup.toml", to_utf8(slurp(src.dir / "setup.toml"))},
+          {"conditions.csv", to_utf8(slurp(src.dir / "conditions.csv"))},
           {"measurements.csv", meas},
           {"trajectory.csv", traj},
           {"README.md", readme}};

@@ -108,6 +108,12 @@ BOOST_AUTO_TEST_CASE(class1_no_abort_and_out_left_as_it_was) {
   fs::create_directories(c.out / "errors.csv");
   expect_refused(c, c.args("validate"), 2, "errors.csv: --out: is a folder where chutelab writes a file");
   fs::remove(c.out / "errors.csv");
+  // A file where OUT/dem goes: refused before any DEM run, not after minutes of them.
+  write_file(c.out / "dem", "a file\n");
+  const auto dem = expect_refused(c, c.args("validate") + " --models korzen,dem --no-dem-cache", 2,
+                                  "dem: --out: is a file where chutelab writes a folder");
+  BOOST_TEST(dem.err.find("validate: dem") == std::string::npos);  // no run started
+  fs::remove(c.out / "dem");
   // A symlink loop as the dataset, as --out and as a file of the dataset.
   fs::create_symlink(c.root / "loop", c.root / "loop");
   expect_refused(c, "validate --dataset '" + (c.root / "loop").string() + "' --out '" + c.out.string() + "'", 2,
@@ -253,6 +259,15 @@ BOOST_AUTO_TEST_CASE(class5_outputs_read_back) {
     BOOST_TEST(s.find("\nV3,41,") == std::string::npos);
     BOOST_TEST(s.find("\nK\xC3\xB6ln,") != std::string::npos);  // Latin-1 read as such, written as UTF-8
   }
+  // A dataset made from it is one encoding, UTF-8, throughout.
+  const fs::path synth = c.root / "synth";
+  const auto sr = run_chutelab("synthesize --dataset '" + c.data.string() + "' --out '" + synth.string() + "'");
+  BOOST_TEST(sr.exit_code == 0, sr.err);
+  for (const char* f : {"conditions.csv", "measurements.csv", "trajectory.csv"}) {
+    BOOST_TEST_INFO(f);
+    BOOST_TEST(read_file(synth / f).find("K\xC3\xB6ln") != std::string::npos);
+    BOOST_TEST(read_file(synth / f).find("K\xF6ln") == std::string::npos);
+  }
   const std::string html = read_file(c.out / "report.html");
   BOOST_TEST(html.find("K\xC3\xB6ln") != std::string::npos);
   BOOST_TEST(html.find("K\xF6ln") == std::string::npos);
@@ -283,6 +298,10 @@ BOOST_AUTO_TEST_CASE(class6_messages_point_the_right_way) {
 
   expect_refused(c, c.args("valdate"), 2, "did you mean 'validate'?");
   expect_refused(c, c.args("validate") + " --modles korzen", 2, "did you mean --models?");
+  // The typo is named first, not what it caused ("--dataset is required").
+  const auto typo = expect_refused(c, "validate --datset '" + c.data.string() + "' --out '" + c.out.string() + "'", 2,
+                                   "validate: unknown option --datset; did you mean --dataset?");
+  BOOST_TEST(typo.err.find("required") == std::string::npos);
 
   const std::string setup = read_file(c.data / "setup.toml");
   write_file(c.data / "setup.toml", setup + "\n[materal]\nfriction_plate = 0.3\n");
