@@ -220,6 +220,27 @@ Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
   return s;
 }
 
+void check_operating_input(std::string_view column, double v, const std::string& field) {
+  // The fastest belts run ~15 m/s, the largest carry ~40 000 t/h.
+  auto fail = [&](const std::string& why) { throw InputError("", 0, field, why); };
+  if (std::isnan(v)) fail("must be a number, got nan");
+  if (column == "belt_speed_mps") {
+    if (!(v > 0.0)) fail(fmt::format("belt speed must be positive, got {}", v));
+    if (v > 50.0) fail(fmt::format("belt speed {:g} m/s is beyond any conveyor (at most 50 m/s)", v));
+  } else if (column == "mass_flow_tph") {
+    if (!(v > 0.0)) fail(fmt::format("mass flow must be positive, got {}", v));
+    if (v > 1e5) fail(fmt::format("mass flow {:g} t/h is beyond any conveyor (at most 100000 t/h)", v));
+  } else if (column == "plate_distance_mm") {
+    if (v > 1e5) fail(fmt::format("plate distance {:g} mm is beyond a transfer station (at most 100 m)", v));
+    if (!(v > 0.0)) fail(fmt::format("the plate must be downstream of the pulley centre (x > 0), got {}", v));
+  } else if (column == "plate_top_mm") {
+    if (!(std::abs(v) <= 1e5)) fail(fmt::format("plate top {:g} mm is beyond a transfer station (|y| at most 100 m)", v));
+  } else if (column == "stream_thickness_mm") {
+    if (!(v > 0.0)) fail(fmt::format("stream thickness must be positive, got {}", v));
+    if (v > 1e4) fail(fmt::format("stream thickness {:g} mm is beyond any belt load (at most 10 m)", v));
+  }
+}
+
 Station make_station(const Setup& setup, std::string condition, double belt_speed,
                      double mass_flow, double plate_distance, double plate_top,
                      std::optional<double> stream_thickness) {
@@ -277,43 +298,22 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
     if (auto [it, fresh] = seen.emplace(id, row.line); !fresh)
       throw InputError(t.file(), row.line, "condition",
                        fmt::format("duplicate condition '{}' (first on line {})", id, it->second));
-    const double speed = t.number(row, c_speed);
-    const double flow = t.number(row, c_flow);
-    if (speed <= 0.0)
-      throw InputError(t.file(), row.line, "belt_speed_mps",
-                       fmt::format("belt speed must be positive, got {}", speed));
-    if (flow <= 0.0)
-      throw InputError(t.file(), row.line, "mass_flow_tph",
-                       fmt::format("mass flow must be positive, got {}", flow));
-    // Bounds no conveyor reaches (the fastest run ~15 m/s, the largest ~40 000 t/h): beyond them the
-    // numbers are a unit slip, and the models would print inf rather than say so.
-    if (speed > 50.0)
-      throw InputError(t.file(), row.line, "belt_speed_mps",
-                       fmt::format("belt speed {:g} m/s is beyond any conveyor (at most 50 m/s)", speed));
-    if (flow > 1e5)
-      throw InputError(t.file(), row.line, "mass_flow_tph",
-                       fmt::format("mass flow {:g} t/h is beyond any conveyor (at most 100000 t/h)", flow));
-    const double dist = t.number(row, c_dist);
-    if (dist > 1e5)
-      throw InputError(t.file(), row.line, "plate_distance_mm",
-                       fmt::format("plate distance {:g} mm is beyond a transfer station (at most 100 m)", dist));
-    if (dist <= 0.0)
-      throw InputError(t.file(), row.line, "plate_distance_mm",
-                       fmt::format("the plate must be downstream of the pulley centre (x > 0), got {}",
-                                   dist));
-    const double top = t.number(row, c_top);
-    if (std::abs(top) > 1e5)
-      throw InputError(t.file(), row.line, "plate_top_mm",
-                       fmt::format("plate top {:g} mm is beyond a transfer station (|y| at most 100 m)", top));
+    auto checked = [&](const char* column, double v) {
+      try {
+        check_operating_input(column, v, column);
+      } catch (const InputError& e) {
+        throw e.located(t.file(), row.line);
+      }
+      return v;
+    };
+    const double speed = checked("belt_speed_mps", t.number(row, c_speed));
+    const double flow = checked("mass_flow_tph", t.number(row, c_flow));
+    const double dist = checked("plate_distance_mm", t.number(row, c_dist));
+    const double top = checked("plate_top_mm", t.number(row, c_top));
     std::optional<double> thick;
     if (c_thick) {
       thick = t.optional_number(row, *c_thick);
-      if (thick && *thick <= 0.0)
-        throw InputError(t.file(), row.line, "stream_thickness_mm",
-                         fmt::format("stream thickness must be positive, got {}", *thick));
-      if (thick && *thick > 1e4)
-        throw InputError(t.file(), row.line, "stream_thickness_mm",
-                         fmt::format("stream thickness {:g} mm is beyond any belt load (at most 10 m)", *thick));
+      if (thick) checked("stream_thickness_mm", *thick);
     }
     Setup local = setup;
     for (const auto& [col, f] : overrides) {

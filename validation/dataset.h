@@ -108,6 +108,12 @@ std::vector<Station> read_conditions(const std::filesystem::path& file, const Se
 std::vector<Measurement> read_measurements(const std::filesystem::path& file, const Dataset* d);
 std::vector<TrajectoryPoint> read_trajectory(const std::filesystem::path& file, const Dataset* d);
 
+// The operating inputs of a condition (conditions.csv's columns belt_speed_mps, mass_flow_tph,
+// plate_distance_mm, plate_top_mm, stream_thickness_mm; `value` in that column's unit) against the
+// bounds no conveyor reaches: beyond them the number is a unit slip and the models would print inf
+// rather than say so. Throws InputError naming `field` (no file: the caller locates it).
+void check_operating_input(std::string_view column, double value, const std::string& field);
+
 // Station from a setup and explicit operating values (all SI).
 Station make_station(const Setup& setup, std::string condition, double belt_speed,
                      double mass_flow, double plate_distance, double plate_top,

@@ -234,6 +234,14 @@ BOOST_AUTO_TEST_CASE(class4_nonsense_is_refused) {
     expect_refused(c, c.args("validate"), 2, "x_mm: x = -20 mm is behind the pulley centre");
   }
   {
+    // The command line has the same bounds as conditions.csv (the estimate used to print inf).
+    Case c("estimate");
+    const std::string row = "estimate --dataset '" + c.data.string() + "' --condition V3-41";
+    expect_refused(c, row + " --belt-speed 5e307", 2, "--belt-speed: belt speed 5e+307 m/s is beyond any conveyor");
+    expect_refused(c, row + " --mass-flow 5e307", 2, "--mass-flow: mass flow 5e+307 t/h is beyond any conveyor");
+    expect_refused(c, row + " --sweep belt_speed=1:5e307:1", 2, "--sweep: belt speed 5e+307 m/s is beyond");
+  }
+  {
     Case c("models");
     expect_refused(c, c.args("validate") + " --models korzen,korzen", 2, "--models: model 'korzen' is listed twice");
   }
