@@ -283,6 +283,31 @@ BOOST_AUTO_TEST_CASE(class5_outputs_read_back) {
   BOOST_TEST(!staging_left(c.root));
 }
 
+// Class 5 in import-digitised: a condition name with a comma is written quoted into the new dataset.
+BOOST_AUTO_TEST_CASE(class5_imported_rows_read_back) {
+  const fs::path root = fresh_dir("harden-import"), src = root / "grima", ex = fs::path(CHUTELAB_SOURCE_DIR) / "datasets";
+  fs::create_directories(src);
+  for (const auto& f : fs::directory_iterator(ex / "grima2010")) {
+    std::string s = read_file(f.path());
+    if (f.path().extension() == ".csv")
+      for (std::size_t at; (at = s.find("\nV3-41,")) != std::string::npos;) s.replace(at, 7, "\n\"V3,41\",");
+    write_file(src / f.path().filename(), s);
+  }
+  std::string mapping = read_file(ex / "digitised-example" / "mapping.toml");
+  for (std::size_t at; (at = mapping.find("\"V3-41\"")) != std::string::npos;) mapping.replace(at, 7, "\"V3,41\"");
+  write_file(root / "mapping.toml", mapping);
+  const auto r = run_chutelab("import-digitised --dataset '" + src.string() + "' --mapping '" + (root / "mapping.toml").string() +
+                              "' --input '" + (ex / "digitised-example" / "fig-a-stream-limits.csv").string() +
+                              "' --input '" + (ex / "digitised-example" / "fig-b-forces.json").string() + "' --out '" +
+                              (root / "new").string() + "'");
+  BOOST_TEST(r.exit_code == 0, r.err);
+  BOOST_TEST(read_file(root / "new" / "trajectory.csv").find("\n\"V3,41\",upper,") != std::string::npos);
+  BOOST_TEST(read_file(root / "new" / "measurements.csv").find("\n\"V3,41\",normal_force_N,") != std::string::npos);
+  const auto v = run_chutelab("validate --dataset '" + (root / "new").string() + "' --out '" + (root / "v").string() + "'");
+  BOOST_TEST(v.exit_code == 0, v.err);
+  BOOST_TEST(!staging_left(root));
+}
+
 // Class 6: the message points at the real problem.
 BOOST_AUTO_TEST_CASE(class6_messages_point_the_right_way) {
   Case c("messages");
