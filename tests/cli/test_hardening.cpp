@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <algorithm>
 #include <map>
+#include <tuple>
 #include <vector>
 #include <string>
 
@@ -130,22 +131,27 @@ BOOST_AUTO_TEST_CASE(class1_no_abort_and_out_left_as_it_was) {
 BOOST_AUTO_TEST_CASE(class1_interrupt_leaves_nothing_behind) {
   Case c("interrupt");
   const auto data_before = snapshot(c.data), out_before = snapshot(c.out);
-  for (const auto& [sig, code] : {std::pair{"INT", 130}, {"TERM", 143}}) {
+  const std::string simulate = "simulate --dataset '" + c.data.string() + "' --condition V3-41 --max-time 3 --no-cache";
+  // validate with the DEM stages OUT/dem while its runs go on (one thread: seconds per condition).
+  const std::string validate = "validate --dataset '" + c.data.string() +
+                               "' --models korzen,dem --dem-quality quick --no-dem-cache --dem-threads 1";
+  for (const auto& [sig, code, cmd] : {std::tuple{"INT", 130, simulate}, {"TERM", 143, simulate}, {"INT", 130, validate}}) {
+    BOOST_TEST_CONTEXT(sig << " " << cmd) {
     const fs::path rc = c.root / "rc", script = c.root / "interrupt.sh";
-    // simulate stages its series while the DEM runs (seconds): the signal arrives mid-run.
-    // (env --default-signal: a background job of a script starts with SIGINT ignored, as a user's
-    // terminal job does not.)
-    write_file(script, "env --default-signal=INT,TERM '" + std::string(CHUTELAB_BINARY) + "' simulate --dataset '" + c.data.string() +
-                           "' --condition V3-41 --max-time 3 --no-cache --out '" + c.out.string() + "' >/dev/null 2>'" +
+    // The signal arrives mid-run. (env --default-signal: a background job of a script starts with
+    // SIGINT ignored, as a user's terminal job does not.)
+    write_file(script, "env --default-signal=INT,TERM '" + std::string(CHUTELAB_BINARY) + "' " + cmd +
+                           " --out '" + c.out.string() + "' >/dev/null 2>'" +
                            (c.root / "err").string() + "' &\np=$!\nsleep 2\nkill -" + sig + " $p\nwait $p\necho $? >'" +
                            rc.string() + "'\n");
-    const std::string cmd = "sh '" + script.string() + "'";
-    BOOST_REQUIRE(std::system(cmd.c_str()) == 0);
+    const std::string shell = "sh '" + script.string() + "'";
+    BOOST_REQUIRE(std::system(shell.c_str()) == 0);
     BOOST_TEST(std::stoi(read_file(rc)) == code);
     BOOST_TEST(read_file(c.root / "err").find("nothing was written") != std::string::npos);
     BOOST_TEST((snapshot(c.data) == data_before));
     BOOST_TEST((snapshot(c.out) == out_before));
     BOOST_TEST(!staging_left(c.root));
+    }
   }
 }
 
