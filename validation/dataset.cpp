@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <set>
@@ -92,10 +93,26 @@ constexpr OperatingUncertainty kOperating[] = {
      &InputUncertainties::stream_thickness},
 };
 
-// An input uncertainty is one standard deviation, finite and >= 0 (0 = known exactly).
-void check_input_uncertainty(double v, const std::string& file, long line, const std::string& field) {
+// An input uncertainty is one standard deviation, finite and >= 0 (0 = known exactly), and no wider
+// than the whole range the input may take (`span`, in the key's unit): beyond it the perturbed inputs
+// leave any rig, and u_input silently went missing (5e307 m/s on the belt speed).
+void check_input_uncertainty(double v, double span, const std::string& file, long line, const std::string& field) {
   if (!std::isfinite(v)) throw InputError(file, line, field, "uncertainty must be a finite number");
   if (v < 0.0) throw InputError(file, line, field, fmt::format("uncertainty cannot be negative, got {}", v));
+  if (v > span)
+    throw InputError(file, line, field,
+                     fmt::format("uncertainty {:g} is wider than the whole range the input can take ({:g}); give "
+                                 "one standard deviation in the key's unit",
+                                 v, span));
+}
+
+// The range of an operating input (validation::check_operating_input's bounds), in its column's unit.
+double operating_span(std::string_view key) {
+  if (key == "belt_speed_mps") return 50.0;
+  if (key == "mass_flow_tph") return 1e5;
+  if (key == "plate_top_mm") return 2e5;
+  if (key == "stream_thickness_mm") return 1e4;
+  return 1e5;  // plate_distance_mm
 }
 
 // [uncertainty]: keys are the setup's own, dotted ("material.friction_plate" = 0.02) or in
@@ -118,15 +135,17 @@ InputUncertainties read_uncertainty_table(const toml::table& doc, const std::str
     const auto v = n.value<double>();
     if (!v || !n.is_number())
       throw InputError(file, line, field, "must be a number (one standard deviation, in the key's unit)");
-    check_input_uncertainty(*v, file, line, field);
+    check_input_uncertainty(*v, std::numeric_limits<double>::infinity(), file, line, field);
     if (section.empty())
       for (const auto& op : kOperating)
         if (op.key == key) {
+          check_input_uncertainty(*v, operating_span(op.key), file, line, field);
           u.*op.member = *v * op.to_si;
           return;
         }
     for (const auto& f : rig_fields())
       if (f.section == section && f.key == key) {
+        check_input_uncertainty(*v, f.max - f.min, file, line, field);
         rig[&f] = *v * f.to_si;
         return;
       }
@@ -331,7 +350,7 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
       InputUncertainties u = defaults;
       for (const auto& [col, op] : c_unc)
         if (const auto v = t.optional_number(row, col)) {
-          check_input_uncertainty(*v, t.file(), row.line, std::string(op->column));
+          check_input_uncertainty(*v, operating_span(op->key), t.file(), row.line, std::string(op->column));
           u.*op->member = *v * op->to_si;
         }
       uncertainties->push_back(std::move(u));

@@ -225,6 +225,13 @@ BOOST_AUTO_TEST_CASE(class4_nonsense_is_refused) {
     expect_refused(c, c.args("validate"), 2, "bulk_density_kgm3: bulk density 5000 kg/m^3 is above the solid density");
   }
   {
+    // An input uncertainty wider than any rig: u_input used to vanish without a word.
+    Case c("input-u");
+    write_file(c.data / "setup.toml", read_file(c.data / "setup.toml") + "\n[uncertainty]\nbelt_speed_mps = 5e307\n");
+    expect_refused(c, c.args("validate"), 2,
+                   "uncertainty.belt_speed_mps: uncertainty 5e+307 is wider than the whole range the input can take (50)");
+  }
+  {
     Case c("tiny-u");
     std::string m = read_file(c.data / "measurements.csv");
     m += "V3-41,exit_velocity_mps,2.0,1e-300\n";
