@@ -1,7 +1,9 @@
 #include "analytical/korzen.h"
 
 #include <cmath>
-#include <stdexcept>
+#include <fmt/format.h>
+
+#include "core/input_error.h"
 
 namespace chutelab::analytical {
 
@@ -28,7 +30,13 @@ KorzenResult korzen_impact(const KorzenInput& in) {
       area = r.inflow_area * in.impact_speed / va;
       if (converged) break;
     }
-    if (r.iterations > 200) throw std::runtime_error("Korzen Eq 4 iteration did not converge");
+    // Finite inputs converge in a few dozen passes; only an impact speed or flow out of range (an
+    // extreme measured value driving a fit, a unit slip) gets here. It is the input's fault.
+    if (r.iterations > 200)
+      throw InputError("", 0, "",
+                       fmt::format("Korzen Eq 4 has no finite solution for an impact speed of {:g} m/s and a mass "
+                                   "flow of {:g} kg/s",
+                                   in.impact_speed, in.mass_flow));
     r.exit_speed = va;
     r.outflow_area = area;
   }

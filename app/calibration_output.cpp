@@ -1,4 +1,5 @@
 #include "app/calibration_output.h"
+#include "core/csv_field.h"
 
 #include <algorithm>
 #include <cmath>
@@ -117,7 +118,7 @@ std::string calibration_csv(const CalibrationContext& c, const CalibrationStudy&
                        csv_number(r.slump.peak_height * 1e3), csv_number(r.slump.fill_height * 1e3), r.slump.particles, r.slump.settled ? 1 : 0,
                        r.slump.steps,
                        std::isfinite(r.distance) ? csv_number(r.distance) : std::string(),
-                       static_cast<int>(k) == s.closest ? 1 : 0, c.setup.name, c.quality);
+                       static_cast<int>(k) == s.closest ? 1 : 0, csv_field(c.setup.name), c.quality);
   }
   return out;
 }

@@ -17,6 +17,7 @@
 #include "core/input_error.h"
 #include "core/number.h"
 #include "dem/rigs/calibration.h"
+#include "core/output_folder.h"
 #include "validation/dataset.h"
 #include "validation/output_files.h"
 
@@ -56,6 +57,9 @@ int run_calibrate(const CalibrateCli& o) {
   ctx.dataset = dir.string();
   ctx.quality = o.quality;
   ctx.setup = validation::read_setup(dir / "setup.toml");
+  OutputFolder out(o.out, dataset_inputs(dir));  // checked before minutes of slump tests
+  check_entries(out, {"calibration.csv", "incline.csv", "calibration.md", "calibration.html", "material.toml",
+                      "calibration-timing.csv"});
 
   CalibrationPlan plan;
   plan.rolling = numbers(o.rolling, "--rolling");
@@ -111,12 +115,13 @@ int run_calibrate(const CalibrateCli& o) {
                                name(r.result.predicted.motion));
   }
   std::cout << "Table 3 (seed layout):\n" << table3_md(study);
-  validation::write_outputs(o.out, {{"calibration.csv", calibration_csv(ctx, study)},
-                                    {"incline.csv", incline_csv(study)},
-                                    {"calibration.md", calibration_md(ctx, study)},
-                                    {"calibration.html", calibration_html(ctx, study)},
-                                    {"material.toml", material_toml(ctx, study)},
-                                    {"calibration-timing.csv", calibration_timing_csv(study)}});
+  out.write("calibration.csv", calibration_csv(ctx, study));
+  out.write("incline.csv", incline_csv(study));
+  out.write("calibration.md", calibration_md(ctx, study));
+  out.write("calibration.html", calibration_html(ctx, study));
+  out.write("material.toml", material_toml(ctx, study));
+  out.write("calibration-timing.csv", calibration_timing_csv(study));
+  out.commit();
   if (study.closest >= 0) {
     const auto& b = study.rows[static_cast<std::size_t>(study.closest)];
     std::cout << fmt::format("closest to the target: {} mu_r = {:g}, rho_s = {:g} kg/m^3 (bulk {:.0f} kg/m^3, pile {:.1f} mm; "

@@ -10,6 +10,7 @@
 #include "app/dem_options.h"
 #include "app/effect_options.h"
 #include "core/input_error.h"
+#include "core/output_folder.h"
 #include "validation/diagnosis.h"
 #include "validation/output_files.h"
 
@@ -28,11 +29,16 @@ int run_diagnose(const DiagnoseCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.dataset);
   const auto d = validation::read_dataset(dir);
+  auto inputs = dataset_inputs(dir);
+  for (auto& p : model_inputs(o.models)) inputs.push_back(std::move(p));
+  OutputFolder out(o.out, inputs);
+  check_entries(out, {"diagnosis.csv", "diagnosis.md"});
   const auto names = split_list(o.models);
   validation::DiagnoseOptions opt;
   opt.alpha = o.alpha;
   opt.pairs = !o.no_pairs;
   opt.jobs = o.jobs;
+  opt.progress = true;
   // An expensive model (the DEM) runs once per condition, and once more per condition for every
   // candidate it can represent (its own signature); the others take the analytical models'
   // signatures, and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
@@ -43,7 +49,9 @@ int run_diagnose(const DiagnoseCli& o) {
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
   const auto r = validation::diagnose(d, models, opt);
   const std::string md = validation::diagnosis_markdown(r);
-  validation::write_outputs(o.out, {{"diagnosis.csv", validation::diagnosis_csv(r)}, {"diagnosis.md", md}});
+  out.write("diagnosis.csv", validation::diagnosis_csv(r));
+  out.write("diagnosis.md", md);
+  out.commit();
   std::cout << r.verdict << "\n";
   std::cout << fmt::format("diagnosis: {}\n", (fs::path(o.out) / "diagnosis.md").string());
   return 0;

@@ -8,7 +8,10 @@
 #include <unistd.h>
 
 #include "app/commands.h"
+#include "core/campaign.h"
+#include "core/csv_field.h"
 #include "core/input_error.h"
+#include "core/output_folder.h"
 #include "validation/dataset.h"
 #include "validation/digitised.h"
 #include "validation/output_files.h"
@@ -57,13 +60,15 @@ void append_rows(const fs::path& file, const std::vector<std::string>& columns,
     std::vector<std::string> cells(header.size());
     for (std::size_t i = 0; i < header.size(); ++i)
       for (std::size_t j = 0; j < columns.size(); ++j)
-        if (header[i] == columns[j]) cells[i] = r[j];
+        if (header[i] == columns[j]) cells[i] = csv_field(r[j]);  // RFC 4180: "V3,41" stays one field
     text += fmt::format("{}\n", fmt::join(cells, ","));
   }
   write_text(file, text);
 }
 
 int run_import(const ImportCli& o) {
+  if (campaign::ranks() > 1)  // every rank would write the same new folder
+    throw InputError("", 0, "mpirun", "import-digitised writes one dataset folder: run it as one process");
   const fs::path src(o.dataset), out(o.out);
   const auto d = validation::read_dataset(src, validation::MeasurementsRequired::no);
   std::vector<validation::DigitisedCurve> curves;
@@ -87,6 +92,7 @@ int run_import(const ImportCli& o) {
   const fs::path stage = abs_out.parent_path() / fmt::format(".{}.partial-{}", abs_out.filename().string(), ::getpid());
   std::error_code ec;
   fs::remove_all(stage, ec);
+  register_temporary(stage);  // Ctrl-C removes it (core/output_folder.h)
   try {
     fs::create_directories(abs_out.parent_path());
     fs::copy(src, stage, fs::copy_options::recursive);
@@ -118,8 +124,10 @@ int run_import(const ImportCli& o) {
     }
     if (fs::exists(abs_out)) fs::remove(abs_out);  // an empty folder
     fs::rename(stage, abs_out);
+    unregister_temporary(stage);
   } catch (...) {
     fs::remove_all(stage, ec);
+    unregister_temporary(stage);
     throw;
   }
   for (const auto& n : imp.unmapped)

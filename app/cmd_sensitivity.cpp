@@ -20,6 +20,7 @@
 #include "core/number.h"
 #include "dem/station/progress.h"
 #include "dem/station/run.h"
+#include "core/output_folder.h"
 #include "validation/dataset.h"
 #include "validation/output_files.h"
 
@@ -69,6 +70,8 @@ int run_sensitivity(const SensitivityCli& o) {
   const fs::path setup_file = dir / "setup.toml";
   const Setup setup = validation::read_setup(setup_file);
   const auto stations = validation::read_conditions(dir / "conditions.csv", setup);
+  OutputFolder out(o.out, dataset_inputs(dir));  // checked before minutes of DEM runs
+  check_entries(out, {"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity-timing.csv"});
   const Station* station = nullptr;
   for (const auto& s : stations)
     if (s.condition == o.condition) station = &s;
@@ -211,10 +214,11 @@ int run_sensitivity(const SensitivityCli& o) {
   }
   reports::evaluate(study);
   study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  validation::write_outputs(o.out, {{"sensitivity.csv", reports::sensitivity_csv(study)},
-                                    {"sensitivity.md", reports::sensitivity_md(study)},
-                                    {"sensitivity.html", reports::sensitivity_html(study)},
-                                    {"sensitivity-timing.csv", reports::sensitivity_timing_csv(study)}});
+  out.write("sensitivity.csv", reports::sensitivity_csv(study));
+  out.write("sensitivity.md", reports::sensitivity_md(study));
+  out.write("sensitivity.html", reports::sensitivity_html(study));
+  out.write("sensitivity-timing.csv", reports::sensitivity_timing_csv(study));
+  out.commit();
   std::cout << study.verdict.text << "\n";
   std::cout << fmt::format("{:.0f} s; written: {}\n", study.wall_seconds, (fs::path(o.out) / "sensitivity.html").string());
   return kExitOk;

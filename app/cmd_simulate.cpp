@@ -13,6 +13,7 @@
 #include "dem/station/run.h"
 #include "dem/world.h"
 #include "effects/registry.h"
+#include "core/output_folder.h"
 #include "validation/dataset.h"
 #include "validation/models/dem_model.h"
 
@@ -88,13 +89,24 @@ int run_simulate(const SimulateCli& o) {
                      "for OpenMP); validate, diagnose, sensitivity and calibrate spread their runs over the ranks");
   if (o.vtk_every && !(*o.vtk_every > 0.0)) throw InputError("", 0, "--vtk-every", "must be > 0 s");
   if (o.vtk_every && o.out.empty()) throw InputError("", 0, "--vtk-every", "needs --out DIR");
+  // Series, side view and VTK are staged and placed in --out only when the run has finished.
+  std::optional<OutputFolder> out;
+  if (!o.out.empty()) {
+    auto inputs = dataset_inputs(dir);
+    for (const auto* s : {&table.stl_plate, &table.stl_belt, &table.stl_pulley})
+      if (*s) inputs.emplace_back(**s);
+    for (const auto& w : table.stl_walls) inputs.emplace_back(w);
+    out.emplace(o.out, inputs);
+    check_entries(*out, {"timeseries.csv", "sensors.csv", "side_view.vtk"});
+    if (o.vtk_every) out->check_entry("vtk", true);
+  }
   st::RunOptions ro;
   ro.settings = settings;
   ro.geometry = table;
   ro.external = fx.external;
   ro.progress = st::ProgressPrinter(fmt::format("dem {}", station->condition));
   if (!o.out.empty()) {
-    ro.vtk_dir = (fs::path(o.out) / "vtk").string();
+    ro.vtk_dir = (out->staging() / "vtk").string();
     ro.vtk_every = o.vtk_every.value_or(0.0);
   }
   st::StationResult r;
@@ -104,8 +116,9 @@ int run_simulate(const SimulateCli& o) {
     throw InputError("", 0, "--dt-fraction", fmt::format("the DEM run failed: {}", e.what()));
   }
   if (!o.out.empty()) {
-    st::write_result_files(o.out, r);
-    st::write_side_view_vtk((fs::path(o.out) / "side_view.vtk").string(), r.side_view);
+    st::write_result_files(out->staging().string(), r);
+    st::write_side_view_vtk((out->staging() / "side_view.vtk").string(), r.side_view);
+    out->commit();
   }
   if (!o.no_cache) {
     // Same key as the harness model: a later `validate --models dem` with these settings is instant.

@@ -4,6 +4,7 @@
 
 #include "app/commands.h"
 #include "app/effect_options.h"
+#include "core/output_folder.h"
 #include "effects/registry.h"
 #include "validation/synthesize.h"
 
@@ -21,6 +22,7 @@ int run_synthesize(const SynthesizeCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
   const auto d = validation::read_dataset(dir, validation::MeasurementsRequired::no);
+  OutputFolder out(o.out, dataset_inputs(dir));
   std::vector<effects::EffectSetting> settings;
   for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false));
   validation::SynthesizeOptions opt;
@@ -32,7 +34,8 @@ int run_synthesize(const SynthesizeCli& o) {
     auto m = validation::make_model(n);
     if (!m->expensive()) models.push_back(m);
   }
-  validation::write_outputs(o.out, validation::synthesize(d, models, opt));
+  for (const auto& [name, content] : validation::synthesize(d, models, opt)) out.write(name, content);
+  out.commit();
   std::cout << fmt::format("synthetic dataset: {}\n", o.out);
   return 0;
 }

@@ -1,4 +1,5 @@
 // `chutelab validate`: every condition through every model, compared with the measurements.
+#include <algorithm>
 #include <fmt/format.h>
 #include <iostream>
 
@@ -6,6 +7,7 @@
 #include "app/dem_options.h"
 #include "app/effect_options.h"
 #include "core/input_error.h"
+#include "core/output_folder.h"
 #include "reports/report.h"
 #include "reports/sensitivity_study.h"
 #include "reports/studies.h"
@@ -56,16 +58,30 @@ int run_validate(const ValidateCli& o) {
     const fs::path f = fs::is_directory(s) ? fs::path(s) / "sensitivity.csv" : fs::path(s);
     if (f.filename() == "sensitivity.csv" && fs::exists(f)) sensitivity = reports::read_sensitivity_csv(f);
   }
-  // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.
-  DemOutputStage dem_files(o.out);
-  configure_dem_model(o.dem, o.dataset, dem_files.staging());
-  const auto models = validation::make_models(split_list(o.models));
-  if (models.empty()) throw InputError("", 0, "--models", "no model given");
-
   std::optional<validation::Tolerances> tol;
   if (!o.tolerances.empty()) tol = validation::Tolerances::read(o.tolerances);
-  else if (fs::exists(dir / "tolerances.toml")) tol = validation::Tolerances::read(dir / "tolerances.toml");
+  else if (fs::exists(fs::symlink_status(dir / "tolerances.toml"))) tol = validation::Tolerances::read(dir / "tolerances.toml");
   check_junit_path(o, tol ? fs::path(tol->file()) : fs::path());
+
+  // Every file is staged and --out changes only at the end, all at once (core/output_folder.h);
+  // checked here, before any model runs, so a bad --out costs no DEM run.
+  auto inputs = dataset_inputs(dir);
+  if (!o.tolerances.empty()) inputs.emplace_back(o.tolerances);
+  for (const auto& s : o.studies) {
+    inputs.emplace_back(fs::path(s) / "calibration.csv");
+    inputs.emplace_back(fs::path(s) / "sensitivity.csv");
+    if (!fs::is_directory(fs::symlink_status(s))) inputs.emplace_back(s);
+  }
+  for (auto& p : model_inputs(o.models)) inputs.push_back(std::move(p));
+  OutputFolder out(o.out, inputs);
+  // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.
+  configure_dem_model(o.dem, o.dataset, (out.staging() / "dem").string());
+  const auto models = validation::make_models(split_list(o.models));
+  if (models.empty()) throw InputError("", 0, "--models", "no model given");
+  check_entries(out, {"predictions.csv", "errors.csv", "summary.csv", "report.md", "report.html"});
+  if (o.diagnose || !o.effects.empty()) check_entries(out, {"diagnosis.csv", "diagnosis.md"});
+  if (std::any_of(models.begin(), models.end(), [](const auto& m) { return m->expensive(); }))
+    out.check_entry("dem", true);
 
   validation::ValidateOptions base_opts;
   base_opts.tolerances = tol ? &*tol : nullptr;
@@ -100,7 +116,9 @@ int run_validate(const ValidateCli& o) {
   std::optional<validation::DiagnosisResult> diagnosis;
   if (o.diagnose || !o.effects.empty()) {
     if (cheap.empty()) throw InputError("", 0, "--diagnose", "the diagnosis needs an analytical model in --models");
-    diagnosis = validation::diagnose(dataset, in_registry_order(cheap));
+    validation::DiagnoseOptions dopt;
+    dopt.progress = true;
+    diagnosis = validation::diagnose(dataset, in_registry_order(cheap), dopt);
     report.diagnosis = &*diagnosis;
   }
 
@@ -114,7 +132,9 @@ int run_validate(const ValidateCli& o) {
     files.emplace_back("diagnosis.csv", validation::diagnosis_csv(*diagnosis));
     files.emplace_back("diagnosis.md", validation::diagnosis_markdown(*diagnosis));
   }
-  validation::write_outputs(o.out, files);
+  for (const auto& [name, content] : files) out.write(name, content);
+  out.commit();
+  for (const auto& p : final_result.acceptance_problems) std::cerr << "chutelab: acceptance: " << p << "\n";
   validation::JunitSummary junit;
   if (!o.junit.empty()) {  // after the others, under a temporary name first
     const fs::path f(o.junit);
@@ -122,7 +142,6 @@ int run_validate(const ValidateCli& o) {
                               {{f.filename().string(),
                                 validation::junit_xml(final_result, tol ? &*tol : nullptr, &junit)}});
   }
-  dem_files.commit();
   if (after) std::cout << "before: " << baseline.brief() << "\nafter:  " << after->brief() << "\n";
   else std::cout << baseline.brief() << "\n";
   if (diagnosis) std::cout << diagnosis->verdict << "\n";

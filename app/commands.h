@@ -3,8 +3,13 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
+
+namespace chutelab {
+class OutputFolder;
+}
 
 namespace chutelab::app {
 
@@ -22,6 +27,19 @@ void add_design(CLI::App& app, Action& action);
 
 // "a,b,,c" -> {"a", "b", "c"}: the comma lists of --models.
 std::vector<std::string> split_list(const std::string& s);
+
+// "unknown command 'valdate'; did you mean 'validate'?" for the first misspelt command or flag of
+// this command line, with the nearest real one when there is one (nullopt when nothing is misspelt).
+std::optional<std::string> misspelt(CLI::App& app, int argc, char** argv);
+
+// What a command reads from a dataset folder: the folder itself (--out may not be it) and its files.
+std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& dir);
+
+// The folders and files that --models external:NAME=DIR reads.
+std::vector<std::filesystem::path> model_inputs(const std::string& models);
+
+// Refuses, before any long run, an --out where one of these files cannot be placed (a folder there).
+void check_entries(const OutputFolder& out, std::initializer_list<const char*> files);
 
 // The bundled default rig, found next to the source tree this binary was built from.
 std::filesystem::path default_dataset();

@@ -73,25 +73,4 @@ void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const 
   validation::set_liggghts_model_config(lc);
 }
 
-DemOutputStage::DemOutputStage(const std::string& out)
-    : staging_(std::filesystem::path(out) / ".dem.partial"), final_(std::filesystem::path(out) / "dem") {
-  if (!campaign::output_rank()) return;  // rank 0 owns OUT
-  std::error_code ec;
-  std::filesystem::remove_all(staging_, ec);  // left by a run that was killed
-}
-
-DemOutputStage::~DemOutputStage() {
-  if (committed_ || !campaign::output_rank()) return;
-  std::error_code ec;
-  std::filesystem::remove_all(staging_, ec);
-}
-
-void DemOutputStage::commit() {
-  namespace fs = std::filesystem;
-  committed_ = true;
-  if (!campaign::output_rank() || !fs::exists(staging_)) return;
-  fs::remove_all(final_);
-  fs::rename(staging_, final_);
-}
-
 }  // namespace chutelab::app

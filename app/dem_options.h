@@ -33,21 +33,4 @@ void add_jobs_option(CLI::App& cmd, int& jobs);
 // views, VTK) goes to `output_dir` when it is not empty.
 void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir);
 
-// The DEM's per-condition files are written while the models run, long before the tables: they go
-// to a hidden folder beside OUT/dem that becomes OUT/dem only after every other output was written,
-// so a failed validate leaves the previous OUT/dem (or none), never a mix.
-class DemOutputStage {
- public:
-  explicit DemOutputStage(const std::string& out);
-  ~DemOutputStage();
-  DemOutputStage(const DemOutputStage&) = delete;
-  DemOutputStage& operator=(const DemOutputStage&) = delete;
-  std::string staging() const { return staging_.string(); }
-  void commit();  // replaces OUT/dem with what the run wrote (nothing when the DEM did not run)
-
- private:
-  std::filesystem::path staging_, final_;
-  bool committed_ = false;
-};
-
 }  // namespace chutelab::app

@@ -34,9 +34,9 @@ Station resolve_station(const EstimateInput& o) {
     if (base) return from_base;
     throw InputError("", 0, name, "is required (or pick a dataset row with --condition)");
   };
-  auto positive = [](double v, const char* name) {
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw InputError("", 0, name, fmt::format("must be a positive number, got {}", v));
+  // The same bounds as a conditions.csv row (validation::check_operating_input), named by flag.
+  auto in_bounds = [](double v, const char* column, const char* flag) {
+    validation::check_operating_input(column, v, flag);
     return v;
   };
   // A row's stream_thickness was measured at the row's flow and speed; with another operating
@@ -44,14 +44,16 @@ Station resolve_station(const EstimateInput& o) {
   const bool operating_point_changed = o.mass_flow || o.belt_speed;
   Station st = validation::make_station(
       setup, base ? base->condition : "cli",
-      positive(need(o.belt_speed, "--belt-speed", base ? base->belt_speed : 0), "--belt-speed"),
-      positive(need(o.mass_flow, "--mass-flow", base ? base->mass_flow / units::tph : 0),
-               "--mass-flow") * units::tph,
-      positive(need(o.plate_distance, "--plate-distance", base ? base->plate_distance / units::mm : 0),
-               "--plate-distance") * units::mm,
-      (o.plate_top ? *o.plate_top : base ? base->plate_top / units::mm : 250.0) * units::mm,
+      in_bounds(need(o.belt_speed, "--belt-speed", base ? base->belt_speed : 0), "belt_speed_mps", "--belt-speed"),
+      in_bounds(need(o.mass_flow, "--mass-flow", base ? base->mass_flow / units::tph : 0), "mass_flow_tph",
+                "--mass-flow") * units::tph,
+      in_bounds(need(o.plate_distance, "--plate-distance", base ? base->plate_distance / units::mm : 0),
+                "plate_distance_mm", "--plate-distance") * units::mm,
+      in_bounds(o.plate_top ? *o.plate_top : base ? base->plate_top / units::mm : 250.0, "plate_top_mm",
+                "--plate-top") * units::mm,
       o.stream_thickness
-          ? std::optional<double>(positive(*o.stream_thickness, "--stream-thickness") * units::mm)
+          ? std::optional<double>(in_bounds(*o.stream_thickness, "stream_thickness_mm", "--stream-thickness") *
+                                  units::mm)
           : (base && !operating_point_changed ? base->stream_thickness : std::nullopt));
   if (base) {  // per-condition overrides of the dataset row carry over
     st.belt = base->belt;

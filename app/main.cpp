@@ -1,11 +1,18 @@
 // chutelab: how far are transfer-station models from the measurements, and why.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "app/commands.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
+#include "core/output_folder.h"
 
 namespace chutelab::app {
 std::vector<std::string> split_list(const std::string& s) {
@@ -21,6 +28,92 @@ std::vector<std::string> split_list(const std::string& s) {
   return out;
 }
 
+namespace {
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+// The closest of `names` to `typed`, when it is close enough to be a typo (or a prefix of it).
+std::optional<std::string> closest(std::string_view typed, const std::vector<std::string>& names) {
+  std::optional<std::string> best;
+  std::size_t best_d = std::max<std::size_t>(2, typed.size() / 3) + 1;
+  for (const auto& n : names) {
+    const std::size_t d = n.rfind(typed, 0) == 0 && typed.size() >= 3 ? 1 : edit_distance(typed, n);
+    if (d < best_d) {
+      best_d = d;
+      best = n;
+    }
+  }
+  return best;
+}
+}  // namespace
+
+std::optional<std::string> misspelt(CLI::App& app, int argc, char** argv) {
+  std::vector<std::string> commands;
+  for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) commands.push_back(sub->get_name());
+  CLI::App* sub = nullptr;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--") break;
+    if (a.size() > 1 && a[0] == '-') {
+      if (!sub) continue;
+      // A negative number is a value (--plate-top -50), not a flag.
+      if (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.') continue;
+      const std::string flag = a.substr(0, a.find('='));
+      std::vector<std::string> flags;
+      bool known = false;
+      for (const auto* o : sub->get_options()) {
+        for (const auto& l : o->get_lnames()) {
+          flags.push_back("--" + l);
+          known = known || flags.back() == flag;
+        }
+        for (const auto& n : o->get_snames()) known = known || "-" + n == flag;
+      }
+      if (known) continue;
+      if (auto c = closest(flag, flags))
+        return fmt::format("{}: unknown option {}; did you mean {}?", sub->get_name(), flag, *c);
+      return fmt::format("{}: unknown option {} (see chutelab {} --help)", sub->get_name(), flag, sub->get_name());
+    }
+    if (!sub) {
+      try {
+        sub = app.get_subcommand(a);
+      } catch (const CLI::OptionNotFound&) {
+        if (auto c = closest(a, commands)) return fmt::format("unknown command '{}'; did you mean '{}'?", a, *c);
+        return fmt::format("unknown command '{}' (commands: {})", a, fmt::join(commands, ", "));
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& dir) {
+  return {dir, dir / "setup.toml", dir / "conditions.csv", dir / "measurements.csv", dir / "trajectory.csv",
+          dir / "plate_map.csv", dir / "tolerances.toml", dir / "README.md"};
+}
+
+std::vector<std::filesystem::path> model_inputs(const std::string& models) {
+  std::vector<std::filesystem::path> out;
+  for (const auto& m : split_list(models))
+    if (m.rfind("external:", 0) == 0)
+      if (const auto eq = m.find('='); eq != std::string::npos) {
+        const std::filesystem::path d = m.substr(eq + 1);
+        for (const char* f : {"", "predictions.csv", "trajectory.csv", "README.md"}) out.push_back(*f ? d / f : d);
+      }
+  return out;
+}
+
+void check_entries(const OutputFolder& out, std::initializer_list<const char*> files) {
+  for (const char* f : files) out.check_entry(f, false);
+}
+
 std::filesystem::path default_dataset() {
   return std::filesystem::path(CHUTELAB_DATASETS_DIR) / "grima2010";
 }
@@ -28,6 +121,23 @@ std::filesystem::path default_dataset() {
 
 int main(int argc, char** argv) {
   using namespace chutelab;
+  // Before any thread exists (MPI's included), so every worker inherits the mask (core/output_folder.h).
+  install_interrupt_cleanup();
+  // Last resort for an exception that cannot reach the barrier below (a worker thread, a noexcept
+  // path): one line and its own exit code, never an abort and its core dump.
+  std::set_terminate([] {
+    std::string what = "unknown error";
+    if (auto e = std::current_exception()) {
+      try {
+        std::rethrow_exception(e);
+      } catch (const std::exception& x) {
+        what = x.what();
+      } catch (...) {
+      }
+    }
+    std::cerr << "chutelab: internal error: " << what << "\n";
+    std::_Exit(kExitInternalError);
+  });
   // Under mpirun every rank runs the command; rank 0 alone prints and writes (core/campaign.h).
   campaign::Session session(argc, argv);
   if (!session.refusal().empty()) {
@@ -56,13 +166,32 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "chutelab: " << e.what() << " (see --help)\n";
+    // A misspelt command or flag is the cause of whatever CLI11 says next ("--dataset is required"
+    // after --datset): name it first, with the nearest real one.
+    if (auto m = app::misspelt(app, argc, argv)) std::cerr << "chutelab: " << *m << "\n";
+    else std::cerr << "chutelab: " << e.what() << " (see --help)\n";
     return kExitBadInput;
   }
+  // The one exception barrier: bad input is exit 2 with file:line:field; a file-system failure on a
+  // path the user gave is exit 2 naming it; anything else is a bug, said in one line, exit 3.
   try {
     return action ? action() : kExitBadInput;
   } catch (const InputError& e) {
     std::cerr << "chutelab: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::string where = e.path1().string();
+    if (!e.path2().empty()) where += " -> " + e.path2().string();
+    std::cerr << "chutelab: " << (where.empty() ? "" : where + ": ") << e.code().message() << "\n";
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "chutelab: internal error: out of memory\n";
+    return kExitInternalError;
+  } catch (const std::exception& e) {
+    std::cerr << "chutelab: internal error: " << e.what() << "\n";
+    return kExitInternalError;
+  } catch (...) {
+    std::cerr << "chutelab: internal error: unknown exception\n";
+    return kExitInternalError;
   }
 }

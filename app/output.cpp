@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "analytical/impact_zone.h"
+#include "core/csv_field.h"
 #include "core/units.h"
 
 namespace chutelab::app {
@@ -163,21 +164,21 @@ std::string estimate_table(const analytical::TransferAnalysis& a, const ModelVal
 std::string estimate_csv(const analytical::TransferAnalysis& a, const ModelValues& models) {
   std::string o = "condition,model,quantity,value\n";
   for (const auto& [n, v] : estimate_scalars(a))
-    o += fmt::format("{},analysis,{},{:.10g}\n", a.station.condition, n, v);
-  o += fmt::format("{},analysis,stationary_flow,{}\n", a.station.condition,
+    o += fmt::format("{},analysis,{},{:.10g}\n", csv_field(a.station.condition), n, v);
+  o += fmt::format("{},analysis,stationary_flow,{}\n", csv_field(a.station.condition),
                    a.korzen.stationary_flow ? 1 : 0);
-  o += fmt::format("{},analysis,stream_thickness_from_continuity,{}\n", a.station.condition,
+  o += fmt::format("{},analysis,stream_thickness_from_continuity,{}\n", csv_field(a.station.condition),
                    a.thickness_from_continuity ? 1 : 0);
-  o += fmt::format("{},analysis,discharge_high_speed,{}\n", a.station.condition,
+  o += fmt::format("{},analysis,discharge_high_speed,{}\n", csv_field(a.station.condition),
                    a.line(Streamline::cema_centroid).release.high_speed ? 1 : 0);
   const auto z = analytical::impact_zone(a);
-  o += fmt::format("{},analysis,impact_zone_top_clipped,{}\n", a.station.condition, z.top_clipped ? 1 : 0);
-  o += fmt::format("{},analysis,impact_zone_bottom_clipped,{}\n", a.station.condition,
+  o += fmt::format("{},analysis,impact_zone_top_clipped,{}\n", csv_field(a.station.condition), z.top_clipped ? 1 : 0);
+  o += fmt::format("{},analysis,impact_zone_bottom_clipped,{}\n", csv_field(a.station.condition),
                    z.bottom_clipped ? 1 : 0);
   for (const auto& [m, vals] : models)
     for (Quantity q : kAllQuantities)
       if (vals[q])
-        o += fmt::format("{},{},{},{:.10g}\n", a.station.condition, m, name(q),
+        o += fmt::format("{},{},{},{:.10g}\n", csv_field(a.station.condition), csv_field(m), name(q),
                          *vals[q] * info(q).to_boundary);
   return o;
 }

@@ -7,6 +7,7 @@
 #include "core/input_error.h"
 #include "core/number.h"
 #include "reports/design.h"
+#include "validation/dataset.h"
 
 namespace chutelab::app {
 namespace {
@@ -105,6 +106,7 @@ SweepSpec parse_sweep(const std::string& text) {
       found = true;
       if (c.positive && !(s.from > 0.0 && s.to > 0.0))
         throw InputError("", 0, "--sweep", fmt::format("{} must stay positive, got {} to {}", c.name, s.from, s.to));
+      for (double v : {s.from, s.to}) validation::check_operating_input(c.column, v, "--sweep");
     }
   if (!found)
     for (const auto& f : rig_fields()) {
@@ -143,8 +145,8 @@ SweepSpec parse_sweep(const std::string& text) {
                        fmt::format("STEP {} never gets from {} to {}", range.substr(c2 + 1), s.from, s.to));
     if ((s.to - s.from) / s.step + 1.0 > static_cast<double>(kMaxPoints))
       throw InputError("", 0, "--sweep",
-                       fmt::format("{} points from {} to {} in steps of {}: at most {} (a larger STEP?)",
-                                   static_cast<long long>((s.to - s.from) / s.step + 1.0), s.from, s.to, s.step, kMaxPoints));
+                       fmt::format("{:.3g} points from {} to {} in steps of {}: at most {} (a larger STEP?)",
+                                   (s.to - s.from) / s.step + 1.0, s.from, s.to, s.step, kMaxPoints));
   }
   return s;
 }

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+#include <fstream>
+
 namespace chutelab {
 namespace {
 std::string compose(const std::string& file, long line, const std::string& field,
@@ -23,6 +26,20 @@ InputError::InputError(std::string file, long line, std::string field, const std
 InputError InputError::located(const std::string& file, long line) const {
   if (!file_.empty()) return *this;
   return InputError(file, line, field_, problem_);
+}
+
+void require_readable_file(const std::string& file, const std::string& field) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto st = fs::status(file, ec);
+  if (ec == std::errc::no_such_file_or_directory || (!ec && !fs::exists(st)))
+    throw InputError(file, 0, field, "file not found");
+  if (ec) throw InputError(file, 0, field, fmt::format("cannot read: {}", ec.message()));
+  if (fs::is_directory(st)) throw InputError(file, 0, field, "is a folder, not a file");
+  if (!fs::is_regular_file(st) && !fs::is_character_file(st) && !fs::is_fifo(st))
+    throw InputError(file, 0, field, "is not a regular file");
+  std::ifstream f(file, std::ios::binary);
+  if (!f) throw InputError(file, 0, field, "cannot be opened for reading (permissions?)");
 }
 
 }  // namespace chutelab

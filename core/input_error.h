@@ -24,8 +24,14 @@ class InputError : public std::runtime_error {
   std::string problem_;
 };
 
+// A path the user gave as a file must be one: throws InputError (file, field) for a missing path, a
+// folder, a symlink loop or a file that cannot be opened, so that no reader meets them later.
+void require_readable_file(const std::string& file, const std::string& field = "");
+
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitAcceptanceFailed = 1;
 inline constexpr int kExitBadInput = 2;
+// Not the user's fault: a bug or the machine (out of memory). One line on stderr, never an abort.
+inline constexpr int kExitInternalError = 3;
 
 }  // namespace chutelab

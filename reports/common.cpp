@@ -1,6 +1,7 @@
 #include "reports/common.h"
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <fmt/format.h>
 
@@ -35,20 +36,54 @@ Shape Context::shape(const std::string& model) const {
 }
 
 Context make_context(const ReportInput& in) {
-  Context c{in, {}, {}};
+  Context c{in, {}, {}, 0, {}};
   c.models = in.baseline->models;
   if (in.with_effects)
     for (const auto& m : in.with_effects->models)
       if (std::find(c.models.begin(), c.models.end(), m) == c.models.end()) c.models.push_back(m);
 
   // Conditions as the results list them (the dataset's order), then sorted for display.
+  // (Hash look-ups: a report of 10 000 conditions must not cost their square.)
   std::vector<std::string> names;
+  std::unordered_set<std::string> seen;
   auto add = [&](const std::string& n) {
-    if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+    if (seen.insert(n).second) names.push_back(n);
   };
   for (const auto& p : in.baseline->predictions) add(p.condition);
   for (const auto& cmp : in.baseline->comparisons) add(cmp.condition);
-  for (const auto& n : names) c.conditions.push_back({n, in.dataset ? in.dataset->station(n) : nullptr});
+  std::unordered_map<std::string, const Station*> stations;
+  if (in.dataset)
+    for (const auto& s : in.dataset->stations) stations.emplace(s.condition, &s);
+  for (const auto& n : names) {
+    const auto it = stations.find(n);
+    c.conditions.push_back({n, it == stations.end() ? nullptr : it->second});
+  }
+  if (c.conditions.size() > kMaxShownConditions) {
+    // The worst |E/u| (or |relative error| without an uncertainty) of each condition, before and
+    // after effects: the conditions a reader must see are those where the models fail most.
+    std::unordered_map<std::string, double> worst;
+    for (const auto* r : {in.baseline, in.with_effects})
+      if (r)
+        for (const auto& cmp : r->comparisons) {
+          double m = 0.0;
+          if (auto z = cmp.normalised_error()) m = std::abs(*z);
+          else if (auto e = cmp.relative_error()) m = std::abs(*e);
+          if (!std::isfinite(m)) m = 1e300;
+          auto& w = worst[cmp.condition];
+          w = std::max(w, m);
+        }
+    std::vector<std::size_t> order(c.conditions.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return worst[c.conditions[a].name] > worst[c.conditions[b].name];
+    });
+    order.resize(kMaxShownConditions);
+    std::sort(order.begin(), order.end());  // back to the dataset's order before the display sort
+    std::vector<ConditionRow> kept;
+    for (std::size_t i : order) kept.push_back(c.conditions[i]);
+    c.conditions_left_out = c.conditions.size() - kept.size();
+    c.conditions = std::move(kept);
+  }
   std::stable_sort(c.conditions.begin(), c.conditions.end(),
                    [](const ConditionRow& a, const ConditionRow& b) {
                      if (!a.station || !b.station) return a.station && !b.station;
@@ -56,6 +91,7 @@ Context make_context(const ReportInput& in) {
                        return a.station->belt_speed < b.station->belt_speed;
                      return a.station->mass_flow < b.station->mass_flow;
                    });
+  for (std::size_t i = 0; i < c.conditions.size(); ++i) c.slot.emplace(c.conditions[i].name, i);
   return c;
 }
 

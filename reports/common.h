@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 #include <tuple>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "core/quantity.h"
@@ -29,9 +31,17 @@ struct Context {
   // with either operating variable reads left to right in every table and chart.
   std::vector<ConditionRow> conditions;
   std::vector<std::string> models;  // the baseline's order; styles follow it in every picture
+  // A big dataset is summarised: its tables and charts show the kMaxShownConditions conditions of
+  // largest misfit (every value stays in the CSVs and the summary statistics); how many were left out.
+  std::size_t conditions_left_out = 0;
+  std::unordered_map<std::string, std::size_t> slot;  // condition name -> index in `conditions`
   std::string colour(const std::string& model) const;
   Shape shape(const std::string& model) const;
 };
+
+// Beyond this many conditions a per-condition table or chart is unreadable (and 10 000 made a
+// 120 MB page): the report shows the worst this many and says so.
+inline constexpr std::size_t kMaxShownConditions = 60;
 
 Context make_context(const ReportInput& in);
 

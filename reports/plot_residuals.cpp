@@ -42,9 +42,8 @@ std::optional<double> pearson(const std::vector<double>& a, const std::vector<do
 }
 
 std::size_t slot_of(const Context& c, const std::string& condition) {
-  for (std::size_t i = 0; i < c.conditions.size(); ++i)
-    if (c.conditions[i].name == condition) return i;
-  return c.conditions.size();
+  const auto it = c.slot.find(condition);
+  return it == c.slot.end() ? c.conditions.size() : it->second;
 }
 
 // Every normalised error of one quantity in a result, with its tooltip.

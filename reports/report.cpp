@@ -251,12 +251,17 @@ Doc assemble(const ReportInput& in) {
   if (!in.dataset->setup.source.empty()) meta.push_back("Source: " + in.dataset->setup.source);
   meta.push_back(fmt::format("Conditions: {}; measured values: {}; trajectory points: {}", c.conditions.size(),
                              in.dataset->measurements.size(), in.dataset->trajectory.size()));
+  if (c.conditions_left_out > 0)
+    meta.push_back(fmt::format("Shown: the {} conditions of largest misfit (largest |E/u|) in every per-condition table "
+                               "and chart; {} more are in predictions.csv and errors.csv and in every summary statistic",
+                               c.conditions.size(), c.conditions_left_out));
   meta.push_back(fmt::format("Models: {}", fmt::join(in.baseline->models, ", ")));
   meta.push_back("Effects: " + (in.with_effects ? effects_label(*in.with_effects) : std::string("none")));
   if (in.baseline->acceptance_checked || (in.with_effects && in.with_effects->acceptance_checked)) {
     const auto& last = in.with_effects ? *in.with_effects : *in.baseline;
     meta.push_back(std::string("Acceptance: ") + (last.acceptance_failed ? "FAILED (values outside tolerance are marked ✗)"
                                                                           : "passed (every checked value within tolerance)"));
+    for (const auto& p : last.acceptance_problems) meta.push_back("Acceptance problem: " + p);
   } else {
     meta.push_back("Acceptance: no tolerances set");
   }

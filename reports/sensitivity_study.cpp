@@ -1,4 +1,5 @@
 #include "reports/sensitivity_study.h"
+#include "core/csv_field.h"
 
 #include <algorithm>
 #include <cmath>
@@ -372,9 +373,9 @@ std::string sensitivity_csv(const SensitivityStudy& s) {
                        csv_number(o.resultant.value), csv_number(o.resultant.se), csv_number(o.fluct_normal),
                        csv_number(o.fluct_shear), csv_number(o.fluct_resultant), csv_number(r.change.value),
                        csv_number(r.change.se), csv_number(o.simulated), o.steps, o.particles,
-                       o.steady ? 1 : 0, s.condition, csv_number(s.belt_speed), csv_number(s.mass_flow * 3.6), s.quality,
+                       o.steady ? 1 : 0, csv_field(s.condition), csv_number(s.belt_speed), csv_number(s.mass_flow * 3.6), s.quality,
                        csv_number(s.limit_percent));
-    out += fmt::format("{},{},{},{},{}\n", s.dataset_name, csv_number(v.rayleigh_fraction),
+    out += fmt::format("{},{},{},{},{}\n", csv_field(s.dataset_name), csv_number(v.rayleigh_fraction),
                        std::isfinite(s.base.modulus_scale) ? csv_number(s.base.modulus_scale * v.modulus_scale) : std::string(),
                        left, fmt::join(s.variants_left_out, ";"));
   }

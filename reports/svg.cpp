@@ -4,9 +4,13 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "core/utf8.h"
+
 namespace chutelab::reports {
 
-std::string esc(std::string_view s) {
+std::string esc(std::string_view raw) {
+  // The pages declare UTF-8: names from users' files are made valid UTF-8 before escaping.
+  const std::string s = to_utf8(raw);
   std::string o;
   o.reserve(s.size());
   for (char c : s) {
@@ -22,7 +26,8 @@ std::string esc(std::string_view s) {
   return o;
 }
 
-std::string md_esc(std::string_view s) {
+std::string md_esc(std::string_view raw) {
+  const std::string s = to_utf8(raw);
   std::string o;
   o.reserve(s.size());
   for (char c : s) {

@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 packages=(cmake g++ make libeigen3-dev libgsl-dev libboost-test-dev libfmt-dev libfccp-dev
           libtomlplusplus-dev libcli11-dev chromium emscripten
           python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pandas python3-matplotlib
-          python3-pytest libxml2-utils openmpi-bin libopenmpi-dev liggghts)
+          python3-pytest libxml2-utils openmpi-bin libopenmpi-dev liggghts
+          clang libclang-rt-dev libomp-dev)  # clang: libFuzzer targets and sanitizer runtimes (tests/fuzz)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <iostream>
 
 #include "core/input_error.h"
 #include "core/number.h"
+#include "core/utf8.h"
 
 // fccp copies file names with strncpy into fixed buffers; GCC flags the (harmless, terminated)
 // truncation wherever the reader is inlined, so the warning is silenced for that header only.
@@ -62,7 +64,8 @@ CsvTable CsvTable::read(const std::filesystem::path& path,
                        std::initializer_list<std::string_view> required) {
   CsvTable t;
   t.file_ = path.string();
-  if (!std::filesystem::exists(path)) throw InputError(t.file_, 0, "", "file not found");
+  require_readable_file(t.file_);
+  bool warned_latin1 = false;
   try {
     io::LineReader reader(t.file_);
     bool have_header = false;
@@ -72,7 +75,20 @@ CsvTable CsvTable::read(const std::filesystem::path& path,
       if (!have_header && line.size() >= 3 && line.substr(0, 3) == "\xEF\xBB\xBF")
         line.remove_prefix(3);  // UTF-8 byte-order mark from spreadsheet exports
       if (trim(line).empty() || trim(line)[0] == '#') continue;  // blank lines and comments
+      // A CR inside a line: the file ends its lines with CR alone (classic Mac OS, some loggers),
+      // so the whole file arrived as one line; the columns would be reported missing otherwise.
+      if (const auto cr = line.find('\r'); cr != std::string_view::npos && cr + 1 < line.size())
+        throw InputError(t.file_, line_no, "",
+                         "lines end with CR only (classic Mac OS line ends); save the file with LF or CRLF "
+                         "line ends");
       auto cells = split(line, t.file_, line_no);
+      for (auto& c : cells)
+        if (!valid_utf8(c)) {
+          if (!warned_latin1)
+            std::cerr << fmt::format("warning: {}:{}: text is not UTF-8; read as Latin-1\n", t.file_, line_no);
+          warned_latin1 = true;
+          c = to_utf8(c);
+        }
       if (!have_header) {
         t.header_ = std::move(cells);
         for (std::size_t i = 0; i < t.header_.size(); ++i)
@@ -80,7 +96,8 @@ CsvTable CsvTable::read(const std::filesystem::path& path,
             if (t.header_[i] == t.header_[j])
               throw InputError(t.file_, line_no, t.header_[i], "column appears twice in the header");
         have_header = true;
-        for (std::string_view r : required) t.require(r);
+        for (std::string_view r : required)
+          if (!t.column(r)) t.explain_missing(r, line_no);
         continue;
       }
       if (cells.size() != t.header_.size())
@@ -102,9 +119,23 @@ std::optional<std::size_t> CsvTable::column(std::string_view name) const {
   return std::nullopt;
 }
 
+void CsvTable::explain_missing(std::string_view name, long line) const {
+  // The header may hold the column behind another separator (European spreadsheets write ';',
+  // others tabs): saying "missing" would send the user looking for a column that is there.
+  if (header_.size() == 1)
+    for (auto [sep, what] : {std::pair{';', "semicolons"}, {'\t', "tabs"}, {'|', "'|'"}})
+      if (header_[0].find(sep) != std::string::npos && header_[0].find(name) != std::string::npos)
+        throw InputError(file_, line, std::string(name),
+                         fmt::format("the header is separated by {}, not commas; save the file as comma-separated "
+                                     "CSV (decimal point '.')",
+                                     what));
+  throw InputError(file_, line, std::string(name), "required column is missing from the header");
+}
+
 std::size_t CsvTable::require(std::string_view name) const {
   if (auto c = column(name)) return *c;
-  throw InputError(file_, 1, std::string(name), "required column is missing from the header");
+  explain_missing(name, 1);
+  return 0;
 }
 
 const std::string& CsvTable::text(const CsvRow& row, std::size_t col) const {

@@ -35,6 +35,7 @@ class CsvTable {
   std::optional<double> optional_number(const CsvRow& row, std::size_t col) const;
 
  private:
+  [[noreturn]] void explain_missing(std::string_view name, long line) const;
   std::string file_;
   std::vector<std::string> header_;
   std::vector<CsvRow> rows_;

@@ -4,8 +4,11 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <algorithm>
+#include <limits>
 #include <map>
+#include <mutex>
 #include <set>
+#include <unordered_map>
 #include <toml++/toml.h>
 
 #include "core/input_error.h"
@@ -15,16 +18,33 @@
 namespace chutelab::validation {
 namespace fs = std::filesystem;
 
+namespace {
+std::optional<std::size_t> find_station(const Dataset& d, std::string_view condition) {
+  auto& ix = *d.station_index;
+  std::lock_guard lock(ix.m);
+  if (ix.data != d.stations.data() || ix.size != d.stations.size()) {
+    ix.at.clear();
+    for (std::size_t i = 0; i < d.stations.size(); ++i) ix.at.emplace(d.stations[i].condition, i);
+    ix.data = d.stations.data();
+    ix.size = d.stations.size();
+  }
+  const auto it = ix.at.find(std::string(condition));
+  // A name changed in place since the index was built: fall back to a scan.
+  if (it != ix.at.end() && d.stations[it->second].condition == condition) return it->second;
+  for (std::size_t i = 0; i < d.stations.size(); ++i)
+    if (d.stations[i].condition == condition) return i;
+  return std::nullopt;
+}
+}  // namespace
+
 const Station* Dataset::station(std::string_view condition) const {
-  for (const auto& s : stations)
-    if (s.condition == condition) return &s;
-  return nullptr;
+  const auto i = find_station(*this, condition);
+  return i ? &stations[*i] : nullptr;
 }
 
 const SourceLine* Dataset::station_line(std::string_view condition) const {
-  for (std::size_t i = 0; i < stations.size(); ++i)
-    if (stations[i].condition == condition) return &station_lines[i];
-  return nullptr;
+  const auto i = find_station(*this, condition);
+  return i && *i < station_lines.size() ? &station_lines[*i] : nullptr;
 }
 
 namespace {
@@ -37,8 +57,13 @@ void check_range(const RigField& f, double v, const std::string& file, long line
                      fmt::format("{} is outside the physical range [{}, {}]", v, f.min, f.max));
 }
 
-// Geometry that no rig can have, whichever file it came from.
+// Geometry (and material) that no rig can have, whichever file it came from.
 void check_geometry(const Setup& s, const std::string& file, long line) {
+  if (s.material.bulk_density > s.material.solid_density)
+    throw InputError(file, line, "bulk_density_kgm3",
+                     fmt::format("bulk density {:g} kg/m^3 is above the solid density {:g} kg/m^3 (a bulk "
+                                 "solid has voids)",
+                                 s.material.bulk_density, s.material.solid_density));
   if (s.belt.loaded_width > s.belt.belt_width)
     throw InputError(file, line, "loaded_width_mm",
                      fmt::format("loaded width {:.0f} mm is wider than the belt ({:.0f} mm)",
@@ -68,10 +93,26 @@ constexpr OperatingUncertainty kOperating[] = {
      &InputUncertainties::stream_thickness},
 };
 
-// An input uncertainty is one standard deviation, finite and >= 0 (0 = known exactly).
-void check_input_uncertainty(double v, const std::string& file, long line, const std::string& field) {
+// An input uncertainty is one standard deviation, finite and >= 0 (0 = known exactly), and no wider
+// than the whole range the input may take (`span`, in the key's unit): beyond it the perturbed inputs
+// leave any rig, and u_input silently went missing (5e307 m/s on the belt speed).
+void check_input_uncertainty(double v, double span, const std::string& file, long line, const std::string& field) {
   if (!std::isfinite(v)) throw InputError(file, line, field, "uncertainty must be a finite number");
   if (v < 0.0) throw InputError(file, line, field, fmt::format("uncertainty cannot be negative, got {}", v));
+  if (v > span)
+    throw InputError(file, line, field,
+                     fmt::format("uncertainty {:g} is wider than the whole range the input can take ({:g}); give "
+                                 "one standard deviation in the key's unit",
+                                 v, span));
+}
+
+// The range of an operating input (validation::check_operating_input's bounds), in its column's unit.
+double operating_span(std::string_view key) {
+  if (key == "belt_speed_mps") return 50.0;
+  if (key == "mass_flow_tph") return 1e5;
+  if (key == "plate_top_mm") return 2e5;
+  if (key == "stream_thickness_mm") return 1e4;
+  return 1e5;  // plate_distance_mm
 }
 
 // [uncertainty]: keys are the setup's own, dotted ("material.friction_plate" = 0.02) or in
@@ -94,15 +135,17 @@ InputUncertainties read_uncertainty_table(const toml::table& doc, const std::str
     const auto v = n.value<double>();
     if (!v || !n.is_number())
       throw InputError(file, line, field, "must be a number (one standard deviation, in the key's unit)");
-    check_input_uncertainty(*v, file, line, field);
+    check_input_uncertainty(*v, std::numeric_limits<double>::infinity(), file, line, field);
     if (section.empty())
       for (const auto& op : kOperating)
         if (op.key == key) {
+          check_input_uncertainty(*v, operating_span(op.key), file, line, field);
           u.*op.member = *v * op.to_si;
           return;
         }
     for (const auto& f : rig_fields())
       if (f.section == section && f.key == key) {
+        check_input_uncertainty(*v, f.max - f.min, file, line, field);
         rig[&f] = *v * f.to_si;
         return;
       }
@@ -131,7 +174,7 @@ InputUncertainties read_uncertainty_table(const toml::table& doc, const std::str
 
 Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
   const std::string file = path.string();
-  if (!fs::exists(path)) throw InputError(file, 0, "", "file not found");
+  require_readable_file(file);
   toml::table doc;
   try {
     doc = toml::parse_file(file);
@@ -164,6 +207,19 @@ Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
   }
   complete_defaults(s, present);
 
+  // A table of its own that chutelab does not know is a typo ([materal]) or a misplaced key; its
+  // keys would silently fall back to defaults, so it is an error. [dem] is read by the DEM.
+  for (const auto& [key, node] : doc) {
+    const std::string k(key.str());
+    if (!node.is_table()) {
+      if (k != "name" && k != "source" && k != "gravity_mps2")
+        std::cerr << fmt::format("warning: {}:{}: unknown key {} ignored\n", file, key.source().begin.line, k);
+      continue;
+    }
+    if (k == "belt" || k == "plate" || k == "material" || k == "dem" || k == "uncertainty") continue;
+    throw InputError(file, static_cast<long>(key.source().begin.line), k,
+                     fmt::format("unknown table [{}] (known: [belt], [plate], [material], [uncertainty], [dem])", k));
+  }
   // Unknown keys inside the rig's tables are most likely typos: say so, but go on.
   for (std::string_view section : {"belt", "plate", "material"}) {
     const toml::table* t = doc[section].as_table();
@@ -181,6 +237,27 @@ Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
   InputUncertainties u = read_uncertainty_table(doc, file);
   if (uncertainty) *uncertainty = std::move(u);
   return s;
+}
+
+void check_operating_input(std::string_view column, double v, const std::string& field) {
+  // The fastest belts run ~15 m/s, the largest carry ~40 000 t/h.
+  auto fail = [&](const std::string& why) { throw InputError("", 0, field, why); };
+  if (std::isnan(v)) fail("must be a number, got nan");
+  if (column == "belt_speed_mps") {
+    if (!(v > 0.0)) fail(fmt::format("belt speed must be positive, got {}", v));
+    if (v > 50.0) fail(fmt::format("belt speed {:g} m/s is beyond any conveyor (at most 50 m/s)", v));
+  } else if (column == "mass_flow_tph") {
+    if (!(v > 0.0)) fail(fmt::format("mass flow must be positive, got {}", v));
+    if (v > 1e5) fail(fmt::format("mass flow {:g} t/h is beyond any conveyor (at most 100000 t/h)", v));
+  } else if (column == "plate_distance_mm") {
+    if (v > 1e5) fail(fmt::format("plate distance {:g} mm is beyond a transfer station (at most 100 m)", v));
+    if (!(v > 0.0)) fail(fmt::format("the plate must be downstream of the pulley centre (x > 0), got {}", v));
+  } else if (column == "plate_top_mm") {
+    if (!(std::abs(v) <= 1e5)) fail(fmt::format("plate top {:g} mm is beyond a transfer station (|y| at most 100 m)", v));
+  } else if (column == "stream_thickness_mm") {
+    if (!(v > 0.0)) fail(fmt::format("stream thickness must be positive, got {}", v));
+    if (v > 1e4) fail(fmt::format("stream thickness {:g} mm is beyond any belt load (at most 10 m)", v));
+  }
 }
 
 Station make_station(const Setup& setup, std::string condition, double belt_speed,
@@ -240,26 +317,22 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
     if (auto [it, fresh] = seen.emplace(id, row.line); !fresh)
       throw InputError(t.file(), row.line, "condition",
                        fmt::format("duplicate condition '{}' (first on line {})", id, it->second));
-    const double speed = t.number(row, c_speed);
-    const double flow = t.number(row, c_flow);
-    if (speed <= 0.0)
-      throw InputError(t.file(), row.line, "belt_speed_mps",
-                       fmt::format("belt speed must be positive, got {}", speed));
-    if (flow <= 0.0)
-      throw InputError(t.file(), row.line, "mass_flow_tph",
-                       fmt::format("mass flow must be positive, got {}", flow));
-    const double dist = t.number(row, c_dist);
-    if (dist <= 0.0)
-      throw InputError(t.file(), row.line, "plate_distance_mm",
-                       fmt::format("the plate must be downstream of the pulley centre (x > 0), got {}",
-                                   dist));
-    const double top = t.number(row, c_top);
+    auto checked = [&](const char* column, double v) {
+      try {
+        check_operating_input(column, v, column);
+      } catch (const InputError& e) {
+        throw e.located(t.file(), row.line);
+      }
+      return v;
+    };
+    const double speed = checked("belt_speed_mps", t.number(row, c_speed));
+    const double flow = checked("mass_flow_tph", t.number(row, c_flow));
+    const double dist = checked("plate_distance_mm", t.number(row, c_dist));
+    const double top = checked("plate_top_mm", t.number(row, c_top));
     std::optional<double> thick;
     if (c_thick) {
       thick = t.optional_number(row, *c_thick);
-      if (thick && *thick <= 0.0)
-        throw InputError(t.file(), row.line, "stream_thickness_mm",
-                         fmt::format("stream thickness must be positive, got {}", *thick));
+      if (thick) checked("stream_thickness_mm", *thick);
     }
     Setup local = setup;
     for (const auto& [col, f] : overrides) {
@@ -277,7 +350,7 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
       InputUncertainties u = defaults;
       for (const auto& [col, op] : c_unc)
         if (const auto v = t.optional_number(row, col)) {
-          check_input_uncertainty(*v, t.file(), row.line, std::string(op->column));
+          check_input_uncertainty(*v, operating_span(op->key), t.file(), row.line, std::string(op->column));
           u.*op->member = *v * op->to_si;
         }
       uncertainties->push_back(std::move(u));
@@ -289,20 +362,60 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
 
 namespace {
 
-// The condition column of measurement-like files must name a row of conditions.csv (without a
-// dataset, e.g. another code's predictions read before the dataset is known: any name).
-std::string known_condition(const CsvTable& t, const CsvRow& row, std::size_t col, const Dataset* d) {
-  const std::string& c = t.text(row, col);
-  if (c.empty()) throw InputError(t.file(), row.line, t.header()[col], "empty condition");
-  if (d && !d->station(c))
-    throw InputError(t.file(), row.line, t.header()[col],
-                     fmt::format("condition '{}' is not in conditions.csv", c));
-  return c;
+// Condition name -> station, built once per file: a look-up per row keeps big datasets linear.
+using ConditionMap = std::unordered_map<std::string, const Station*>;
+ConditionMap condition_map(const Dataset& d) {
+  ConditionMap m;
+  for (const auto& s : d.stations) m.emplace(s.condition, &s);
+  return m;
 }
 
-// An optional one-sigma uncertainty cell: empty or 0 means unknown; negative is an error.
+// The condition column of measurement-like files must name a row of conditions.csv (without a
+// dataset, e.g. another code's predictions read before the dataset is known: any name, and no
+// station to return).
+const Station* known_condition(const CsvTable& t, const CsvRow& row, std::size_t col, const ConditionMap* d) {
+  const std::string& c = t.text(row, col);
+  if (c.empty()) throw InputError(t.file(), row.line, t.header()[col], "empty condition");
+  if (!d) return nullptr;
+  const auto it = d->find(c);
+  if (it == d->end())
+    throw InputError(t.file(), row.line, t.header()[col],
+                     fmt::format("condition '{}' is not in conditions.csv", c));
+  return it->second;
+}
+
+// What a rig can measure, in the boundary unit: the largest magnitude (beyond it a value is a unit
+// slip or a digitising error, and chi-squared sums overflow) and the smallest uncertainty anyone
+// can state (below it a normalised error is meaningless: 1e-300 made chi^2 = inf and p = nan).
+struct Bounds {
+  double max_abs, min_uncertainty;
+  const char* unit;
+};
+Bounds bounds(Quantity q) {
+  switch (q) {
+    case Quantity::normal_force:
+    case Quantity::shear_force:
+    case Quantity::resultant_force: return {1e7, 1e-6, "N"};
+    case Quantity::impact_velocity:
+    case Quantity::exit_velocity:
+    case Quantity::belt_layer_velocity: return {200.0, 1e-6, "m/s"};
+    case Quantity::stream_mass_flow: return {1e6, 1e-6, "t/h"};  // the largest belts carry ~4e4 t/h
+    case Quantity::impact_point_y: return {1e5, 1e-4, "mm"};
+  }
+  return {1e7, 1e-6, ""};
+}
+constexpr Bounds kTrajectoryBounds{1e5, 1e-4, "mm"};
+// Plate maps: pressures and shear stresses (a liner's limit is a few MPa), wear depths and rates.
+Bounds plate_bounds(const std::string& quantity) {
+  if (quantity == "wear_depth_um") return {1e6, 1e-6, "um"};
+  if (quantity == "wear_rate_um_per_h") return {1e6, 1e-9, "um/h"};
+  return {1e9, 1e-6, "Pa"};
+}
+
+// An optional one-sigma uncertainty cell: empty or 0 means unknown; negative, or below what any
+// instrument states, is an error.
 std::optional<double> uncertainty_cell(const CsvTable& t, const CsvRow& row,
-                                       const std::optional<std::size_t>& col, double scale) {
+                                       const std::optional<std::size_t>& col, double scale, const Bounds& b) {
   if (!col) return std::nullopt;
   const auto u = t.optional_number(row, *col);
   if (!u) return std::nullopt;
@@ -310,6 +423,15 @@ std::optional<double> uncertainty_cell(const CsvTable& t, const CsvRow& row,
     throw InputError(t.file(), row.line, t.header()[*col],
                      fmt::format("uncertainty cannot be negative, got {}", *u));
   if (*u == 0.0) return std::nullopt;
+  if (*u < b.min_uncertainty)
+    throw InputError(t.file(), row.line, t.header()[*col],
+                     fmt::format("uncertainty {:g} {} is below what any instrument states (at least {:g} {}); give "
+                                 "the real one, or leave the cell empty when it is unknown",
+                                 *u, b.unit, b.min_uncertainty, b.unit));
+  if (*u > b.max_abs)
+    throw InputError(t.file(), row.line, t.header()[*col],
+                     fmt::format("uncertainty {:g} {} is beyond any measurement (at most {:g} {})", *u, b.unit,
+                                 b.max_abs, b.unit));
   return *u * scale;
 }
 
@@ -323,10 +445,12 @@ std::vector<Measurement> read_measurements(const fs::path& path, const Dataset* 
   const auto c_u = t.column("uncertainty");
   std::vector<Measurement> out;
   std::map<std::pair<std::string, Quantity>, long> seen;
+  const std::optional<ConditionMap> index = d ? std::optional(condition_map(*d)) : std::nullopt;
   for (const auto& row : t.rows()) {
     Measurement m;
     m.where = {t.file(), row.line};
-    m.condition = known_condition(t, row, c_id, d);
+    known_condition(t, row, c_id, index ? &*index : nullptr);
+    m.condition = t.text(row, c_id);
     const auto q = parse_quantity(t.text(row, c_q));
     if (!q) {
       std::string known;
@@ -340,8 +464,12 @@ std::vector<Measurement> read_measurements(const fs::path& path, const Dataset* 
     if (info(*q).magnitude && v < 0.0)
       throw InputError(t.file(), row.line, "value",
                        fmt::format("{} is a magnitude and cannot be negative, got {}", name(*q), v));
+    if (std::abs(v) > bounds(*q).max_abs)
+      throw InputError(t.file(), row.line, "value",
+                       fmt::format("{} = {:g} is beyond anything a transfer station shows (|value| at most {:g} {})",
+                                   name(*q), v, bounds(*q).max_abs, bounds(*q).unit));
     m.value = v * scale;
-    m.uncertainty = uncertainty_cell(t, row, c_u, scale);
+    m.uncertainty = uncertainty_cell(t, row, c_u, scale, bounds(*q));
     if (auto [it, fresh] = seen.emplace(std::pair{m.condition, m.quantity}, row.line); !fresh)
       throw InputError(t.file(), row.line, "quantity",
                        fmt::format("duplicate row: {} of condition '{}' is already on line {}",
@@ -360,10 +488,12 @@ std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset
   const auto c_u = t.column("uncertainty_mm");
   std::vector<TrajectoryPoint> out;
   std::map<std::tuple<std::string, Boundary, double>, long> seen;
+  const std::optional<ConditionMap> index = d ? std::optional(condition_map(*d)) : std::nullopt;
   for (const auto& row : t.rows()) {
     TrajectoryPoint p;
     p.where = {t.file(), row.line};
-    p.condition = known_condition(t, row, c_id, d);
+    const Station* st = known_condition(t, row, c_id, index ? &*index : nullptr);
+    p.condition = t.text(row, c_id);
     const auto b = parse_boundary(t.text(row, c_b));
     if (!b)
       throw InputError(t.file(), row.line, "boundary",
@@ -372,7 +502,26 @@ std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset
     p.boundary = *b;
     p.x = t.number(row, c_x) * units::mm;
     p.y = t.number(row, c_y) * units::mm;
-    p.uncertainty = uncertainty_cell(t, row, c_u, units::mm);
+    if (std::abs(p.y) > kTrajectoryBounds.max_abs * units::mm)
+      throw InputError(t.file(), row.line, "y_mm",
+                       fmt::format("y = {:g} mm is beyond a transfer station (|y| at most 100 m)", p.y * 1e3));
+    // The stream flies from the pulley (x = 0 is its centre) to the plate face: a point behind the
+    // pulley or past the face cannot be compared with a flight (the parabola would be continued
+    // through the plate, or the point dropped).
+    if (p.x < 0.0)
+      throw InputError(t.file(), row.line, "x_mm",
+                       fmt::format("x = {:g} mm is behind the pulley centre (x = 0); the stream is measured "
+                                   "between the pulley and the plate",
+                                   p.x * 1e3));
+    // (Without a dataset, another code's predictions, there is no plate to check against yet.)
+    const double face_x =
+        st ? st->plate_distance + std::max(0.0, st->plate_top - p.y) * std::tan(st->plate.angle) : 0.0;
+    if (st && p.y <= st->plate_top && p.x > face_x + 1e-9)
+      throw InputError(t.file(), row.line, "x_mm",
+                       fmt::format("x = {:g} mm is past the plate face (x = {:.1f} mm at y = {:g} mm) of condition "
+                                   "'{}'; the stream ends at the plate",
+                                   p.x * 1e3, face_x * 1e3, p.y * 1e3, p.condition));
+    p.uncertainty = uncertainty_cell(t, row, c_u, units::mm, kTrajectoryBounds);
     if (auto [it, fresh] = seen.emplace(std::tuple{p.condition, p.boundary, p.x}, row.line); !fresh)
       throw InputError(t.file(), row.line, "x_mm",
                        fmt::format("duplicate row: {} boundary of '{}' at x = {} mm is already on "
@@ -393,10 +542,12 @@ std::vector<PlatePoint> read_plate_map(const fs::path& path, const Dataset& d) {
   const auto c_u = t.column("uncertainty");
   std::vector<PlatePoint> out;
   std::map<std::tuple<std::string, std::string, double, double>, long> seen;
+  const ConditionMap index = condition_map(d);
   for (const auto& row : t.rows()) {
     PlatePoint p;
     p.where = {t.file(), row.line};
-    p.condition = known_condition(t, row, c_id, &d);
+    known_condition(t, row, c_id, &index);
+    p.condition = t.text(row, c_id);
     p.quantity = t.text(row, c_q);
     const auto& qs = plate_quantities();
     const auto q = std::find_if(qs.begin(), qs.end(), [&](const auto& e) { return e.first == p.quantity; });
@@ -412,8 +563,16 @@ std::vector<PlatePoint> read_plate_map(const fs::path& path, const Dataset& d) {
     const double v = t.number(row, c_v);
     if (v < 0.0 && p.quantity != "plate_shear_stress_Pa")
       throw InputError(t.file(), row.line, "value", fmt::format("{} cannot be negative, got {}", p.quantity, v));
+    const Bounds b = plate_bounds(p.quantity);
+    if (std::abs(v) > b.max_abs)
+      throw InputError(t.file(), row.line, "value",
+                       fmt::format("{} = {:g} is beyond anything a transfer station shows (|value| at most {:g} {})",
+                                   p.quantity, v, b.max_abs, b.unit));
+    if (std::abs(p.y) > kTrajectoryBounds.max_abs * units::mm || std::abs(p.z) > kTrajectoryBounds.max_abs * units::mm)
+      throw InputError(t.file(), row.line, std::abs(p.y) > kTrajectoryBounds.max_abs * units::mm ? "y_mm" : "z_mm",
+                       "the point is beyond a transfer station (|y|, |z| at most 100 m)");
     p.value = v / p.scale;
-    p.uncertainty = uncertainty_cell(t, row, c_u, 1.0 / p.scale);
+    p.uncertainty = uncertainty_cell(t, row, c_u, 1.0 / p.scale, b);
     if (auto [it, fresh] = seen.emplace(std::tuple{p.condition, p.quantity, p.y, p.z}, row.line); !fresh)
       throw InputError(t.file(), row.line, "y_mm",
                        fmt::format("duplicate row: {} of '{}' at y = {} mm, z = {} mm is already on line {}",
@@ -435,7 +594,14 @@ const std::vector<std::pair<std::string, double>>& plate_quantities() {
 }
 
 Dataset read_dataset(const fs::path& dir, MeasurementsRequired need) {
-  if (!fs::is_directory(dir)) throw InputError(dir.string(), 0, "", "dataset folder not found");
+  std::error_code ec;
+  const auto st = fs::status(dir, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    throw InputError(dir.string(), 0, "", fmt::format("cannot read the dataset folder: {}", ec.message()));
+  if (!fs::exists(st)) throw InputError(dir.string(), 0, "", "dataset folder not found");
+  if (!fs::is_directory(st)) throw InputError(dir.string(), 0, "", "is a file; give the dataset folder");
+  fs::directory_iterator probe(dir, ec);  // an unreadable folder fails here, not half-way
+  if (ec) throw InputError(dir.string(), 0, "", fmt::format("cannot read the dataset folder: {}", ec.message()));
   Dataset d;
   d.dir = dir;
   InputUncertainties setup_uncertainty;
@@ -443,14 +609,14 @@ Dataset read_dataset(const fs::path& dir, MeasurementsRequired need) {
   d.stations = read_conditions(dir / "conditions.csv", d.setup, &d.station_lines, &d.input_uncertainty,
                                setup_uncertainty);
   const fs::path meas = dir / "measurements.csv";
-  if (fs::exists(meas))
+  if (fs::exists(fs::symlink_status(meas, ec)))
     d.measurements = read_measurements(meas, &d);
   else if (need == MeasurementsRequired::yes)
     throw InputError(meas.string(), 0, "", "file not found (a dataset to validate needs measurements)");
   const fs::path traj = dir / "trajectory.csv";
-  if (fs::exists(traj)) d.trajectory = read_trajectory(traj, &d);
+  if (fs::exists(fs::symlink_status(traj, ec))) d.trajectory = read_trajectory(traj, &d);
   const fs::path plate = dir / "plate_map.csv";
-  if (fs::exists(plate)) d.plate_map = read_plate_map(plate, d);
+  if (fs::exists(fs::symlink_status(plate, ec))) d.plate_map = read_plate_map(plate, d);
   return d;
 }
 

@@ -3,6 +3,9 @@
 // Reading either gives a complete, checked Dataset or throws one InputError naming file, line and
 // field; nothing is half-read.
 #include <filesystem>
+#include <memory>
+#include <mutex>
+#include <unordered_map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -70,8 +73,18 @@ struct Dataset {
   std::vector<InputUncertainties> input_uncertainty;  // parallel to stations
   std::vector<PlatePoint> plate_map;
 
-  const Station* station(std::string_view condition) const;
+  const Station* station(std::string_view condition) const;  // by hash: called per value by reports
   const SourceLine* station_line(std::string_view condition) const;
+
+  // Name -> index of `stations`, rebuilt when the vector changed; shared by copies, guarded by its
+  // own mutex so that concurrent readers are safe.
+  struct StationIndex {
+    std::mutex m;
+    const Station* data = nullptr;
+    std::size_t size = 0;
+    std::unordered_map<std::string, std::size_t> at;
+  };
+  std::shared_ptr<StationIndex> station_index = std::make_shared<StationIndex>();
 };
 
 enum class MeasurementsRequired { no, yes };
@@ -94,6 +107,12 @@ std::vector<Station> read_conditions(const std::filesystem::path& file, const Se
 // must be one of its conditions; without, any non-empty name is taken.
 std::vector<Measurement> read_measurements(const std::filesystem::path& file, const Dataset* d);
 std::vector<TrajectoryPoint> read_trajectory(const std::filesystem::path& file, const Dataset* d);
+
+// The operating inputs of a condition (conditions.csv's columns belt_speed_mps, mass_flow_tph,
+// plate_distance_mm, plate_top_mm, stream_thickness_mm; `value` in that column's unit) against the
+// bounds no conveyor reaches: beyond them the number is a unit slip and the models would print inf
+// rather than say so. Throws InputError naming `field` (no file: the caller locates it).
+void check_operating_input(std::string_view column, double value, const std::string& field);
 
 // Station from a setup and explicit operating values (all SI).
 Station make_station(const Setup& setup, std::string condition, double belt_speed,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <iostream>
 #include <gsl/gsl_cdf.h>
 #include <map>
 #include <set>
@@ -308,7 +309,10 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
     for (const auto& e : lib) all.push_back(&e);
     m.prepare_signatures(all, jobs);
   }
+  const bool progress = opt.progress && d.stations.size() >= 500;
   for (const auto& e : lib) {
+    if (progress)
+      std::cerr << fmt::format("diagnose: fitting {} ({}/{})\n", e.name, &e - lib.data() + 1, lib.size());
     const std::vector<const effects::EffectInfo*> fx = {&e};
     EffectFit f = make_fit(m, fx, fit_strengths(m, fx), out.chi2_baseline);
     if (m.has_expensive()) f.signature = signature_words(m.signature(e));
@@ -360,6 +364,7 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
     const double npairs = k * (k - 1) / 2;
     for (std::size_t i = 0; i < lib.size(); ++i)
       for (std::size_t j = i + 1; j < lib.size(); ++j) {
+        if (progress) std::cerr << fmt::format("diagnose: fitting the pair {} + {}\n", lib[i].name, lib[j].name);
         const std::vector<const effects::EffectInfo*> fx = {&lib[i], &lib[j]};
         const std::vector<std::vector<double>> starts = {
             {single_estimate[lib[i].name], lib[j].neutral},

@@ -86,6 +86,7 @@ struct DiagnoseOptions {
   // With an expensive baseline: how many of the leading significant single candidates are re-run
   // at their fitted strengths before the ranking is final (the best pair is always re-run).
   int confirm = 3;
+  bool progress = false;         // one line per fit on stderr for datasets of 500 conditions or more
 };
 
 DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,

@@ -8,6 +8,7 @@
 #include <gsl/gsl_multifit_nlinear.h>
 #include <limits>
 #include <thread>
+#include <unordered_map>
 
 #include "core/input_error.h"
 #include "validation/campaign_runs.h"
@@ -17,10 +18,26 @@
 #include "validation/models/external_model.h"
 
 namespace chutelab::validation {
+namespace {
+template <class F>
+ModelPrediction located_call(const Dataset& d, std::size_t c, F&& f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    if (c < d.station_lines.size()) throw e.located(d.station_lines[c].file, d.station_lines[c].line);
+    throw;
+  }
+}
+}  // namespace
 
 Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed)
     : d_(&d), models_(std::move(models)), fixed_(std::move(fixed)) {
-  for (const auto& st : d.stations) queries_.push_back(trajectory_queries(d, st.condition));
+  // Look-ups by hash, once per row: the diagnosis stays linear in the size of the dataset.
+  std::unordered_map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < d.stations.size(); ++i) index.emplace(d.stations[i].condition, i);
+  queries_.resize(d.stations.size());
+  for (const auto& p : d.trajectory)
+    if (auto it = index.find(p.condition); it != index.end()) queries_[it->second].push_back({p.boundary, p.x});
   // The cheap models carry effect signatures for an expensive one even when they are not among
   // the models being judged (e.g. --models dem).
   if (has_expensive())
@@ -30,8 +47,7 @@ Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::Effec
   run_expensive(fixed_, true);  // the baseline runs and their ladders, as one campaign (MPI ranks, --jobs)
   const auto base = predict_all({}, {});
   auto condition_index = [&](const std::string& c) {
-    for (std::size_t i = 0; i < d.stations.size(); ++i)
-      if (d.stations[i].condition == c) return i;
+    if (auto it = index.find(c); it != index.end()) return it->second;
     throw std::logic_error("measurement of an unknown condition");
   };
   // chi^2 weights: u_D combined with the baseline prediction's u_num (statistical and
@@ -97,6 +113,8 @@ std::vector<std::vector<ModelPrediction>> Misfit::predict(std::span<const effect
   std::vector<std::vector<ModelPrediction>> out(d_->stations.size());
   for (std::size_t c = 0; c < d_->stations.size(); ++c) {
     const Station& st = d_->stations[c];
+    // A model that cannot take a condition says which line of conditions.csv, as validate does.
+    try {
     std::vector<ConditionResult> same(models_.size());
     for (std::size_t k = 0; k < models_.size(); ++k) {
       if (!models_[k]->expensive())
@@ -129,6 +147,10 @@ std::vector<std::vector<ModelPrediction>> Misfit::predict(std::span<const effect
     }
     apply_measurement_effects(list, same);
     for (auto& s : same) out[c].push_back(std::move(s.prediction));
+    } catch (const InputError& e) {
+      if (c < d_->station_lines.size()) throw e.located(d_->station_lines[c].file, d_->station_lines[c].line);
+      throw;
+    }
   }
   return out;
 }
@@ -339,13 +361,13 @@ void Misfit::prepare_exact(std::span<const effects::EffectInfo* const> fx, std::
 
 const ModelPrediction& Misfit::expensive_base(std::size_t c, std::size_t k) const {
   auto& slot = expensive_cache_[{c, k}];
-  if (!slot) slot = models_[k]->predict(d_->stations[c], fixed_, {queries_[c], false});
+  if (!slot) slot = located_call(*d_, c, [&] { return models_[k]->predict(d_->stations[c], fixed_, {queries_[c], false}); });
   return *slot;
 }
 
 const ModelPrediction& Misfit::cheap_base(std::size_t c, const ModelPtr& m) const {
   auto& slot = cheap_cache_[{c, m->name()}];
-  if (!slot) slot = m->predict(d_->stations[c], fixed_, {queries_[c], false});
+  if (!slot) slot = located_call(*d_, c, [&] { return m->predict(d_->stations[c], fixed_, {queries_[c], false}); });
   return *slot;
 }
 

@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <map>
+#include <set>
 #include <span>
+#include <unordered_map>
 
 #include "core/input_error.h"
 #include "validation/input_uncertainty.h"
@@ -83,6 +85,9 @@ std::string ValidationResult::brief() const {
   if (models.size() > 1)
     if (auto z = combined_rms_normalised()) s += fmt::format("; combined {:.2f}", *z);
   if (acceptance_checked) s += acceptance_failed ? "; ACCEPTANCE FAILED" : "; acceptance passed";
+  if (!acceptance_problems.empty())
+    s += fmt::format(" ({}{})", acceptance_problems.front(),
+                     acceptance_problems.size() > 1 ? fmt::format("; and {} more", acceptance_problems.size() - 1) : "");
   return s;
 }
 
@@ -164,10 +169,23 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
         runs.push_back({m, d.stations[i], options.effects, d.station_lines[i].file, d.station_lines[i].line});
   run_models(runs, {"validate"});
 
+  // Every look-up below is by index or hash, once per row: validate stays linear in the dataset.
+  std::unordered_map<std::string, std::vector<TrajectoryQuery>> queries_of;
+  for (const auto& p : d.trajectory) queries_of[p.condition].push_back({p.boundary, p.x});
+  std::unordered_map<std::string, std::vector<PlateQuery>> plate_of;
+  for (const auto& p : d.plate_map) plate_of[p.condition].push_back({p.quantity, p.y, p.z});
+  std::map<std::pair<std::string, std::string>, std::size_t> prediction_at;
+  const bool progress = !options.quiet && d.stations.size() >= 2000;
   for (std::size_t i = 0; i < d.stations.size(); ++i) {
     const Station& st = d.stations[i];
-    const auto queries = trajectory_queries(d, st.condition);
-    const auto plate = plate_queries(d, st.condition);
+    if (progress && (i + 1) % 1000 == 0)
+      std::cerr << fmt::format("validate: {}/{} conditions\n", i + 1, d.stations.size());
+    static const std::vector<TrajectoryQuery> none;
+    static const std::vector<PlateQuery> no_plate;
+    const auto qit = queries_of.find(st.condition);
+    const auto& queries = qit == queries_of.end() ? none : qit->second;
+    const auto pit = plate_of.find(st.condition);
+    const auto& plate = pit == plate_of.end() ? no_plate : pit->second;
     const std::size_t first = r.predictions.size();
     for (const auto& m : models) {
       ModelPrediction p;
@@ -185,6 +203,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
         p.trajectory_input_uncertainty = std::move(ui.trajectory);
         for (auto& n : ui.notes) p.notes.push_back(std::move(n));
       }
+      prediction_at[{st.condition, m->name()}] = r.predictions.size();
       r.predictions.push_back({st.condition, m->name(), std::move(p)});
     }
     apply_measurement_effects(options.effects,
@@ -193,7 +212,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
 
   for (const auto& meas : d.measurements)
     for (const auto& m : models) {
-      const ConditionResult* cr = r.prediction(meas.condition, m->name());
+      const ConditionResult* cr = &r.predictions[prediction_at.at({meas.condition, m->name()})];
       Comparison c;
       c.condition = meas.condition;
       c.model = m->name();
@@ -211,7 +230,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
   for (const auto& m : models) {
     std::map<std::string, std::size_t> next;  // query index per condition, in dataset order
     for (const auto& pt : d.trajectory) {
-      const ConditionResult* cr = r.prediction(pt.condition, m->name());
+      const ConditionResult* cr = &r.predictions[prediction_at.at({pt.condition, m->name()})];
       const std::size_t k = next[pt.condition]++;
       Comparison c;
       c.condition = pt.condition;
@@ -235,9 +254,9 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
   for (const auto& m : models) {
     std::map<std::string, std::size_t> next;
     for (const auto& pt : d.plate_map) {
-      const ConditionResult* cr = r.prediction(pt.condition, m->name());
+      const ConditionResult* cr = &r.predictions[prediction_at.at({pt.condition, m->name()})];
       const std::size_t k = next[pt.condition]++;
-      if (!cr || k >= cr->prediction.plate.size() || !cr->prediction.plate[k]) continue;
+      if ( k >= cr->prediction.plate.size() || !cr->prediction.plate[k]) continue;
       Comparison c;
       c.condition = pt.condition;
       c.model = m->name();
@@ -254,11 +273,22 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
   }
 
   if (options.tolerances) {
+    const Tolerances& tol = *options.tolerances;
     r.acceptance_checked = true;
+    std::set<Tolerances::Key> used;
     for (auto& c : r.comparisons) {
-      check_tolerance(c, *options.tolerances);
+      check_tolerance(c, tol);
+      if (c.verdict.checked) used.insert(*tol.find_key(c.model, c.quantity));
       if (c.verdict.checked && !c.verdict.passed) r.acceptance_failed = true;
     }
+    if (tol.empty())
+      r.acceptance_problems.push_back(fmt::format("{}: no limit in the file, so acceptance checked nothing", tol.file()));
+    for (const auto& [key, line] : tol.entries())
+      if (!used.count(key))
+        r.acceptance_problems.push_back(fmt::format(
+            "{}:{}: {}.{}: this limit checked no value (no model of --models {} predicts {} for a measured value)",
+            tol.file(), line, key.first, key.second, fmt::join(r.models, ","), key.second));
+    if (!r.acceptance_problems.empty()) r.acceptance_failed = true;
   }
 
   // Summary per model and quantity, in model order and the vocabulary's order.
@@ -266,6 +296,8 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
   for (Quantity q : kAllQuantities) quantities.emplace_back(name(q));
   for (Boundary b : kAllBoundaries) quantities.push_back(trajectory_quantity(b));
   for (const auto& [q, scale] : plate_quantities()) quantities.push_back(q);
+  std::map<std::pair<std::string, std::string>, std::vector<const Comparison*>> by_key;
+  for (const auto& c : r.comparisons) by_key[{c.model, c.quantity}].push_back(&c);
   for (const auto& m : r.models)
     for (const auto& qn : quantities) {
       SummaryRow s;
@@ -274,8 +306,9 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       double se = 0.0, sz = 0.0, worst = 0.0;
       int nz = 0, nr = 0;
       bool checked = false, ok = true;
-      for (const auto& c : r.comparisons) {
-        if (c.model != m || c.quantity != qn || !c.predicted) continue;
+      for (const Comparison* cp : by_key[{m, qn}]) {
+        const Comparison& c = *cp;
+        if (!c.predicted) continue;
         ++s.n;
         se += std::pow(c.error() * c.scale, 2);
         if (auto z = c.normalised_error()) { sz += *z * *z; ++nz; }

@@ -68,6 +68,10 @@ struct ValidationResult {
   std::vector<SummaryRow> summary;
   bool acceptance_checked = false;
   bool acceptance_failed = false;
+  // Why acceptance failed without a value out of tolerance: a limit that checked no value (a model
+  // that did not run, a quantity it does not predict or the dataset does not hold, no limit at all).
+  // Acceptance that checked nothing is never a pass.
+  std::vector<std::string> acceptance_problems;
 
   const ConditionResult* prediction(const std::string& condition, const std::string& model) const;
   // RMS of the normalised error over every comparison of a model that has an uncertainty.

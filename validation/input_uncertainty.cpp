@@ -44,7 +44,9 @@ std::vector<Perturbation> perturbations(const Station& st, const InputUncertaint
     out.push_back({"stream_thickness_mm", *u.stream_thickness, 0.0, kInf, true,
                    [](const Station& s) { return *s.stream_thickness; },
                    [](Station& s, double x) { s.stream_thickness = x; }});
-  for (const auto& [f, v] : u.rig) {
+  for (const auto& entry : u.rig) {
+    const auto f = entry.first;  // a copy: clang 14 cannot capture a structured binding
+    const double v = entry.second;
     if (v <= 0.0) continue;
     const std::string dotted = f->section.empty() ? std::string(f->key) : fmt::format("{}.{}", f->section, f->key);
     out.push_back({dotted, v, f->min * f->to_si, f->max * f->to_si, false,

@@ -45,7 +45,13 @@ ModelPtr make_model(const std::string& name) {
 
 std::vector<ModelPtr> make_models(const std::vector<std::string>& names) {
   std::vector<ModelPtr> out;
-  for (const auto& n : names) out.push_back(make_model(n));
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    // Twice the same model would double every row and count every value twice in the statistics.
+    for (std::size_t j = 0; j < i; ++j)
+      if (names[j] == names[i])
+        throw InputError("", 0, "--models", fmt::format("model '{}' is listed twice", names[i]));
+    out.push_back(make_model(names[i]));
+  }
   return out;
 }
 

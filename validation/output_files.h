@@ -15,10 +15,10 @@ std::string summary_csv(const ValidationResult& r);
 
 using OutputFile = std::pair<std::string, std::string>;  // file name, content
 
-// Writes every file to a temporary name first and renames them into `dir` only when all were
-// written: an interrupted or failed run leaves the previous result (or nothing), never a mix.
-// Under mpirun only rank 0 writes (core/campaign.h).
-void write_outputs(const std::filesystem::path& dir, const std::vector<OutputFile>& files);
+// Writes every file through an OutputFolder (core/output_folder.h): all or nothing, never onto one
+// of `inputs` (the files and folders the command read).
+void write_outputs(const std::filesystem::path& dir, const std::vector<OutputFile>& files,
+                   const std::vector<std::filesystem::path>& inputs = {});
 
 // Number formatting shared by every CSV: enough digits to round-trip what matters, no noise.
 std::string csv_number(double v);

@@ -62,8 +62,11 @@ struct Condition {
 
 class Data {
  public:
-  Data(const Dataset& d, const ValidationResult& r) : d_(d), r_(r) {
+  Data(const Dataset& d, const ValidationResult& r) : r_(r) {
     for (const auto& st : d.stations) conditions.push_back({st.condition, st.belt_speed, st.mass_flow});
+    // Indexed once: a look-up per condition and quantity must not scan the whole result.
+    for (const auto& p : r.predictions) predictions_.emplace(std::pair{p.condition, p.model}, &p);
+    for (const auto& m : d.measurements) measurements_.emplace(std::pair{m.condition, m.quantity}, &m);
     std::stable_sort(conditions.begin(), conditions.end(), [](const Condition& a, const Condition& b) {
       return a.speed != b.speed ? a.speed < b.speed : a.flow < b.flow;
     });
@@ -72,14 +75,15 @@ class Data {
     return std::find(r_.models.begin(), r_.models.end(), m) != r_.models.end();
   }
   std::optional<Value> predicted(const std::string& c, const std::string& m, Quantity q) const {
-    const auto* p = r_.prediction(c, m);
+    const auto it = predictions_.find({c, m});
+    const auto* p = it == predictions_.end() ? nullptr : it->second;
     if (!p || !p->prediction.values[q]) return std::nullopt;
     return Value{*p->prediction.values[q], p->prediction.uncertainty[q]};
   }
   std::optional<Value> measured(const std::string& c, Quantity q) const {
-    for (const auto& m : d_.measurements)
-      if (m.condition == c && m.quantity == q) return Value{m.value, m.uncertainty};
-    return std::nullopt;
+    const auto it = measurements_.find({c, q});
+    if (it == measurements_.end()) return std::nullopt;
+    return Value{it->second->value, it->second->uncertainty};
   }
   // Speed groups in increasing speed, each in increasing mass flow.
   std::vector<std::vector<Condition>> speed_groups() const {
@@ -93,8 +97,9 @@ class Data {
   std::vector<Condition> conditions;
 
  private:
-  const Dataset& d_;
   const ValidationResult& r_;
+  std::map<std::pair<std::string, std::string>, const ConditionResult*> predictions_;
+  std::map<std::pair<std::string, Quantity>, const Measurement*> measurements_;
 };
 
 std::string fmt_value(Quantity q, double si, int digits) {

@@ -1,4 +1,5 @@
 #include "validation/synthesize.h"
+#include "core/csv_field.h"
 
 #include <charconv>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <stdexcept>
 
 #include "core/input_error.h"
+#include "core/utf8.h"
 #include "validation/harness.h"
 
 namespace chutelab::validation {
@@ -142,7 +144,7 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       written /= s;
       const std::string u = two_significant(
           (given ? it->second : default_uncertainty(q, written)) * opt.noise_scale * s);
-      meas += fmt::format("{},{},{},{}\n", st.condition, name(q), value, u);
+      meas += fmt::format("{},{},{},{}\n", csv_field(st.condition), name(q), value, u);
     }
     for (std::size_t k = 0; k < queries.size(); ++k) {
       std::optional<double> truth;
@@ -151,22 +153,24 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
           truth = s.prediction.trajectory[k];
       if (!truth) continue;
       const double u = traj_u[k] * opt.noise_scale;
-      traj += fmt::format("{},{},{:.1f},{:.3f},{:.3f}\n", st.condition, name(queries[k].boundary),
+      traj += fmt::format("{},{},{:.1f},{:.3f},{:.3f}\n", csv_field(st.condition), name(queries[k].boundary),
                           queries[k].x * 1e3, (*truth + u * noise.next()) * 1e3, u * 1e3);
     }
   }
   const std::string readme = fmt::format(
       "# Synthetic dataset\n\n"
-      "Made by `chutelab synthesize` from the rig and conditions of `{}` (copied unchanged as\n"
-      "`setup.toml` and `conditions.csv`), random seed {}. `measurements.csv` and `trajectory.csv` hold\n"
+      "Made by `chutelab synthesize` from the rig and conditions of `{}` (copied unchanged, in UTF-8,\n"
+      "as `setup.toml` and `conditions.csv`), random seed {}. `measurements.csv` and `trajectory.csv` hold\n"
       "values computed by chutelab's analytical models with Gaussian noise of one stated uncertainty\n"
       "added to each; magnitudes (R, V_p, V_a) never read below zero, their noise is the normal\n"
       "truncated there. Each uncertainty is computed from the written value (two significant\n"
       "figures). What else went into the generating model is deliberately not recorded here, so\n"
       "the dataset can serve as a blind test of `chutelab diagnose`.\n",
       src.setup.name.empty() ? src.dir.filename().string() : src.setup.name, opt.seed);
-  return {{"setup.toml", slurp(src.dir / "setup.toml")},
-          {"conditions.csv", slurp(src.dir / "conditions.csv")},
+  // Copied as read, but in UTF-8 like the files written beside them: a Latin-1 conditions.csv
+  // would otherwise make one dataset of two encodings.
+  return {{"setup.toml", to_utf8(slurp(src.dir / "setup.toml"))},
+          {"conditions.csv", to_utf8(slurp(src.dir / "conditions.csv"))},
           {"measurements.csv", meas},
           {"trajectory.csv", traj},
           {"README.md", readme}};

@@ -44,7 +44,7 @@ long line_of(const toml::key& k, const toml::node& n) {
 Tolerances Tolerances::read(const std::filesystem::path& path) {
   Tolerances t;
   t.file_ = path.string();
-  if (!std::filesystem::exists(path)) throw InputError(t.file_, 0, "", "file not found");
+  require_readable_file(t.file_, "--tolerances");
   toml::table doc;
   try {
     doc = toml::parse_file(t.file_);
@@ -96,9 +96,22 @@ Tolerances Tolerances::read(const std::filesystem::path& path) {
       if (lt->empty())
         throw InputError(t.file_, line, field, "no limit given (use relative, normalised or absolute)");
       t.table_[{mn, qn}] = tol;
+      t.lines_[{mn, qn}] = line;
     }
   }
   return t;
+}
+
+std::optional<Tolerances::Key> Tolerances::find_key(const std::string& model, const std::string& quantity) const {
+  if (table_.count({model, quantity})) return Key{model, quantity};
+  if (table_.count({"*", quantity})) return Key{"*", quantity};
+  return std::nullopt;
+}
+
+std::vector<std::pair<Tolerances::Key, long>> Tolerances::entries() const {
+  std::vector<std::pair<Key, long>> v;
+  for (const auto& [k, tol] : table_) v.emplace_back(k, lines_.count(k) ? lines_.at(k) : 0L);
+  return v;
 }
 
 const Tolerance* Tolerances::find(const std::string& model, const std::string& quantity) const {

@@ -15,6 +15,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace chutelab::validation {
 
@@ -33,13 +34,19 @@ struct ToleranceVerdict {
 class Tolerances {
  public:
   static Tolerances read(const std::filesystem::path& file);
+  using Key = std::pair<std::string, std::string>;  // model (or "*"), quantity
   const Tolerance* find(const std::string& model, const std::string& quantity) const;
+  // The entry find() would use, so that the harness can tell which limits checked something.
+  std::optional<Key> find_key(const std::string& model, const std::string& quantity) const;
   bool empty() const { return table_.empty(); }
   std::string file() const { return file_; }
+  // Every limit with the line it is on, in file order of keys (map order).
+  std::vector<std::pair<Key, long>> entries() const;
 
  private:
   std::string file_;
-  std::map<std::pair<std::string, std::string>, Tolerance> table_;
+  std::map<Key, Tolerance> table_;
+  std::map<Key, long> lines_;
 };
 
 }  // namespace chutelab::validation

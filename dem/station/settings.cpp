@@ -154,10 +154,11 @@ void read_feed_table(const toml::node& node, const std::string& file, const std:
   for (const auto& [k, n] : *t) {
     const std::string fk = key + "." + std::string(k.str());
     const std::string_view kv = k.str();
+    const toml::node& value = n;  // a structured binding cannot be captured by clang 14
     auto choice = [&](const char* a, const char* b) {
-      const auto v = n.value<std::string>();
+      const auto v = value.value<std::string>();
       if (!v || (*v != a && *v != b))
-        throw InputError(file, line_of(n), fk, fmt::format("must be \"{}\" or \"{}\"", a, b));
+        throw InputError(file, line_of(value), fk, fmt::format("must be \"{}\" or \"{}\"", a, b));
       return *v == a;
     };
     if (kv == "face_length_mm") f.face_length = positive_number(n, file, fk) * 1e-3;

@@ -112,6 +112,7 @@ TriangleMesh read_binary(const std::string& path, const std::string& data, doubl
 
 TriangleMesh read_stl(const std::string& path, double scale) {
   if (!(scale > 0.0) || !std::isfinite(scale)) throw InputError(path, 0, "scale", "scale must be > 0");
+  require_readable_file(path);  // a folder or a symlink loop is said as such, not as "empty"
   std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path, 0, "", "cannot open STL file");
   std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());

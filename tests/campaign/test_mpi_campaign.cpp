@@ -96,6 +96,29 @@ BOOST_AUTO_TEST_CASE(validate_with_dem_is_byte_identical_under_mpirun) {
   // Two conditions, each with its ladder for u_num's discretisation part (2 dt, and two coarser
   // particle sizes: quick coarse-grains the dataset's particles): eight runs spread over the ranks.
   BOOST_TEST(b.err.find("8 jobs on 2 MPI ranks") != std::string::npos);
+  // Rank 0 alone staged and committed --out; no rank left a staging folder beside it or in it.
+  for (const auto& dir : {two.parent_path(), two})
+    for (const auto& e : fs::directory_iterator(dir))
+      BOOST_TEST(e.path().filename().string().find(".partial") == std::string::npos, e.path());
+}
+
+// An --out that cannot be placed under mpirun: refused once, before the DEM runs, --out as it was.
+BOOST_AUTO_TEST_CASE(unusable_out_under_mpirun_is_one_line_and_leaves_out_alone) {
+  const fs::path out = fresh_dir("bad-out");
+  fs::create_directories(out / "errors.csv");
+  const auto r = run(kMpi, "validate --dataset " + tiny_dataset().string() + " --models korzen,dem --out " + out.string(),
+                     "bad-out");
+  BOOST_TEST(r.exit_code == 2);
+  std::size_t n = 0;
+  for (auto at = r.err.find("chutelab: "); at != std::string::npos; at = r.err.find("chutelab: ", at + 1)) ++n;
+  BOOST_TEST(n == 1u, r.err);
+  BOOST_TEST(r.err.find("errors.csv: --out: is a folder where chutelab writes a file") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("jobs on 2 MPI ranks") == std::string::npos, r.err);  // no DEM campaign started
+  std::size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(out)) entries += e.path().filename() == "errors.csv" ? 1 : 100;
+  BOOST_TEST(entries == 1u);
+  for (const auto& e : fs::directory_iterator(out.parent_path()))
+    BOOST_TEST(e.path().filename().string().find(".partial") == std::string::npos, e.path());
 }
 
 BOOST_AUTO_TEST_CASE(diagnose_with_a_dem_baseline_is_byte_identical_under_mpirun) {

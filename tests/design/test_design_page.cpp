@@ -201,7 +201,7 @@ BOOST_AUTO_TEST_CASE(bad_input_shows_chutelabs_message_not_numbers) {
   const fs::path dir = build_page("bad");
   const PageView v = open_page(dir, dir / "page" / "design.html", "belt_speed=-1&mass_flow=35&plate_distance=450");
   BOOST_TEST(v.state == "error");
-  BOOST_TEST(v.error.find("--belt-speed: must be a positive number") != std::string::npos, v.error);
+  BOOST_TEST(v.error.find("--belt-speed: belt speed must be positive, got -1") != std::string::npos, v.error);
 }
 
 BOOST_AUTO_TEST_CASE(design_checks_its_starting_rig_and_writes_nothing_on_bad_input) {
