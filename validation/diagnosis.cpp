@@ -142,6 +142,17 @@ std::string largest_misfit(const Misfit& m, const std::vector<double>& r) {
   return fmt::format("{}", fmt::join(parts, ", "));
 }
 
+// chi^2 after a fit of n data and what follows from it: BIC change, share of the excess misfit
+// (chi^2 - n) removed, and the likelihood-ratio p-value against chi2_before.
+void score(EffectFit& e, double chi2, double n) {
+  const double k = static_cast<double>(e.effects.size());
+  e.chi2_after = chi2;
+  e.delta_bic = (chi2 + k * std::log(n)) - e.chi2_before;
+  const double excess = e.chi2_before - n;
+  e.explained_fraction = excess > 0 ? std::clamp((e.chi2_before - chi2) / excess, 0.0, 1.0) : 0.0;
+  e.p_value = gsl_cdf_chisq_Q(std::max(0.0, e.chi2_before - chi2), k);
+}
+
 EffectFit make_fit(const Misfit& m, std::vector<const effects::EffectInfo*> fx, const StrengthFit& f,
                    double chi2_before) {
   EffectFit e;
@@ -152,24 +163,14 @@ EffectFit make_fit(const Misfit& m, std::vector<const effects::EffectInfo*> fx, 
   e.estimate = f.estimate;
   e.uncertainty = f.uncertainty;
   e.chi2_before = chi2_before;
-  e.chi2_after = f.chi2;
-  const double n = static_cast<double>(m.size());
-  e.delta_bic = (f.chi2 + fx.size() * std::log(n)) - chi2_before;
-  const double excess = chi2_before - n;
-  e.explained_fraction = excess > 0 ? std::clamp((chi2_before - f.chi2) / excess, 0.0, 1.0) : 0.0;
-  e.p_value = gsl_cdf_chisq_Q(std::max(0.0, chi2_before - f.chi2), static_cast<double>(fx.size()));
+  score(e, f.chi2, static_cast<double>(m.size()));
   return e;
 }
 
 // A fit's chi^2 replaced by the one real runs at its strengths give, and what follows from it.
 void rescore(EffectFit& e, double chi2, double n) {
   e.chi2_from_signatures = e.chi2_after;
-  e.chi2_after = chi2;
-  const double k = static_cast<double>(e.effects.size());
-  e.delta_bic = (chi2 + k * std::log(n)) - e.chi2_before;
-  const double excess = e.chi2_before - n;
-  e.explained_fraction = excess > 0 ? std::clamp((e.chi2_before - chi2) / excess, 0.0, 1.0) : 0.0;
-  e.p_value = gsl_cdf_chisq_Q(std::max(0.0, e.chi2_before - chi2), k);
+  score(e, chi2, n);
 }
 
 std::vector<const effects::EffectInfo*> infos_of(const EffectFit& f) {
@@ -181,12 +182,7 @@ std::vector<const effects::EffectInfo*> infos_of(const EffectFit& f) {
 // Which measurement tells two fitted explanations apart: the quantity and condition where their
 // predictions differ most, in units of the uncertainty such a measurement has in this dataset.
 std::string discriminator(const Misfit& m, const EffectFit& a, const EffectFit& b) {
-  auto infos = [](const EffectFit& f) {
-    std::vector<const effects::EffectInfo*> v;
-    for (const auto& n : f.effects) v.push_back(effects::find(n));
-    return v;
-  };
-  const auto ia = infos(a), ib = infos(b);
+  const auto ia = infos_of(a), ib = infos_of(b);
   const auto pa = m.predict_all(ia, a.estimate), pb = m.predict_all(ib, b.estimate);
   // Typical uncertainty per quantity from the dataset; where a quantity is not measured, 2 % of
   // its size (forces) or 0.05 m/s or 3 mm, the resolution of the seed's instruments.
@@ -254,12 +250,7 @@ double cosine(const std::vector<double>& a, const std::vector<double>& b) {
 std::string separating_measurement(const Misfit& m, const EffectFit& a, const EffectFit& b) {
   std::set<Quantity> measured;
   for (const auto& meas : m.dataset().measurements) measured.insert(meas.quantity);
-  auto infos = [](const EffectFit& f) {
-    std::vector<const effects::EffectInfo*> v;
-    for (const auto& n : f.effects) v.push_back(effects::find(n));
-    return v;
-  };
-  const auto pa = m.predict_all(infos(a), a.estimate), pb = m.predict_all(infos(b), b.estimate);
+  const auto pa = m.predict_all(infos_of(a), a.estimate), pb = m.predict_all(infos_of(b), b.estimate);
   std::map<Quantity, double> largest;  // largest relative difference over the conditions
   for (std::size_t c = 0; c < pa.size(); ++c)
     for (std::size_t k = 0; k < pa[c].size(); ++k)
@@ -362,6 +353,11 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
     std::map<std::string, double> single_estimate;
     for (const auto& s : out.singles) single_estimate[s.effects[0]] = s.estimate[0];
     const double npairs = k * (k - 1) / 2;
+    auto test_pair = [&](EffectFit& f) {
+      f.p_value = gsl_cdf_chisq_Q(std::max(0.0, top.chi2_after - f.chi2_after), 1.0);
+      f.p_adjusted = std::min(1.0, f.p_value * npairs);
+      f.significant = f.p_adjusted < opt.alpha && f.delta_bic < top.delta_bic - opt.pair_margin_bic;
+    };
     for (std::size_t i = 0; i < lib.size(); ++i)
       for (std::size_t j = i + 1; j < lib.size(); ++j) {
         if (progress) std::cerr << fmt::format("diagnose: fitting the pair {} + {}\n", lib[i].name, lib[j].name);
@@ -373,10 +369,7 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
         EffectFit f = make_fit(m, fx, fit_strengths(m, fx, starts), out.chi2_baseline);
         if (m.has_expensive())
           f.signature = signature_words(m.signature(lib[i])) + " + " + signature_words(m.signature(lib[j]));
-        const double gain = top.chi2_after - f.chi2_after;
-        f.p_value = gsl_cdf_chisq_Q(std::max(0.0, gain), 1.0);
-        f.p_adjusted = std::min(1.0, f.p_value * npairs);
-        f.significant = f.p_adjusted < opt.alpha && f.delta_bic < top.delta_bic - opt.pair_margin_bic;
+        test_pair(f);
         if (f.significant) out.pairs.push_back(f);
       }
     std::stable_sort(out.pairs.begin(), out.pairs.end(),
@@ -387,9 +380,7 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
       const auto fx = infos_of(f);
       m.prepare_exact(fx, f.estimate, jobs);
       rescore(f, m.chi2_exact(fx, f.estimate), n_data);
-      f.p_value = gsl_cdf_chisq_Q(std::max(0.0, top.chi2_after - f.chi2_after), 1.0);
-      f.p_adjusted = std::min(1.0, f.p_value * npairs);
-      f.significant = f.p_adjusted < opt.alpha && f.delta_bic < top.delta_bic - opt.pair_margin_bic;
+      test_pair(f);
       out.pairs.clear();
       if (f.significant) out.pairs.push_back(f);
     }

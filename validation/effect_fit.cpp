@@ -305,18 +305,15 @@ void Misfit::prepare_signatures(std::span<const effects::EffectInfo* const> cand
   bool any_own = false;
   for (const auto* e : candidates) any_own = any_own || signature(*e) == Signature::own_runs;
   if (any_own) {
-    run_expensive(fixed_, false, true);
-    std::vector<ModelRun> runs;
+    // The signature baseline (for a model without a cheaper quality it is the baseline, already
+    // run) and one probe per candidate.
+    std::vector<analytical::EffectList> lists = {fixed_};
     for (const auto* e : candidates)
       if (signature(*e) == Signature::own_runs) {
-        analytical::EffectList with = fixed_;
-        with.push_back(e->make(probe_strength(*e)));
-        for (std::size_t c = 0; c < d_->stations.size(); ++c)
-          for (const auto& m : models_)
-            if (m->expensive() && m->runs_with_effects())
-              runs.push_back({m, d_->stations[c], with, d_->station_lines[c].file, d_->station_lines[c].line, true, false});
+        lists.push_back(fixed_);
+        lists.back().push_back(e->make(probe_strength(*e)));
       }
-    run_models(runs, {"diagnose"});
+    run_expensive(lists, false, true);
   }
   std::vector<std::function<void()>> work;
   // The baselines first, slots created here: the maps are not touched while the runs go on.
@@ -377,13 +374,14 @@ bool Misfit::has_expensive() const {
   return false;
 }
 
-void Misfit::run_expensive(const analytical::EffectList& effects, bool discretisation, bool signature) const {
+void Misfit::run_expensive(std::span<const analytical::EffectList> lists, bool discretisation, bool signature) const {
   std::vector<ModelRun> runs;
-  for (std::size_t c = 0; c < d_->stations.size(); ++c)
-    for (const auto& m : models_)
-      if (m->expensive() && m->runs_with_effects() && (!signature || m->cheaper_signatures()))
-        runs.push_back({m, d_->stations[c], effects, d_->station_lines[c].file, d_->station_lines[c].line, signature,
-                        discretisation});
+  for (const auto& effects : lists)
+    for (std::size_t c = 0; c < d_->stations.size(); ++c)
+      for (const auto& m : models_)
+        if (m->expensive() && m->runs_with_effects())
+          runs.push_back({m, d_->stations[c], effects, d_->station_lines[c].file, d_->station_lines[c].line, signature,
+                          discretisation});
   run_models(runs, {"diagnose"});
 }
 

@@ -76,10 +76,13 @@ class Misfit {
   const ModelPrediction& expensive_base(std::size_t condition, std::size_t model) const;
   // Every condition of the expensive models with these effects, run as one campaign
   // (validation/campaign_runs.h) before they are predicted one by one.
-  // The expensive models' runs of every condition with these effects, as one campaign (MPI ranks,
+  // The expensive models' runs of every condition with each list of effects, as one campaign (MPI ranks,
   // --jobs): `discretisation` adds their ladders (the baseline), `signature` runs them at the
   // signature quality (probes).
-  void run_expensive(const analytical::EffectList& effects, bool discretisation, bool signature = false) const;
+  void run_expensive(std::span<const analytical::EffectList> lists, bool discretisation, bool signature = false) const;
+  void run_expensive(const analytical::EffectList& effects, bool discretisation) const {
+    run_expensive(std::span(&effects, 1), discretisation);
+  }
   const ModelPrediction& cheap_base(std::size_t condition, const ModelPtr& model) const;
   const ModelPrediction& expensive_probe(std::size_t condition, std::size_t model, const effects::EffectInfo& e) const;
   // The expensive model without candidates, made the way its probe runs are (their reference).

@@ -219,8 +219,9 @@ class DemModel final : public Model {
     std::vector<ModelJob> out;
     if (auto j = job_for(station, fx, settings, table, false)) out.push_back(std::move(*j));
     if (request.discretisation && c_.ladder)
-      for (const auto& s : ladder_settings(station, settings))
-        if (auto j = job_for(station, fx, s, table, true)) out.push_back(std::move(*j));
+      for (const Ladder& l : ladders(station, settings))
+        for (const auto& rung : l.coarser)
+          if (auto j = job_for(station, fx, rung.second, table, true)) out.push_back(std::move(*j));
     return out;
   }
 
@@ -261,22 +262,40 @@ class DemModel final : public Model {
     return j;
   }
 
-  // The ladder's runs for a run at `settings` (add_ladder): twice the time step, and coarser
-  // particles when the run coarse-grains the dataset's.
-  std::vector<st::RunSettings> ladder_settings(const Station& station, const st::RunSettings& settings) const {
-    std::vector<st::RunSettings> out;
-    st::RunSettings s = settings;
-    s.dt_fraction *= 2.0;
-    s.rayleigh_fraction *= 2.0;
-    out.push_back(s);
+  // One one-factor ladder of a run (add_ladder): the run's own refinement parameter h and the
+  // coarser runs, each with its h.
+  struct Ladder {
+    std::string what, label;
+    double h_run = 1.0;
+    std::vector<std::pair<double, st::RunSettings>> coarser;
+  };
+
+  // The ladders of a run at `settings`: twice the time step, always; coarser particles when the
+  // run coarse-grains the dataset's, with h = d / d_data - 1 (zero at the dataset's own size).
+  std::vector<Ladder> ladders(const Station& station, const st::RunSettings& settings) const {
+    std::vector<Ladder> out;
+    {
+      Ladder dt{"time-step", "time step dt, 2 dt", 1.0, {}};
+      st::RunSettings s = settings;
+      s.dt_fraction *= 2.0;
+      s.rayleigh_fraction *= 2.0;
+      dt.coarser.emplace_back(2.0, s);
+      out.push_back(std::move(dt));
+    }
     const double d_data = station.material.particle_diameter;
     const double d1 = settings.particle_diameter > 0 ? settings.particle_diameter : d_data;
-    if (d1 > d_data * (1.0 + 1e-9))
-      for (int k = 1; k <= 2; ++k) {
+    if (d1 > d_data * (1.0 + 1e-9)) {
+      const double r = c_.ladder_ratio;
+      Ladder size{"particle-size", fmt::format("particle size {:.1f} / {:.1f} / {:.1f} mm towards the dataset's {:.1f} mm",
+                                               d1 * 1e3, d1 * r * 1e3, d1 * r * r * 1e3, d_data * 1e3),
+                   d1 / d_data - 1.0, {}};
+      for (double d : {d1 * r, d1 * r * r}) {
         st::RunSettings c = settings;
-        c.particle_diameter = d1 * std::pow(c_.ladder_ratio, k);
-        out.push_back(c);
+        c.particle_diameter = d;
+        size.coarser.emplace_back(d / d_data - 1.0, c);
       }
+      out.push_back(std::move(size));
+    }
     return out;
   }
 
@@ -306,34 +325,23 @@ class DemModel final : public Model {
       }
     };
     std::vector<LadderUncertainty> parts;
-    std::vector<std::string> ladders;
-    const std::vector<st::RunSettings> rungs = ladder_settings(station, settings);
-    if (const auto coarse = level(rungs[0], "time-step")) {
-      const std::vector<LadderRun> runs = {{1.0, &p}, {2.0, &*coarse}};
-      parts.push_back(ladder_uncertainty(runs));
-      ladders.push_back("time step dt, 2 dt");
-    }
-    if (rungs.size() == 3) {
+    std::vector<std::string> labels;
+    for (const Ladder& l : ladders(station, settings)) {
       std::vector<ModelPrediction> coarse;
-      for (std::size_t k = 1; k < 3; ++k) {
-        auto lv = level(rungs[k], "particle-size");
+      for (const auto& rung : l.coarser) {
+        auto lv = level(rung.second, l.what.c_str());
         if (!lv) break;
         coarse.push_back(std::move(*lv));
       }
-      if (coarse.size() == 2) {
-        const double d_data = station.material.particle_diameter;
-        const double d1 = settings.particle_diameter > 0 ? settings.particle_diameter : d_data;
-        const double r = c_.ladder_ratio;
-        auto h = [&](double d) { return d / d_data - 1.0; };
-        const std::vector<LadderRun> runs = {{h(d1), &p}, {h(d1 * r), &coarse[0]}, {h(d1 * r * r), &coarse[1]}};
-        parts.push_back(ladder_uncertainty(runs));
-        ladders.push_back(fmt::format("particle size {:.1f} / {:.1f} / {:.1f} mm towards the dataset's {:.1f} mm",
-                                      d1 * 1e3, d1 * r * 1e3, d1 * r * r * 1e3, d_data * 1e3));
-      }
+      if (coarse.size() != l.coarser.size()) continue;
+      std::vector<LadderRun> runs = {{l.h_run, &p}};
+      for (std::size_t k = 0; k < coarse.size(); ++k) runs.push_back({l.coarser[k].first, &coarse[k]});
+      parts.push_back(ladder_uncertainty(runs));
+      labels.push_back(l.label);
     }
     if (parts.empty()) return;
     apply_discretisation(p, combine_ladders(parts));
-    p.notes.push_back(fmt::format("u_num discretisation from the ladders: {}", fmt::join(ladders, "; ")));
+    p.notes.push_back(fmt::format("u_num discretisation from the ladders: {}", fmt::join(labels, "; ")));
     if (settings.shear_modulus_scale < 1.0)
       p.notes.push_back(fmt::format("u_num discretisation: the softened contact modulus (x{:g}) is not in it",
                                     settings.shear_modulus_scale));
