@@ -48,4 +48,26 @@ int count_lines(const std::string& s) {
   return n;
 }
 
+std::filesystem::path tiny_station_dataset(const std::string& name, bool with_t4) {
+  const std::filesystem::path dir = fresh_dir(name);
+  write_file(dir / "setup.toml",
+             "name = \"tiny\"\nsource = \"test\"\n"
+             "[belt]\npulley_diameter_mm = 250.0\nbelt_thickness_mm = 5.0\nbelt_width_mm = 200.0\n"
+             "loaded_width_mm = 120.0\nincline_deg = 0.0\n"
+             "[plate]\nwidth_mm = 600.0\nheight_mm = 400.0\nangle_deg = 0.0\n"
+             "[material]\nparticle_diameter_mm = 9.0\nsolid_density_kgm3 = 1000.0\nbulk_density_kgm3 = 558.0\n"
+             "youngs_modulus_Pa = 2.5e7\npoisson_ratio = 0.38\nfriction_particle = 0.3\nfriction_plate = 0.27\n"
+             "friction_belt = 0.7\nrolling_friction_particle = 0.1\nrestitution_particle = 0.7\n"
+             "restitution_plate = 0.66\n"
+             "[dem]\nmax_time_s = 0.4\nmin_window_s = 0.1\n");
+  write_file(dir / "conditions.csv",
+             std::string("condition,belt_speed_mps,mass_flow_tph,plate_distance_mm,plate_top_mm,stream_thickness_mm\n"
+                         "T3,3.0,9.0,350.0,250.0,\n") +
+                 (with_t4 ? "T4,4.0,9.0,350.0,250.0,\n" : ""));
+  write_file(dir / "measurements.csv",
+             std::string("condition,quantity,value,uncertainty\nT3,normal_force_N,7.5,0.1\nT3,impact_point_y_mm,90,1\n") +
+                 (with_t4 ? "T4,normal_force_N,9.5,0.1\nT4,impact_point_y_mm,80,1\n" : ""));
+  return dir;
+}
+
 }  // namespace chutelab::test
