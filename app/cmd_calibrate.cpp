@@ -33,7 +33,7 @@ struct CalibrateCli {
   // 2-core machine spend more time waiting at barriers than computing (measured: 4 s vs 15-100 s).
   int threads = 1;
   std::uint64_t seed = 1;
-  int jobs = 1;
+  int jobs = 0;  // 0: one per idle core (resolve_jobs)
 };
 
 std::vector<double> numbers(const std::string& list, const char* flag) {
@@ -83,7 +83,7 @@ int run_calibrate(const CalibrateCli& o) {
     if (o.target_pile_mm) plan.targets.pile_height = *o.target_pile_mm * 1e-3;
   }
   plan.incline = !o.no_incline;
-  campaign::set_threads(o.jobs);
+  campaign::set_threads(resolve_jobs(o.jobs));
 
   const int count = static_cast<int>(plan.shapes.size() * plan.rolling.size() * plan.density.size());
   std::cout << fmt::format("calibrate: {} slump tests ({} quality) on {} ({})\n", count, o.quality, ctx.setup.name,

@@ -44,7 +44,7 @@ int run_diagnose(const DiagnoseCli& o) {
   // signatures, and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
   configure_dem_model(o.dem, o.dataset, "");
   // The baseline and confirmation runs go as campaigns (core/campaign.h) with the same --jobs.
-  campaign::set_threads(o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  campaign::set_threads(resolve_jobs(o.jobs));
   const auto models = validation::make_models(names);
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
   const auto r = validation::diagnose(d, models, opt);
@@ -72,7 +72,7 @@ void add_diagnose(CLI::App& app, Action& action) {
       ->check(CLI::Range(1e-6, 0.5))
       ->capture_default_str();
   cmd->add_flag("--no-pairs", o->no_pairs, "do not fit pairs of effects");
-  cmd->add_option("--jobs", o->jobs, "expensive (DEM) runs side by side (default: one per core)")
+  cmd->add_option("--jobs", o->jobs, "expensive (DEM) runs side by side (default: one per core left free by the load average)")
       ->check(CLI::Range(0, 256));
   add_dem_options(*cmd, o->dem);
   cmd->add_option("--out", o->out, "output folder")->required();

@@ -39,7 +39,7 @@ struct SensitivityCli {
   std::optional<int> threads;
   std::optional<std::uint64_t> seed;
   double limit = 10.0;
-  int jobs = 1;
+  int jobs = 0;  // 0: one per idle core (resolve_jobs)
 };
 
 // Standard deviation of the load-cell samples inside the steady window: the force fluctuation.
@@ -87,7 +87,7 @@ int run_sensitivity(const SensitivityCli& o) {
   // One thread per run unless asked: on the shared 2-core machine a second OpenMP thread made runs
   // slower, not faster (bench/STATION.md), and results do not depend on it.
   ov.threads = o.threads.value_or(1);
-  campaign::set_threads(o.jobs);
+  campaign::set_threads(resolve_jobs(o.jobs));
   ov.seed = o.seed;
   const st::DemTable table = st::read_dem_table(setup_file.string());
   const st::RunSettings base = st::resolve(table, ov);

@@ -4,6 +4,7 @@
 
 #include "core/campaign.h"
 #include "core/input_error.h"
+#include "dem/station/settings.h"
 #include "validation/models/dem_model.h"
 #include "validation/models/liggghts_model.h"
 
@@ -40,10 +41,13 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
 void add_jobs_option(CLI::App& cmd, int& jobs) {
   cmd.add_option("--jobs", jobs,
                  "independent DEM runs at a time in this process, each on one thread (under mpirun the ranks share "
-                 "the runs instead); results do not depend on it")
-      ->check(CLI::Range(1, 256))
-      ->capture_default_str();
+                 "the runs instead); default: one per core left free by the load average; results do not depend on it")
+      ->check(CLI::Range(1, 256));
 }
+
+// Independent runs side by side scale better than one run's OpenMP threads (no barriers, no shared
+// sums: bench/STATION.md), so the idle cores go to jobs first; a run alone still gets them all.
+int resolve_jobs(int jobs) { return jobs > 0 ? jobs : dem::station::effective_threads(0); }
 
 void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir) {
   namespace fs = std::filesystem;
@@ -64,7 +68,7 @@ void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const 
   dc.progress = true;
   dc.output_dir = output_dir;
   validation::set_dem_model_config(dc);
-  campaign::set_threads(o.jobs);
+  campaign::set_threads(resolve_jobs(o.jobs));
   validation::LiggghtsModelConfig lc;
   lc.dem = dc;
   lc.ranks = o.liggghts_ranks;

@@ -17,7 +17,7 @@ struct DemCli {
   bool cache_only = false;
   std::string ladder = "on";  // "on" | "off": the particle-size ladder for u_num's discretisation part
   std::string signature_quality;  // "" = the predictions' quality
-  int jobs = 1;  // DEM runs at a time in one process (core/campaign.h)
+  int jobs = 0;  // DEM runs at a time in one process (core/campaign.h); 0: one per idle core
   int liggghts_ranks = 1;
   std::string liggghts_command;
   double liggghts_time = 0.0;
@@ -26,8 +26,10 @@ struct DemCli {
 void add_dem_options(CLI::App& cmd, DemCli& o);
 
 // --jobs N: independent DEM runs side by side in one process (each on one thread unless the
-// command's thread flag says otherwise); under mpirun the ranks share the runs instead.
+// command's thread flag says otherwise); under mpirun the ranks share the runs instead. 0 (the
+// default): one per core left free by the load average, as the DEM's own thread default.
 void add_jobs_option(CLI::App& cmd, int& jobs);
+int resolve_jobs(int jobs);
 
 // Configures the registry's "dem" model for a dataset folder; per-condition output (series, side
 // views, VTK) goes to `output_dir` when it is not empty.

@@ -95,7 +95,7 @@ std::vector<std::string> run_threads(std::span<const Job> jobs, const Options& o
     for (std::size_t i; (i = next.fetch_add(1)) < order.size();) {
       const std::size_t k = order[i];
       const auto t = std::chrono::steady_clock::now();
-      out[k] = run_one(jobs[k], JobContext{false});
+      out[k] = run_one(jobs[k], JobContext{false, 1});
       const std::lock_guard<std::mutex> lock(print);
       ++done;
       if (o.progress)
@@ -131,7 +131,7 @@ std::vector<std::string> run_mpi(std::span<const Job> jobs, const Options& o) {
       std::cerr << fmt::format("{}{} ({}/{}, rank 0 of {})\n", prefix(o), jobs[k].key, k + 1, jobs.size(), g_ranks)
                 << std::flush;
     const auto t = std::chrono::steady_clock::now();
-    out[k] = run_one(jobs[k], JobContext{g_rank == 0});
+    out[k] = run_one(jobs[k], JobContext{g_rank == 0, 1});
     busy += seconds_since(t);
     ++mine;
   }
@@ -212,7 +212,7 @@ std::vector<std::string> run_campaign(std::span<const Job> jobs, const Options& 
     for (const auto& j : jobs) {
       if (options.progress)
         std::cerr << fmt::format("{}{} ({}/{})\n", prefix(options), j.key, wrapped.size() + 1, jobs.size()) << std::flush;
-      wrapped.push_back(run_one(j, JobContext{true}));
+      wrapped.push_back(run_one(j, JobContext{true, 0}));
       if (wrapped.back().rfind("ok\n", 0) != 0) break;
     }
   }

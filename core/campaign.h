@@ -26,6 +26,9 @@ namespace chutelab::campaign {
 
 struct JobContext {
   bool progress = false;  // the job may print its own progress (rank 0, one job at a time)
+  // OpenMP threads the job may use: 1 when jobs share the cores (worker threads, ranks); 0 when it
+  // runs alone and may take its own automatic choice.
+  int threads = 0;
 };
 
 struct Job {
@@ -48,7 +51,8 @@ std::vector<std::string> run_campaign(std::span<const Job> jobs, const Options& 
 // for the bench's projection.
 std::vector<int> assign(std::span<const double> costs, int ranks);
 
-// The process's worker threads for campaigns (`--jobs N`); 1 (the default) runs jobs in order.
+// The process's worker threads for campaigns (`--jobs N`); 1 runs jobs in order. The commands pass
+// one per idle core unless told (app/dem_options.h, resolve_jobs).
 void set_threads(int n);
 int threads();
 // True when jobs may run side by side (several ranks or --jobs > 1): each job should then use one

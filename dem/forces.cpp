@@ -2,6 +2,8 @@
 // compute_forces() picks the instantiation at run time.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <type_traits>
 
 #include <omp.h>
 
@@ -74,10 +76,13 @@ struct PairArrays {
 // every sum, so the forces do not depend on the chunk size or the thread count.
 constexpr std::size_t kChunk = 64;
 
-// Two ways to feed the law, with the same arithmetic (so the same results). With AVX2 (vector
-// gathers) the law reads the particle state by index inside the vectorised loop. Without them (the
+// Two ways to feed the law, with the same arithmetic (so the same results). With vector gathers
+// (AVX2) the law can read the particle state by index inside the vectorised loop. Without them (the
 // default x86-64 build: SSE2) indexed loads in that loop would stop the vectoriser, so the state is
-// first copied into the chunk's structure-of-arrays scratch by a scalar loop.
+// first copied into the chunk's structure-of-arrays scratch by a scalar loop. Which is faster
+// depends on the CPU's gathers, not only on whether it has them: on an Intel Xeon the gathers won
+// (1.10x), on an AMD EPYC (Zen 4) the copy wins by about as much (bench/RESULTS.md), so AVX2 builds
+// carry both and choose at run time (gather_in_law()).
 #if defined(__AVX2__)
 #define CHUTELAB_DEM_GATHER_IN_LAW 1
 #else
@@ -85,7 +90,7 @@ constexpr std::size_t kChunk = 64;
 #endif
 
 #if CHUTELAB_DEM_GATHER_IN_LAW
-struct ContactChunk {
+struct GatherChunk {
   std::int32_t i[kChunk], j[kChunk], s[kChunk];  // particles and list slot of each touching pair
   double fx[kChunk], fy[kChunk], fz[kChunk];      // force on i
   double tix[kChunk], tiy[kChunk], tiz[kChunk];   // torque on i
@@ -97,7 +102,7 @@ struct ContactChunk {
 // copy into the chunk is needed.
 
 template <class Model>
-CHUTELAB_INLINE void chunk_contact(ContactChunk& h, std::size_t c, const double* __restrict x,
+CHUTELAB_INLINE void gather_contact(GatherChunk& h, std::size_t c, const double* __restrict x,
                                    const double* __restrict v, const double* __restrict w,
                                    const double* __restrict rad, const double* __restrict mass,
                                    const double* __restrict inv_inertia, double* __restrict sh,
@@ -137,7 +142,7 @@ CHUTELAB_INLINE void chunk_contact(ContactChunk& h, std::size_t c, const double*
 // The contacts gathered in h: the law over all of them (vectorised when they share one material
 // pair, as they do in a one-material bed), then their forces scattered in gathering order.
 template <class Model>
-[[gnu::noinline]] void run_chunk(ContactChunk& h, std::size_t n, const PairArrays& a, Vec3* __restrict f,
+[[gnu::noinline]] void run_chunk(GatherChunk& h, std::size_t n, const PairArrays& a, Vec3* __restrict f,
                                  Vec3* __restrict t) {
   std::int32_t pair_kind = -1;  // the material pair of every contact in the chunk; -2 if mixed
   for (std::size_t c = 0; c < n; ++c) {
@@ -159,10 +164,10 @@ template <class Model>
     // ivdep, not omp simd: under omp simd GCC 12 turns the law's small structs into per-lane
     // arrays and gives up; with ivdep it vectorises the whole law.
 #pragma GCC ivdep
-    for (std::size_t c = 0; c < n; ++c) chunk_contact<Model>(h, c, x, v, w, rad, mass, ii, sh, rl, pc, dt);
+    for (std::size_t c = 0; c < n; ++c) gather_contact<Model>(h, c, x, v, w, rad, mass, ii, sh, rl, pc, dt);
   } else {
     for (std::size_t c = 0; c < n; ++c)
-      chunk_contact<Model>(h, c, x, v, w, rad, mass, ii, sh, rl,
+      gather_contact<Model>(h, c, x, v, w, rad, mass, ii, sh, rl,
                            a.coeffs[static_cast<std::size_t>(a.mat[h.i[c]]) * a.nmat +
                                     static_cast<std::size_t>(a.mat[h.j[c]])],
                            dt);
@@ -178,7 +183,8 @@ template <class Model>
   }
 }
 
-#else
+#endif
+
 struct ContactChunk {
   std::int32_t i[kChunk], j[kChunk], s[kChunk];
   double dx[kChunk], dy[kChunk], dz[kChunk];      // x_j - x_i
@@ -229,7 +235,6 @@ CHUTELAB_INLINE void chunk_contact(ContactChunk& h, std::size_t c, const PairCoe
 template <class Model>
 [[gnu::noinline]] void run_chunk(ContactChunk& h, std::size_t n, const PairArrays& a, Vec3* __restrict f,
                                  Vec3* __restrict t) {
-  const Vec3* __restrict x = a.x;
   const Vec3* __restrict v = a.v;
   const Vec3* __restrict w = a.w;
   std::int32_t pair_kind = -1;  // the material pair of every contact in the chunk; -2 if mixed
@@ -239,9 +244,8 @@ template <class Model>
     const auto s = static_cast<std::size_t>(h.s[c]);
     const auto kind = static_cast<std::int32_t>(static_cast<std::size_t>(a.mat[i]) * a.nmat + static_cast<std::size_t>(a.mat[j]));
     pair_kind = pair_kind == -1 || pair_kind == kind ? kind : -2;
-    const Vec3 d = x[j] - x[i];
-    h.dx[c] = d.x(), h.dy[c] = d.y(), h.dz[c] = d.z();
-    h.ri[c] = a.rad[i], h.rj[c] = a.rad[j], h.mi[c] = a.mass[i], h.mj[c] = a.mass[j];
+    // x_j - x_i and the radii came with the pair from the distance test (pair_rows).
+    h.mi[c] = a.mass[i], h.mj[c] = a.mass[j];
     h.ii[c] = a.inv_inertia[i], h.ij[c] = a.inv_inertia[j];
     const Vec3 dv = v[i] - v[j];
     h.vx[c] = dv.x(), h.vy[c] = dv.y(), h.vz[c] = dv.z();
@@ -282,10 +286,9 @@ template <class Model>
   }
 }
 
-#endif
 
 // Pair contacts of rows [i0, i1), scattered row by row into f/t (a block's partial-sum buffers).
-template <class Model>
+template <class Model, class Chunk>
 void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __restrict f, Vec3* __restrict t) {
   const Vec3* __restrict x = a.x;
   const double* __restrict rad = a.rad;
@@ -295,7 +298,7 @@ void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __rest
   Vec3* __restrict roll = a.roll;
   std::uint8_t* __restrict touch = a.touch;
 
-  thread_local ContactChunk h;
+  thread_local Chunk h;
   std::size_t n = 0;
   // The distance test writes every pair into the next slot and keeps it only if it touches (no
   // branch on the outcome, which is a coin toss in a dense bed). One flat loop over the slots (the
@@ -307,7 +310,8 @@ void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __rest
     const auto i = static_cast<std::size_t>(slot_row[s]);
     const auto j = static_cast<std::size_t>(nbr[s]);
     const double rs = rad[i] + rad[j];
-    const bool hit = (x[j] - x[i]).squaredNorm() < rs * rs;
+    const Vec3 d = x[j] - x[i];
+    const bool hit = d.squaredNorm() < rs * rs;
     if (!hit & (touch[s] != 0)) {  // a contact that just ended forgets its history (rare: predictable)
       shear[s].setZero();
       if constexpr (Model::rolling_history) roll[s].setZero();
@@ -316,6 +320,12 @@ void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __rest
     h.i[n] = static_cast<std::int32_t>(i);
     h.j[n] = static_cast<std::int32_t>(j);
     h.s[n] = static_cast<std::int32_t>(s);
+    if constexpr (std::is_same_v<Chunk, ContactChunk>) {
+      // The copy variant's scratch takes what the test already holds in registers, so run_chunk
+      // does not load both positions and radii again.
+      h.dx[n] = d.x(), h.dy[n] = d.y(), h.dz[n] = d.z();
+      h.ri[n] = rad[i], h.rj[n] = rad[j];
+    }
     n += hit;
     if (n == kChunk) {
       run_chunk<Model>(h, n, a, f, t);
@@ -323,6 +333,23 @@ void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __rest
     }
   }
   if (n > 0) run_chunk<Model>(h, n, a, f, t);
+}
+
+#if !CHUTELAB_DEM_GATHER_IN_LAW
+using GatherChunk = ContactChunk;  // never chosen: gather_in_law() is false without AVX2
+#endif
+
+// Whether this CPU's vector gathers beat the scalar copy (see above). Decided once per process from
+// the vendor; either way the numbers are the same, only the speed differs. CHUTELAB_DEM_GATHER=0/1
+// overrides it, for measuring both on one machine.
+bool gather_in_law() {
+  static const bool g = [] {
+    if (!CHUTELAB_DEM_GATHER_IN_LAW) return false;
+    if (const char* e = std::getenv("CHUTELAB_DEM_GATHER"); e && (e[0] == '0' || e[0] == '1')) return e[0] == '1';
+    __builtin_cpu_init();
+    return __builtin_cpu_is("intel") != 0;
+  }();
+  return g;
 }
 
 }  // namespace
@@ -350,6 +377,8 @@ void World::compute_forces_impl() {
   std::uint8_t* touch = nl_.touch.data();
   const MaterialTable& mt = materials_;
 
+  const bool gather = gather_in_law();
+  wc_.out_wall_torque.resize(wc_.touch.size());  // derived each evaluation; not in checkpoints
   PairArrays arrays{x, v, w, rad, mass, inv_i, mat, row, nbr, nl_.slot_row.data(), shear, roll, touch, mt.coeff_table(),
                     static_cast<std::size_t>(mt.size()), dt};
   // Wall contacts of one particle, into per-entry storage. Within one mesh, face contacts win over
@@ -482,6 +511,12 @@ void World::compute_forces_impl() {
         wc_.out_f[q] = cf.force.eigen();
         wc_.out_t[q] = cf.torque_i.eigen();
         wc_.out_point[q] = gq.point;
+        // The wall's torque from this contact, here in the parallel part: the serial sum below then
+        // only adds, in entry order, as it always did (the same numbers at any thread count).
+        const Vec3 fw = -wc_.out_f[q];
+        const Vec3 lever = rad[i] * (gq.point - x[i]).normalized();
+        const Vec3 rolling_couple = wc_.out_t[q] - lever.cross(wc_.out_f[q]);  // on the particle
+        wc_.out_wall_torque[q] = (gq.point - wl.to_world(wl.load_point)).cross(fw) - rolling_couple;
       }
       k = kend;
     }
@@ -523,7 +558,10 @@ void World::compute_forces_impl() {
       Vec3* tb = bt + boff[b] - blo[b];
       std::fill(bf + boff[b], bf + boff[b + 1], Vec3::Zero());
       std::fill(bt + boff[b], bt + boff[b + 1], Vec3::Zero());
-      pair_rows<Model>(arrays, n * b / nblocks, n * (b + 1) / nblocks, fb, tb);
+      if (gather)
+        pair_rows<Model, GatherChunk>(arrays, n * b / nblocks, n * (b + 1) / nblocks, fb, tb);
+      else
+        pair_rows<Model, ContactChunk>(arrays, n * b / nblocks, n * (b + 1) / nblocks, fb, tb);
     }
 #pragma omp for schedule(static)
     for (std::size_t ob = 0; ob < nblocks; ++ob)
@@ -547,17 +585,14 @@ void World::compute_forces_impl() {
     wl.torque.setZero();
     std::fill(wl.element_force.begin(), wl.element_force.end(), Vec3::Zero());
   }
+  const Vec3* wtq = wc_.out_wall_torque.data();
   for (std::size_t q = 0; q < wc_.touch.size(); ++q) {
     if (!wtouch[q]) continue;
-    const auto i = static_cast<std::size_t>(wc_.owner[q]);
     Wall& wl = walls_[static_cast<std::size_t>(wc_.wall[q])];
     const Vec3 fw = -wof[q];
-    const Vec3 c = wc_.out_point[q];
-    const Vec3 lever = rad[i] * (c - x[i]).normalized();
-    const Vec3 rolling_couple = wot[q] - lever.cross(wof[q]);  // on the particle
     wl.force += fw;
     wl.element_force[static_cast<std::size_t>(wc_.element[q])] += fw;
-    wl.torque += (c - wl.to_world(wl.load_point)).cross(fw) - rolling_couple;
+    wl.torque += wtq[q];
   }
   if (body_force_) body_force_(p_, time_, p_.f);
 }

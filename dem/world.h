@@ -103,6 +103,7 @@ struct WallCandidates {
   std::vector<std::int32_t> wall, element;
   std::vector<Vec3> shear, roll;
   std::vector<Vec3> out_f, out_t, out_point;
+  std::vector<Vec3> out_wall_torque;  // the wall's torque about its load point from each entry
   std::vector<std::uint8_t> touch;
   std::vector<std::int32_t> owners;  // particles with at least one candidate, ascending (derived)
   std::vector<std::int32_t> owner;   // particle of each entry (derived)

@@ -54,6 +54,23 @@ BOOST_AUTO_TEST_CASE(results_come_back_in_job_order) {
   for (int k = 0; k < 12; ++k) BOOST_TEST(serial[static_cast<std::size_t>(k)] == "job " + std::to_string(k) + " p");
 }
 
+// Jobs side by side share the cores, so each is given one thread; a job run alone (in order, or a
+// campaign of one) keeps its own automatic choice (0), whatever the process's --jobs.
+BOOST_AUTO_TEST_CASE(jobs_side_by_side_get_one_thread_each) {
+  auto threads_of = [](std::size_t count, int workers) {
+    std::vector<campaign::Job> jobs;
+    for (std::size_t k = 0; k < count; ++k)
+      jobs.push_back({"t", 1.0, [](const campaign::JobContext& ctx) { return std::to_string(ctx.threads); }});
+    campaign::Options o;
+    o.progress = false;
+    o.threads = workers;
+    return campaign::run_campaign(jobs, o);
+  };
+  BOOST_TEST(threads_of(4, 2) == std::vector<std::string>(4, "1"));
+  BOOST_TEST(threads_of(4, 1) == std::vector<std::string>(4, "0"));
+  BOOST_TEST(threads_of(1, 2) == std::vector<std::string>(1, "0"));
+}
+
 // A job's bad input reaches the caller whole (file, line, field), whichever thread ran it.
 BOOST_AUTO_TEST_CASE(a_failing_job_throws_its_input_error) {
   for (int threads : {1, 2}) {

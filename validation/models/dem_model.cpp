@@ -212,8 +212,6 @@ class DemModel final : public Model {
                                       const PredictRequest& request) const override {
     const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file);
     st::SettingsOverrides over = overrides_for(request);
-    // Runs side by side (ranks, --jobs) each take one thread unless told; results do not depend on it.
-    if (!over.threads && campaign::concurrent()) over.threads = 1;
     const st::RunSettings settings = st::resolve(table, over);
     const DemEffectInputs fx = dem_effect_inputs(station, effects);
     std::vector<ModelJob> out;
@@ -244,10 +242,14 @@ class DemModel final : public Model {
     const double d = settings.particle_diameter > 0.0 ? settings.particle_diameter : fx.station.material.particle_diameter;
     j.job.cost = fx.station.mass_flow * settings.max_time / std::pow(d / 0.01, 4.0) *
                  (settings.particle_shape == st::ParticleShape::clump ? 2.7 : 1.0) * (0.1 / settings.dt_fraction);
-    j.job.run = [this, station, fx, settings, table, optional_run](const campaign::JobContext&) -> std::string {
+    j.job.run = [this, station, fx, settings, table, optional_run](const campaign::JobContext& ctx) -> std::string {
       bool from_cache = false;
+      // Runs side by side (ranks, --jobs) each take the threads the campaign gives them unless the
+      // user chose; the thread count is not part of the result (nor of the cache key).
+      st::RunSettings s = settings;
+      if (s.threads == 0) s.threads = ctx.threads;
       try {
-        const st::StationResult r = run_or_load(station, fx, settings, table, &from_cache, nullptr);
+        const st::StationResult r = run_or_load(station, fx, s, table, &from_cache, nullptr);
         return result_text(r, from_cache);
       } catch (const InputError&) {
         if (!optional_run || c_.cache_only) throw;
