@@ -181,6 +181,43 @@ void World::rebuild() {
         }
     if (!sorted) std::sort(out.begin() + local_start[i], out.end());
   };
+  // The same rows when particles are sorted by cell, found faster: a row of three cells along x is
+  // one contiguous index range, and the forward half of the stencil is five such ranges (the own
+  // row from i + 1, the next row up, and three in the next layer), visited in increasing cell
+  // order, so j still ascends. Each range is scanned without branching on the outcome.
+  auto visit_row_sorted = [&](std::size_t i, std::vector<std::int32_t>& out) {
+    const Vec3 xi = p_.x[i];
+    const double ri = p_.radius[i] + skin_;
+    const std::int32_t body_i = p_.clump[i];
+    const Vec3* __restrict px = p_.x.data();
+    const double* __restrict pr = p_.radius.data();
+    const std::int32_t* __restrict pc = p_.clump.data();
+    const std::int64_t cx = cell_coord(xi, 0), cy = cell_coord(xi, 1), cz = cell_coord(xi, 2);
+    const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, dim[0] - 1);
+    auto range = [&](std::int64_t y, std::int64_t z, std::size_t from) {
+      if (y < 0 || y >= dim[1] || z >= dim[2]) return;
+      const std::int64_t base = (z * dim[1] + y) * dim[0];
+      const std::size_t k0 = std::max(from, static_cast<std::size_t>(cell_start[static_cast<std::size_t>(base + x0)]));
+      const std::size_t k1 = static_cast<std::size_t>(cell_start[static_cast<std::size_t>(base + x1 + 1)]);
+      if (k1 <= k0) return;
+      std::size_t m = out.size();
+      out.resize(m + (k1 - k0));
+      std::int32_t* __restrict o = out.data();
+      for (std::size_t j = k0; j < k1; ++j) {
+        const double cut = ri + pr[j];
+        const bool near = (px[j] - xi).squaredNorm() < cut * cut;
+        const bool same_body = body_i >= 0 && pc[j] == body_i;  // spheres of one clump never touch
+        o[m] = static_cast<std::int32_t>(j);
+        m += near & !same_body;
+      }
+      out.resize(m);
+    };
+    range(cy, cz, i + 1);  // own row: cells cx .. cx+1 hold only indices from i on
+    range(cy + 1, cz, 0);
+    range(cy - 1, cz + 1, 0);
+    range(cy, cz + 1, 0);
+    range(cy + 1, cz + 1, 0);
+  };
   std::vector<std::vector<std::int32_t>> buf(static_cast<std::size_t>(nt));
   std::vector<std::size_t> block(static_cast<std::size_t>(nt) + 1, 0);
 #pragma omp parallel num_threads(nt)
@@ -192,7 +229,10 @@ void World::rebuild() {
     out.reserve((hi - lo) * 8);
     for (std::size_t i = lo; i < hi; ++i) {
       local_start[i] = static_cast<std::int32_t>(out.size());
-      visit_row(i, out);
+      if (sorted)
+        visit_row_sorted(i, out);
+      else
+        visit_row(i, out);
     }
     block[t + 1] = out.size();
 #pragma omp barrier
