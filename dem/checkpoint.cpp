@@ -147,6 +147,7 @@ void World::load_checkpoint(const std::string& path) {
   r.vec(wc_.begin, "wall list"); r.vec(wc_.wall, "wall list"); r.vec(wc_.element, "wall list");
   r.vec(wc_.shear, "wall history"); r.vec(wc_.roll, "wall history"); r.vec(wc_.touch, "wall history");
   r.vec(wc_.out_f, "wall forces"); r.vec(wc_.out_t, "wall forces"); r.vec(wc_.out_point, "wall forces");
+  wc_.out_wall_torque.resize(wc_.out_point.size());  // derived in every force evaluation; not saved
   r.vec(x_ref_, "reference positions"); r.vec(wall_time_ref_, "wall times"); r.vec(index_map_, "index map");
   if (nl_.row_begin.size() != n + 1 || wc_.begin.size() != n + 1 || x_ref_.size() != n)
     throw InputError(path, 0, "neighbour list", "sizes do not match the particle count");

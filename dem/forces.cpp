@@ -378,7 +378,6 @@ void World::compute_forces_impl() {
   const MaterialTable& mt = materials_;
 
   const bool gather = gather_in_law();
-  wc_.out_wall_torque.resize(wc_.touch.size());  // derived each evaluation; not in checkpoints
   PairArrays arrays{x, v, w, rad, mass, inv_i, mat, row, nbr, nl_.slot_row.data(), shear, roll, touch, mt.coeff_table(),
                     static_cast<std::size_t>(mt.size()), dt};
   // Wall contacts of one particle, into per-entry storage. Within one mesh, face contacts win over

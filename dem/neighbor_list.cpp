@@ -125,10 +125,12 @@ void World::rebuild() {
   auto cell_of = [&](const Vec3& x) {
     return (cell_coord(x, 2) * dim[1] + cell_coord(x, 1)) * dim[0] + cell_coord(x, 0);
   };
-  std::vector<std::int64_t> cell(n);
+  // int32: the grid is capped at a few cells per particle (above), and the array is part of the
+  // rebuild's memory peak.
+  std::vector<std::int32_t> cell(n);
   std::vector<std::int32_t> cell_start(static_cast<std::size_t>(ncell) + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    cell[i] = cell_of(p_.x[i]);
+    cell[i] = static_cast<std::int32_t>(cell_of(p_.x[i]));
     ++cell_start[static_cast<std::size_t>(cell[i]) + 1];
   }
   for (std::int64_t c = 0; c < ncell; ++c) cell_start[static_cast<std::size_t>(c) + 1] += cell_start[static_cast<std::size_t>(c)];
@@ -144,7 +146,7 @@ void World::rebuild() {
     for (std::size_t k = 0; k < n; ++k) inv[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k);
     for (auto& m : map)
       if (m >= 0) m = inv[static_cast<std::size_t>(m)];
-    std::vector<std::int64_t> sorted_cell(n);
+    std::vector<std::int32_t> sorted_cell(n);
     for (std::size_t k = 0; k < n; ++k) sorted_cell[k] = cell[static_cast<std::size_t>(order[k])];
     cell = std::move(sorted_cell);
     cell_members.resize(n);
@@ -314,6 +316,7 @@ void World::rebuild() {
   wc_.out_f.resize(cands.size());
   wc_.out_t.resize(cands.size());
   wc_.out_point.resize(cands.size());
+  wc_.out_wall_torque.resize(cands.size());
   wc_.index_owners();
 
   // --- carry contact history over ---
