@@ -149,6 +149,7 @@ void World::load_checkpoint(const std::string& path) {
   r.vec(wc_.out_f, "wall forces"); r.vec(wc_.out_t, "wall forces"); r.vec(wc_.out_point, "wall forces");
   wc_.out_wall_torque.resize(wc_.out_point.size());  // derived in every force evaluation; not saved
   r.vec(x_ref_, "reference positions"); r.vec(wall_time_ref_, "wall times"); r.vec(index_map_, "index map");
+  sink_clearance_.clear();  // derived at the next rebuild; until then the sinks scan every step
   if (nl_.row_begin.size() != n + 1 || wc_.begin.size() != n + 1 || x_ref_.size() != n)
     throw InputError(path, 0, "neighbour list", "sizes do not match the particle count");
   wc_.index_owners();

@@ -400,8 +400,14 @@ void World::count_held() {
 void World::insert_and_delete() {
   // Sinks first, so that their mass counts and indices are settled before new particles arrive.
   if (!sinks_.empty()) {
+    // Skipping the scan is exact: a particle within max_disp_ of where it stood at the rebuild is
+    // still in front of a sink that every particle then cleared by more than that (the 1 nm margin
+    // covers the rounding of the dot products). No clearance yet (a checkpoint, a new sink): scan.
+    bool maybe = sink_clearance_.size() != sinks_.size();
+    for (std::size_t k = 0; k < sinks_.size() && !maybe; ++k)
+      maybe = sink_clearance_[k] - max_disp_ * sinks_[k].normal.norm() <= 1e-9;
     bool any = false;
-    for (std::size_t i = 0; i < p_.size() && !any; ++i)
+    for (std::size_t i = 0; i < p_.size() && !any && maybe; ++i)
       for (const auto& s : sinks_)
         if ((p_.x[i] - s.point).dot(s.normal) < 0.0) any = true;
     if (any) {

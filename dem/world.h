@@ -219,6 +219,7 @@ class World {
   WallCandidates wc_;
   std::vector<Vec3> x_ref_;              // positions at the last rebuild
   std::vector<double> wall_time_ref_;    // wall pose times at the last rebuild
+  std::vector<double> sink_clearance_;   // per sink: the least (x - point) . normal at the last rebuild
   std::vector<std::int32_t> index_map_;  // index at last rebuild -> current index (-1 removed)
   std::vector<std::int32_t> scratch_;
   double time_ = 0.0;
