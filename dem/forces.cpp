@@ -344,10 +344,13 @@ using GatherChunk = ContactChunk;  // never chosen: gather_in_law() is false wit
 // overrides it, for measuring both on one machine.
 bool gather_in_law() {
   static const bool g = [] {
-    if (!CHUTELAB_DEM_GATHER_IN_LAW) return false;
+#if CHUTELAB_DEM_GATHER_IN_LAW
     if (const char* e = std::getenv("CHUTELAB_DEM_GATHER"); e && (e[0] == '0' || e[0] == '1')) return e[0] == '1';
     __builtin_cpu_init();
     return __builtin_cpu_is("intel") != 0;
+#else
+    return false;
+#endif
   }();
   return g;
 }
