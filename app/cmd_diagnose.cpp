@@ -72,7 +72,9 @@ void add_diagnose(CLI::App& app, Action& action) {
       ->check(CLI::Range(1e-6, 0.5))
       ->capture_default_str();
   cmd->add_flag("--no-pairs", o->no_pairs, "do not fit pairs of effects");
-  cmd->add_option("--jobs", o->jobs, "expensive (DEM) runs side by side (default: one per core)")
+  cmd->add_option("--jobs", o->jobs,
+                  "expensive (DEM) runs side by side, and threads of the analytical fits (default: one per core; "
+                  "results do not depend on it)")
       ->check(CLI::Range(0, 256));
   add_dem_options(*cmd, o->dem);
   cmd->add_option("--out", o->out, "output folder")->required();
