@@ -150,8 +150,10 @@ std::optional<PlateHit> Trajectory::hit(const PlateLine& plate, double t_max) co
     if (t < 0.0 || t > t_max) return std::nullopt;
     p = at_time(t);
   } else {
-    p = first_root([&plate](const FlightPoint& s) { return plate.signed_distance(s.position); },
-                   t_max);
+    // signed_distance() with the plate's normal taken once: its sine and cosine would otherwise be
+    // most of each of the root search's few hundred events.
+    const Eigen::Vector2d n = plate.normal(), top = plate.top;
+    p = first_root([&n, &top](const FlightPoint& s) { return (s.position - top).dot(n); }, t_max);
   }
   if (!p) return std::nullopt;
   PlateHit h;

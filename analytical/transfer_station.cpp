@@ -73,7 +73,7 @@ std::optional<double> farthest_plate_distance(const TransferAnalysis& a, double 
 
 }  // namespace
 
-TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects) {
+TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects, TransferMemo* memo) {
   check_station(st);
   TransferAnalysis a;
   a.station = st;
@@ -82,12 +82,16 @@ TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects) 
 
   // The stream's thickness is a property of the belt load, so it follows from the mass flow that
   // is really on the belt, at belt speed (the layer rides the belt before the pulley).
-  if (st.stream_thickness) {
-    a.load = load_shape_for_thickness(st.belt, *st.stream_thickness);
+  a.thickness_from_continuity = !st.stream_thickness;
+  const bool known = memo && memo->operating && memo->operating->belt_speed == a.operating.belt_speed &&
+                     memo->operating->mass_flow == a.operating.mass_flow;
+  if (known) {
+    a.load = memo->load;
   } else {
-    a.thickness_from_continuity = true;
-    a.load = load_shape_for_flow(st.belt, a.operating.mass_flow, st.material.bulk_density,
-                                 a.operating.belt_speed);
+    a.load = st.stream_thickness ? load_shape_for_thickness(st.belt, *st.stream_thickness)
+                                 : load_shape_for_flow(st.belt, a.operating.mass_flow, st.material.bulk_density,
+                                                       a.operating.belt_speed);
+    if (memo) *memo = {a.operating, a.load};
   }
 
   a.plate.top = {st.plate_distance, st.plate_top};

@@ -1,6 +1,7 @@
 #pragma once
 // The whole analytical chain for one condition: load shape -> Booth discharge of each streamline ->
 // flight to the plate -> Korzen impact. Both analytical models and `estimate` read from this.
+#include <optional>
 #include <string_view>
 
 #include "analytical/booth.h"
@@ -42,8 +43,19 @@ struct TransferAnalysis {
   double flight_time() const;      // CEMA centroid, s
 };
 
+// What a caller that analyses one station many times (a fit of effect strengths) keeps between
+// the analyses: the load shape of the last operating point. Finding it is a bisection over
+// circular segments, a third of an analysis, and only an effect on the operating point (belt
+// speed, delivered mass flow) changes it. One memo belongs to one station.
+struct TransferMemo {
+  std::optional<OperatingPoint> operating;
+  LoadShape load;
+};
+
 // Throws InputError for impossible geometry: plate behind the pulley, a centroid stream that
-// misses the plate, a load that does not fit the belt.
-TransferAnalysis analyse_transfer(const Station& station, const EffectList& effects = {});
+// misses the plate, a load that does not fit the belt. With a memo the result is the same, bit
+// for bit: the load shape is reused only for the very same operating point.
+TransferAnalysis analyse_transfer(const Station& station, const EffectList& effects = {},
+                                  TransferMemo* memo = nullptr);
 
 }  // namespace chutelab::analytical

@@ -37,7 +37,7 @@ int run_diagnose(const DiagnoseCli& o) {
   validation::DiagnoseOptions opt;
   opt.alpha = o.alpha;
   opt.pairs = !o.no_pairs;
-  opt.jobs = o.jobs;
+  opt.jobs = resolve_jobs(o.jobs);
   opt.progress = true;
   // An expensive model (the DEM) runs once per condition, and once more per condition for every
   // candidate it can represent (its own signature); the others take the analytical models'
@@ -72,7 +72,9 @@ void add_diagnose(CLI::App& app, Action& action) {
       ->check(CLI::Range(1e-6, 0.5))
       ->capture_default_str();
   cmd->add_flag("--no-pairs", o->no_pairs, "do not fit pairs of effects");
-  cmd->add_option("--jobs", o->jobs, "expensive (DEM) runs side by side (default: one per core left free by the load average)")
+  cmd->add_option("--jobs", o->jobs,
+                  "expensive (DEM) runs side by side, and threads of the analytical fits (default: one per core "
+                  "left free by the load average; results do not depend on it)")
       ->check(CLI::Range(0, 256));
   add_dem_options(*cmd, o->dem);
   cmd->add_option("--out", o->out, "output folder")->required();

@@ -1,6 +1,7 @@
 #include "validation/diagnosis.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include <thread>
 
 #include "analytical/transfer_station.h"
+#include "core/campaign.h"
 #include "validation/effect_fit.h"
 #include "validation/output_files.h"
 
@@ -278,7 +280,10 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
   DiagnosisResult out;
   out.dataset = d.setup.name.empty() ? d.dir.filename().string() : d.setup.name;
   for (const auto& m : models) out.models.push_back(m->name());
-  const Misfit m(d, models);
+  const int jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Every MPI rank fits the same candidates (their results must agree on every rank), so the
+  // threads of one rank are its share of the cores.
+  const Misfit m(d, models, {}, std::max(1, jobs / campaign::ranks()));
   out.n_data = static_cast<int>(m.size());
   out.n_without_uncertainty = m.left_out();
   const auto r0 = m.residuals({}, {});
@@ -292,7 +297,6 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
   }
 
   const auto& lib = effects::library();
-  const int jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (m.has_expensive()) {
     // An expensive baseline's own response to every candidate it can represent: one probe run per
     // candidate and condition, side by side (they are independent).
@@ -301,9 +305,15 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
     m.prepare_signatures(all, jobs);
   }
   const bool progress = opt.progress && d.stations.size() >= 500;
+  const auto started = std::chrono::steady_clock::now();
+  // Where a long run is and how long it has taken so far: singles, then pairs, each of a known count.
+  auto report = [&](const std::string& what, std::size_t k, std::size_t of) {
+    if (!progress) return;
+    const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - started;
+    std::cerr << fmt::format("diagnose: fitting {} ({}/{}, {:.0f} s so far)\n", what, k, of, spent.count());
+  };
   for (const auto& e : lib) {
-    if (progress)
-      std::cerr << fmt::format("diagnose: fitting {} ({}/{})\n", e.name, &e - lib.data() + 1, lib.size());
+    report(e.name, static_cast<std::size_t>(&e - lib.data()) + 1, lib.size());
     const std::vector<const effects::EffectInfo*> fx = {&e};
     EffectFit f = make_fit(m, fx, fit_strengths(m, fx), out.chi2_baseline);
     if (m.has_expensive()) f.signature = signature_words(m.signature(e));
@@ -358,9 +368,10 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
       f.p_adjusted = std::min(1.0, f.p_value * npairs);
       f.significant = f.p_adjusted < opt.alpha && f.delta_bic < top.delta_bic - opt.pair_margin_bic;
     };
+    std::size_t tried = 0;
     for (std::size_t i = 0; i < lib.size(); ++i)
       for (std::size_t j = i + 1; j < lib.size(); ++j) {
-        if (progress) std::cerr << fmt::format("diagnose: fitting the pair {} + {}\n", lib[i].name, lib[j].name);
+        report(fmt::format("the pair {} + {}", lib[i].name, lib[j].name), ++tried, lib.size() * (lib.size() - 1) / 2);
         const std::vector<const effects::EffectInfo*> fx = {&lib[i], &lib[j]};
         const std::vector<std::vector<double>> starts = {
             {single_estimate[lib[i].name], lib[j].neutral},

@@ -82,11 +82,14 @@ struct DiagnoseOptions {
   // Two candidates whose fitted changes of the normalised residuals are this parallel (|cos|) move
   // the measured quantities in proportion: these data cannot tell them apart.
   double proportional_cosine = 0.98;
-  int jobs = 0;                  // expensive runs side by side (0 = one per core)
+  // Expensive runs side by side, and threads predicting the conditions of the analytical fits
+  // (0 = one per core, shared among MPI ranks).
+  int jobs = 0;
   // With an expensive baseline: how many of the leading significant single candidates are re-run
   // at their fitted strengths before the ranking is final (the best pair is always re-run).
   int confirm = 3;
-  bool progress = false;         // one line per fit on stderr for datasets of 500 conditions or more
+  // One line per fit on stderr (which, of how many, time so far) for datasets of 500 conditions or more.
+  bool progress = false;
 };
 
 DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,

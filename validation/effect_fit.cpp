@@ -1,6 +1,10 @@
 #include "validation/effect_fit.h"
 
+#include "analytical/transfer_station.h"
+
 #include <Eigen/Dense>
+#include <atomic>
+#include <exception>
 #include <cmath>
 #include <fmt/format.h>
 #include <functional>
@@ -30,8 +34,9 @@ ModelPrediction located_call(const Dataset& d, std::size_t c, F&& f) {
 }
 }  // namespace
 
-Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed)
-    : d_(&d), models_(std::move(models)), fixed_(std::move(fixed)) {
+Misfit::Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed, int threads)
+    : d_(&d), models_(std::move(models)), fixed_(std::move(fixed)), threads_(std::max(1, threads)),
+      memo_(d.stations.size()) {
   // Look-ups by hash, once per row: the diagnosis stays linear in the size of the dataset.
   std::unordered_map<std::string, std::size_t> index;
   for (std::size_t i = 0; i < d.stations.size(); ++i) index.emplace(d.stations[i].condition, i);
@@ -110,14 +115,20 @@ std::vector<std::vector<ModelPrediction>> Misfit::predict(std::span<const effect
                                                           Evaluation how) const {
   analytical::EffectList list = fixed_;
   for (std::size_t i = 0; i < fx.size(); ++i) list.push_back(fx[i]->make(strengths[i]));
-  std::vector<std::vector<ModelPrediction>> out(d_->stations.size());
-  for (std::size_t c = 0; c < d_->stations.size(); ++c) {
+  const std::size_t n = d_->stations.size();
+  std::vector<std::vector<ModelPrediction>> out(n);
+  auto condition = [&](std::size_t c) {
     const Station& st = d_->stations[c];
     // A model that cannot take a condition says which line of conditions.csv, as validate does.
     try {
     std::vector<ConditionResult> same(models_.size());
+    // The models that read the analytical chain share one analysis of the condition.
+    std::optional<analytical::TransferAnalysis> chain;
     for (std::size_t k = 0; k < models_.size(); ++k) {
-      if (!models_[k]->expensive())
+      if (models_[k]->reads_transfer_analysis()) {
+        if (!chain) chain = analytical::analyse_transfer(st, list, &memo_[c]);
+        same[k] = {st.condition, models_[k]->name(), models_[k]->predict_from(*chain, list, {queries_[c], false})};
+      } else if (!models_[k]->expensive())
         same[k] = {st.condition, models_[k]->name(), models_[k]->predict(st, list, {queries_[c], false})};
       else if (how == Evaluation::exact)
         same[k] = {st.condition, models_[k]->name(), exact_run(c, k, fx, strengths)};
@@ -151,7 +162,37 @@ std::vector<std::vector<ModelPrediction>> Misfit::predict(std::span<const effect
       if (c < d_->station_lines.size()) throw e.located(d_->station_lines[c].file, d_->station_lines[c].line);
       throw;
     }
+  };
+  // Conditions are independent and each writes only its own slot and memo, so they may go side by
+  // side; the expensive models' caches are shared maps, so with one of them they go in order. A
+  // failure is the first in condition order, as in order: every condition before the first failure
+  // found is still predicted. Workers take small blocks of conditions as they come free (a busy
+  // machine may stall one of them), and the caller works too.
+  const int threads = has_expensive() ? 1 : std::min<int>(threads_, static_cast<int>(n / kConditionsPerThread));
+  if (threads <= 1) {
+    for (std::size_t c = 0; c < n; ++c) condition(c);
+    return out;
   }
+  std::vector<std::exception_ptr> failure(n);
+  std::atomic<std::size_t> next_block{0}, first_failure{n};
+  constexpr std::size_t kBlock = 16;
+  auto work = [&] {
+    for (std::size_t b; (b = next_block.fetch_add(kBlock)) < n;)
+      for (std::size_t c = b; c < std::min(n, b + kBlock) && c < first_failure.load(); ++c) try {
+          condition(c);
+        } catch (...) {
+          failure[c] = std::current_exception();
+          for (std::size_t f = first_failure.load(); c < f && !first_failure.compare_exchange_weak(f, c);) {
+          }
+        }
+  };
+  {
+    std::vector<std::jthread> helpers;
+    for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
+    work();
+  }
+  for (const auto& f : failure)
+    if (f) std::rethrow_exception(f);
   return out;
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "analytical/transfer_station.h"
 #include "effects/registry.h"
 #include "validation/dataset.h"
 #include "validation/harness.h"
@@ -31,7 +32,9 @@ struct MisfitPoint {
 class Misfit {
  public:
   // Points the baseline (fixed effects only) cannot predict, or without uncertainty, are left out.
-  Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed = {});
+  // `threads`: conditions predicted side by side when no model is expensive (the numbers do not
+  // depend on it).
+  Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed = {}, int threads = 1);
 
   std::size_t size() const { return points_.size(); }
   const std::vector<MisfitPoint>& points() const { return points_; }
@@ -99,9 +102,15 @@ class Misfit {
   };
   Shift shift_of(std::size_t condition, const effects::EffectInfo& e, double strength) const;
 
+  // Below this many conditions per thread, starting the threads costs more than they save.
+  static constexpr std::size_t kConditionsPerThread = 64;
+
   const Dataset* d_;
   std::vector<ModelPtr> models_;
   analytical::EffectList fixed_;
+  int threads_ = 1;
+  // Per condition: what its analyses keep from one to the next (one fit evaluates hundreds).
+  mutable std::vector<analytical::TransferMemo> memo_;
   std::vector<ModelPtr> signature_;  // cheap models whose response to an effect shifts an expensive one
   std::vector<std::vector<TrajectoryQuery>> queries_;
   std::vector<MisfitPoint> points_;

@@ -15,6 +15,10 @@
 #include "core/quantity.h"
 #include "core/rig.h"
 
+namespace chutelab::analytical {
+struct TransferAnalysis;
+}
+
 namespace chutelab::validation {
 
 struct TrajectoryQuery {
@@ -124,6 +128,13 @@ class Model {
   }
   virtual ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
                                   const PredictRequest& request) const = 0;
+  // A model that reads nothing but the analytical chain (analytical::analyse_transfer of the
+  // station with these effects) answers from an analysis it is given, the same as predict(): a
+  // caller predicting several such models of one condition, as a fit does hundreds of times per
+  // condition, then runs the chain once for all of them.
+  virtual bool reads_transfer_analysis() const { return false; }
+  virtual ModelPrediction predict_from(const analytical::TransferAnalysis& analysis,
+                                       const analytical::EffectList& effects, const PredictRequest& request) const;
   // False for fixed results (another code's exported predictions): predict() cannot honour a
   // candidate effect, so the diagnosis keeps using signatures for it instead of confirming by a run.
   virtual bool runs_with_effects() const { return true; }

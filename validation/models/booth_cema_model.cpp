@@ -14,8 +14,13 @@ class BoothCemaModel final : public Model {
   }
   ModelPrediction predict(const Station& st, const analytical::EffectList& effects,
                           const PredictRequest& request) const override {
+    return predict_from(analytical::analyse_transfer(st, effects), effects, request);
+  }
+  bool reads_transfer_analysis() const override { return true; }
+  ModelPrediction predict_from(const analytical::TransferAnalysis& a, const analytical::EffectList& effects,
+                               const PredictRequest& request) const override {
     using analytical::Streamline;
-    const auto a = analytical::analyse_transfer(st, effects);
+    const Station& st = a.station;
     const auto& hit = *a.line(Streamline::cema_centroid).hit;
     ModelPrediction p;
     p.values[Quantity::impact_velocity] = hit.speed;
