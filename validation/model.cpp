@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 #include <functional>
-#include <stdexcept>
 #include <utility>
 
 #include "core/input_error.h"
@@ -28,11 +27,6 @@ const std::vector<ModelFactory>& registry() {
 }
 
 }  // namespace
-
-ModelPrediction Model::predict_from(const analytical::TransferAnalysis&, const analytical::EffectList&,
-                                    const PredictRequest&) const {
-  throw std::logic_error(fmt::format("model '{}' does not predict from an analytical chain", name()));
-}
 
 std::vector<std::string> model_names() {
   std::vector<std::string> out;

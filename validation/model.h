@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -133,8 +134,13 @@ class Model {
   // caller predicting several such models of one condition, as a fit does hundreds of times per
   // condition, then runs the chain once for all of them.
   virtual bool reads_transfer_analysis() const { return false; }
-  virtual ModelPrediction predict_from(const analytical::TransferAnalysis& analysis,
-                                       const analytical::EffectList& effects, const PredictRequest& request) const;
+  // Inline, as every other virtual here: an out-of-line one would become the class's key function and
+  // take its type information out of the designer's WebAssembly build, which has no model.cpp.
+  virtual ModelPrediction predict_from(const analytical::TransferAnalysis& /*analysis*/,
+                                       const analytical::EffectList& /*effects*/,
+                                       const PredictRequest& /*request*/) const {
+    throw std::logic_error("model '" + std::string(name()) + "' does not predict from an analytical chain");
+  }
   // False for fixed results (another code's exported predictions): predict() cannot honour a
   // candidate effect, so the diagnosis keeps using signatures for it instead of confirming by a run.
   virtual bool runs_with_effects() const { return true; }
