@@ -134,8 +134,12 @@ PlateMap PlateMapRecorder::reduce(double start, double end, double block) const 
     m.duration += block_t1_[b] - block_t0_[b];
     const double* s = store_.data() + b * nt * kChannels;
     for (std::size_t k = 0; k < nt * kChannels; ++k) sum[k] += s[k];
-    const auto j = static_cast<std::size_t>(std::floor((end - block_t1_[b]) / block + eps));
-    if (j >= nb) continue;
+    if (nb == 0) continue;  // no block means asked for (block 0): nothing to divide by
+    // Counted back from `end` with the window's own tolerance in seconds, so that a sample the test
+    // above puts in the window (ending up to eps after `end`) is in the last block, never at -1.
+    const double back = std::floor((end + eps - block_t1_[b]) / block);
+    if (back >= static_cast<double>(nb)) continue;
+    const auto j = static_cast<std::size_t>(back);
     bdur[j] += block_t1_[b] - block_t0_[b];
     for (std::size_t t = 0; t < nt; ++t) {
       const double* c = s + t * kChannels;
