@@ -150,8 +150,8 @@ std::optional<PlateHit> Trajectory::hit(const PlateLine& plate, double t_max) co
     if (t < 0.0 || t > t_max) return std::nullopt;
     p = at_time(t);
   } else {
-    // signed_distance() with the plate's normal taken once: its sine and cosine would otherwise be
-    // most of each of the root search's few hundred events.
+    // signed_distance() with the plate's normal taken once: computed at each of the search's
+    // events, its sine and cosine were a tenth of a diagnosis's time (same arithmetic, same bits).
     const Eigen::Vector2d n = plate.normal(), top = plate.top;
     p = first_root([&n, &top](const FlightPoint& s) { return (s.position - top).dot(n); }, t_max);
   }
