@@ -176,22 +176,27 @@ int main(int argc, char** argv) {
   // path the user gave is exit 2 naming it; anything else is a bug, said in one line, exit 3.
   try {
     return action ? action() : kExitBadInput;
-  } catch (const InputError& e) {
-    std::cerr << "chutelab: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const std::filesystem::filesystem_error& e) {
-    std::string where = e.path1().string();
-    if (!e.path2().empty()) where += " -> " + e.path2().string();
-    std::cerr << "chutelab: " << (where.empty() ? "" : where + ": ") << e.code().message() << "\n";
-    return kExitBadInput;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "chutelab: internal error: out of memory\n";
-    return kExitInternalError;
-  } catch (const std::exception& e) {
-    std::cerr << "chutelab: internal error: " << e.what() << "\n";
-    return kExitInternalError;
   } catch (...) {
-    std::cerr << "chutelab: internal error: unknown exception\n";
-    return kExitInternalError;
+    quiet_interrupts();  // the one line below is the whole story, however the process then ends
+    try {
+      throw;
+    } catch (const InputError& e) {
+      std::cerr << "chutelab: " << e.what() << "\n";
+      return kExitBadInput;
+    } catch (const std::filesystem::filesystem_error& e) {
+      std::string where = e.path1().string();
+      if (!e.path2().empty()) where += " -> " + e.path2().string();
+      std::cerr << "chutelab: " << (where.empty() ? "" : where + ": ") << e.code().message() << "\n";
+      return kExitBadInput;
+    } catch (const std::bad_alloc&) {
+      std::cerr << "chutelab: internal error: out of memory\n";
+      return kExitInternalError;
+    } catch (const std::exception& e) {
+      std::cerr << "chutelab: internal error: " << e.what() << "\n";
+      return kExitInternalError;
+    } catch (...) {
+      std::cerr << "chutelab: internal error: unknown exception\n";
+      return kExitInternalError;
+    }
   }
 }

@@ -1,5 +1,7 @@
 #include "core/output_folder.h"
 
+#include <atomic>
+
 #include <unistd.h>
 
 #include <csignal>
@@ -81,6 +83,15 @@ void unregister_temporary(const fs::path& p) {
     }
 }
 
+namespace {
+std::atomic<bool>& interrupts_quiet() {
+  static std::atomic<bool> quiet{false};
+  return quiet;
+}
+}  // namespace
+
+void quiet_interrupts() { interrupts_quiet() = true; }
+
 void install_interrupt_cleanup() {
 #ifndef __EMSCRIPTEN__  // the designer's page has no signals and no threads
   static std::once_flag once;
@@ -106,7 +117,7 @@ void install_interrupt_cleanup() {
       for (const auto& p : registry()) fs::remove_all(p, ec);
       const char* msg = sig == SIGINT ? "\nchutelab: interrupted; nothing was written\n"
                                       : "\nchutelab: terminated; nothing was written\n";
-      [[maybe_unused]] const auto n = ::write(2, msg, std::char_traits<char>::length(msg));
+      if (!interrupts_quiet()) [[maybe_unused]] const auto n = ::write(2, msg, std::char_traits<char>::length(msg));
       ::_exit(128 + sig);
     }).detach();
   });

@@ -58,5 +58,9 @@ void unregister_temporary(const std::filesystem::path& p);
 // Blocks SIGINT/SIGTERM in every thread (call before any thread starts) and handles them on a thread
 // of their own: removes the registered temporaries, says so on stderr, exits 130 (SIGINT) or 143.
 void install_interrupt_cleanup();
+// The command has said in its one line why it ends: a signal from now on still removes the
+// temporaries and exits, but adds no second line. (Under mpirun, the launcher kills the ranks still
+// finishing once one rank has exited with the same error.)
+void quiet_interrupts();
 
 }  // namespace chutelab
