@@ -37,14 +37,16 @@ int run_diagnose(const DiagnoseCli& o) {
   validation::DiagnoseOptions opt;
   opt.alpha = o.alpha;
   opt.pairs = !o.no_pairs;
-  opt.jobs = resolve_jobs(o.jobs);
+  // Resolved once: the load average may change between two readings.
+  const int jobs = resolve_jobs(o.jobs);
+  opt.jobs = jobs;
   opt.progress = true;
   // An expensive model (the DEM) runs once per condition, and once more per condition for every
   // candidate it can represent (its own signature); the others take the analytical models'
   // signatures, and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
   configure_dem_model(o.dem, o.dataset, "");
   // The baseline and confirmation runs go as campaigns (core/campaign.h) with the same --jobs.
-  campaign::set_threads(resolve_jobs(o.jobs));
+  campaign::set_threads(jobs);
   const auto models = validation::make_models(names);
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
   const auto r = validation::diagnose(d, models, opt);

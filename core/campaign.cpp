@@ -224,7 +224,6 @@ std::vector<std::string> run_campaign(std::span<const Job> jobs, const Options& 
 
 void set_threads(int n) { g_threads = std::max(1, n); }
 int threads() { return g_threads; }
-bool concurrent() { return g_ranks > 1 || g_threads > 1; }
 
 int rank() { return g_rank; }
 int ranks() { return g_ranks; }

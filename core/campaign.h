@@ -55,9 +55,6 @@ std::vector<int> assign(std::span<const double> costs, int ranks);
 // one per idle core unless told (app/dem_options.h, resolve_jobs).
 void set_threads(int n);
 int threads();
-// True when jobs may run side by side (several ranks or --jobs > 1): each job should then use one
-// thread of its own unless told otherwise.
-bool concurrent();
 
 int rank();           // 0 without MPI
 int ranks();          // 1 without MPI

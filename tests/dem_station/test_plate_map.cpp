@@ -63,6 +63,18 @@ OneSphere one_sphere(const Vec3& gravity, double friction, const Vec3& x0, const
   return o;
 }
 
+// Observes the plate into `rec` and steps `samples` samples of 10 ms, ending one after each; returns
+// the sample's length (a whole number of steps).
+double record_samples(OneSphere& o, PlateMapRecorder& rec, int samples) {
+  o.w->observe_wall(o.plate, [&rec](const WallContact& c) { rec.observe(c); });
+  const auto per = static_cast<std::int64_t>(std::llround(0.01 / o.w->dt()));
+  for (int k = 1; k <= samples; ++k) {
+    o.w->step(per);
+    rec.end_sample(o.w->time());
+  }
+  return static_cast<double>(per) * o.w->dt();
+}
+
 }  // namespace
 
 // A sphere resting under gravity on a frictionless plate whose surface slides at U under it: the
@@ -75,13 +87,7 @@ BOOST_AUTO_TEST_CASE(archard_volume_of_a_sliding_sphere) {
   o.w->wall(o.plate).surface.linear = Vec3(U, 0, 0);
   o.w->initialise();
   PlateMapRecorder rec(o.w->walls()[static_cast<std::size_t>(o.plate)], wear::FinnieParams{}, 1000);
-  o.w->observe_wall(o.plate, [&](const WallContact& c) { rec.observe(c); });
-  const auto per = static_cast<std::int64_t>(std::llround(0.01 / o.w->dt()));
-  for (int k = 1; k <= 60; ++k) {
-    o.w->step(per);
-    rec.end_sample(o.w->time());
-  }
-  const double sample = static_cast<double>(per) * o.w->dt();
+  const double sample = record_samples(o, rec, 60);
   const double t1 = o.w->time(), t0 = t1 - 29.5 * sample;  // the last 30 samples
   const PlateMap m = rec.reduce(t0, t1);
   BOOST_TEST(m.duration == 30 * sample, tt::tolerance(1e-9));
@@ -112,13 +118,7 @@ BOOST_AUTO_TEST_CASE(block_means_count_a_sample_ending_within_tolerance_after_th
   OneSphere o = one_sphere(Vec3(0, 0, -g), 0.0, Vec3(0, 0, 0.0049), Vec3::Zero());
   o.w->initialise();
   PlateMapRecorder rec(o.w->walls()[static_cast<std::size_t>(o.plate)], wear::FinnieParams{}, 1000);
-  o.w->observe_wall(o.plate, [&](const WallContact& c) { rec.observe(c); });
-  const auto per = static_cast<std::int64_t>(std::llround(0.01 / o.w->dt()));
-  for (int k = 1; k <= 40; ++k) {
-    o.w->step(per);
-    rec.end_sample(o.w->time());
-  }
-  const double sample = static_cast<double>(per) * o.w->dt();
+  const double sample = record_samples(o, rec, 40);
   const double end = o.w->time() - 5e-10, start = end - 3.0 * sample;
   const PlateMap m = rec.reduce(start, end, sample);
   BOOST_TEST(m.duration == 3.0 * sample, tt::tolerance(1e-9));
