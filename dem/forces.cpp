@@ -298,7 +298,10 @@ void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __rest
   Vec3* __restrict roll = a.roll;
   std::uint8_t* __restrict touch = a.touch;
 
-  thread_local Chunk h;
+  // On the stack, not thread_local: the libraries are position independent (for the Python module),
+  // so a thread_local is reached through a TLS call that GCC may not hoist; it was made once per
+  // slot, with every live register spilled around it (about a fifth of the pair loop's time).
+  Chunk h;
   std::size_t n = 0;
   // The distance test writes every pair into the next slot and keeps it only if it touches (no
   // branch on the outcome, which is a coin toss in a dense bed). One flat loop over the slots (the
