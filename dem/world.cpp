@@ -295,36 +295,20 @@ double World::wall_displacement_since_rebuild(const Wall& w) const {
 
 void World::step(std::int64_t n) {
   initialise();
-  const int nt = thread_count();
+  // Velocity Verlet is kick, drift, forces, kick. Within one call the second half kick of a step and
+  // the first half kick and drift of the next use the same forces, so they run as one pass over the
+  // particles (one read of the state instead of two): the same operations in the same order, so the
+  // same numbers. Not with clumps (their bodies are kicked between), and not across calls (the caller
+  // sees each call end on a full step).
+  bool drifted = false;  // this step's first half kick and drift were done by the last step's pass
+  double maxd2_next = 0.0;
   for (std::int64_t s = 0; s < n; ++s) {
-    if (list_dirty_) {  // particles added or removed by the caller since the last step
+    if (list_dirty_) {  // particles added or removed by the caller since the last step (never after a fused pass)
       rebuild();
       compute_forces();
     }
     const double dt = dt_;
-    const std::size_t np = p_.size();
-    double maxd2 = max_disp_ * max_disp_;
-    {
-      Vec3* __restrict x = p_.x.data();
-      Vec3* __restrict v = p_.v.data();
-      Vec3* __restrict w = p_.w.data();
-      const Vec3* __restrict f = p_.f.data();
-      const Vec3* __restrict t = p_.t.data();
-      const double* __restrict im = p_.inv_mass.data();
-      const double* __restrict ii = p_.inv_inertia.data();
-      const Vec3* __restrict xr = x_ref_.data();
-      const double h = 0.5 * dt;
-      // Velocity Verlet: half kick with the forces of the last evaluation, then drift.
-#pragma omp parallel for num_threads(nt) schedule(static) reduction(max : maxd2)
-      for (std::size_t i = 0; i < np; ++i) {
-        const Vec3 vi = v[i] + (h * im[i]) * f[i];
-        v[i] = vi;
-        w[i] += (h * ii[i]) * t[i];
-        const Vec3 xi = x[i] + dt * vi;
-        x[i] = xi;
-        maxd2 = std::max(maxd2, (xi - xr[i]).squaredNorm());
-      }
-    }
+    double maxd2 = drifted ? maxd2_next : kick_and_drift(max_disp_ * max_disp_);
     if (clumps_.size() > 0) clumps_after_drift(dt, maxd2);
     max_disp_ = std::sqrt(maxd2);
     time_ = static_cast<double>(step_ + 1) * dt;  // no accumulated round-off in time
@@ -334,37 +318,115 @@ void World::step(std::int64_t n) {
     if (needs_rebuild()) rebuild();
     compute_forces();
     if (!wall_observers_.empty()) report_wall_contacts();
-    const std::size_t np2 = p_.size();
+    if (load_observer_) load_observer_();
     const bool check = (step_ + 1) % settings_.check_every == 0;
-    const double vlim2 = max_speed_ * max_speed_;
-    const Box dom = settings_.domain;
-    std::size_t first_bad = np2;  // min is exact, so the reported particle is thread-count independent
-    {
-      const Vec3* __restrict x = p_.x.data();
-      Vec3* __restrict v = p_.v.data();
-      Vec3* __restrict w = p_.w.data();
-      const Vec3* __restrict f = p_.f.data();
-      const Vec3* __restrict t = p_.t.data();
-      const double* __restrict im = p_.inv_mass.data();
-      const double* __restrict ii = p_.inv_inertia.data();
-      const double h = 0.5 * dt;
-#pragma omp parallel for num_threads(nt) schedule(static) reduction(min : first_bad)
-      for (std::size_t i = 0; i < np2; ++i) {
-        const Vec3 vi = v[i] + (h * im[i]) * f[i];
-        const Vec3 wi = w[i] + (h * ii[i]) * t[i];
-        v[i] = vi;
-        w[i] = wi;
-        // NaN fails every comparison, so one chain of && catches non-finite states too.
-        if (check && !(vi.squaredNorm() <= vlim2 && wi.squaredNorm() < 1e300 && x[i].x() >= dom.lo.x() &&
-                       x[i].x() <= dom.hi.x() && x[i].y() >= dom.lo.y() && x[i].y() <= dom.hi.y() &&
-                       x[i].z() >= dom.lo.z() && x[i].z() <= dom.hi.z()))
-          first_bad = std::min(first_bad, i);
-      }
-    }
+    drifted = s + 1 < n && clumps_.size() == 0;
+    maxd2_next = max_disp_ * max_disp_;
+    const std::size_t first_bad = drifted ? kick_kick_and_drift(check, maxd2_next) : kick(check);
     if (clumps_.size() > 0) clumps_after_forces(dt);
     ++step_;
-    if (first_bad < np2) report_bad(first_bad);
+    if (first_bad < p_.size()) report_bad(first_bad);
   }
+}
+
+// The first half kick with the forces of the last evaluation, then the drift; returns the largest
+// squared displacement since the last rebuild (at least maxd2).
+double World::kick_and_drift(double maxd2) {
+  const int nt = thread_count();
+  const std::size_t np = p_.size();
+  Vec3* __restrict x = p_.x.data();
+  Vec3* __restrict v = p_.v.data();
+  Vec3* __restrict w = p_.w.data();
+  const Vec3* __restrict f = p_.f.data();
+  const Vec3* __restrict t = p_.t.data();
+  const double* __restrict im = p_.inv_mass.data();
+  const double* __restrict ii = p_.inv_inertia.data();
+  const Vec3* __restrict xr = x_ref_.data();
+  const double dt = dt_, h = 0.5 * dt;
+#pragma omp parallel for num_threads(nt) schedule(static) reduction(max : maxd2)
+  for (std::size_t i = 0; i < np; ++i) {
+    const Vec3 vi = v[i] + (h * im[i]) * f[i];
+    v[i] = vi;
+    w[i] += (h * ii[i]) * t[i];
+    const Vec3 xi = x[i] + dt * vi;
+    x[i] = xi;
+    maxd2 = std::max(maxd2, (xi - xr[i]).squaredNorm());
+  }
+  return maxd2;
+}
+
+namespace {
+// The blow-up and lost-particle test (NaN fails every comparison, so one chain of && catches
+// non-finite states too).
+inline bool state_ok(const Vec3& v, const Vec3& w, const Vec3& x, double vlim2, const Box& dom) {
+  return v.squaredNorm() <= vlim2 && w.squaredNorm() < 1e300 && x.x() >= dom.lo.x() && x.x() <= dom.hi.x() &&
+         x.y() >= dom.lo.y() && x.y() <= dom.hi.y() && x.z() >= dom.lo.z() && x.z() <= dom.hi.z();
+}
+}  // namespace
+
+// The second half kick; with `check`, returns the lowest index of a particle in a bad state (size()
+// if none; min is exact, so the reported particle does not depend on the thread count).
+std::size_t World::kick(bool check) {
+  const int nt = thread_count();
+  const std::size_t np = p_.size();
+  const Vec3* __restrict x = p_.x.data();
+  Vec3* __restrict v = p_.v.data();
+  Vec3* __restrict w = p_.w.data();
+  const Vec3* __restrict f = p_.f.data();
+  const Vec3* __restrict t = p_.t.data();
+  const double* __restrict im = p_.inv_mass.data();
+  const double* __restrict ii = p_.inv_inertia.data();
+  const double h = 0.5 * dt_, vlim2 = max_speed_ * max_speed_;
+  const Box dom = settings_.domain;
+  std::size_t first_bad = np;
+#pragma omp parallel for num_threads(nt) schedule(static) reduction(min : first_bad)
+  for (std::size_t i = 0; i < np; ++i) {
+    const Vec3 vi = v[i] + (h * im[i]) * f[i];
+    const Vec3 wi = w[i] + (h * ii[i]) * t[i];
+    v[i] = vi;
+    w[i] = wi;
+    if (check && !state_ok(vi, wi, x[i], vlim2, dom)) first_bad = std::min(first_bad, i);
+  }
+  return first_bad;
+}
+
+// kick(check), then the next step's kick_and_drift(maxd2), in one pass. A particle that fails the
+// check is left after the second half kick, as kick() leaves it, so report_bad() describes the
+// same state; the step then ends with the error.
+std::size_t World::kick_kick_and_drift(bool check, double& maxd2) {
+  const int nt = thread_count();
+  const std::size_t np = p_.size();
+  Vec3* __restrict x = p_.x.data();
+  Vec3* __restrict v = p_.v.data();
+  Vec3* __restrict w = p_.w.data();
+  const Vec3* __restrict f = p_.f.data();
+  const Vec3* __restrict t = p_.t.data();
+  const double* __restrict im = p_.inv_mass.data();
+  const double* __restrict ii = p_.inv_inertia.data();
+  const Vec3* __restrict xr = x_ref_.data();
+  const double dt = dt_, h = 0.5 * dt, vlim2 = max_speed_ * max_speed_;
+  const Box dom = settings_.domain;
+  std::size_t first_bad = np;
+  double m = maxd2;
+#pragma omp parallel for num_threads(nt) schedule(static) reduction(min : first_bad) reduction(max : m)
+  for (std::size_t i = 0; i < np; ++i) {
+    const Vec3 vi = v[i] + (h * im[i]) * f[i];
+    const Vec3 wi = w[i] + (h * ii[i]) * t[i];
+    if (check && !state_ok(vi, wi, x[i], vlim2, dom)) {
+      v[i] = vi;
+      w[i] = wi;
+      first_bad = std::min(first_bad, i);
+      continue;
+    }
+    const Vec3 vn = vi + (h * im[i]) * f[i];
+    v[i] = vn;
+    w[i] = wi + (h * ii[i]) * t[i];
+    const Vec3 xn = x[i] + dt * vn;
+    x[i] = xn;
+    m = std::max(m, (xn - xr[i]).squaredNorm());
+  }
+  maxd2 = m;
+  return first_bad;
 }
 
 void World::check_state() const {

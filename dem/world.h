@@ -137,6 +137,10 @@ class World {
   void set_body_force(BodyForceHook hook) { body_force_ = std::move(hook); }
   // Calls `fn` for every contact on wall `wall` at the end of every step (dem/walls/wall_contact.h).
   void observe_wall(int wall, WallContactObserver fn);
+  // Calls `fn` once per step when that step's wall loads (Wall::force, torque, element_force) are
+  // final, after the wall observers. For sampling loads every step inside one step(n) call; the
+  // particles are then mid-step (before the second half kick), so read loads only.
+  void observe_wall_loads(std::function<void()> fn) { load_observer_ = std::move(fn); }
   // Removes particles for which pred(index) is true (e.g. by id or region); a clump goes as a whole
   // when any of its spheres is selected.
   void remove_particles_if(const std::function<bool(std::size_t)>& pred);
@@ -193,6 +197,10 @@ class World {
   void insert_and_delete();
   void check_state() const;
   [[noreturn]] void report_bad(std::size_t i) const;
+  // The integrator's passes over the particles (dem/world.cpp, step()).
+  double kick_and_drift(double maxd2);
+  std::size_t kick(bool check);
+  std::size_t kick_kick_and_drift(bool check, double& maxd2);
   // Clumps (dem/world_clumps.cpp): body half kick + drift + member placement (raises maxd2 to the
   // members' displacement since the last rebuild); gather + half kick + member velocities; removal of
   // whole bodies; insertion of one body by an inserter.
@@ -212,6 +220,7 @@ class World {
   std::vector<Inserter> inserters_;
   std::vector<Sink> sinks_;
   BodyForceHook body_force_;
+  std::function<void()> load_observer_;
   std::vector<WallContactObserver> wall_observers_;  // by wall; empty = none observed
   ClumpBodies clumps_;
   std::int64_t next_clump_id_ = 0;
