@@ -586,20 +586,37 @@ void World::compute_forces_impl() {
       }
   }
 
-  // Wall loads, serially in entry order (deterministic).
-  for (auto& wl : walls_) {
-    wl.force.setZero();
-    wl.torque.setZero();
-    std::fill(wl.element_force.begin(), wl.element_force.end(), Vec3::Zero());
+  // Wall loads, serially in entry order (deterministic). The sums run in local arrays: through the
+  // Wall structs the compiler reloaded every pointer per entry (they might alias the sums).
+  const std::size_t nw = walls_.size();
+  wall_sum_f_.assign(nw, Vec3::Zero());
+  wall_sum_t_.assign(nw, Vec3::Zero());
+  wall_sum_e_.resize(nw);
+  for (std::size_t k = 0; k < nw; ++k) {
+    auto& ef = walls_[k].element_force;
+    std::fill(ef.begin(), ef.end(), Vec3::Zero());
+    wall_sum_e_[k] = ef.data();
   }
-  const Vec3* wtq = wc_.out_wall_torque.data();
-  for (std::size_t q = 0; q < wc_.touch.size(); ++q) {
-    if (!wtouch[q]) continue;
-    Wall& wl = walls_[static_cast<std::size_t>(wc_.wall[q])];
-    const Vec3 fw = -wof[q];
-    wl.force += fw;
-    wl.element_force[static_cast<std::size_t>(wc_.element[q])] += fw;
-    wl.torque += wtq[q];
+  {
+    Vec3* __restrict sf = wall_sum_f_.data();
+    Vec3* __restrict st = wall_sum_t_.data();
+    Vec3* const* __restrict se = wall_sum_e_.data();
+    const Vec3* __restrict wtq = wc_.out_wall_torque.data();
+    const std::int32_t* __restrict wall_of = wc_.wall.data();
+    const std::int32_t* __restrict element_of = wc_.element.data();
+    const std::size_t nq = wc_.touch.size();
+    for (std::size_t q = 0; q < nq; ++q) {
+      if (!wtouch[q]) continue;
+      const auto k = static_cast<std::size_t>(wall_of[q]);
+      const Vec3 fw = -wof[q];
+      sf[k] += fw;
+      se[k][static_cast<std::size_t>(element_of[q])] += fw;
+      st[k] += wtq[q];
+    }
+  }
+  for (std::size_t k = 0; k < nw; ++k) {
+    walls_[k].force = wall_sum_f_[k];
+    walls_[k].torque = wall_sum_t_[k];
   }
   if (body_force_) body_force_(p_, time_, p_.f);
 }

@@ -221,6 +221,8 @@ class World {
   std::vector<Sink> sinks_;
   BodyForceHook body_force_;
   std::function<void()> load_observer_;
+  std::vector<Vec3> wall_sum_f_, wall_sum_t_;  // scratch of the wall-load sums (forces.cpp)
+  std::vector<Vec3*> wall_sum_e_;
   std::vector<WallContactObserver> wall_observers_;  // by wall; empty = none observed
   ClumpBodies clumps_;
   std::int64_t next_clump_id_ = 0;
