@@ -275,8 +275,8 @@ World make_chute_world(const std::vector<ChuteAtom>& atoms, int threads) {
     w.add_particle(p);
   }
   const Vec3 g = s.gravity;
-  w.set_body_force([base, g](const Particles& p, double, std::vector<Vec3>& f) {
-    for (std::size_t i = 0; i < p.size(); ++i)
+  w.set_body_force([base, g](const Particles& p, double, std::size_t b, std::size_t e, std::vector<Vec3>& f) {
+    for (std::size_t i = b; i < e; ++i)
       if (p.material[i] == base) f[i] -= p.mass[i] * g;  // frozen: no weight
   });
   return w;

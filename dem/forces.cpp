@@ -584,6 +584,20 @@ void World::compute_forces_impl() {
         f[i] = fi;
         t[i] = ti;
       }
+    // Particles [n t / T, n (t + 1) / T): with the static schedule above (kForceBlocks a multiple
+    // of T) those whose forces this thread just finished, so their lines stay in its cache.
+    const auto th = static_cast<std::size_t>(omp_get_thread_num());
+    const auto nth = static_cast<std::size_t>(omp_get_num_threads());
+    const std::size_t r0 = n * th / nth, r1 = n * (th + 1) / nth;
+    if (body_force_) body_force_(p_, time_, r0, r1, p_.f);
+    // A held particle (Inserter::hold_to_face) feels nothing: with no force the kicks leave its
+    // velocity as set, so the drift moves it rigidly. Its partners still feel it.
+    if (held_count_ > 0)
+      for (std::size_t i = r0; i < r1; ++i)
+        if (p_.held_by[i] >= 0) {
+          f[i] = Vec3::Zero();
+          t[i] = Vec3::Zero();
+        }
   }
 
   // Wall loads, serially in entry order (deterministic). The sums run in local arrays: through the
@@ -618,20 +632,9 @@ void World::compute_forces_impl() {
     walls_[k].force = wall_sum_f_[k];
     walls_[k].torque = wall_sum_t_[k];
   }
-  if (body_force_) body_force_(p_, time_, p_.f);
 }
 
-void World::compute_forces() {
-  compute_forces_by_model();
-  // A held particle (Inserter::hold_to_face) feels nothing: with no force the kicks leave its
-  // velocity as set, so the drift moves it rigidly. Its partners still feel it.
-  if (held_count_ > 0)
-    for (std::size_t i = 0; i < p_.size(); ++i)
-      if (p_.held_by[i] >= 0) {
-        p_.f[i] = Vec3::Zero();
-        p_.t[i] = Vec3::Zero();
-      }
-}
+void World::compute_forces() { compute_forces_by_model(); }
 
 void World::compute_forces_by_model() {
   using HM = HertzMindlin;

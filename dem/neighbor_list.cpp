@@ -48,18 +48,23 @@ double element_distance(const Wall& w, std::size_t element, const Vec3& x) {
 
 }  // namespace
 
-void NeighborList::layout_blocks(std::size_t n, std::size_t blocks) {
+void NeighborList::layout_blocks(std::size_t n, std::size_t blocks, int threads) {
   block_lo.assign(blocks, 0);
   block_hi.assign(blocks, 0);
   block_off.assign(blocks + 1, 0);
+  slot_row.resize(nbr.size());
+  // Each block's reach and its rows' slot_row entries are its own: the blocks in parallel.
+#pragma omp parallel for num_threads(threads) schedule(static)
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t r0 = n * b / blocks, r1 = n * (b + 1) / blocks;
     std::size_t hi = r1;
     for (auto s = row_begin[r0]; s < row_begin[r1]; ++s) hi = std::max(hi, static_cast<std::size_t>(nbr[static_cast<std::size_t>(s)]) + 1);
     block_lo[b] = r0;
     block_hi[b] = hi;
-    block_off[b + 1] = block_off[b] + (hi - r0);
+    for (std::size_t i = r0; i < r1; ++i)
+      std::fill(slot_row.begin() + row_begin[i], slot_row.begin() + row_begin[i + 1], static_cast<std::int32_t>(i));
   }
+  for (std::size_t b = 0; b < blocks; ++b) block_off[b + 1] = block_off[b] + (block_hi[b] - block_lo[b]);
   block_first.assign(blocks, 0);
   for (std::size_t b = 0; b < blocks; ++b) {
     std::size_t first = b;
@@ -72,22 +77,20 @@ void NeighborList::layout_blocks(std::size_t n, std::size_t blocks) {
   }
   block_f.resize(block_off[blocks]);
   block_t.resize(block_off[blocks]);
-  slot_row.resize(nbr.size());
-  for (std::size_t i = 0; i < n; ++i)
-    std::fill(slot_row.begin() + row_begin[i], slot_row.begin() + row_begin[i + 1], static_cast<std::int32_t>(i));
 }
 
 void World::rebuild() {
   const std::size_t n = p_.size();
   const int nt = thread_count();
-  // Keep the old lists for the history transfer.
-  NeighborList old_nl;
+  // Keep the old lists for the history transfer. They go to the spare lists, whose arrays (those of
+  // the rebuild before) become the new lists' storage: no allocation and no fresh pages per rebuild.
+  NeighborList& old_nl = spare_nl_;
   std::swap(old_nl.row_begin, nl_.row_begin);
   std::swap(old_nl.nbr, nl_.nbr);
   std::swap(old_nl.shear, nl_.shear);
   std::swap(old_nl.roll, nl_.roll);
   std::swap(old_nl.touch, nl_.touch);
-  WallCandidates old_wc;
+  WallCandidates& old_wc = spare_wc_;
   std::swap(old_wc.begin, wc_.begin);
   std::swap(old_wc.wall, wc_.wall);
   std::swap(old_wc.element, wc_.element);
@@ -98,12 +101,20 @@ void World::rebuild() {
 
   // --- cell grid ---
   double rmax = 0.0;
-  Vec3 lo = Vec3::Constant(kInfinity()), hi = Vec3::Constant(-kInfinity());
-  for (std::size_t i = 0; i < n; ++i) {
-    rmax = std::max(rmax, p_.radius[i]);
-    lo = lo.cwiseMin(p_.x[i]);
-    hi = hi.cwiseMax(p_.x[i]);
+  double lx = kInfinity(), ly = kInfinity(), lz = kInfinity();
+  double hx = -kInfinity(), hy = -kInfinity(), hz = -kInfinity();
+  {
+    const Vec3* __restrict px = p_.x.data();
+    const double* __restrict pr = p_.radius.data();
+    // min and max are exact, so the box does not depend on the thread count.
+#pragma omp parallel for num_threads(nt) schedule(static) reduction(max : rmax, hx, hy, hz) reduction(min : lx, ly, lz)
+    for (std::size_t i = 0; i < n; ++i) {
+      rmax = std::max(rmax, pr[i]);
+      lx = std::min(lx, px[i].x()), ly = std::min(ly, px[i].y()), lz = std::min(lz, px[i].z());
+      hx = std::max(hx, px[i].x()), hy = std::max(hy, px[i].y()), hz = std::max(hz, px[i].z());
+    }
   }
+  const Vec3 lo(lx, ly, lz), hi(hx, hy, hz);
   double h = 2.0 * rmax + skin_;
   std::array<std::int64_t, 3> dim{1, 1, 1};
   if (n > 0) {
@@ -129,10 +140,9 @@ void World::rebuild() {
   // rebuild's memory peak.
   std::vector<std::int32_t> cell(n);
   std::vector<std::int32_t> cell_start(static_cast<std::size_t>(ncell) + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    cell[i] = static_cast<std::int32_t>(cell_of(p_.x[i]));
-    ++cell_start[static_cast<std::size_t>(cell[i]) + 1];
-  }
+#pragma omp parallel for num_threads(nt) schedule(static)
+  for (std::size_t i = 0; i < n; ++i) cell[i] = static_cast<std::int32_t>(cell_of(p_.x[i]));
+  for (std::size_t i = 0; i < n; ++i) ++cell_start[static_cast<std::size_t>(cell[i]) + 1];
   for (std::int64_t c = 0; c < ncell; ++c) cell_start[static_cast<std::size_t>(c) + 1] += cell_start[static_cast<std::size_t>(c)];
   std::vector<std::int32_t> order(n);
   {
@@ -248,75 +258,107 @@ void World::rebuild() {
   }
   nl_.row_begin[n] = static_cast<std::int32_t>(nl_.nbr.size());
   const std::size_t nslots = nl_.nbr.size();
-  nl_.shear.assign(nslots, Vec3::Zero());
-  nl_.roll.assign(nslots, Vec3::Zero());
-  nl_.touch.assign(nslots, 0);
-  nl_.layout_blocks(n, kForceBlocks);
+  nl_.shear.resize(nslots);
+  nl_.roll.resize(nslots);
+  nl_.touch.resize(nslots);
+  {
+    Vec3* __restrict sh = nl_.shear.data();
+    Vec3* __restrict ro = nl_.roll.data();
+    std::uint8_t* __restrict to = nl_.touch.data();
+#pragma omp parallel for num_threads(nt) schedule(static)
+    for (std::size_t k = 0; k < nslots; ++k) {
+      sh[k].setZero();
+      ro[k].setZero();
+      to[k] = 0;
+    }
+  }
+  nl_.layout_blocks(n, kForceBlocks, nt);
 
   // --- wall candidates: (particle, wall, element) within R + skin, CSR by particle ---
+  // Each thread takes a contiguous range (of particles for a primitive, of triangles for a mesh) and
+  // its buffers are joined in thread order, so the list is ordered by wall, then element, then
+  // particle at any thread count; a stable counting sort by particle then gives (particle, wall,
+  // element) order.
   struct Cand {
     std::int32_t p, wall, element;
   };
-  std::vector<Cand> cands;
-  for (std::size_t wi = 0; wi < walls_.size(); ++wi) {
-    const Wall& w = walls_[wi];
-    if (const auto* m = std::get_if<TriangleMesh>(&w.current)) {
-      const double reach = rmax + skin_;
-      std::vector<Cand> local;
-      for (std::size_t t = 0; t < m->triangles.size(); ++t) {
-        Vec3 tlo = m->vertices[static_cast<std::size_t>(m->triangles[t][0])], thi = tlo;
-        for (int k = 1; k < 3; ++k) {
-          tlo = tlo.cwiseMin(m->vertices[static_cast<std::size_t>(m->triangles[t][static_cast<std::size_t>(k)])]);
-          thi = thi.cwiseMax(m->vertices[static_cast<std::size_t>(m->triangles[t][static_cast<std::size_t>(k)])]);
-        }
-        tlo.array() -= reach;
-        thi.array() += reach;
-        if (n == 0 || (tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) continue;
-        const std::int64_t x0 = cell_coord(tlo, 0), x1 = cell_coord(thi, 0);
-        const std::int64_t y0 = cell_coord(tlo, 1), y1 = cell_coord(thi, 1);
-        const std::int64_t z0 = cell_coord(tlo, 2), z1 = cell_coord(thi, 2);
-        for (std::int64_t z = z0; z <= z1; ++z)
-          for (std::int64_t y = y0; y <= y1; ++y)
-            for (std::int64_t x = x0; x <= x1; ++x) {
-              const std::size_t c = static_cast<std::size_t>((z * dim[1] + y) * dim[0] + x);
-              for (std::int32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
-                const std::int32_t pi = cell_members[static_cast<std::size_t>(k)];
-                const auto ps = static_cast<std::size_t>(pi);
-                if (element_distance(w, t, p_.x[ps]) < p_.radius[ps] + skin_)
-                  local.push_back({pi, static_cast<std::int32_t>(wi), static_cast<std::int32_t>(t)});
+  std::vector<std::vector<Cand>> cand_buf(static_cast<std::size_t>(nt));
+  const double reach = rmax + skin_;
+#pragma omp parallel num_threads(nt)
+  {
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto nth = static_cast<std::size_t>(omp_get_num_threads());
+    auto& local = cand_buf[t];
+    local.clear();
+    for (std::size_t wi = 0; wi < walls_.size(); ++wi) {
+      const Wall& w = walls_[wi];
+      const auto wall_id = static_cast<std::int32_t>(wi);
+      if (const auto* m = std::get_if<TriangleMesh>(&w.current)) {
+        const std::size_t nt_all = m->triangles.size();
+        for (std::size_t tr = nt_all * t / nth; tr < nt_all * (t + 1) / nth; ++tr) {
+          Vec3 tlo = m->vertices[static_cast<std::size_t>(m->triangles[tr][0])], thi = tlo;
+          for (int k = 1; k < 3; ++k) {
+            tlo = tlo.cwiseMin(m->vertices[static_cast<std::size_t>(m->triangles[tr][static_cast<std::size_t>(k)])]);
+            thi = thi.cwiseMax(m->vertices[static_cast<std::size_t>(m->triangles[tr][static_cast<std::size_t>(k)])]);
+          }
+          tlo.array() -= reach;
+          thi.array() += reach;
+          if (n == 0 || (tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) continue;
+          const std::int64_t x0 = cell_coord(tlo, 0), x1 = cell_coord(thi, 0);
+          const std::int64_t y0 = cell_coord(tlo, 1), y1 = cell_coord(thi, 1);
+          const std::int64_t z0 = cell_coord(tlo, 2), z1 = cell_coord(thi, 2);
+          for (std::int64_t z = z0; z <= z1; ++z)
+            for (std::int64_t y = y0; y <= y1; ++y)
+              for (std::int64_t x = x0; x <= x1; ++x) {
+                const std::size_t c = static_cast<std::size_t>((z * dim[1] + y) * dim[0] + x);
+                for (std::int32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
+                  const std::int32_t pi = cell_members[static_cast<std::size_t>(k)];
+                  const auto ps = static_cast<std::size_t>(pi);
+                  if (element_distance(w, tr, p_.x[ps]) < p_.radius[ps] + skin_)
+                    local.push_back({pi, wall_id, static_cast<std::int32_t>(tr)});
+                }
               }
-            }
+        }
+      } else {
+        for (std::size_t i = n * t / nth; i < n * (t + 1) / nth; ++i)
+          if (element_distance(w, 0, p_.x[i]) < p_.radius[i] + skin_)
+            local.push_back({static_cast<std::int32_t>(i), wall_id, 0});
       }
-      cands.insert(cands.end(), local.begin(), local.end());
-    } else {
-      for (std::size_t i = 0; i < n; ++i)
-        if (element_distance(w, 0, p_.x[i]) < p_.radius[i] + skin_)
-          cands.push_back({static_cast<std::int32_t>(i), static_cast<std::int32_t>(wi), 0});
     }
   }
-  // Stable counting sort by particle keeps (wall, element) ascending within a particle when the input
-  // is ordered by wall and, within a mesh, by element.
-  std::stable_sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) {
-    if (a.p != b.p) return a.p < b.p;
-    if (a.wall != b.wall) return a.wall < b.wall;
-    return a.element < b.element;
-  });
+  // The thread buffers hold, per thread, all walls in order; joined wall by wall they give the
+  // serial order. Per particle the (wall, element) pairs must ascend: within one wall a particle's
+  // entries come from ascending triangle ranges, so a stable counting sort by particle over the
+  // walls in order (and, within a wall, the threads in order) keeps them ascending.
   wc_.begin.assign(n + 1, 0);
-  for (const auto& c : cands) ++wc_.begin[static_cast<std::size_t>(c.p) + 1];
+  for (const auto& b : cand_buf)
+    for (const auto& c : b) ++wc_.begin[static_cast<std::size_t>(c.p) + 1];
   for (std::size_t i = 0; i < n; ++i) wc_.begin[i + 1] += wc_.begin[i];
-  wc_.wall.resize(cands.size());
-  wc_.element.resize(cands.size());
-  for (std::size_t k = 0; k < cands.size(); ++k) {
-    wc_.wall[k] = cands[k].wall;
-    wc_.element[k] = cands[k].element;
+  const auto ncand = static_cast<std::size_t>(wc_.begin[n]);
+  wc_.wall.resize(ncand);
+  wc_.element.resize(ncand);
+  {
+    std::vector<std::int32_t> next(wc_.begin.begin(), wc_.begin.end() - 1);
+    std::vector<std::size_t> pos(cand_buf.size(), 0);  // per thread buffer: first entry of the current wall
+    for (std::size_t wi = 0; wi < walls_.size(); ++wi)
+      for (std::size_t t = 0; t < cand_buf.size(); ++t) {
+        const auto& b = cand_buf[t];
+        std::size_t k = pos[t];
+        for (; k < b.size() && static_cast<std::size_t>(b[k].wall) == wi; ++k) {
+          const auto at = static_cast<std::size_t>(next[static_cast<std::size_t>(b[k].p)]++);
+          wc_.wall[at] = b[k].wall;
+          wc_.element[at] = b[k].element;
+        }
+        pos[t] = k;
+      }
   }
-  wc_.shear.assign(cands.size(), Vec3::Zero());
-  wc_.roll.assign(cands.size(), Vec3::Zero());
-  wc_.touch.assign(cands.size(), 0);
-  wc_.out_f.resize(cands.size());
-  wc_.out_t.resize(cands.size());
-  wc_.out_point.resize(cands.size());
-  wc_.out_wall_torque.resize(cands.size());
+  wc_.shear.assign(ncand, Vec3::Zero());
+  wc_.roll.assign(ncand, Vec3::Zero());
+  wc_.touch.assign(ncand, 0);
+  wc_.out_f.resize(ncand);
+  wc_.out_t.resize(ncand);
+  wc_.out_point.resize(ncand);
+  wc_.out_wall_torque.resize(ncand);
   wc_.index_owners();
 
   // --- carry contact history over ---
@@ -344,7 +386,10 @@ void World::rebuild() {
       nl_.touch[sn] = 1;
     }
   }
-  for (std::size_t io = 0; io + 1 < old_wc.begin.size(); ++io) {
+  // Likewise each old particle's wall entries go to its own new particle's entries.
+  const std::size_t old_owners = old_wc.begin.empty() ? 0 : old_wc.begin.size() - 1;
+#pragma omp parallel for num_threads(nt) schedule(dynamic, 512)
+  for (std::size_t io = 0; io < old_owners; ++io) {
     const std::int32_t a = io < map.size() ? map[io] : -1;
     if (a < 0) continue;
     for (auto e = old_wc.begin[io]; e < old_wc.begin[io + 1]; ++e) {
@@ -363,8 +408,17 @@ void World::rebuild() {
   }
 
   index_map_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) index_map_[i] = static_cast<std::int32_t>(i);
-  x_ref_ = p_.x;
+  x_ref_.resize(n);
+  {
+    const Vec3* __restrict px = p_.x.data();
+    Vec3* __restrict xr = x_ref_.data();
+    std::int32_t* __restrict im = index_map_.data();
+#pragma omp parallel for num_threads(nt) schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      im[i] = static_cast<std::int32_t>(i);
+      xr[i] = px[i];
+    }
+  }
   // How far every particle is from each sink now: until one has moved that far, none can be behind
   // it, and insert_and_delete skips its scan (a particle moves at most max_disp_ from x_ref_).
   sink_clearance_.assign(sinks_.size(), std::numeric_limits<double>::infinity());

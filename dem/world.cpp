@@ -497,8 +497,13 @@ void World::insert_and_delete() {
     }
   }
   // Held particles whose centre has crossed their inserter's face go free with its full velocity.
-  if (held_count_ > 0)
-    for (std::size_t i = 0; i < p_.size(); ++i) {
+  // In parallel with the integrator's static split: a serial pass here would pull every particle's
+  // lines to one core each step.
+  if (held_count_ > 0) {
+    std::size_t released = 0;
+    const std::size_t np = p_.size();
+#pragma omp parallel for num_threads(thread_count()) schedule(static) reduction(+ : released)
+    for (std::size_t i = 0; i < np; ++i) {
       const std::int32_t k = p_.held_by[i];
       if (k < 0) continue;
       const Inserter& in = inserters_[static_cast<std::size_t>(k)];
@@ -507,8 +512,10 @@ void World::insert_and_delete() {
       if (!through) continue;
       p_.v[i] = in.velocity;
       p_.held_by[i] = -1;
-      --held_count_;
+      ++released;
     }
+    held_count_ -= released;
+  }
   for (std::size_t k = 0; k < inserters_.size(); ++k) {
     Inserter& in = inserters_[k];
     if (time_ < in.start_time || time_ - dt_ >= in.end_time) continue;

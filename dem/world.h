@@ -77,8 +77,13 @@ class SimulationError : public std::runtime_error {
 };
 
 // Extra force per particle, called once per step after contacts and gravity (air drag, fields).
-// It must add to `force` (indexed like `particles`) and be deterministic.
-using BodyForceHook = std::function<void(const Particles& particles, double time, std::vector<Vec3>& force)>;
+// It is called for disjoint ranges [begin, end) that together cover all particles, concurrently
+// from the force threads (each on the particles whose forces that thread just finished: a serial
+// pass would pull every particle's state to one core each step). It must add to force[begin, end)
+// only, depend on nothing but each particle's own state (so any split gives the same numbers), and
+// not throw.
+using BodyForceHook = std::function<void(const Particles& particles, double time, std::size_t begin,
+                                         std::size_t end, std::vector<Vec3>& force)>;
 
 // Pairs within cut-off (half list, j > i, ascending), with per-slot contact history.
 struct NeighborList {
@@ -93,7 +98,7 @@ struct NeighborList {
   std::vector<std::size_t> block_first;  // first block whose buffer reaches into block b
   std::vector<Vec3> block_f, block_t;
   std::vector<std::int32_t> slot_row;  // row (particle i) of each slot, so the pair loop is one flat loop
-  void layout_blocks(std::size_t n, std::size_t blocks);
+  void layout_blocks(std::size_t n, std::size_t blocks, int threads);
 };
 inline constexpr std::size_t kForceBlocks = 16;
 
@@ -228,6 +233,8 @@ class World {
   std::int64_t next_clump_id_ = 0;
   NeighborList nl_;
   WallCandidates wc_;
+  NeighborList spare_nl_;      // the lists before the last rebuild: storage for the next (neighbor_list.cpp)
+  WallCandidates spare_wc_;
   std::vector<Vec3> x_ref_;              // positions at the last rebuild
   std::vector<double> wall_time_ref_;    // wall pose times at the last rebuild
   std::vector<double> sink_clearance_;   // per sink: the least (x - point) . normal at the last rebuild

@@ -30,10 +30,11 @@ struct FeederRelaxation {
   double h_max = 0.0;        // and only below this height above the belt, m
   bool all_components = false;  // relax the fall too (a dataset's feeder, [dem.feed] relax_components)
 
-  void add(const Particles& p, std::vector<Vec3>& force) const {
+  // Adds to force[begin, end).
+  void add(const Particles& p, std::size_t begin, std::size_t end, std::vector<Vec3>& force) const {
     if (!(rate > 0.0)) return;
     const Vec3 vb = belt_speed * belt.along;
-    for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
       const double s = belt.s(p.x[i]);
       if (s < s_begin || s > s_end || belt.h(p.x[i]) > h_max) continue;
       Vec3 dv = vb - p.v[i];

@@ -23,9 +23,10 @@ struct FlightForce {
   BeltFrame belt;
   FlightAcceleration acceleration;  // empty = none
 
-  void add(const Particles& p, std::vector<Vec3>& force) const {
+  // Adds to force[begin, end); `acceleration` is called concurrently (it must be a pure function).
+  void add(const Particles& p, std::size_t begin, std::size_t end, std::vector<Vec3>& force) const {
     if (!acceleration) return;
-    for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
       if (belt.s(p.x[i]) <= 0.0) continue;
       const Eigen::Vector2d a = acceleration(Eigen::Vector2d(p.v[i].x(), p.v[i].y()));
       force[i] += p.mass[i] * Vec3(a.x(), a.y(), 0.0);

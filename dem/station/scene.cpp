@@ -384,9 +384,9 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   {
     const FeederRelaxation feeder = sc.feeder;
     const FlightForce flight = sc.flight;
-    w.set_body_force([feeder, flight](const Particles& p, double, std::vector<Vec3>& f) {
-      feeder.add(p, f);
-      flight.add(p, f);
+    w.set_body_force([feeder, flight](const Particles& p, double, std::size_t b, std::size_t e, std::vector<Vec3>& f) {
+      feeder.add(p, b, e, f);
+      flight.add(p, b, e, f);
     });
   }
 

@@ -265,8 +265,8 @@ BOOST_AUTO_TEST_CASE(body_force_hook_gives_terminal_speed) {
   const int m = w.materials().add({"m", 1e7, 0.3, 1000});
   w.add_particle({Vec3(0, 0, 9), Vec3::Zero(), Vec3::Zero(), 0.01, m});
   const double c = 0.02;  // N s/m
-  w.set_body_force([c](const Particles& p, double, std::vector<Vec3>& f) {
-    for (std::size_t i = 0; i < p.size(); ++i) f[i] -= c * p.v[i];
+  w.set_body_force([c](const Particles& p, double, std::size_t b, std::size_t e, std::vector<Vec3>& f) {
+    for (std::size_t i = b; i < e; ++i) f[i] -= c * p.v[i];
   });
   w.step(20000);  // 2 s, ten time constants m/c
   const double vt = sphere_mass(0.01, 1000) * 9.81 / c;

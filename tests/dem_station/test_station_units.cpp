@@ -220,11 +220,11 @@ BOOST_AUTO_TEST_CASE(dem_feed_table_places_the_feeder) {
   p.v.push_back(dem::Vec3(vb, -1.0, 0.0));
   p.mass.push_back(1.0);
   std::vector<dem::Vec3> force(1, dem::Vec3::Zero());
-  f.add(p, force);
+  f.add(p, 0, 1, force);
   BOOST_TEST(std::abs(force[0].y() - f.rate * 1.0) < 1e-9);
   f.all_components = false;
   force[0] = dem::Vec3::Zero();
-  f.add(p, force);
+  f.add(p, 0, 1, force);
   BOOST_TEST(std::abs(force[0].y()) < 1e-12);
 
   std::ofstream(d / "bad.toml") << "[dem.feed]\nrelax_components = \"some\"\n";
@@ -356,8 +356,8 @@ BOOST_AUTO_TEST_CASE(belt_cohesion_holds_the_adhesive_stress) {
     w.add_particle({dem::Vec3(0, -(r - delta0), 0), dem::Vec3::Zero(), dem::Vec3::Zero(), r, mp});
     const double f_pull = sigma / monolayer_contacts_per_area(d);
     const double ramp = 0.1;
-    w.set_body_force([&](const dem::Particles&, double t, std::vector<dem::Vec3>& force) {
-      force[0].y() -= f * f_pull * std::min(1.0, t / ramp);
+    w.set_body_force([&](const dem::Particles&, double t, std::size_t b, std::size_t e, std::vector<dem::Vec3>& force) {
+      if (b == 0 && e > 0) force[0].y() -= f * f_pull * std::min(1.0, t / ramp);
     });
     const auto n = static_cast<std::int64_t>(1.2 * ramp / s.dt);
     for (std::int64_t i = 0; i < n; ++i) {
