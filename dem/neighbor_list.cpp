@@ -8,6 +8,9 @@
 #include <limits>
 
 #include <omp.h>
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
 
 #include "dem/walls/closest_point.h"
 #include "dem/world.h"
@@ -44,6 +47,52 @@ double element_distance(const Wall& w, std::size_t element, const Vec3& x) {
                                                   m.vertices[static_cast<std::size_t>(t[1])],
                                                   m.vertices[static_cast<std::size_t>(t[2])]);
   return (cp.point - x).norm();
+}
+
+// The candidates j in [k0, k1) of one stencil range that are within cut-off of particle i (centre
+// xi, radius plus skin ri), written to out (which has room for k1 - k0 entries), in ascending j;
+// returns how many. Spheres of i's own clump (body_i >= 0) are never listed. The AVX-512 path makes
+// the same comparisons on the same numbers (no fused operations), so both paths give the same list.
+std::size_t near_in_range(const Vec3* __restrict px, const double* __restrict pr, const std::int32_t* __restrict pc,
+                          std::size_t k0, std::size_t k1, const Vec3& xi, double ri, std::int32_t body_i,
+                          std::int32_t* __restrict out) {
+  std::size_t m = 0, j = k0;
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  // Eight candidates at a time: their 24 coordinates in three loads, split into x, y and z by two
+  // permutes each; the listed indices are compressed into place.
+  const __m512i ix0 = _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0), ix1 = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 10, 13);
+  const __m512i iy0 = _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0), iy1 = _mm512_setr_epi64(0, 1, 2, 3, 4, 8, 11, 14);
+  const __m512i iz0 = _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0), iz1 = _mm512_setr_epi64(0, 1, 2, 3, 4, 9, 12, 15);
+  const __m512d cx = _mm512_set1_pd(xi.x()), cy = _mm512_set1_pd(xi.y()), cz = _mm512_set1_pd(xi.z());
+  const __m512d cr = _mm512_set1_pd(ri);
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i body = _mm256_set1_epi32(body_i);
+  const double* base = px->data();
+  for (; j + 8 <= k1; j += 8) {
+    const double* b = base + 3 * j;
+    const __m512d a0 = _mm512_loadu_pd(b), a1 = _mm512_loadu_pd(b + 8), a2 = _mm512_loadu_pd(b + 16);
+    const __m512d x = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, ix0, a1), ix1, a2);
+    const __m512d y = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, iy0, a1), iy1, a2);
+    const __m512d z = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, iz0, a1), iz1, a2);
+    const __m512d dx = _mm512_sub_pd(x, cx), dy = _mm512_sub_pd(y, cy), dz = _mm512_sub_pd(z, cz);
+    const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
+    const __m512d cut = _mm512_add_pd(cr, _mm512_loadu_pd(pr + j));
+    __mmask8 near = _mm512_cmp_pd_mask(d2, _mm512_mul_pd(cut, cut), _CMP_LT_OQ);
+    if (body_i >= 0)
+      near &= _mm256_cmpneq_epi32_mask(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(pc + j)), body);
+    const __m256i idx = _mm256_add_epi32(_mm256_set1_epi32(static_cast<std::int32_t>(j)), lane);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + m), _mm256_maskz_compress_epi32(near, idx));
+    m += static_cast<std::size_t>(__builtin_popcount(near));
+  }
+#endif
+  for (; j < k1; ++j) {
+    const double cut = ri + pr[j];
+    const bool near = (px[j] - xi).squaredNorm() < cut * cut;
+    const bool same_body = body_i >= 0 && pc[j] == body_i;  // spheres of one clump never touch
+    out[m] = static_cast<std::int32_t>(j);
+    m += near & !same_body;
+  }
+  return m;
 }
 
 }  // namespace
@@ -206,29 +255,28 @@ void World::rebuild() {
     const std::int32_t* __restrict pc = p_.clump.data();
     const std::int64_t cx = cell_coord(xi, 0), cy = cell_coord(xi, 1), cz = cell_coord(xi, 2);
     const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, dim[0] - 1);
-    auto range = [&](std::int64_t y, std::int64_t z, std::size_t from) {
+    // The five ranges' bounds first, so that `out` grows once per row (not twice per range).
+    std::size_t lo_k[5], hi_k[5], total = 0;
+    auto range = [&](int r, std::int64_t y, std::int64_t z, std::size_t from) {
+      lo_k[r] = hi_k[r] = 0;
       if (y < 0 || y >= dim[1] || z >= dim[2]) return;
       const std::int64_t base = (z * dim[1] + y) * dim[0];
       const std::size_t k0 = std::max(from, static_cast<std::size_t>(cell_start[static_cast<std::size_t>(base + x0)]));
       const std::size_t k1 = static_cast<std::size_t>(cell_start[static_cast<std::size_t>(base + x1 + 1)]);
       if (k1 <= k0) return;
-      std::size_t m = out.size();
-      out.resize(m + (k1 - k0));
-      std::int32_t* __restrict o = out.data();
-      for (std::size_t j = k0; j < k1; ++j) {
-        const double cut = ri + pr[j];
-        const bool near = (px[j] - xi).squaredNorm() < cut * cut;
-        const bool same_body = body_i >= 0 && pc[j] == body_i;  // spheres of one clump never touch
-        o[m] = static_cast<std::int32_t>(j);
-        m += near & !same_body;
-      }
-      out.resize(m);
+      lo_k[r] = k0, hi_k[r] = k1;
+      total += k1 - k0;
     };
-    range(cy, cz, i + 1);  // own row: cells cx .. cx+1 hold only indices from i on
-    range(cy + 1, cz, 0);
-    range(cy - 1, cz + 1, 0);
-    range(cy, cz + 1, 0);
-    range(cy + 1, cz + 1, 0);
+    range(0, cy, cz, i + 1);  // own row: cells cx .. cx+1 hold only indices from i on
+    range(1, cy + 1, cz, 0);
+    range(2, cy - 1, cz + 1, 0);
+    range(3, cy, cz + 1, 0);
+    range(4, cy + 1, cz + 1, 0);
+    std::size_t m = out.size();
+    out.resize(m + total);
+    for (int r = 0; r < 5; ++r)
+      if (hi_k[r] > lo_k[r]) m += near_in_range(px, pr, pc, lo_k[r], hi_k[r], xi, ri, body_i, out.data() + m);
+    out.resize(m);
   };
   std::vector<std::vector<std::int32_t>> buf(static_cast<std::size_t>(nt));
   std::vector<std::size_t> block(static_cast<std::size_t>(nt) + 1, 0);
