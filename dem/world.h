@@ -233,8 +233,6 @@ class World {
   std::int64_t next_clump_id_ = 0;
   NeighborList nl_;
   WallCandidates wc_;
-  NeighborList spare_nl_;      // the lists before the last rebuild: storage for the next (neighbor_list.cpp)
-  WallCandidates spare_wc_;
   std::vector<Vec3> x_ref_;              // positions at the last rebuild
   std::vector<double> wall_time_ref_;    // wall pose times at the last rebuild
   std::vector<double> sink_clearance_;   // per sink: the least (x - point) . normal at the last rebuild
