@@ -485,6 +485,18 @@ void World::compute_forces_impl() {
       const PairCoeffs& c = mt.pair(mat[i], wl.material);
       const Vec3 ww = wl.angular_velocity();
       const bool still = !wl.motion.moving() && wl.surface.zero();
+      // Wall::velocity_at and to_world(load_point) with their per-wall products taken once per
+      // wall, not per contact (the same operations on the same values, so the same numbers).
+      const bool surface = !wl.surface.zero();
+      const Vec3 surf_lin = surface ? Vec3(wl.rotation * wl.surface.linear) : Vec3::Zero();
+      const Vec3 surf_omega = surface ? Vec3(wl.rotation * wl.surface.omega) : Vec3::Zero();
+      const Vec3 surf_centre = surface ? wl.to_world(wl.surface.centre) : Vec3::Zero();
+      const Vec3 load_point = wl.to_world(wl.load_point);
+      auto wall_velocity_at = [&](const Vec3& pt) {
+        Vec3 vw = wl.motion.velocity + wl.motion.omega.cross(pt - wl.pivot_now);
+        if (surface) vw += surf_lin + surf_omega.cross(pt - surf_centre);
+        return vw;
+      };
       for (std::size_t q = k; q < kend; ++q) {
         if (!hit[q - k]) {
           if (wc_.touch[q]) {
@@ -501,7 +513,7 @@ void World::compute_forces_impl() {
         kin.r_i = rad[i];
         kin.r_j = 0.0;
         Vec3 v_rel = v[i] + (rad[i] * w[i]).cross(gq.n);
-        if (!still) v_rel -= wl.velocity_at(gq.point);
+        if (!still) v_rel -= wall_velocity_at(gq.point);
         kin.v_rel = LaneVec::of(v_rel);
         kin.w_rel = LaneVec::of(w[i] - ww);
         kin.r_eff = rad[i];
@@ -523,7 +535,7 @@ void World::compute_forces_impl() {
         const Vec3 fw = -wc_.out_f[q];
         const Vec3 lever = rad[i] * (gq.point - x[i]).normalized();
         const Vec3 rolling_couple = wc_.out_t[q] - lever.cross(wc_.out_f[q]);  // on the particle
-        wc_.out_wall_torque[q] = (gq.point - wl.to_world(wl.load_point)).cross(fw) - rolling_couple;
+        wc_.out_wall_torque[q] = (gq.point - load_point).cross(fw) - rolling_couple;
       }
       k = kend;
     }
