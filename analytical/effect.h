@@ -48,7 +48,8 @@ class Effect {
   virtual void adjust_operating_point(OperatingPoint&) const {}
   virtual void adjust_discharge(DischargeInput&, const Station&) const {}
   // Extra acceleration in flight (beyond gravity); has_flight_force() lets the chain keep the
-  // closed-form trajectory when no effect adds a force.
+  // closed-form trajectory when no effect adds a force. The DEM calls it from several threads at
+  // once (a body force per range of particles), so it must be a pure function of its arguments.
   virtual bool has_flight_force() const { return false; }
   virtual Eigen::Vector2d flight_acceleration(const Eigen::Vector2d& velocity,
                                               const FlightContext&) const {
