@@ -323,10 +323,8 @@ void World::rebuild() {
   nl_.layout_blocks(n, kForceBlocks, nt);
 
   // --- wall candidates: (particle, wall, element) within R + skin, CSR by particle ---
-  // Each thread takes a contiguous range (of particles for a primitive, of triangles for a mesh) and
-  // its buffers are joined in thread order, so the list is ordered by wall, then element, then
-  // particle at any thread count; a stable counting sort by particle then gives (particle, wall,
-  // element) order.
+  // Each thread takes a contiguous range (of particles for a primitive, of triangles for a mesh) of
+  // every wall into its own buffer; the buffers are then placed by a counting sort (below).
   struct Cand {
     std::int32_t p, wall, element;
   };
@@ -469,7 +467,7 @@ void World::rebuild() {
   }
   // How far every particle is from each sink now: until one has moved that far, none can be behind
   // it, and insert_and_delete skips its scan (a particle moves at most max_disp_ from x_ref_).
-  sink_clearance_.assign(sinks_.size(), std::numeric_limits<double>::infinity());
+  sink_clearance_.resize(sinks_.size());
   for (std::size_t k = 0; k < sinks_.size(); ++k) {
     // A local minimum: stored through the member each time, it was a store-to-load chain per
     // particle (aliasing), about a fifth of a station rebuild's serial time.

@@ -322,7 +322,7 @@ void World::step(std::int64_t n) {
     const bool check = (step_ + 1) % settings_.check_every == 0;
     drifted = s + 1 < n && clumps_.size() == 0;
     maxd2_next = max_disp_ * max_disp_;
-    const std::size_t first_bad = drifted ? kick_kick_and_drift(check, maxd2_next) : kick(check);
+    const std::size_t first_bad = closing_pass(check, drifted, maxd2_next);
     if (clumps_.size() > 0) clumps_after_forces(dt);
     ++step_;
     if (first_bad < p_.size()) report_bad(first_bad);
@@ -365,35 +365,11 @@ inline bool state_ok(const Vec3& v, const Vec3& w, const Vec3& x, double vlim2, 
 }  // namespace
 
 // The second half kick; with `check`, returns the lowest index of a particle in a bad state (size()
-// if none; min is exact, so the reported particle does not depend on the thread count).
-std::size_t World::kick(bool check) {
-  const int nt = thread_count();
-  const std::size_t np = p_.size();
-  const Vec3* __restrict x = p_.x.data();
-  Vec3* __restrict v = p_.v.data();
-  Vec3* __restrict w = p_.w.data();
-  const Vec3* __restrict f = p_.f.data();
-  const Vec3* __restrict t = p_.t.data();
-  const double* __restrict im = p_.inv_mass.data();
-  const double* __restrict ii = p_.inv_inertia.data();
-  const double h = 0.5 * dt_, vlim2 = max_speed_ * max_speed_;
-  const Box dom = settings_.domain;
-  std::size_t first_bad = np;
-#pragma omp parallel for num_threads(nt) schedule(static) reduction(min : first_bad)
-  for (std::size_t i = 0; i < np; ++i) {
-    const Vec3 vi = v[i] + (h * im[i]) * f[i];
-    const Vec3 wi = w[i] + (h * ii[i]) * t[i];
-    v[i] = vi;
-    w[i] = wi;
-    if (check && !state_ok(vi, wi, x[i], vlim2, dom)) first_bad = std::min(first_bad, i);
-  }
-  return first_bad;
-}
-
-// kick(check), then the next step's kick_and_drift(maxd2), in one pass. A particle that fails the
-// check is left after the second half kick, as kick() leaves it, so report_bad() describes the
-// same state; the step then ends with the error.
-std::size_t World::kick_kick_and_drift(bool check, double& maxd2) {
+// if none; min is exact, so the reported particle does not depend on the thread count). With
+// `and_drift`, the next step's first half kick and drift follow in the same pass, raising maxd2 as
+// kick_and_drift() does; a particle that fails the check is then left after the second half kick,
+// so report_bad() describes the same state either way (the step ends with the error).
+std::size_t World::closing_pass(bool check, bool and_drift, double& maxd2) {
   const int nt = thread_count();
   const std::size_t np = p_.size();
   Vec3* __restrict x = p_.x.data();
@@ -412,10 +388,11 @@ std::size_t World::kick_kick_and_drift(bool check, double& maxd2) {
   for (std::size_t i = 0; i < np; ++i) {
     const Vec3 vi = v[i] + (h * im[i]) * f[i];
     const Vec3 wi = w[i] + (h * ii[i]) * t[i];
-    if (check && !state_ok(vi, wi, x[i], vlim2, dom)) {
+    const bool bad = check && !state_ok(vi, wi, x[i], vlim2, dom);
+    if (bad) first_bad = std::min(first_bad, i);
+    if (!and_drift || bad) {
       v[i] = vi;
       w[i] = wi;
-      first_bad = std::min(first_bad, i);
       continue;
     }
     const Vec3 vn = vi + (h * im[i]) * f[i];

@@ -204,8 +204,7 @@ class World {
   [[noreturn]] void report_bad(std::size_t i) const;
   // The integrator's passes over the particles (dem/world.cpp, step()).
   double kick_and_drift(double maxd2);
-  std::size_t kick(bool check);
-  std::size_t kick_kick_and_drift(bool check, double& maxd2);
+  std::size_t closing_pass(bool check, bool and_drift, double& maxd2);
   // Clumps (dem/world_clumps.cpp): body half kick + drift + member placement (raises maxd2 to the
   // members' displacement since the last rebuild); gather + half kick + member velocities; removal of
   // whole bodies; insertion of one body by an inserter.
