@@ -122,6 +122,15 @@ struct WallCandidates {
   }
 };
 
+// The history of the contacts that touch, copied out of the lists at the start of a rebuild (CSR by
+// the old particle index); kept between rebuilds only for its storage.
+struct TouchingHistory {
+  std::vector<std::int32_t> pair_begin, pair_other;
+  std::vector<Vec3> pair_shear, pair_roll;
+  std::vector<std::int32_t> wall_begin, wall_wall, wall_element;
+  std::vector<Vec3> wall_shear, wall_roll;
+};
+
 class World {
  public:
   explicit World(Settings settings);
@@ -198,6 +207,7 @@ class World {
   void compute_forces_by_model();
   void count_held();  // held_count_ from p_.held_by
   void rebuild();
+  void save_touching_history(int nt);
   bool needs_rebuild() const;
   void insert_and_delete();
   void check_state() const;
@@ -232,6 +242,7 @@ class World {
   std::int64_t next_clump_id_ = 0;
   NeighborList nl_;
   WallCandidates wc_;
+  TouchingHistory history_;              // scratch of rebuild()
   std::vector<Vec3> x_ref_;              // positions at the last rebuild
   std::vector<double> wall_time_ref_;    // wall pose times at the last rebuild
   std::vector<double> sink_clearance_;   // per sink: the least (x - point) . normal at the last rebuild
