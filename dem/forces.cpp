@@ -413,13 +413,27 @@ void World::compute_forces_impl() {
       }
       std::fill(hit, hit + (kend - k), char{0});
       if (const auto* m = std::get_if<TriangleMesh>(&wl.current)) {
+        const double r2 = rad[i] * rad[i];
         for (std::size_t q = k; q < kend; ++q) {
           const auto& t = m->triangles[static_cast<std::size_t>(wc_.element[q])];
-          const TriClosest cp = closest_point_on_triangle(x[i], m->vertices[static_cast<std::size_t>(t[0])],
-                                                          m->vertices[static_cast<std::size_t>(t[1])],
-                                                          m->vertices[static_cast<std::size_t>(t[2])]);
+          const Vec3& a = m->vertices[static_cast<std::size_t>(t[0])];
+          const Vec3& b = m->vertices[static_cast<std::size_t>(t[1])];
+          const Vec3& c = m->vertices[static_cast<std::size_t>(t[2])];
+          // Most candidates are only within the skin. A sphere farther from the triangle's plane
+          // than its radius cannot touch it, and the plane's distance is a dot product where the
+          // closest point is a chain of branches. The test leaves a margin (relative 1e-9 of the
+          // radius plus the lever) far above the rounding of either distance, and skips slivers,
+          // whose normal is inexact, so it rejects only what the full test rejects.
+          const Vec3 ab = b - a, ac = c - a, ap = x[i] - a;
+          const Vec3 nrm = ab.cross(ac);
+          const double s = nrm.dot(ap), nn = nrm.squaredNorm();
+          const double reach = rad[i] + 1e-9 * (rad[i] + ap.cwiseAbs().sum());
+          if (s * s > reach * reach * nn && nn > 1e-8 * ab.squaredNorm() * ac.squaredNorm()) continue;
+          const TriClosest cp = closest_point_on_triangle(x[i], a, b, c);
           const Vec3 d = cp.point - x[i];
-          const double dist = d.norm();
+          const double d2 = d.squaredNorm();
+          if (d2 > r2 * (1.0 + 1e-9)) continue;  // certainly dist > rad[i]: skip the root
+          const double dist = std::sqrt(d2);
           WallGeom& gq = geo[q - k];
           if (dist >= rad[i] || !(dist > 0.0)) continue;
           gq.n = d / dist;
