@@ -67,9 +67,11 @@ std::string to_text(const StationResult& r) {
   std::string o;
   o += fmt::format("condition {}\nquality {}\n", r.condition, r.quality);
   if (r.shape != "sphere") o += fmt::format("shape {}\n", r.shape);
-  o += fmt::format("run {} {} {} {} {} {} {} {} {} {}\n", num(r.diameter), num(r.dt), num(r.collision_time),
+  o += fmt::format("run {} {} {} {} {} {} {} {} {} {}", num(r.diameter), num(r.dt), num(r.collision_time),
                    num(r.rayleigh_time), num(r.simulated_time), r.steps, num(r.wall_seconds), r.early_stop ? 1 : 0,
                    r.peak_particles, num(r.side_view_time));
+  // The rebuild count came later: entries written before it end the line here (read back as unknown).
+  o += r.rebuilds >= 0 ? fmt::format(" {}\n", r.rebuilds) : std::string("\n");
   o += fmt::format("window {} {} {} {}\n", r.window.found ? 1 : 0, num(r.window.start), num(r.window.end), r.window.blocks);
   o += fmt::format("mass {} {} {} {}\n", num(r.inserted), num(r.discharged), num(r.escaped), num(r.in_domain));
   put(o, "normal_force", r.normal_force);
@@ -137,6 +139,7 @@ std::optional<StationResult> from_text(const std::string& text) {
       in >> early >> r.peak_particles;
       r.side_view_time = rd(in);
       r.early_stop = early != 0;
+      if (!(in >> r.rebuilds)) r.rebuilds = -1;
     } else if (tag == "window") {
       int found = 0;
       in >> found;

@@ -401,7 +401,7 @@ void write_result_files(const std::string& dir, const StationResult& r) {
                      "window_start_s = {:.3f}\nwindow_end_s = {:.3f}\nwindow_blocks = {}\n"
                      "inserted_kg = {:.6g}\ndischarged_kg = {:.6g}\nescaped_kg = {:.6g}\nin_domain_kg = {:.6g}\n",
                      r.condition, r.quality, r.shape, r.diameter * 1e3, r.dt, r.collision_time, r.rayleigh_time,
-                     r.simulated_time, r.steps, r.rebuilds, r.wall_seconds, r.early_stop, r.peak_particles, r.window.found,
+                     r.simulated_time, r.steps, r.rebuilds >= 0 ? std::to_string(r.rebuilds) : "unknown (not in this DEM cache entry)", r.wall_seconds, r.early_stop, r.peak_particles, r.window.found,
                      r.window.start, r.window.end, r.window.blocks, r.inserted, r.discharged, r.escaped, r.in_domain);
     for (const auto& n : r.notes) f << "note = " << n << "\n";
   }

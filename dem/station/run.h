@@ -33,7 +33,7 @@ struct StationResult {
   double rayleigh_time = 0.0;   // s
   double simulated_time = 0.0;  // s
   long long steps = 0;
-  long long rebuilds = 0;       // neighbour-list rebuilds (performance)
+  long long rebuilds = 0;       // neighbour-list rebuilds (performance); -1: unknown (an older cache entry)
   double wall_seconds = 0.0;
   bool early_stop = false;
   std::size_t peak_particles = 0;

@@ -94,6 +94,7 @@ BOOST_AUTO_TEST_CASE(cache_round_trip) {
   r.dt = 7.1e-5;
   r.simulated_time = 0.7;
   r.steps = 9876;
+  r.rebuilds = 1234;
   r.early_stop = true;
   r.window = {true, 0.4, 0.7, 3};
   r.normal_force = {35.6874512, 0.356, 101};
@@ -106,6 +107,16 @@ BOOST_AUTO_TEST_CASE(cache_round_trip) {
   BOOST_REQUIRE(back.has_value());
   BOOST_TEST(to_text(*back) == to_text(r));
   BOOST_TEST(back->normal_force.value == r.normal_force.value);
+  BOOST_TEST(back->rebuilds == 1234);
+  // An entry written before the rebuild count was stored reads back as unknown, not as 0 rebuilds.
+  std::string old_entry = to_text(r);
+  const auto run_at = old_entry.find("\nrun ");
+  const auto run_end = old_entry.find('\n', run_at + 1);
+  old_entry.erase(old_entry.rfind(' ', run_end), run_end - old_entry.rfind(' ', run_end));
+  const auto old_back = from_text(old_entry);
+  BOOST_REQUIRE(old_back.has_value());
+  BOOST_TEST(old_back->rebuilds == -1);
+  BOOST_TEST(old_back->steps == 9876);
 
   const ResultCache cache(temp_dir("cache").string());
   BOOST_TEST(!cache.load("key A\n").has_value());
