@@ -140,61 +140,68 @@ void NeighborList::layout_blocks(std::size_t n, std::size_t blocks, int threads)
   resize_for_overwrite(block_t, block_off[blocks]);
 }
 
+namespace {
+
+// The touching entries of a list in CSR form (row `begin`, per-entry `touch`), compacted into
+// `out_begin` by the same rows: count per row, prefix sum, then `size(total)` and `copy(from, to)`
+// for each touching entry, every row its own range (rows in parallel, entry order kept).
+template <class Size, class Copy>
+void compact_touching(const std::vector<std::int32_t>& begin, const std::vector<std::uint8_t>& touch, int nt,
+                      std::vector<std::int32_t>& out_begin, Size size, Copy copy) {
+  const std::size_t rows = begin.empty() ? 0 : begin.size() - 1;
+  resize_for_overwrite(out_begin, rows + 1);
+  out_begin[0] = 0;
+  {
+    const std::int32_t* __restrict rb = begin.data();
+    const std::uint8_t* __restrict to = touch.data();
+    std::int32_t* __restrict ob = out_begin.data();
+#pragma omp parallel for num_threads(nt) schedule(static)
+    for (std::size_t r = 0; r < rows; ++r) {
+      std::int32_t c = 0;
+      for (auto e = rb[r]; e < rb[r + 1]; ++e) c += to[static_cast<std::size_t>(e)];
+      ob[r + 1] = c;
+    }
+  }
+  for (std::size_t r = 0; r < rows; ++r) out_begin[r + 1] += out_begin[r];
+  size(static_cast<std::size_t>(out_begin[rows]));
+#pragma omp parallel for num_threads(nt) schedule(static)
+  for (std::size_t r = 0; r < rows; ++r) {
+    auto to = static_cast<std::size_t>(out_begin[r]);
+    for (auto e = begin[r]; e < begin[r + 1]; ++e)
+      if (touch[static_cast<std::size_t>(e)]) copy(static_cast<std::size_t>(e), to++);
+  }
+}
+
+}  // namespace
+
 void World::save_touching_history(int nt) {
   TouchingHistory& h = history_;
-  // Pairs, CSR by old row: count per row, place by the prefix sum, copy (each row its own range).
-  const std::size_t rows = nl_.row_begin.empty() ? 0 : nl_.row_begin.size() - 1;
-  h.pair_begin.assign(rows + 1, 0);
-  {
-    const std::int32_t* __restrict rb = nl_.row_begin.data();
-    const std::uint8_t* __restrict to = nl_.touch.data();
-    std::int32_t* __restrict pb = h.pair_begin.data();
-#pragma omp parallel for num_threads(nt) schedule(static)
-    for (std::size_t io = 0; io < rows; ++io) {
-      std::int32_t c = 0;
-      for (auto s = rb[io]; s < rb[io + 1]; ++s) c += to[static_cast<std::size_t>(s)];
-      pb[io + 1] = c;
-    }
-  }
-  for (std::size_t io = 0; io < rows; ++io) h.pair_begin[io + 1] += h.pair_begin[io];
-  const auto npairs = static_cast<std::size_t>(h.pair_begin[rows]);
-  resize_for_overwrite(h.pair_other, npairs);
-  resize_for_overwrite(h.pair_shear, npairs);
-  resize_for_overwrite(h.pair_roll, npairs);
-#pragma omp parallel for num_threads(nt) schedule(static)
-  for (std::size_t io = 0; io < rows; ++io) {
-    auto out = static_cast<std::size_t>(h.pair_begin[io]);
-    for (auto s = nl_.row_begin[io]; s < nl_.row_begin[io + 1]; ++s) {
-      const auto so = static_cast<std::size_t>(s);
-      if (!nl_.touch[so]) continue;
-      h.pair_other[out] = nl_.nbr[so];
-      h.pair_shear[out] = nl_.shear[so];
-      h.pair_roll[out] = nl_.roll[so];
-      ++out;
-    }
-  }
-  // Wall entries, CSR by old particle, the same way.
-  const std::size_t owners = wc_.begin.empty() ? 0 : wc_.begin.size() - 1;
-  h.wall_begin.assign(owners + 1, 0);
-  for (std::size_t io = 0; io < owners; ++io) {
-    std::int32_t c = 0;
-    for (auto e = wc_.begin[io]; e < wc_.begin[io + 1]; ++e) c += wc_.touch[static_cast<std::size_t>(e)];
-    h.wall_begin[io + 1] = h.wall_begin[io] + c;
-  }
-  const auto nwall = static_cast<std::size_t>(h.wall_begin[owners]);
-  resize_for_overwrite(h.wall_wall, nwall);
-  resize_for_overwrite(h.wall_element, nwall);
-  resize_for_overwrite(h.wall_shear, nwall);
-  resize_for_overwrite(h.wall_roll, nwall);
-  std::size_t out = 0;
-  for (std::size_t e = 0; e < wc_.touch.size(); ++e) {
-    if (!wc_.touch[e]) continue;
-    h.wall_wall[out] = wc_.wall[e];
-    h.wall_element[out] = wc_.element[e];
-    h.wall_shear[out] = wc_.shear[e];
-    h.wall_roll[out] = wc_.roll[e];
-    ++out;
-  }
+  compact_touching(
+      nl_.row_begin, nl_.touch, nt, h.pair_begin,
+      [&](std::size_t m) {
+        resize_for_overwrite(h.pair_other, m);
+        resize_for_overwrite(h.pair_shear, m);
+        resize_for_overwrite(h.pair_roll, m);
+      },
+      [&](std::size_t from, std::size_t to) {
+        h.pair_other[to] = nl_.nbr[from];
+        h.pair_shear[to] = nl_.shear[from];
+        h.pair_roll[to] = nl_.roll[from];
+      });
+  compact_touching(
+      wc_.begin, wc_.touch, nt, h.wall_begin,
+      [&](std::size_t m) {
+        resize_for_overwrite(h.wall_wall, m);
+        resize_for_overwrite(h.wall_element, m);
+        resize_for_overwrite(h.wall_shear, m);
+        resize_for_overwrite(h.wall_roll, m);
+      },
+      [&](std::size_t from, std::size_t to) {
+        h.wall_wall[to] = wc_.wall[from];
+        h.wall_element[to] = wc_.element[from];
+        h.wall_shear[to] = wc_.shear[from];
+        h.wall_roll[to] = wc_.roll[from];
+      });
 }
 
 void World::rebuild() {
