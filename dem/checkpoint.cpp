@@ -149,6 +149,10 @@ void World::load_checkpoint(const std::string& path) {
   r.vec(wc_.out_f, "wall forces"); r.vec(wc_.out_t, "wall forces"); r.vec(wc_.out_point, "wall forces");
   wc_.out_wall_torque.resize(wc_.out_point.size());  // derived in every force evaluation; not saved
   r.vec(x_ref_, "reference positions"); r.vec(wall_time_ref_, "wall times"); r.vec(index_map_, "index map");
+  // The saving World listed each wall by its motion then, which the scene being restored repeats (a
+  // list of an older version covers the whole skin for every wall: more than needed, still right).
+  wall_listed_moving_.resize(walls_.size());
+  for (std::size_t k = 0; k < walls_.size(); ++k) wall_listed_moving_[k] = walls_[k].motion.moving() ? 1 : 0;
   sink_clearance_.clear();  // derived at the next rebuild; until then the sinks scan every step
   if (nl_.row_begin.size() != n + 1 || wc_.begin.size() != n + 1 || x_ref_.size() != n)
     throw InputError(path, 0, "neighbour list", "sizes do not match the particle count");

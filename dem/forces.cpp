@@ -388,6 +388,22 @@ void World::compute_forces_impl() {
   const bool gather = gather_in_law();
   PairArrays arrays{x, v, w, rad, mass, inv_i, mat, row, nbr, nl_.slot_row.data(), shear, roll, touch, mt.coeff_table(),
                     static_cast<std::size_t>(mt.size()), dt};
+  // Wall::velocity_at, angular_velocity and to_world(load_point) with their per-wall products taken once
+  // per wall and step, not per particle near it (the same operations on the same values, so the same
+  // numbers): most particles near a wall do not touch it.
+  wall_frames_.resize(walls_.size());
+  const WallFrame* frames = wall_frames_.data();
+  for (std::size_t k = 0; k < walls_.size(); ++k) {
+    const Wall& wl = walls_[k];
+    WallFrame& fr = wall_frames_[k];
+    fr.ww = wl.angular_velocity();
+    fr.still = !wl.motion.moving() && wl.surface.zero();
+    fr.surface = !wl.surface.zero();
+    fr.surf_lin = fr.surface ? Vec3(wl.rotation * wl.surface.linear) : Vec3::Zero();
+    fr.surf_omega = fr.surface ? Vec3(wl.rotation * wl.surface.omega) : Vec3::Zero();
+    fr.surf_centre = fr.surface ? wl.to_world(wl.surface.centre) : Vec3::Zero();
+    fr.load_point = wl.to_world(wl.load_point);
+  }
   // Wall contacts of one particle, into per-entry storage. Within one mesh, face contacts win over
   // edge contacts and edges over vertices, so a sphere on a flat or convex seam touches once.
   auto walls_of = [&](std::size_t i) {
@@ -415,20 +431,21 @@ void World::compute_forces_impl() {
       if (const auto* m = std::get_if<TriangleMesh>(&wl.current)) {
         const double r2 = rad[i] * rad[i];
         for (std::size_t q = k; q < kend; ++q) {
-          const auto& t = m->triangles[static_cast<std::size_t>(wc_.element[q])];
+          const auto el = static_cast<std::size_t>(wc_.element[q]);
+          const auto& t = m->triangles[el];
           const Vec3& a = m->vertices[static_cast<std::size_t>(t[0])];
-          const Vec3& b = m->vertices[static_cast<std::size_t>(t[1])];
-          const Vec3& c = m->vertices[static_cast<std::size_t>(t[2])];
-          // Most candidates are only within the skin. A sphere farther from the triangle's plane
+          // Many candidates are only within the skin. A sphere farther from the triangle's plane
           // than its radius cannot touch it, and the plane's distance is a dot product where the
           // closest point is a chain of branches. The test leaves a margin (relative 1e-9 of the
-          // radius plus the lever) far above the rounding of either distance, and skips slivers,
-          // whose normal is inexact, so it rejects only what the full test rejects.
-          const Vec3 ab = b - a, ac = c - a, ap = x[i] - a;
-          const Vec3 nrm = ab.cross(ac);
-          const double s = nrm.dot(ap), nn = nrm.squaredNorm();
+          // radius plus the lever) far above the rounding of either distance, and skips slivers
+          // (nn = inf), whose normal is inexact, so it rejects only what the full test rejects.
+          const Wall::FacePlane& fp = wl.face_plane[el];
+          const Vec3 ap = x[i] - a;
+          const double s = fp.n.dot(ap);
           const double reach = rad[i] + 1e-9 * (rad[i] + ap.cwiseAbs().sum());
-          if (s * s > reach * reach * nn && nn > 1e-8 * ab.squaredNorm() * ac.squaredNorm()) continue;
+          if (s * s > reach * reach * fp.nn) continue;
+          const Vec3& b = m->vertices[static_cast<std::size_t>(t[1])];
+          const Vec3& c = m->vertices[static_cast<std::size_t>(t[2])];
           const TriClosest cp = closest_point_on_triangle(x[i], a, b, c);
           const Vec3 d = cp.point - x[i];
           const double d2 = d.squaredNorm();
@@ -497,18 +514,12 @@ void World::compute_forces_impl() {
         }
       }
       const PairCoeffs& c = mt.pair(mat[i], wl.material);
-      const Vec3 ww = wl.angular_velocity();
-      const bool still = !wl.motion.moving() && wl.surface.zero();
-      // Wall::velocity_at and to_world(load_point) with their per-wall products taken once per
-      // wall, not per contact (the same operations on the same values, so the same numbers).
-      const bool surface = !wl.surface.zero();
-      const Vec3 surf_lin = surface ? Vec3(wl.rotation * wl.surface.linear) : Vec3::Zero();
-      const Vec3 surf_omega = surface ? Vec3(wl.rotation * wl.surface.omega) : Vec3::Zero();
-      const Vec3 surf_centre = surface ? wl.to_world(wl.surface.centre) : Vec3::Zero();
-      const Vec3 load_point = wl.to_world(wl.load_point);
+      const WallFrame& fr = frames[wi];
+      const Vec3& ww = fr.ww;
+      const Vec3& load_point = fr.load_point;
       auto wall_velocity_at = [&](const Vec3& pt) {
         Vec3 vw = wl.motion.velocity + wl.motion.omega.cross(pt - wl.pivot_now);
-        if (surface) vw += surf_lin + surf_omega.cross(pt - surf_centre);
+        if (fr.surface) vw += fr.surf_lin + fr.surf_omega.cross(pt - fr.surf_centre);
         return vw;
       };
       for (std::size_t q = k; q < kend; ++q) {
@@ -527,7 +538,7 @@ void World::compute_forces_impl() {
         kin.r_i = rad[i];
         kin.r_j = 0.0;
         Vec3 v_rel = v[i] + (rad[i] * w[i]).cross(gq.n);
-        if (!still) v_rel -= wall_velocity_at(gq.point);
+        if (!fr.still) v_rel -= wall_velocity_at(gq.point);
         kin.v_rel = LaneVec::of(v_rel);
         kin.w_rel = LaneVec::of(w[i] - ww);
         kin.r_eff = rad[i];

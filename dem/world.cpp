@@ -89,6 +89,7 @@ int World::add_wall(Wall w) {
   w.set_time(time_);
   walls_.push_back(std::move(w));
   wall_time_ref_.push_back(time_);
+  wall_listed_moving_.push_back(0);
   list_dirty_ = true;
   return static_cast<int>(walls_.size()) - 1;
 }
@@ -282,7 +283,11 @@ bool World::needs_rebuild() const {
   if (list_dirty_) return true;
   if (2.0 * max_disp_ > skin_) return true;
   for (std::size_t k = 0; k < walls_.size(); ++k)
-    if (walls_[k].motion.moving() && max_disp_ + wall_displacement_since_rebuild(walls_[k]) > skin_) return true;
+    if (walls_[k].motion.moving()) {
+      // Set moving after the last rebuild: its elements were listed only for a still wall's reach.
+      if (!wall_listed_moving_[k]) return true;
+      if (max_disp_ + wall_displacement_since_rebuild(walls_[k]) > skin_) return true;
+    }
   return false;
 }
 

@@ -237,6 +237,11 @@ class World {
   std::function<void()> load_observer_;
   std::vector<Vec3> wall_sum_f_, wall_sum_t_;  // scratch of the wall-load sums (forces.cpp)
   std::vector<Vec3*> wall_sum_e_;
+  struct WallFrame {  // a wall's motion at the current time, for the contacts (compute_forces)
+    Vec3 ww, surf_lin, surf_omega, surf_centre, load_point;
+    bool still, surface;
+  };
+  std::vector<WallFrame> wall_frames_;
   std::vector<WallContactObserver> wall_observers_;  // by wall; empty = none observed
   ClumpBodies clumps_;
   std::int64_t next_clump_id_ = 0;
@@ -245,6 +250,7 @@ class World {
   TouchingHistory history_;              // scratch of rebuild()
   std::vector<Vec3> x_ref_;              // positions at the last rebuild
   std::vector<double> wall_time_ref_;    // wall pose times at the last rebuild
+  std::vector<std::uint8_t> wall_listed_moving_;  // per wall: listed with the whole skin (it moved then)
   std::vector<double> sink_clearance_;   // per sink: the least (x - point) . normal at the last rebuild
   std::vector<std::int32_t> index_map_;  // index at last rebuild -> current index (-1 removed)
   std::vector<std::int32_t> scratch_;

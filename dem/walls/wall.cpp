@@ -1,6 +1,7 @@
 #include "dem/walls/wall.h"
 
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -93,6 +94,15 @@ void Wall::set_time(double t) {
     cm.triangles = m.triangles;
     cm.vertices.resize(m.vertices.size());
     for (std::size_t k = 0; k < m.vertices.size(); ++k) cm.vertices[k] = to_world(m.vertices[k]);
+    face_plane.resize(cm.triangles.size());
+    for (std::size_t k = 0; k < cm.triangles.size(); ++k) {
+      const auto& t = cm.triangles[k];
+      const Vec3& a = cm.vertices[static_cast<std::size_t>(t[0])];
+      const Vec3 ab = cm.vertices[static_cast<std::size_t>(t[1])] - a, ac = cm.vertices[static_cast<std::size_t>(t[2])] - a;
+      const Vec3 nrm = ab.cross(ac);
+      const double nn = nrm.squaredNorm();
+      face_plane[k] = {nrm, nn > 1e-8 * ab.squaredNorm() * ac.squaredNorm() ? nn : std::numeric_limits<double>::infinity()};
+    }
   }
   element_force.resize(element_count(), Vec3::Zero());
 }

@@ -40,6 +40,13 @@ struct Wall {
   Vec3 force = Vec3::Zero();        // total contact force on the wall, N
   Vec3 torque = Vec3::Zero();       // about the current load point, N m
   std::vector<Vec3> element_force;  // per triangle (mesh) or one entry (primitive), N
+  // Per triangle of `current`: (b - a) x (c - a) and its squared norm, or +inf for a sliver (whose
+  // normal is inexact); the contact pre-test's plane (a mesh's vertices only move with the wall).
+  struct FacePlane {
+    Vec3 n;
+    double nn;
+  };
+  std::vector<FacePlane> face_plane;
 
   static Wall plane(std::string name, const Vec3& point, const Vec3& normal, int material);
   static Wall cylinder(std::string name, const Vec3& point, const Vec3& axis, double radius, int material,
