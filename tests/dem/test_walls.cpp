@@ -249,3 +249,30 @@ BOOST_AUTO_TEST_CASE(impossible_wall_motion_is_rejected) {
   BOOST_CHECK_THROW(w.add_wall(p), chutelab::InputError);
   BOOST_CHECK_THROW(Wall::cylinder("c", Vec3::Zero(), Vec3::UnitY(), -1.0, m), chutelab::InputError);
 }
+
+// A still wall's elements are listed only within R + skin/2 (no particle moves farther before the
+// next rebuild). A wall set moving after a rebuild (without mark_changed) must still be seen by the
+// sphere it reaches: the list is rebuilt with the whole skin as soon as it moves, so the contact
+// starts when the overlap starts, not once the wall has crossed the skin.
+BOOST_AUTO_TEST_CASE(wall_set_moving_after_rebuild_is_listed_with_whole_skin) {
+  Settings s = quiet_settings(0.0, 5.0);
+  const double r = 0.01, skin = 0.4 * r;
+  s.skin = skin;
+  World w(s);
+  const int ball = w.materials().add({"ball", 1e7, 0.3, 1000});
+  w.add_wall(Wall::plane("floor", Vec3::Zero(), Vec3::UnitZ(), ball));
+  // 0.75 skin above the floor: beyond a still wall's R + skin/2, within R + skin.
+  w.add_particle({Vec3(0, 0, r + 0.75 * skin), Vec3::Zero(), Vec3::Zero(), r, ball});
+  w.initialise();
+  w.step(1);
+  const double speed = 0.1, t0 = w.time();
+  Wall& floor = w.wall(0);
+  floor.motion.velocity = Vec3(0, 0, speed);
+  floor.motion.pivot -= floor.motion.velocity * t0;  // start the motion now
+  floor.set_time(t0);
+  // Step until the floor has risen 0.8 skin: an overlap of 0.05 skin, which must push the sphere.
+  const auto steps = static_cast<std::int64_t>(std::ceil(0.8 * skin / speed / w.dt()));
+  w.step(steps);
+  BOOST_TEST(w.particles().f[0].z() > 0.0);
+  BOOST_TEST(w.walls()[0].force.z() < 0.0);
+}
