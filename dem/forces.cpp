@@ -602,43 +602,50 @@ void World::compute_forces_impl() {
     for (std::size_t k = 0; k < n_owners; ++k) walls_of(static_cast<std::size_t>(owners[k]));
 #pragma omp for schedule(static)
     for (std::size_t b = 0; b < nblocks; ++b) {
-      Vec3* fb = bf + boff[b] - blo[b];  // fb[p] is valid for p in [lo, hi)
+      Vec3* fb = bf + boff[b] - blo[b];  // fb[p] is valid for p in [lo, hi); zero (see below)
       Vec3* tb = bt + boff[b] - blo[b];
-      std::fill(bf + boff[b], bf + boff[b + 1], Vec3::Zero());
-      std::fill(bt + boff[b], bt + boff[b + 1], Vec3::Zero());
       if (gather)
         pair_rows<Model, GatherChunk>(arrays, n * b / nblocks, n * (b + 1) / nblocks, fb, tb);
       else
         pair_rows<Model, ContactChunk>(arrays, n * b / nblocks, n * (b + 1) / nblocks, fb, tb);
     }
+    // Per particle the sum is, as always, zero, then the block buffers in block order, then its wall
+    // contacts and gravity; here it runs buffer by buffer over the particles of a block, as flat
+    // loops. Each buffer entry is read exactly once, by the block that owns its particle, which
+    // zeroes it for the next evaluation (layout_blocks zeroes new buffers): no separate pass to
+    // clear them. The body force and the held particles follow on the same particles while their
+    // forces are in cache (each is per particle, so the split does not change a number).
 #pragma omp for schedule(static)
-    for (std::size_t ob = 0; ob < nblocks; ++ob)
-      for (std::size_t i = blo[ob]; i < n * (ob + 1) / nblocks; ++i) {
-        // Buffers of blocks first..ob may hold contributions to i (rows before i touch it).
-        Vec3 fi = Vec3::Zero(), ti = Vec3::Zero();
-        for (std::size_t b = bfirst[ob]; b <= ob; ++b) {
-          if (i >= bhi[b]) continue;
-          fi += bf[boff[b] + i - blo[b]];
-          ti += bt[boff[b] + i - blo[b]];
+    for (std::size_t ob = 0; ob < nblocks; ++ob) {
+      const std::size_t lo = blo[ob], hi = n * (ob + 1) / nblocks;
+      std::fill(f + lo, f + hi, Vec3::Zero());
+      std::fill(t + lo, t + hi, Vec3::Zero());
+      for (std::size_t b = bfirst[ob]; b <= ob; ++b) {
+        const std::size_t end = std::min(hi, bhi[b]);
+        if (end <= lo) continue;
+        double* __restrict fs = (bf + boff[b] + (lo - blo[b]))->data();
+        double* __restrict ts = (bt + boff[b] + (lo - blo[b]))->data();
+        double* __restrict fd = f[lo].data();
+        double* __restrict td = t[lo].data();
+        const std::size_t m = 3 * (end - lo);
+        for (std::size_t k = 0; k < m; ++k) {
+          fd[k] += fs[k];
+          td[k] += ts[k];
+          fs[k] = 0.0;
+          ts[k] = 0.0;
         }
-        finish_particle(i, fi, ti);
-        f[i] = fi;
-        t[i] = ti;
       }
-    // Particles [n t / T, n (t + 1) / T): with the static schedule above (kForceBlocks a multiple
-    // of T) those whose forces this thread just finished, so their lines stay in its cache.
-    const auto th = static_cast<std::size_t>(omp_get_thread_num());
-    const auto nth = static_cast<std::size_t>(omp_get_num_threads());
-    const std::size_t r0 = n * th / nth, r1 = n * (th + 1) / nth;
-    if (body_force_) body_force_(p_, time_, r0, r1, p_.f);
-    // A held particle (Inserter::hold_to_face) feels nothing: with no force the kicks leave its
-    // velocity as set, so the drift moves it rigidly. Its partners still feel it.
-    if (held_count_ > 0)
-      for (std::size_t i = r0; i < r1; ++i)
-        if (p_.held_by[i] >= 0) {
-          f[i] = Vec3::Zero();
-          t[i] = Vec3::Zero();
-        }
+      for (std::size_t i = lo; i < hi; ++i) finish_particle(i, f[i], t[i]);
+      if (body_force_) body_force_(p_, time_, lo, hi, p_.f);
+      // A held particle (Inserter::hold_to_face) feels nothing: with no force the kicks leave its
+      // velocity as set, so the drift moves it rigidly. Its partners still feel it.
+      if (held_count_ > 0)
+        for (std::size_t i = lo; i < hi; ++i)
+          if (p_.held_by[i] >= 0) {
+            f[i] = Vec3::Zero();
+            t[i] = Vec3::Zero();
+          }
+    }
   }
 
   // Wall loads, serially in entry order (deterministic). The sums run in local arrays: through the

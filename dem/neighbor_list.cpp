@@ -65,7 +65,7 @@ double element_distance(const Wall& w, std::size_t element, const Vec3& x) {
 // xi, radius plus skin ri), written to out (which has room for k1 - k0 entries), in ascending j;
 // returns how many. Spheres of i's own clump (body_i >= 0) are never listed. The AVX-512 path makes
 // the same comparisons on the same numbers (no fused operations), so both paths give the same list.
-std::size_t near_in_range(const Vec3* __restrict px, const double* __restrict pr, const std::int32_t* __restrict pc,
+CHUTELAB_INLINE std::size_t near_in_range(const Vec3* __restrict px, const double* __restrict pr, const std::int32_t* __restrict pc,
                           std::size_t k0, std::size_t k1, const Vec3& xi, double ri, std::int32_t body_i,
                           std::int32_t* __restrict out) {
   std::size_t m = 0, j = k0;
@@ -95,6 +95,31 @@ std::size_t near_in_range(const Vec3* __restrict px, const double* __restrict pr
     const __m256i idx = _mm256_add_epi32(_mm256_set1_epi32(static_cast<std::int32_t>(j)), lane);
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + m), _mm256_maskz_compress_epi32(near, idx));
     m += static_cast<std::size_t>(__builtin_popcount(near));
+  }
+  // The last 1-7 candidates the same way, through masked loads (which read nothing past the mask)
+  // and a masked store (`out` has room only for them). Ranges are short (a row of three cells), so
+  // a scalar tail was a quarter of the search.
+  if (j < k1) {
+    const auto rem = static_cast<unsigned>(k1 - j);
+    const auto lanes = static_cast<__mmask8>((1u << rem) - 1u);
+    const std::uint32_t words = (1u << (3u * rem)) - 1u;  // rem x, y, z triples: up to 21 doubles
+    const double* b = base + 3 * j;
+    const __m512d a0 = _mm512_maskz_loadu_pd(static_cast<__mmask8>(words), b);
+    const __m512d a1 = _mm512_maskz_loadu_pd(static_cast<__mmask8>(words >> 8), b + 8);
+    const __m512d a2 = _mm512_maskz_loadu_pd(static_cast<__mmask8>(words >> 16), b + 16);
+    const __m512d x = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, ix0, a1), ix1, a2);
+    const __m512d y = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, iy0, a1), iy1, a2);
+    const __m512d z = _mm512_permutex2var_pd(_mm512_permutex2var_pd(a0, iz0, a1), iz1, a2);
+    const __m512d dx = _mm512_sub_pd(x, cx), dy = _mm512_sub_pd(y, cy), dz = _mm512_sub_pd(z, cz);
+    const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
+    const __m512d cut = _mm512_add_pd(cr, _mm512_maskz_loadu_pd(lanes, pr + j));
+    __mmask8 near = _mm512_mask_cmp_pd_mask(lanes, d2, _mm512_mul_pd(cut, cut), _CMP_LT_OQ);
+    if (body_i >= 0) near &= _mm256_cmpneq_epi32_mask(_mm256_maskz_loadu_epi32(lanes, pc + j), body);
+    const __m256i idx = _mm256_add_epi32(_mm256_set1_epi32(static_cast<std::int32_t>(j)), lane);
+    const auto count = static_cast<unsigned>(__builtin_popcount(near));
+    _mm256_mask_storeu_epi32(out + m, static_cast<__mmask8>((1u << count) - 1u), _mm256_maskz_compress_epi32(near, idx));
+    m += count;
+    j = k1;
   }
 #endif
   for (; j < k1; ++j) {
@@ -138,6 +163,13 @@ void NeighborList::layout_blocks(std::size_t n, std::size_t blocks, int threads)
   }
   resize_for_overwrite(block_f, block_off[blocks]);
   resize_for_overwrite(block_t, block_off[blocks]);
+  // Zero between force evaluations (the evaluation that reads an entry clears it), each block by the
+  // thread whose static share it is in the pair pass.
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::size_t b = 0; b < blocks; ++b) {
+    std::fill(block_f.begin() + static_cast<std::ptrdiff_t>(block_off[b]), block_f.begin() + static_cast<std::ptrdiff_t>(block_off[b + 1]), Vec3::Zero());
+    std::fill(block_t.begin() + static_cast<std::ptrdiff_t>(block_off[b]), block_t.begin() + static_cast<std::ptrdiff_t>(block_off[b + 1]), Vec3::Zero());
+  }
 }
 
 namespace {
@@ -312,37 +344,49 @@ void World::rebuild() {
   // The same rows when particles are sorted by cell, found faster: a row of three cells along x is
   // one contiguous index range, and the forward half of the stencil is five such ranges (the own
   // row from i + 1, the next row up, and three in the next layer), visited in increasing cell
-  // order, so j still ascends. Each range is scanned without branching on the outcome.
-  auto visit_row_sorted = [&](std::size_t i, std::vector<std::int32_t>& out) {
+  // order, so j still ascends. Each range is scanned without branching on the outcome. The ranges
+  // are the same for every particle of a cell (only the own row's start, i + 1, moves), so they are
+  // found once per cell: per particle, the cell coordinates and eight lookups were two fifths of
+  // the search.
+  struct CellRanges {
+    std::int64_t cell = -1;
+    std::size_t lo_k[5], hi_k[5];   // [0]: the own row, from i + 1 (set per particle); empty: lo = hi
+    std::size_t others = 0;         // the total length of [1..4]
+  };
+  auto cell_ranges = [&](std::int64_t c, CellRanges& cr) {
+    cr.cell = c;
+    const std::int64_t cx = c % dim[0], cy = (c / dim[0]) % dim[1], cz = c / (dim[0] * dim[1]);
+    const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, dim[0] - 1);
+    cr.hi_k[0] = static_cast<std::size_t>(cell_start[static_cast<std::size_t>((cz * dim[1] + cy) * dim[0] + x1 + 1)]);
+    cr.others = 0;
+    auto range = [&](int r, std::int64_t y, std::int64_t z) {
+      cr.lo_k[r] = cr.hi_k[r] = 0;
+      if (y < 0 || y >= dim[1] || z >= dim[2]) return;
+      const std::int64_t base = (z * dim[1] + y) * dim[0];
+      const auto k0 = static_cast<std::size_t>(cell_start[static_cast<std::size_t>(base + x0)]);
+      const auto k1 = static_cast<std::size_t>(cell_start[static_cast<std::size_t>(base + x1 + 1)]);
+      if (k1 <= k0) return;
+      cr.lo_k[r] = k0, cr.hi_k[r] = k1;
+      cr.others += k1 - k0;
+    };
+    range(1, cy + 1, cz);
+    range(2, cy - 1, cz + 1);
+    range(3, cy, cz + 1);
+    range(4, cy + 1, cz + 1);
+  };
+  auto visit_row_sorted = [&](std::size_t i, CellRanges& cr, std::vector<std::int32_t>& out) {
     const Vec3 xi = p_.x[i];
     const double ri = p_.radius[i] + skin_;
     const std::int32_t body_i = p_.clump[i];
     const Vec3* __restrict px = p_.x.data();
     const double* __restrict pr = p_.radius.data();
     const std::int32_t* __restrict pc = p_.clump.data();
-    const std::int64_t cx = cell_coord(xi, 0), cy = cell_coord(xi, 1), cz = cell_coord(xi, 2);
-    const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, dim[0] - 1);
-    // The five ranges' bounds first, so that `out` grows once per row (not twice per range).
-    std::size_t lo_k[5], hi_k[5], total = 0;
-    auto range = [&](int r, std::int64_t y, std::int64_t z, std::size_t from) {
-      lo_k[r] = hi_k[r] = 0;
-      if (y < 0 || y >= dim[1] || z >= dim[2]) return;
-      const std::int64_t base = (z * dim[1] + y) * dim[0];
-      const std::size_t k0 = std::max(from, static_cast<std::size_t>(cell_start[static_cast<std::size_t>(base + x0)]));
-      const std::size_t k1 = static_cast<std::size_t>(cell_start[static_cast<std::size_t>(base + x1 + 1)]);
-      if (k1 <= k0) return;
-      lo_k[r] = k0, hi_k[r] = k1;
-      total += k1 - k0;
-    };
-    range(0, cy, cz, i + 1);  // own row: cells cx .. cx+1 hold only indices from i on
-    range(1, cy + 1, cz, 0);
-    range(2, cy - 1, cz + 1, 0);
-    range(3, cy, cz + 1, 0);
-    range(4, cy + 1, cz + 1, 0);
+    // The own row holds i itself (its cell lies between the row's first and last), so it starts at i + 1.
+    cr.lo_k[0] = std::min(i + 1, cr.hi_k[0]);
     std::size_t m = out.size();
-    out.resize(m + total);
+    out.resize(m + (cr.hi_k[0] - cr.lo_k[0]) + cr.others);  // `out` grows once per row (not once per range)
     for (int r = 0; r < 5; ++r)
-      if (hi_k[r] > lo_k[r]) m += near_in_range(px, pr, pc, lo_k[r], hi_k[r], xi, ri, body_i, out.data() + m);
+      if (cr.hi_k[r] > cr.lo_k[r]) m += near_in_range(px, pr, pc, cr.lo_k[r], cr.hi_k[r], xi, ri, body_i, out.data() + m);
     out.resize(m);
   };
   std::vector<std::vector<std::int32_t>> buf(static_cast<std::size_t>(nt));
@@ -354,12 +398,15 @@ void World::rebuild() {
     const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
     auto& out = buf[t];
     out.reserve((hi - lo) * 8);
+    CellRanges cr;
     for (std::size_t i = lo; i < hi; ++i) {
       local_start[i] = static_cast<std::int32_t>(out.size());
-      if (sorted)
-        visit_row_sorted(i, out);
-      else
+      if (sorted) {
+        if (cell[i] != cr.cell) cell_ranges(cell[i], cr);
+        visit_row_sorted(i, cr, out);
+      } else {
         visit_row(i, out);
+      }
     }
     block[t + 1] = out.size();
 #pragma omp barrier
