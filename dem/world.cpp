@@ -447,13 +447,22 @@ void World::insert_and_delete() {
     // Skipping the scan is exact: a particle within max_disp_ of where it stood at the rebuild is
     // still in front of a sink that every particle then cleared by more than that (the 1 nm margin
     // covers the rounding of the dot products). No clearance yet (a checkpoint, a new sink): scan.
-    bool maybe = sink_clearance_.size() != sinks_.size();
-    for (std::size_t k = 0; k < sinks_.size() && !maybe; ++k)
-      maybe = sink_clearance_[k] - max_disp_ * sinks_[k].normal.norm() <= 1e-9;
+    // A sink that cannot be skipped scans only the particles listed within a skin of it at the
+    // rebuild (the same margin argument), unless max_disp_ has reached that skin.
+    const bool listed = sink_clearance_.size() == sinks_.size();
     bool any = false;
-    for (std::size_t i = 0; i < p_.size() && !any && maybe; ++i)
-      for (const auto& s : sinks_)
-        if ((p_.x[i] - s.point).dot(s.normal) < 0.0) any = true;
+    for (std::size_t k = 0; k < sinks_.size() && !any; ++k) {
+      const Sink& s = sinks_[k];
+      const double moved = max_disp_ * s.normal.norm();
+      if (listed && sink_clearance_[k] - moved > 1e-9) continue;
+      if (listed && moved + 1e-9 < sink_reach_[k]) {
+        for (const std::int32_t i : sink_near_[k])
+          if ((p_.x[static_cast<std::size_t>(i)] - s.point).dot(s.normal) < 0.0) any = true;
+      } else {
+        for (std::size_t i = 0; i < p_.size() && !any; ++i)
+          if ((p_.x[i] - s.point).dot(s.normal) < 0.0) any = true;
+      }
+    }
     if (any) {
       std::vector<int> sink_of(p_.size(), -1);
       for (std::size_t i = 0; i < p_.size(); ++i)

@@ -252,6 +252,8 @@ class World {
   std::vector<double> wall_time_ref_;    // wall pose times at the last rebuild
   std::vector<std::uint8_t> wall_listed_moving_;  // per wall: listed with the whole skin (it moved then)
   std::vector<double> sink_clearance_;   // per sink: the least (x - point) . normal at the last rebuild
+  std::vector<double> sink_reach_;       // per sink: one skin, in units of (x - point) . normal
+  std::vector<std::vector<std::int32_t>> sink_near_;  // per sink: particles within sink_reach_ then
   std::vector<std::int32_t> index_map_;  // index at last rebuild -> current index (-1 removed)
   std::vector<std::int32_t> scratch_;
   double time_ = 0.0;
