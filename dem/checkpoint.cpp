@@ -183,7 +183,7 @@ void World::load_checkpoint(const std::string& path) {
   if (p_.held_by.size() != n) throw InputError(path, 0, "held particles", "array has the wrong length");
   for (auto h : p_.held_by)
     if (h >= static_cast<std::int32_t>(inserters_.size())) throw InputError(path, 0, "held particles", "inserter index out of range");
-  count_held();
+  index_held();
   std::uint64_t nshapes;
   r.pod(nshapes, "clump shapes");
   if (nshapes != clumps_.shapes.size()) mismatch("clump shapes", nshapes, clumps_.shapes.size());

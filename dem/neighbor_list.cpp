@@ -300,6 +300,7 @@ void World::rebuild() {
   std::vector<std::int32_t> cell_members;  // particle indices by cell
   if (settings_.sort_particles) {
     p_.permute(order, nt);
+    if (!held_.empty()) index_held();
     std::vector<std::int32_t> inv(n);
     for (std::size_t k = 0; k < n; ++k) inv[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k);
     for (auto& m : map)

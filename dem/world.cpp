@@ -149,7 +149,7 @@ void World::remove_particles_if(const std::function<bool(std::size_t)>& pred) {
     }
   if (keep.size() == n) return;
   p_.permute(keep);
-  if (held_count_ > 0) count_held();
+  if (!held_.empty()) index_held();
   for (auto& m : index_map_)
     if (m >= 0) m = remap[static_cast<std::size_t>(m)];
   list_dirty_ = true;
@@ -436,9 +436,10 @@ void World::report_bad(std::size_t i) const {
                                             vec_str(p_.x[i]), vec_str(settings_.domain.lo), vec_str(settings_.domain.hi)) + hint);
 }
 
-void World::count_held() {
-  held_count_ = 0;
-  for (auto h : p_.held_by) held_count_ += h >= 0 ? 1 : 0;
+void World::index_held() {
+  held_.clear();
+  for (std::size_t i = 0; i < p_.held_by.size(); ++i)
+    if (p_.held_by[i] >= 0) held_.push_back(static_cast<std::int32_t>(i));
 }
 
 void World::insert_and_delete() {
@@ -488,24 +489,36 @@ void World::insert_and_delete() {
     }
   }
   // Held particles whose centre has crossed their inserter's face go free with its full velocity.
-  // In parallel with the integrator's static split: a serial pass here would pull every particle's
-  // lines to one core each step.
-  if (held_count_ > 0) {
+  // Each thread takes the held particles of its share in the integrator's static split: a particle's
+  // lines stay with the core that integrates it.
+  if (!held_.empty()) {
+    const std::size_t np = p_.size(), nh = held_.size();
+    released_.assign(nh, 0);
     std::size_t released = 0;
-    const std::size_t np = p_.size();
-#pragma omp parallel for num_threads(thread_count()) schedule(static) reduction(+ : released)
-    for (std::size_t i = 0; i < np; ++i) {
-      const std::int32_t k = p_.held_by[i];
-      if (k < 0) continue;
-      const Inserter& in = inserters_[static_cast<std::size_t>(k)];
-      const int a = in.hold_axis;
-      const bool through = in.velocity[a] < 0.0 ? p_.x[i][a] <= in.region.lo[a] : p_.x[i][a] >= in.region.hi[a];
-      if (!through) continue;
-      p_.v[i] = in.velocity;
-      p_.held_by[i] = -1;
-      ++released;
+#pragma omp parallel num_threads(thread_count()) reduction(+ : released)
+    {
+      const auto th = static_cast<std::size_t>(omp_get_thread_num());
+      const auto nth = static_cast<std::size_t>(omp_get_num_threads());
+      const auto lo = static_cast<std::int32_t>(np * th / nth), hi = static_cast<std::int32_t>(np * (th + 1) / nth);
+      for (auto e = static_cast<std::size_t>(std::lower_bound(held_.begin(), held_.end(), lo) - held_.begin());
+           e < nh && held_[e] < hi; ++e) {
+        const auto i = static_cast<std::size_t>(held_[e]);
+        const Inserter& in = inserters_[static_cast<std::size_t>(p_.held_by[i])];
+        const int a = in.hold_axis;
+        const bool through = in.velocity[a] < 0.0 ? p_.x[i][a] <= in.region.lo[a] : p_.x[i][a] >= in.region.hi[a];
+        if (!through) continue;
+        p_.v[i] = in.velocity;
+        p_.held_by[i] = -1;
+        released_[e] = 1;
+        ++released;
+      }
     }
-    held_count_ -= released;
+    if (released > 0) {
+      std::size_t m = 0;
+      for (std::size_t e = 0; e < nh; ++e)
+        if (!released_[e]) held_[m++] = held_[e];
+      held_.resize(m);
+    }
   }
   for (std::size_t k = 0; k < inserters_.size(); ++k) {
     Inserter& in = inserters_[k];
@@ -552,7 +565,7 @@ void World::insert_and_delete() {
         add_particle(spec);
         if (in.hold_to_face) {
           p_.held_by.back() = static_cast<std::int32_t>(k);
-          ++held_count_;
+          held_.push_back(static_cast<std::int32_t>(p_.size() - 1));
         }
         near.push_back(p_.size() - 1);
         const double m = rho * 4.0 / 3.0 * std::numbers::pi * r * r * r;

@@ -205,7 +205,7 @@ class World {
   void compute_forces_impl();
   void compute_forces();
   void compute_forces_by_model();
-  void count_held();  // held_count_ from p_.held_by
+  void index_held();  // held_ from p_.held_by
   void rebuild();
   void save_touching_history(int nt);
   bool needs_rebuild() const;
@@ -262,7 +262,10 @@ class World {
   double max_speed_ = 0.0;
   double max_disp_ = 0.0;                // largest particle displacement since the rebuild
   std::int64_t step_ = 0;
-  std::size_t held_count_ = 0;           // particles held by a stream inserter (Inserter::hold_to_face)
+  // The particles held by a stream inserter (Inserter::hold_to_face), ascending: a few hundred of
+  // thousands, which the force and release passes visit without scanning every particle.
+  std::vector<std::int32_t> held_;
+  std::vector<std::uint8_t> released_;  // scratch of insert_and_delete, per entry of held_
   std::int64_t next_id_ = 0;
   std::int64_t rebuilds_ = 0;
   bool initialised_ = false;
