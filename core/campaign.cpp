@@ -88,6 +88,7 @@ std::vector<std::string> run_threads(std::span<const Job> jobs, const Options& o
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return jobs[a].cost > jobs[b].cost; });
   std::atomic<std::size_t> next{0};
+  std::atomic<int> idle{0};
   std::mutex print;
   std::size_t done = 0;
   const auto t0 = std::chrono::steady_clock::now();
@@ -95,7 +96,7 @@ std::vector<std::string> run_threads(std::span<const Job> jobs, const Options& o
     for (std::size_t i; (i = next.fetch_add(1)) < order.size();) {
       const std::size_t k = order[i];
       const auto t = std::chrono::steady_clock::now();
-      out[k] = run_one(jobs[k], JobContext{false, 1});
+      out[k] = run_one(jobs[k], JobContext{false, 1, &idle});
       const std::lock_guard<std::mutex> lock(print);
       ++done;
       if (o.progress)
@@ -104,6 +105,7 @@ std::vector<std::string> run_threads(std::span<const Job> jobs, const Options& o
                                  out[k].rfind("ok\n", 0) == 0 ? "" : ", failed")
                   << std::flush;
     }
+    idle.fetch_add(1);  // no job left for this worker: its core is free for the jobs still running
   };
   const int n = std::min<int>(o.threads, static_cast<int>(jobs.size()));
   std::vector<std::thread> pool;

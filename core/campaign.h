@@ -17,6 +17,7 @@
 // Built without MPI (CMake found none), ranks are always 1; a binary started by a launcher with
 // several processes (OMPI_COMM_WORLD_SIZE, PMI_SIZE > 1) refuses to run instead of writing the
 // same files N times.
+#include <atomic>
 #include <functional>
 #include <span>
 #include <string>
@@ -29,6 +30,10 @@ struct JobContext {
   // OpenMP threads the job may use: 1 when jobs share the cores (worker threads, ranks); 0 when it
   // runs alone and may take its own automatic choice.
   int threads = 0;
+  // Workers of the process's pool that have no job left (never fewer as the campaign goes on): a
+  // job whose result does not depend on its thread count may take that many more, so the last
+  // runs of a campaign do not leave cores idle. Null when there is no such pool (MPI ranks).
+  const std::atomic<int>* idle = nullptr;
 };
 
 struct Job {

@@ -168,6 +168,10 @@ class World {
   std::int64_t step_count() const { return step_; }
   double dt() const { return dt_; }
   const Settings& settings() const { return settings_; }
+  // Results do not depend on the thread count, at any step: it may change between calls to step()
+  // (a campaign's last runs take the cores its other workers free).
+  int threads() const { return thread_count(); }
+  void set_threads(int threads) { settings_.threads = threads; }
   const Particles& particles() const { return p_; }
   // Mutable access; call mark_changed() after editing positions or radii by hand.
   Particles& particles() { return p_; }

@@ -108,9 +108,11 @@ StationResult run_station(const Station& st, const RunOptions& o) {
     force += plate.force;
     moment += plate.torque.z();
   });
+  const int base_threads = w.threads();
   while (w.step_count() < max_steps) {
     force = Vec3::Zero();
     moment = 0.0;
+    if (s.extra_threads) w.set_threads(base_threads + s.extra_threads->load(std::memory_order_relaxed));
     w.step(steps_per_sample);
     sc.discharge();
     force /= static_cast<double>(steps_per_sample);

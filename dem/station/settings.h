@@ -2,6 +2,7 @@
 // Every number that shapes a DEM run of the transfer station besides the Station (rig + condition)
 // itself, in one place: the quality presets, the scaling options of the seed's Table 6 and the
 // numerics. Precedence: preset(quality) < the dataset's optional [dem] table < command-line flags.
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -130,6 +131,9 @@ struct RunSettings {
   // free by the 1-minute load average (at least 1). On a shared 2-core machine two threads that
   // wait for each other in every step's parallel loops ran 2-10x slower than one (bench/STATION.md).
   int threads = 0;
+  // Threads the run may add as they free up (campaign::JobContext::idle); read once per force
+  // sample. Not part of the result (nor of the cache key), like `threads`.
+  const std::atomic<int>* extra_threads = nullptr;
   std::uint64_t seed = 1;            // insertion random numbers
 
   // --- sensors ---

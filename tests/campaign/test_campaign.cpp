@@ -4,6 +4,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <thread>
 
@@ -69,6 +70,25 @@ BOOST_AUTO_TEST_CASE(jobs_side_by_side_get_one_thread_each) {
   BOOST_TEST(threads_of(4, 2) == std::vector<std::string>(4, "1"));
   BOOST_TEST(threads_of(4, 1) == std::vector<std::string>(4, "0"));
   BOOST_TEST(threads_of(1, 2) == std::vector<std::string>(1, "0"));
+}
+
+// A worker with no job left says so through JobContext::idle: the last job running sees the other
+// worker's core free (a DEM run then takes it; its results do not depend on the thread count).
+BOOST_AUTO_TEST_CASE(a_worker_with_no_job_left_is_counted_idle) {
+  std::vector<campaign::Job> jobs;
+  jobs.push_back({"long", 2.0, [](const campaign::JobContext& ctx) {
+                    if (!ctx.idle) return std::string("none");
+                    for (int k = 0; k < 2000 && ctx.idle->load() < 1; ++k)
+                      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+                    return std::to_string(ctx.idle->load());
+                  }});
+  jobs.push_back({"short", 1.0, [](const campaign::JobContext&) { return std::string("done"); }});
+  campaign::Options o;
+  o.progress = false;
+  o.threads = 2;
+  const auto out = campaign::run_campaign(jobs, o);
+  BOOST_TEST(out[0] == "1");
+  BOOST_TEST(out[1] == "done");
 }
 
 // A job's bad input reaches the caller whole (file, line, field), whichever thread ran it.

@@ -86,6 +86,27 @@ BOOST_AUTO_TEST_CASE(one_and_two_threads_are_bit_identical) {
   }
 }
 
+// The thread count may change between calls to step() (a campaign's last runs take the cores its
+// other workers free): 1 -> 2 -> 1 threads mid-run give the same bits as 1 thread throughout.
+BOOST_AUTO_TEST_CASE(thread_count_changed_mid_run_is_bit_identical) {
+  World a = pour_scene(1, RollingModel::constant_torque, 400, 2.5e-3);
+  World b = pour_scene(1, RollingModel::constant_torque, 400, 2.5e-3);
+  a.step(1200);
+  b.step(301);
+  b.set_threads(2);
+  BOOST_TEST(b.threads() == 2);
+  b.step(500);
+  b.set_threads(1);
+  b.step(399);
+  BOOST_TEST(a.rebuild_count() > 5);
+  BOOST_TEST(same_bits(a.particles().x, b.particles().x));
+  BOOST_TEST(same_bits(a.particles().v, b.particles().v));
+  BOOST_TEST(same_bits(a.particles().w, b.particles().w));
+  BOOST_TEST(same_bits(a.particles().f, b.particles().f));
+  for (std::size_t k = 0; k < a.walls().size(); ++k)
+    BOOST_TEST(same_bits(a.walls()[k].element_force, b.walls()[k].element_force));
+}
+
 // The Verlet list misses no contact: after many steps without a rebuild in between, the engine's
 // touching pairs equal a brute-force O(N^2) count.
 BOOST_AUTO_TEST_CASE(verlet_list_finds_every_contact) {

@@ -247,7 +247,10 @@ class DemModel final : public Model {
       // Runs side by side (ranks, --jobs) each take the threads the campaign gives them unless the
       // user chose; the thread count is not part of the result (nor of the cache key).
       st::RunSettings s = settings;
-      if (s.threads == 0) s.threads = ctx.threads;
+      if (s.threads == 0) {
+        s.threads = ctx.threads;
+        s.extra_threads = ctx.idle;
+      }
       try {
         const st::StationResult r = run_or_load(station, fx, s, table, &from_cache, nullptr);
         return result_text(r, from_cache);
