@@ -639,10 +639,9 @@ void World::compute_forces_impl() {
       if (body_force_) body_force_(p_, time_, lo, hi, p_.f);
       // A held particle (Inserter::hold_to_face) feels nothing: with no force the kicks leave its
       // velocity as set, so the drift moves it rigidly. Its partners still feel it.
-      for (auto h = std::lower_bound(held_.begin(), held_.end(), static_cast<std::int32_t>(lo));
-           h != held_.end() && static_cast<std::size_t>(*h) < hi; ++h) {
-        f[static_cast<std::size_t>(*h)] = Vec3::Zero();
-        t[static_cast<std::size_t>(*h)] = Vec3::Zero();
+      for (const std::int32_t h : held_between(lo, hi)) {
+        f[static_cast<std::size_t>(h)] = Vec3::Zero();
+        t[static_cast<std::size_t>(h)] = Vec3::Zero();
       }
     }
   }

@@ -492,33 +492,25 @@ void World::insert_and_delete() {
   // Each thread takes the held particles of its share in the integrator's static split: a particle's
   // lines stay with the core that integrates it.
   if (!held_.empty()) {
-    const std::size_t np = p_.size(), nh = held_.size();
-    released_.assign(nh, 0);
+    const std::size_t np = p_.size();
     std::size_t released = 0;
 #pragma omp parallel num_threads(thread_count()) reduction(+ : released)
     {
       const auto th = static_cast<std::size_t>(omp_get_thread_num());
       const auto nth = static_cast<std::size_t>(omp_get_num_threads());
-      const auto lo = static_cast<std::int32_t>(np * th / nth), hi = static_cast<std::int32_t>(np * (th + 1) / nth);
-      for (auto e = static_cast<std::size_t>(std::lower_bound(held_.begin(), held_.end(), lo) - held_.begin());
-           e < nh && held_[e] < hi; ++e) {
-        const auto i = static_cast<std::size_t>(held_[e]);
+      for (const std::int32_t h : held_between(np * th / nth, np * (th + 1) / nth)) {
+        const auto i = static_cast<std::size_t>(h);
         const Inserter& in = inserters_[static_cast<std::size_t>(p_.held_by[i])];
         const int a = in.hold_axis;
         const bool through = in.velocity[a] < 0.0 ? p_.x[i][a] <= in.region.lo[a] : p_.x[i][a] >= in.region.hi[a];
         if (!through) continue;
         p_.v[i] = in.velocity;
         p_.held_by[i] = -1;
-        released_[e] = 1;
         ++released;
       }
     }
-    if (released > 0) {
-      std::size_t m = 0;
-      for (std::size_t e = 0; e < nh; ++e)
-        if (!released_[e]) held_[m++] = held_[e];
-      held_.resize(m);
-    }
+    if (released > 0)  // the released ones now have held_by = -1
+      std::erase_if(held_, [&](std::int32_t i) { return p_.held_by[static_cast<std::size_t>(i)] < 0; });
   }
   for (std::size_t k = 0; k < inserters_.size(); ++k) {
     Inserter& in = inserters_[k];

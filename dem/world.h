@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -210,6 +211,12 @@ class World {
   void compute_forces();
   void compute_forces_by_model();
   void index_held();  // held_ from p_.held_by
+  // The held particles with index in [lo, hi) (held_ ascends).
+  std::span<const std::int32_t> held_between(std::size_t lo, std::size_t hi) const {
+    const auto a = std::lower_bound(held_.begin(), held_.end(), static_cast<std::int32_t>(lo));
+    const auto b = std::lower_bound(a, held_.end(), static_cast<std::int32_t>(hi));
+    return {a, b};
+  }
   void rebuild();
   void save_touching_history(int nt);
   bool needs_rebuild() const;
@@ -269,7 +276,6 @@ class World {
   // The particles held by a stream inserter (Inserter::hold_to_face), ascending: a few hundred of
   // thousands, which the force and release passes visit without scanning every particle.
   std::vector<std::int32_t> held_;
-  std::vector<std::uint8_t> released_;  // scratch of insert_and_delete, per entry of held_
   std::int64_t next_id_ = 0;
   std::int64_t rebuilds_ = 0;
   bool initialised_ = false;
