@@ -172,6 +172,48 @@ void NeighborList::layout_blocks(std::size_t n, std::size_t blocks, int threads)
   }
 }
 
+// The gaps need the list's slot_row (layout_blocks) and the positions max_disp_ is measured from.
+// eps covers the rounding of this pass, of the displacements and of the pair loop's own test (all
+// within a few units in the last place of the coordinates) a million times over.
+void NeighborList::measure_gaps([[maybe_unused]] const Vec3* x_ref, [[maybe_unused]] const double* radius,
+                                std::size_t n, [[maybe_unused]] int threads) {
+#if CHUTELAB_DEM_PAIR_GAPS
+  double scale = 0.0, rmax = 0.0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : scale, rmax)
+  for (std::size_t i = 0; i < n; ++i) {
+    scale = std::max(scale, x_ref[i].cwiseAbs().maxCoeff());
+    rmax = std::max(rmax, radius[i]);
+  }
+  gap_eps = 1e-9 * (scale + 2.0 * rmax);
+  const std::size_t nslots = nbr.size();
+  resize_for_overwrite(gap, nslots);
+  const double* __restrict xb = x_ref->data();
+  const std::int32_t* __restrict rows = slot_row.data();
+  const std::int32_t* __restrict nb = nbr.data();
+  float* __restrict out = gap.data();
+  const __m512d eps = _mm512_set1_pd(gap_eps), zero = _mm512_setzero_pd();
+  const std::size_t groups = (nslots + 7) / 8;
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::size_t g = 0; g < groups; ++g) {
+    const std::size_t s = 8 * g, rem = nslots - s;
+    const auto lanes = static_cast<__mmask8>(rem >= 8 ? 0xFFu : (1u << rem) - 1u);
+    const auto gather = [&](__m256i idx, const double* base) { return _mm512_mask_i32gather_pd(zero, lanes, idx, base, 8); };
+    const __m256i vi = _mm256_maskz_loadu_epi32(lanes, rows + s), vj = _mm256_maskz_loadu_epi32(lanes, nb + s);
+    const __m256i i3 = _mm256_add_epi32(vi, _mm256_add_epi32(vi, vi)), j3 = _mm256_add_epi32(vj, _mm256_add_epi32(vj, vj));
+    const __m512d dx = _mm512_sub_pd(gather(j3, xb), gather(i3, xb));
+    const __m512d dy = _mm512_sub_pd(gather(j3, xb + 1), gather(i3, xb + 1));
+    const __m512d dz = _mm512_sub_pd(gather(j3, xb + 2), gather(i3, xb + 2));
+    const __m512d d = _mm512_maskz_sqrt_pd(lanes, _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz)));
+    const __m512d gd = _mm512_sub_pd(_mm512_sub_pd(d, _mm512_add_pd(gather(vi, radius), gather(vj, radius))), eps);
+    _mm256_mask_storeu_ps(out + s, lanes, _mm512_maskz_cvt_roundpd_ps(lanes, gd, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+  }
+#else
+  (void)n;
+  gap.clear();
+  gap_eps = 0.0;
+#endif
+}
+
 namespace {
 
 // The touching entries of a list in CSR form (row `begin`, per-entry `touch`), compacted into
@@ -588,6 +630,7 @@ void World::rebuild() {
       xr[i] = px[i];
     }
   }
+  nl_.measure_gaps(x_ref_.data(), p_.radius.data(), n, nt);
   // How far every particle is from each sink now: until one has moved that far, none can be behind
   // it, and insert_and_delete skips its scan (a particle moves at most max_disp_ from x_ref_). The
   // particles within one skin of a sink are listed: until max_disp_ reaches the skin no other can

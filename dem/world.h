@@ -86,6 +86,14 @@ class SimulationError : public std::runtime_error {
 using BodyForceHook = std::function<void(const Particles& particles, double time, std::size_t begin,
                                          std::size_t end, std::vector<Vec3>& force)>;
 
+// The pair loop's AVX-512 form screens the slots by their gap at the rebuild (NeighborList::gap);
+// other builds test every slot and keep no gaps.
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512BW__)
+#define CHUTELAB_DEM_PAIR_GAPS 1
+#else
+#define CHUTELAB_DEM_PAIR_GAPS 0
+#endif
+
 // Pairs within cut-off (half list, j > i, ascending), with per-slot contact history.
 struct NeighborList {
   std::vector<std::int32_t> row_begin;  // size N+1
@@ -99,7 +107,13 @@ struct NeighborList {
   std::vector<std::size_t> block_first;  // first block whose buffer reaches into block b
   std::vector<Vec3> block_f, block_t;
   std::vector<std::int32_t> slot_row;  // row (particle i) of each slot, so the pair loop is one flat loop
+  // Per slot, a lower bound of the gap between the two surfaces at the reference positions (float,
+  // rounded down, less gap_eps): while every particle is within d of its reference position, a slot
+  // whose gap exceeds 2 d + gap_eps cannot touch (CHUTELAB_DEM_PAIR_GAPS builds only).
+  std::vector<float> gap;
+  double gap_eps = 0.0;
   void layout_blocks(std::size_t n, std::size_t blocks, int threads);
+  void measure_gaps(const Vec3* x_ref, const double* radius, std::size_t n, int threads);
 };
 inline constexpr std::size_t kForceBlocks = 16;
 

@@ -121,6 +121,29 @@ BOOST_AUTO_TEST_CASE(verlet_list_finds_every_contact) {
   BOOST_TEST(w.contact_count() == brute);
 }
 
+// The pair loop sets apart, without testing them, the listed pairs whose gap at the last rebuild is
+// more than twice the largest displacement since (NeighborList::gap). Checked at every step of a pour,
+// where pairs close and open between rebuilds: a pair set apart wrongly would be missed (fewer
+// contacts than brute force), one not cleared when set apart would stay counted (more).
+BOOST_AUTO_TEST_CASE(pairs_set_apart_by_their_gap_never_touch) {
+  World w = pour_scene(1, RollingModel::constant_torque, 400, 2.5e-3);
+  w.step(600);  // the spheres have fallen into the box and collide
+  const auto rebuilds = w.rebuild_count();
+  std::size_t checked = 0;
+  for (int s = 0; s < 400; ++s) {
+    w.step(1);
+    const auto& p = w.particles();
+    std::size_t brute = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (std::size_t j = i + 1; j < p.size(); ++j)
+        brute += (p.x[i] - p.x[j]).squaredNorm() < (p.radius[i] + p.radius[j]) * (p.radius[i] + p.radius[j]);
+    checked += brute;
+    BOOST_TEST_REQUIRE(w.contact_count() == brute, "step " << s);
+  }
+  BOOST_TEST(w.rebuild_count() > rebuilds + 3);
+  BOOST_TEST(checked > 400u * 50u);
+}
+
 // Poured bed (issue 4): 2000 polydisperse frictional spheres (mu = 0.3, mu_r = 0.05, e = 0.5) poured into
 // a box settle to a solid fraction in the random-loose-packing range, 0.55-0.62 (Onoda & Liniger 1990:
 // 0.555 for frictional spheres at vanishing gravity; poured beds of frictional spheres reach ~0.58-0.61;
