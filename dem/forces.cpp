@@ -725,8 +725,10 @@ void World::compute_forces_impl() {
 #pragma omp for schedule(static)
     for (std::size_t ob = 0; ob < nblocks; ++ob) {
       const std::size_t lo = blo[ob], hi = n * (ob + 1) / nblocks;
-      std::fill(f + lo, f + hi, Vec3::Zero());
-      std::fill(t + lo, t + hi, Vec3::Zero());
+      // The first buffer that reaches a particle is copied, not added to zero: a buffer never holds
+      // -0.0 (it starts at +0.0 and, rounding to nearest, a sum or difference is -0.0 only when it
+      // already was), and 0.0 + x is x for every other x. Zero beyond its reach.
+      bool first = true;
       for (std::size_t b = bfirst[ob]; b <= ob; ++b) {
         const std::size_t end = std::min(hi, bhi[b]);
         if (end <= lo) continue;
@@ -735,6 +737,18 @@ void World::compute_forces_impl() {
         double* __restrict fd = f[lo].data();
         double* __restrict td = t[lo].data();
         const std::size_t m = 3 * (end - lo);
+        if (first) {
+          for (std::size_t k = 0; k < m; ++k) {
+            fd[k] = fs[k];
+            td[k] = ts[k];
+            fs[k] = 0.0;
+            ts[k] = 0.0;
+          }
+          std::fill(f + end, f + hi, Vec3::Zero());
+          std::fill(t + end, t + hi, Vec3::Zero());
+          first = false;
+          continue;
+        }
         for (std::size_t k = 0; k < m; ++k) {
           fd[k] += fs[k];
           td[k] += ts[k];
