@@ -293,6 +293,39 @@ template <class Model>
 }
 
 
+// The distance test of one listed pair (rows i < j, list slot s, `was` its touch flag of the last
+// evaluation): the pair goes into the next chunk entry and stays there only if it touches (no branch
+// on the outcome, which is a coin toss in a dense bed); a full chunk runs.
+template <class Model, class Chunk>
+CHUTELAB_INLINE void test_slot(const PairArrays& a, std::size_t i, std::size_t j, std::size_t s, std::uint8_t was,
+                               Chunk& h, std::size_t& n, Vec3* __restrict f, Vec3* __restrict t) {
+  const double* __restrict rad = a.rad;
+  const double rs = rad[i] + rad[j];
+  const Vec3 d = a.x[j] - a.x[i];
+  const bool hit = d.squaredNorm() < rs * rs;
+  // A contact that just ended forgets its history. Rare, so predictable as one test; written as
+  // `!hit & touch` GCC branched on touch first, a coin toss in a dense bed.
+  if (__builtin_expect(was > static_cast<std::uint8_t>(hit), 0)) {
+    a.shear[s].setZero();
+    if constexpr (Model::rolling_history) a.roll[s].setZero();
+  }
+  a.touch[s] = hit;
+  h.i[n] = static_cast<std::int32_t>(i);
+  h.j[n] = static_cast<std::int32_t>(j);
+  h.s[n] = static_cast<std::int32_t>(s);
+  if constexpr (std::is_same_v<Chunk, ContactChunk>) {
+    // The copy variant's scratch takes what the test already holds in registers, so run_chunk
+    // does not load both positions and radii again.
+    h.dx[n] = d.x(), h.dy[n] = d.y(), h.dz[n] = d.z();
+    h.ri[n] = rad[i], h.rj[n] = rad[j];
+  }
+  n += hit;
+  if (n == kChunk) {
+    run_chunk<Model>(h, n, a, f, t);
+    n = 0;
+  }
+}
+
 // The distance test of pair_rows in two passes over batches of slots. First, sixteen at a time with
 // AVX-512, the slots that cannot touch are set apart by their gap at the rebuild: no particle has
 // moved more than max_disp_ since, so a slot whose gap exceeds twice that (NeighborList::gap) is not
@@ -311,8 +344,6 @@ void screen_slots_avx512(const PairArrays& a, std::size_t s0, std::size_t s1, Ch
                          Vec3* __restrict t) {
   constexpr std::size_t kBatch = 256;
   std::int32_t ci[kBatch + 16], cj[kBatch + 16], cs[kBatch + 16], cw[kBatch + 16];
-  const Vec3* __restrict x = a.x;
-  const double* __restrict rad = a.rad;
   std::uint8_t* __restrict touch = a.touch;
   const __m512 limit = _mm512_set1_ps(a.gap_limit);
   const __m512i lane16 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
@@ -340,30 +371,11 @@ void screen_slots_avx512(const PairArrays& a, std::size_t s0, std::size_t s1, Ch
       _mm512_storeu_si512(cw + m, _mm512_maskz_compress_epi32(maybe, _mm512_maskz_cvtepu8_epi32(lanes, was)));
       m += static_cast<std::size_t>(__builtin_popcount(maybe));
     }
-    // The full test, as the scalar loop of pair_rows makes it. Vector gathers were no faster here on
-    // Zen 4 in a sparse station list, and slower in a dense bed (bench bed: +47 % in this loop).
-    for (std::size_t k = 0; k < m; ++k) {
-      const auto i = static_cast<std::size_t>(ci[k]);
-      const auto j = static_cast<std::size_t>(cj[k]);
-      const auto slot = static_cast<std::size_t>(cs[k]);
-      const double rs = rad[i] + rad[j];
-      const Vec3 d = x[j] - x[i];
-      const bool hit = d.squaredNorm() < rs * rs;
-      if (__builtin_expect(cw[k] > static_cast<std::int32_t>(hit), 0)) forget(slot);
-      touch[slot] = hit;
-      h.i[n] = static_cast<std::int32_t>(i);
-      h.j[n] = static_cast<std::int32_t>(j);
-      h.s[n] = static_cast<std::int32_t>(slot);
-      if constexpr (std::is_same_v<Chunk, ContactChunk>) {
-        h.dx[n] = d.x(), h.dy[n] = d.y(), h.dz[n] = d.z();
-        h.ri[n] = rad[i], h.rj[n] = rad[j];
-      }
-      n += hit;
-      if (n == kChunk) {
-        run_chunk<Model>(h, n, a, f, t);
-        n = 0;
-      }
-    }
+    // The full test, the same as pair_rows makes it. Vector gathers were no faster here on Zen 4 in
+    // a sparse station list, and slower in a dense bed (bench bed: +47 % in this loop).
+    for (std::size_t k = 0; k < m; ++k)
+      test_slot<Model>(a, static_cast<std::size_t>(ci[k]), static_cast<std::size_t>(cj[k]), static_cast<std::size_t>(cs[k]),
+                       static_cast<std::uint8_t>(cw[k]), h, n, f, t);
   }
   if (n > 0) run_chunk<Model>(h, n, a, f, t);
 }
@@ -372,58 +384,21 @@ void screen_slots_avx512(const PairArrays& a, std::size_t s0, std::size_t s1, Ch
 // Pair contacts of rows [i0, i1), scattered row by row into f/t (a block's partial-sum buffers).
 template <class Model, class Chunk>
 void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __restrict f, Vec3* __restrict t) {
-  const Vec3* __restrict x = a.x;
-  const double* __restrict rad = a.rad;
-  const std::int32_t* __restrict row = a.row;
-  const std::int32_t* __restrict nbr = a.nbr;
-  Vec3* __restrict shear = a.shear;
-  Vec3* __restrict roll = a.roll;
-  std::uint8_t* __restrict touch = a.touch;
-
   // On the stack, not thread_local: the libraries are position independent (for the Python module),
   // so a thread_local is reached through a TLS call that GCC may not hoist; it was made once per
   // slot, with every live register spilled around it (about a fifth of the pair loop's time).
   Chunk h;
-  std::size_t n = 0;
-  // The distance test writes every pair into the next slot and keeps it only if it touches (no
-  // branch on the outcome, which is a coin toss in a dense bed). One flat loop over the slots (the
-  // row of a slot from slot_row): a loop per row would mispredict its exit at almost every row, as
-  // rows hold only a few pairs.
-  const std::int32_t* __restrict slot_row = a.slot_row;
-  const auto s0 = static_cast<std::size_t>(row[i0]), s1 = static_cast<std::size_t>(row[i1]);
+  const auto s0 = static_cast<std::size_t>(a.row[i0]), s1 = static_cast<std::size_t>(a.row[i1]);
 #if CHUTELAB_DEM_PAIR_GAPS
   screen_slots_avx512<Model>(a, s0, s1, h, f, t);
-  return;
-#endif
-  for (std::size_t s = s0; s < s1; ++s) {
-    const auto i = static_cast<std::size_t>(slot_row[s]);
-    const auto j = static_cast<std::size_t>(nbr[s]);
-    const double rs = rad[i] + rad[j];
-    const Vec3 d = x[j] - x[i];
-    const bool hit = d.squaredNorm() < rs * rs;
-    // A contact that just ended forgets its history. Rare, so predictable as one test; written as
-    // `!hit & touch` GCC branched on touch first, a coin toss in a dense bed.
-    if (__builtin_expect(touch[s] > static_cast<std::uint8_t>(hit), 0)) {
-      shear[s].setZero();
-      if constexpr (Model::rolling_history) roll[s].setZero();
-    }
-    touch[s] = hit;
-    h.i[n] = static_cast<std::int32_t>(i);
-    h.j[n] = static_cast<std::int32_t>(j);
-    h.s[n] = static_cast<std::int32_t>(s);
-    if constexpr (std::is_same_v<Chunk, ContactChunk>) {
-      // The copy variant's scratch takes what the test already holds in registers, so run_chunk
-      // does not load both positions and radii again.
-      h.dx[n] = d.x(), h.dy[n] = d.y(), h.dz[n] = d.z();
-      h.ri[n] = rad[i], h.rj[n] = rad[j];
-    }
-    n += hit;
-    if (n == kChunk) {
-      run_chunk<Model>(h, n, a, f, t);
-      n = 0;
-    }
-  }
+#else
+  std::size_t n = 0;
+  // One flat loop over the slots (the row of a slot from slot_row): a loop per row would mispredict
+  // its exit at almost every row, as rows hold only a few pairs.
+  for (std::size_t s = s0; s < s1; ++s)
+    test_slot<Model>(a, static_cast<std::size_t>(a.slot_row[s]), static_cast<std::size_t>(a.nbr[s]), s, a.touch[s], h, n, f, t);
   if (n > 0) run_chunk<Model>(h, n, a, f, t);
+#endif
 }
 
 #if !CHUTELAB_DEM_GATHER_IN_LAW
