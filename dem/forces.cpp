@@ -637,18 +637,39 @@ void World::compute_forces_impl() {
   const Vec3* wot = wc_.out_t.data();
   const std::int32_t* owners = wc_.owners.data();
   const std::size_t n_owners = wc_.owners.size();
-  auto finish_particle = [=](std::size_t i, Vec3& fi, Vec3& ti) {
-    for (auto q = wb[i]; q < wb[i + 1]; ++q) {
-      if (!wtouch[q]) continue;
-      fi += wof[q];
-      ti += wot[q];
-    }
-    fi += share[i] * g;
-  };
 
   // Pair forces into fixed blocks of rows (see world.h), then one pass per particle that adds the
   // block partial sums in block order, its wall contacts and gravity.
   const std::size_t nblocks = nl_.block_lo.size();
+  // Each force block also sums the wall loads of its particles' entries, in entry order, into its
+  // own share (per wall, and per element touched); the shares are added in block order after the
+  // forces. A serial sum over all entries read every entry the other threads had just written
+  // (bench bed, 2 threads: their wall contacts 45 % dearer), and fixed blocks, not threads, keep
+  // the numbers the same at any thread count.
+  const std::size_t nw = walls_.size();
+  wall_part_f_.resize(nblocks * nw);
+  wall_part_t_.resize(nblocks * nw);
+  wall_part_e_.resize(nblocks);
+  element_of_slot_.clear();
+  for (std::size_t k = 0; k < nw; ++k)
+    for (Vec3& ef : walls_[k].element_force) element_of_slot_.push_back(&ef);
+  // A wall of one element (a primitive) needs no shares of its own: its element's sum is its force.
+  element_base_.resize(nw);
+  bool meshes = false;
+  for (std::size_t k = 0, b = 0; k < nw; b += walls_[k].element_force.size(), ++k) {
+    element_base_[k] = walls_[k].element_force.size() > 1 ? static_cast<std::int32_t>(b) : -1;
+    meshes = meshes || element_base_[k] >= 0;
+  }
+  element_slot_.resize(static_cast<std::size_t>(nt));
+  for (auto& es : element_slot_)  // every slot a block uses is reset to -1 after it
+    if (es.size() != element_of_slot_.size()) es.assign(element_of_slot_.size(), -1);
+  const std::int32_t* __restrict wall_of = wc_.wall.data();
+  const std::int32_t* __restrict element_of = wc_.element.data();
+  const Vec3* __restrict wtq = wc_.out_wall_torque.data();
+  const std::int32_t* __restrict ebase = element_base_.data();
+  Vec3* const part_f = wall_part_f_.data();
+  Vec3* const part_t = wall_part_t_.data();
+  std::vector<ElementShare>* const part_e = wall_part_e_.data();
   const std::size_t* blo = nl_.block_lo.data();
   const std::size_t* bhi = nl_.block_hi.data();
   const std::size_t* boff = nl_.block_off.data();
@@ -657,12 +678,53 @@ void World::compute_forces_impl() {
   Vec3* bt = nl_.block_t.data();
   Vec3* f = p_.f.data();
   Vec3* t = p_.t.data();
+  // The particles [lo, hi) of block ob: to each its wall contacts (in entry order) and gravity; from
+  // the same entries, the block's share of the wall loads.
+  auto finish_block = [=](std::size_t ob, std::size_t lo, std::size_t hi, std::int32_t* __restrict slot_of) {
+    Vec3* __restrict sf = part_f + ob * nw;
+    Vec3* __restrict st = part_t + ob * nw;
+    std::fill(sf, sf + nw, Vec3::Zero());
+    std::fill(st, st + nw, Vec3::Zero());
+    std::vector<ElementShare>& parts = part_e[ob];
+    parts.clear();
+    for (std::size_t i = lo; i < hi; ++i) {
+      Vec3 fi = f[i], ti = t[i];
+      for (auto q = static_cast<std::size_t>(wb[i]); q < static_cast<std::size_t>(wb[i + 1]); ++q) {
+        if (!wtouch[q]) continue;
+        fi += wof[q];
+        ti += wot[q];
+        const auto k = static_cast<std::size_t>(wall_of[q]);
+        const Vec3 fw = -wof[q];
+        sf[k] += fw;
+        st[k] += wtq[q];
+      }
+      f[i] = fi + share[i] * g;
+      t[i] = ti;
+    }
+    if (!meshes) return;
+    // Apart from the loop above: its rare call (push_back) kept fi and ti on the stack (bench bed,
+    // one thread: 3 % slower).
+    for (auto q = static_cast<std::size_t>(wb[lo]); q < static_cast<std::size_t>(wb[hi]); ++q) {
+      if (!wtouch[q]) continue;
+      const std::int32_t base = ebase[wall_of[q]];
+      if (base < 0) continue;
+      const std::int32_t e = base + element_of[q];
+      std::int32_t& at = slot_of[e];
+      if (at < 0) {
+        at = static_cast<std::int32_t>(parts.size());
+        parts.push_back({e, Vec3::Zero()});
+      }
+      parts[static_cast<std::size_t>(at)].f -= wof[q];
+    }
+    for (const ElementShare& es : parts) slot_of[es.slot] = -1;
+  };
   // Every loop here is scheduled statically, so a thread works on the particles whose state its
   // integrator pass wrote (the same static split): on this project's VM a cache line that crosses
   // between the two cores costs ~250 ns (bench/core_latency), and with dynamic schedules the wall
   // entries and pair blocks changed hands every step (bench bed, 2 threads: 1.30 -> 0.86 s).
 #pragma omp parallel num_threads(nt)
   {
+    std::int32_t* slot_of = element_slot_[static_cast<std::size_t>(omp_get_thread_num())].data();
 #pragma omp for schedule(static) nowait
     for (std::size_t k = 0; k < n_owners; ++k) walls_of(static_cast<std::size_t>(owners[k]));
 #pragma omp for schedule(static)
@@ -714,7 +776,7 @@ void World::compute_forces_impl() {
           ts[k] = 0.0;
         }
       }
-      for (std::size_t i = lo; i < hi; ++i) finish_particle(i, f[i], t[i]);
+      finish_block(ob, lo, hi, slot_of);
       if (body_force_) body_force_(p_, time_, lo, hi, p_.f);
       // A held particle (Inserter::hold_to_face) feels nothing: with no force the kicks leave its
       // velocity as set, so the drift moves it rigidly. Its partners still feel it.
@@ -725,38 +787,19 @@ void World::compute_forces_impl() {
     }
   }
 
-  // Wall loads, serially in entry order (deterministic). The sums run in local arrays: through the
-  // Wall structs the compiler reloaded every pointer per entry (they might alias the sums).
-  const std::size_t nw = walls_.size();
-  wall_sum_f_.assign(nw, Vec3::Zero());
-  wall_sum_t_.assign(nw, Vec3::Zero());
-  wall_sum_e_.resize(nw);
+  // The wall loads: per wall the sum of the blocks' shares in block order, per element the same.
   for (std::size_t k = 0; k < nw; ++k) {
-    auto& ef = walls_[k].element_force;
-    std::fill(ef.begin(), ef.end(), Vec3::Zero());
-    wall_sum_e_[k] = ef.data();
-  }
-  {
-    Vec3* __restrict sf = wall_sum_f_.data();
-    Vec3* __restrict st = wall_sum_t_.data();
-    Vec3* const* __restrict se = wall_sum_e_.data();
-    const Vec3* __restrict wtq = wc_.out_wall_torque.data();
-    const std::int32_t* __restrict wall_of = wc_.wall.data();
-    const std::int32_t* __restrict element_of = wc_.element.data();
-    const std::size_t nq = wc_.touch.size();
-    for (std::size_t q = 0; q < nq; ++q) {
-      if (!wtouch[q]) continue;
-      const auto k = static_cast<std::size_t>(wall_of[q]);
-      const Vec3 fw = -wof[q];
-      sf[k] += fw;
-      se[k][static_cast<std::size_t>(element_of[q])] += fw;
-      st[k] += wtq[q];
+    Vec3 sf = Vec3::Zero(), st = Vec3::Zero();
+    for (std::size_t ob = 0; ob < nblocks; ++ob) {
+      sf += wall_part_f_[ob * nw + k];
+      st += wall_part_t_[ob * nw + k];
     }
+    walls_[k].force = sf;
+    walls_[k].torque = st;
+    std::fill(walls_[k].element_force.begin(), walls_[k].element_force.end(), element_base_[k] < 0 ? sf : Vec3::Zero());
   }
-  for (std::size_t k = 0; k < nw; ++k) {
-    walls_[k].force = wall_sum_f_[k];
-    walls_[k].torque = wall_sum_t_[k];
-  }
+  for (std::size_t ob = 0; ob < nblocks; ++ob)
+    for (const ElementShare& es : wall_part_e_[ob]) *element_of_slot_[es.slot] += es.f;
 }
 
 void World::compute_forces() { compute_forces_by_model(); }

@@ -5,8 +5,9 @@
 // Determinism: the rows of the pair list are cut into a fixed number of blocks (kForceBlocks, not the
 // thread count). Each block scatters its pair forces, row by row, into its own partial-sum buffer; a
 // particle's force is then the sum of the block buffers in block order, plus its wall contacts (in
-// list order), gravity and the body-force hook. Which thread computes a block changes nothing, so
-// 1 and N threads give bit-identical results.
+// list order), gravity and the body-force hook. A wall's load (force, torque, element forces) is
+// likewise the sum, in block order, of each block's sum over its particles' wall contacts. Which
+// thread computes a block changes nothing, so 1 and N threads give bit-identical results.
 #include <algorithm>
 #include <cstdint>
 #include <functional>
@@ -260,8 +261,17 @@ class World {
   std::vector<Sink> sinks_;
   BodyForceHook body_force_;
   std::function<void()> load_observer_;
-  std::vector<Vec3> wall_sum_f_, wall_sum_t_;  // scratch of the wall-load sums (forces.cpp)
-  std::vector<Vec3*> wall_sum_e_;
+  // The force blocks' shares of the wall loads (forces.cpp): per block and wall, force and torque;
+  // per block, the elements it touched (slot = element_base_[wall] + element) with their force.
+  struct ElementShare {
+    std::int32_t slot;
+    Vec3 f;
+  };
+  std::vector<Vec3> wall_part_f_, wall_part_t_;
+  std::vector<std::vector<ElementShare>> wall_part_e_;
+  std::vector<std::int32_t> element_base_;
+  std::vector<Vec3*> element_of_slot_;
+  std::vector<std::vector<std::int32_t>> element_slot_;  // per thread: slot -> index in its block's list, or -1
   struct WallFrame {  // a wall's motion at the current time, for the contacts (compute_forces)
     Vec3 ww, surf_lin, surf_omega, surf_centre, load_point;
     bool still, surface;
