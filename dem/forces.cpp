@@ -1,6 +1,7 @@
 // Contact force evaluation. One template per contact-model combination (no virtual call in the loop);
 // compute_forces() picks the instantiation at run time.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -718,17 +719,28 @@ void World::compute_forces_impl() {
     }
     for (const ElementShare& es : parts) slot_of[es.slot] = -1;
   };
-  // Every loop here is scheduled statically, so a thread works on the particles whose state its
-  // integrator pass wrote (the same static split): on this project's VM a cache line that crosses
-  // between the two cores costs ~250 ns (bench/core_latency), and with dynamic schedules the wall
-  // entries and pair blocks changed hands every step (bench bed, 2 threads: 1.30 -> 0.86 s).
+  // Each thread takes the blocks of its share (cut_, world.h) in every phase: the wall contacts of
+  // its particles, its pair blocks, their finishing, and the integrator's passes. So it works on the
+  // particles whose state it wrote: on this project's VM a cache line that crosses between the two
+  // cores costs ~250-500 ns (bench/core_latency); with dynamic schedules the wall entries and pair
+  // blocks changed hands every step (bench bed, 2 threads: 1.30 -> 0.86 s), and a serial sum of the
+  // wall loads or wall contacts split by count made a thread read what the other had just written.
+  // Which thread takes a block changes no number.
+  using Clock = std::chrono::steady_clock;
+  cut_.fit(static_cast<std::size_t>(nt), nblocks);
+  const bool timed = nt > 1;
 #pragma omp parallel num_threads(nt)
   {
-    std::int32_t* slot_of = element_slot_[static_cast<std::size_t>(omp_get_thread_num())].data();
-#pragma omp for schedule(static) nowait
-    for (std::size_t k = 0; k < n_owners; ++k) walls_of(static_cast<std::size_t>(owners[k]));
-#pragma omp for schedule(static)
-    for (std::size_t b = 0; b < nblocks; ++b) {
+    const auto tn = static_cast<std::size_t>(omp_get_thread_num());
+    const auto nth = static_cast<std::size_t>(omp_get_num_threads());
+    std::int32_t* slot_of = element_slot_[tn].data();
+    const auto [b0, b1] = cut_.blocks(tn, nth, nblocks);
+    const std::size_t r0 = b0 < nblocks ? blo[b0] : n, r1 = b1 < nblocks ? blo[b1] : n;
+    const Clock::time_point c0 = timed ? Clock::now() : Clock::time_point{};
+    for (const std::int32_t* o = std::lower_bound(owners, owners + n_owners, static_cast<std::int32_t>(r0));
+         o < owners + n_owners && static_cast<std::size_t>(*o) < r1; ++o)
+      walls_of(static_cast<std::size_t>(*o));
+    for (std::size_t b = b0; b < b1; ++b) {
       Vec3* fb = bf + boff[b] - blo[b];  // fb[p] is valid for p in [lo, hi); zero (see below)
       Vec3* tb = bt + boff[b] - blo[b];
       if (gather)
@@ -736,14 +748,16 @@ void World::compute_forces_impl() {
       else
         pair_rows<Model, ContactChunk>(arrays, n * b / nblocks, n * (b + 1) / nblocks, fb, tb);
     }
+    const Clock::time_point c1 = timed ? Clock::now() : Clock::time_point{};
+#pragma omp barrier
     // Per particle the sum is, as always, zero, then the block buffers in block order, then its wall
     // contacts and gravity; here it runs buffer by buffer over the particles of a block, as flat
     // loops. Each buffer entry is read exactly once, by the block that owns its particle, which
     // zeroes it for the next evaluation (layout_blocks zeroes new buffers): no separate pass to
     // clear them. The body force and the held particles follow on the same particles while their
     // forces are in cache (each is per particle, so the split does not change a number).
-#pragma omp for schedule(static)
-    for (std::size_t ob = 0; ob < nblocks; ++ob) {
+    const Clock::time_point c2 = timed ? Clock::now() : Clock::time_point{};
+    for (std::size_t ob = b0; ob < b1; ++ob) {
       const std::size_t lo = blo[ob], hi = n * (ob + 1) / nblocks;
       // The first buffer that reaches a particle is copied, not added to zero: a buffer never holds
       // -0.0 (it starts at +0.0 and, rounding to nearest, a sum or difference is -0.0 only when it
@@ -785,7 +799,9 @@ void World::compute_forces_impl() {
         t[static_cast<std::size_t>(h)] = Vec3::Zero();
       }
     }
+    if (timed) cut_.busy[tn] += std::chrono::duration<double>(c1 - c0 + (Clock::now() - c2)).count();
   }
+  if (timed) cut_.step();
 
   // The wall loads: per wall the sum of the blocks' shares in block order, per element the same.
   for (std::size_t k = 0; k < nw; ++k) {
@@ -803,6 +819,41 @@ void World::compute_forces_impl() {
 }
 
 void World::compute_forces() { compute_forces_by_model(); }
+
+void World::ThreadCut::fit(std::size_t nt, std::size_t blocks) {
+  if (at.size() == nt + 1 && at.back() == blocks) return;
+  at.resize(nt + 1);
+  for (std::size_t t = 0; t <= nt; ++t) at[t] = blocks * t / nt;
+  busy.assign(nt, 0.0);
+  steps = 0;
+}
+
+std::pair<std::size_t, std::size_t> World::ThreadCut::blocks(std::size_t t, std::size_t nt, std::size_t nblocks) const {
+  if (at.size() == nt + 1 && at.back() == nblocks) return {at[t], at[t + 1]};
+  return {nblocks * t / nt, nblocks * (t + 1) / nt};  // a team smaller than asked for: even shares
+}
+
+// A block moves to the neighbouring thread only when the busier of the two would stay busier after
+// giving it (its time exceeds the other's by more than one of its blocks): so a cut never swings
+// back and forth, and an even pair stays as it is.
+void World::ThreadCut::step() {
+  if (++steps < kWindow) return;
+  for (std::size_t t = 0; t + 2 < at.size(); ++t) {
+    const double a = busy[t], b = busy[t + 1];
+    const std::size_t na = at[t + 1] - at[t], nb = at[t + 2] - at[t + 1];
+    if (a > b && na > 1 && a - b > a / static_cast<double>(na)) --at[t + 1];
+    else if (b > a && nb > 1 && b - a > b / static_cast<double>(nb)) ++at[t + 1];
+  }
+  std::fill(busy.begin(), busy.end(), 0.0);
+  steps = 0;
+}
+
+std::pair<std::size_t, std::size_t> World::thread_rows(std::size_t t, std::size_t nt, std::size_t n) const {
+  const std::size_t nb = nl_.block_lo.size();
+  if (nb == 0) return {n * t / nt, n * (t + 1) / nt};
+  const auto [b0, b1] = cut_.blocks(t, nt, nb);
+  return {b0 < nb ? std::min(nl_.block_lo[b0], n) : n, b1 < nb ? std::min(nl_.block_lo[b1], n) : n};
+}
 
 void World::compute_forces_by_model() {
   using HM = HertzMindlin;

@@ -348,14 +348,18 @@ double World::kick_and_drift(double maxd2) {
   const double* __restrict ii = p_.inv_inertia.data();
   const Vec3* __restrict xr = x_ref_.data();
   const double dt = dt_, h = 0.5 * dt;
-#pragma omp parallel for num_threads(nt) schedule(static) reduction(max : maxd2)
-  for (std::size_t i = 0; i < np; ++i) {
-    const Vec3 vi = v[i] + (h * im[i]) * f[i];
-    v[i] = vi;
-    w[i] += (h * ii[i]) * t[i];
-    const Vec3 xi = x[i] + dt * vi;
-    x[i] = xi;
-    maxd2 = std::max(maxd2, (xi - xr[i]).squaredNorm());
+#pragma omp parallel num_threads(nt) reduction(max : maxd2)
+  {
+    const auto [lo, hi] = thread_rows(static_cast<std::size_t>(omp_get_thread_num()),
+                                      static_cast<std::size_t>(omp_get_num_threads()), np);
+    for (std::size_t i = lo; i < hi; ++i) {
+      const Vec3 vi = v[i] + (h * im[i]) * f[i];
+      v[i] = vi;
+      w[i] += (h * ii[i]) * t[i];
+      const Vec3 xi = x[i] + dt * vi;
+      x[i] = xi;
+      maxd2 = std::max(maxd2, (xi - xr[i]).squaredNorm());
+    }
   }
   return maxd2;
 }
@@ -389,23 +393,27 @@ std::size_t World::closing_pass(bool check, bool and_drift, double& maxd2) {
   const Box dom = settings_.domain;
   std::size_t first_bad = np;
   double m = maxd2;
-#pragma omp parallel for num_threads(nt) schedule(static) reduction(min : first_bad) reduction(max : m)
-  for (std::size_t i = 0; i < np; ++i) {
-    const Vec3 vi = v[i] + (h * im[i]) * f[i];
-    const Vec3 wi = w[i] + (h * ii[i]) * t[i];
-    const bool bad = check && !state_ok(vi, wi, x[i], vlim2, dom);
-    if (bad) first_bad = std::min(first_bad, i);
-    if (!and_drift || bad) {
-      v[i] = vi;
-      w[i] = wi;
-      continue;
+#pragma omp parallel num_threads(nt) reduction(min : first_bad) reduction(max : m)
+  {
+    const auto [lo, hi] = thread_rows(static_cast<std::size_t>(omp_get_thread_num()),
+                                      static_cast<std::size_t>(omp_get_num_threads()), np);
+    for (std::size_t i = lo; i < hi; ++i) {
+      const Vec3 vi = v[i] + (h * im[i]) * f[i];
+      const Vec3 wi = w[i] + (h * ii[i]) * t[i];
+      const bool bad = check && !state_ok(vi, wi, x[i], vlim2, dom);
+      if (bad) first_bad = std::min(first_bad, i);
+      if (!and_drift || bad) {
+        v[i] = vi;
+        w[i] = wi;
+        continue;
+      }
+      const Vec3 vn = vi + (h * im[i]) * f[i];
+      v[i] = vn;
+      w[i] = wi + (h * ii[i]) * t[i];
+      const Vec3 xn = x[i] + dt * vn;
+      x[i] = xn;
+      m = std::max(m, (xn - xr[i]).squaredNorm());
     }
-    const Vec3 vn = vi + (h * im[i]) * f[i];
-    v[i] = vn;
-    w[i] = wi + (h * ii[i]) * t[i];
-    const Vec3 xn = x[i] + dt * vn;
-    x[i] = xn;
-    m = std::max(m, (xn - xr[i]).squaredNorm());
   }
   maxd2 = m;
   return first_bad;

@@ -272,6 +272,23 @@ class World {
   std::vector<std::int32_t> element_base_;
   std::vector<Vec3*> element_of_slot_;
   std::vector<std::vector<std::int32_t>> element_slot_;  // per thread: slot -> index in its block's list, or -1
+  // Which force blocks each thread takes: a contiguous run, [at[t], at[t+1]). Every pass over the
+  // particles follows it (compute_forces, kick_and_drift, closing_pass), so a thread reads the state
+  // it wrote. The cut starts even and moves by a block when one thread's share took longer over the
+  // last kWindow steps (the rows' work differs, and on a VM so does the speed of the cores). Only
+  // which thread does the work moves: no number depends on it.
+  struct ThreadCut {
+    static constexpr int kWindow = 32;
+    std::vector<std::size_t> at;  // nt + 1 block indices
+    std::vector<double> busy;     // per thread: seconds in its blocks over the window
+    int steps = 0;
+    void fit(std::size_t nt, std::size_t blocks);  // even, when the thread or block count changed
+    std::pair<std::size_t, std::size_t> blocks(std::size_t t, std::size_t nt, std::size_t nblocks) const;
+    void step();
+  };
+  ThreadCut cut_;
+  // The particles [first, second) of thread t of nt: the rows of its blocks.
+  std::pair<std::size_t, std::size_t> thread_rows(std::size_t t, std::size_t nt, std::size_t n) const;
   struct WallFrame {  // a wall's motion at the current time, for the contacts (compute_forces)
     Vec3 ww, surf_lin, surf_omega, surf_centre, load_point;
     bool still, surface;
