@@ -681,12 +681,14 @@ void World::compute_forces_impl() {
   Vec3* t = p_.t.data();
   // The particles [lo, hi) of block ob: to each its wall contacts (in entry order) and gravity; from
   // the same entries, the block's share of the wall loads.
+  // The sums run in the thread's own scratch and are stored once at the end: blocks of two threads
+  // may share a cache line of the shares, and one store per contact would pass it back and forth.
   auto finish_block = [=](std::size_t ob, std::size_t lo, std::size_t hi, std::int32_t* __restrict slot_of) {
-    Vec3* __restrict sf = part_f + ob * nw;
-    Vec3* __restrict st = part_t + ob * nw;
-    std::fill(sf, sf + nw, Vec3::Zero());
-    std::fill(st, st + nw, Vec3::Zero());
-    std::vector<ElementShare>& parts = part_e[ob];
+    thread_local std::vector<Vec3> acc;  // allocated by this thread, away from the others' data
+    acc.assign(2 * nw, Vec3::Zero());
+    Vec3* __restrict sf = acc.data();
+    Vec3* __restrict st = acc.data() + nw;
+    std::vector<ElementShare> parts = std::move(part_e[ob]);
     parts.clear();
     for (std::size_t i = lo; i < hi; ++i) {
       Vec3 fi = f[i], ti = t[i];
@@ -702,7 +704,12 @@ void World::compute_forces_impl() {
       f[i] = fi + share[i] * g;
       t[i] = ti;
     }
-    if (!meshes) return;
+    std::copy(sf, sf + nw, part_f + ob * nw);
+    std::copy(st, st + nw, part_t + ob * nw);
+    if (!meshes) {
+      part_e[ob] = std::move(parts);
+      return;
+    }
     // Apart from the loop above: its rare call (push_back) kept fi and ti on the stack (bench bed,
     // one thread: 3 % slower).
     for (auto q = static_cast<std::size_t>(wb[lo]); q < static_cast<std::size_t>(wb[hi]); ++q) {
@@ -718,6 +725,7 @@ void World::compute_forces_impl() {
       parts[static_cast<std::size_t>(at)].f -= wof[q];
     }
     for (const ElementShare& es : parts) slot_of[es.slot] = -1;
+    part_e[ob] = std::move(parts);
   };
   // Each thread takes the blocks of its share (cut_, world.h) in every phase: the wall contacts of
   // its particles, its pair blocks, their finishing, and the integrator's passes. So it works on the

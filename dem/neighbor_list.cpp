@@ -432,14 +432,20 @@ void World::rebuild() {
       if (cr.hi_k[r] > cr.lo_k[r]) m += near_in_range(px, pr, pc, cr.lo_k[r], cr.hi_k[r], xi, ri, body_i, out.data() + m);
     out.resize(m);
   };
-  std::vector<std::vector<std::int32_t>> buf(static_cast<std::size_t>(nt));
+  // Each thread's rows go to its own buffer, kept between rebuilds as the lists are.
+  std::vector<std::vector<std::int32_t>>& buf = search_buf_;
+  if (buf.size() < static_cast<std::size_t>(nt)) buf.resize(static_cast<std::size_t>(nt));
   std::vector<std::size_t> block(static_cast<std::size_t>(nt) + 1, 0);
 #pragma omp parallel num_threads(nt)
   {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const auto nth = static_cast<std::size_t>(omp_get_num_threads());
     const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
-    auto& out = buf[t];
+    // The buffer is moved to this thread's stack while it grows: the vector objects of all threads
+    // share a cache line, and each row's resize wrote it, so it went back and forth between the
+    // cores at every row (bench bed, 2 threads: the search took as long as on one).
+    std::vector<std::int32_t> out = std::move(buf[t]);
+    out.clear();
     out.reserve((hi - lo) * 8);
     CellRanges cr;
     for (std::size_t i = lo; i < hi; ++i) {
@@ -460,6 +466,7 @@ void World::rebuild() {
     }
     for (std::size_t i = lo; i < hi; ++i) nl_.row_begin[i] = static_cast<std::int32_t>(block[t]) + local_start[i];
     std::copy(out.begin(), out.end(), nl_.nbr.begin() + static_cast<std::ptrdiff_t>(block[t]));
+    buf[t] = std::move(out);
   }
   nl_.row_begin[n] = static_cast<std::int32_t>(nl_.nbr.size());
   const std::size_t nslots = nl_.nbr.size();
@@ -490,8 +497,7 @@ void World::rebuild() {
   {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const auto nth = static_cast<std::size_t>(omp_get_num_threads());
-    auto& local = cand_buf[t];
-    local.clear();
+    std::vector<Cand> local;  // on this thread's stack while it grows (see the pair search)
     for (std::size_t wi = 0; wi < walls_.size(); ++wi) {
       const Wall& w = walls_[wi];
       const auto wall_id = static_cast<std::int32_t>(wi);
@@ -534,6 +540,7 @@ void World::rebuild() {
             local.push_back({static_cast<std::int32_t>(i), wall_id, 0});
       }
     }
+    cand_buf[t] = std::move(local);
   }
   // The thread buffers hold, per thread, all walls in order; joined wall by wall they give the
   // serial order. Per particle the (wall, element) pairs must ascend: within one wall a particle's

@@ -54,31 +54,46 @@ struct Particles {
   // Reorders every array: out[k] = in[order[k]] (order may also drop entries). threads > 1 gathers
   // in parallel; the result does not depend on it.
   void permute(const std::vector<std::int32_t>& order, int threads = 1) {
-    gather(x, order, threads);
-    gather(v, order, threads);
-    gather(w, order, threads);
-    gather(f, order, threads);
-    gather(t, order, threads);
-    gather(radius, order, threads);
-    gather(mass, order, threads);
-    gather(inv_mass, order, threads);
-    gather(inv_inertia, order, threads);
-    gather(material, order, threads);
-    gather(id, order, threads);
-    gather(clump, order, threads);
-    gather(body_offset, order, threads);
-    gather(contact_mass, order, threads);
-    gather(held_by, order, threads);
+    gather(x, spare_vec3_, order, threads);
+    gather(v, spare_vec3_, order, threads);
+    gather(w, spare_vec3_, order, threads);
+    gather(f, spare_vec3_, order, threads);
+    gather(t, spare_vec3_, order, threads);
+    gather(radius, spare_double_, order, threads);
+    gather(mass, spare_double_, order, threads);
+    gather(inv_mass, spare_double_, order, threads);
+    gather(inv_inertia, spare_double_, order, threads);
+    gather(material, spare_int_, order, threads);
+    gather(id, spare_id_, order, threads);
+    gather(clump, spare_int_, order, threads);
+    gather(body_offset, spare_vec3_, order, threads);
+    gather(contact_mass, spare_double_, order, threads);
+    gather(held_by, spare_int_, order, threads);
   }
 
  private:
+  // Each array is gathered into a spare one of its type, which then takes its place; the old one is
+  // the spare for the next. Kept between rebuilds: a fresh array each time was zeroed by one thread
+  // and its pages faulted in anew (bench bed, 2 threads: the reordering did not scale at all).
+  std::vector<Vec3> spare_vec3_;
+  std::vector<double> spare_double_;
+  std::vector<std::int32_t> spare_int_;
+  std::vector<std::int64_t> spare_id_;
+
   template <class T>
-  static void gather(std::vector<T>& a, const std::vector<std::int32_t>& order, int threads) {
-    std::vector<T> out(order.size());
+  static void gather(std::vector<T>& a, std::vector<T>& spare, const std::vector<std::int32_t>& order, int threads) {
     const std::size_t n = order.size();
+    if (n > spare.capacity()) {  // the old block goes first: the two are never held together
+      spare = std::vector<T>();
+      spare.reserve(n + n / 16);
+    }
+    spare.resize(n);
+    T* __restrict out = spare.data();
+    const T* __restrict in = a.data();
+    const std::int32_t* __restrict ord = order.data();
 #pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
-    for (std::size_t k = 0; k < n; ++k) out[k] = a[static_cast<std::size_t>(order[k])];
-    a = std::move(out);
+    for (std::size_t k = 0; k < n; ++k) out[k] = in[static_cast<std::size_t>(ord[k])];
+    a.swap(spare);
   }
 };
 

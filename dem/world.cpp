@@ -497,16 +497,16 @@ void World::insert_and_delete() {
     }
   }
   // Held particles whose centre has crossed their inserter's face go free with its full velocity.
-  // Each thread takes the held particles of its share in the integrator's static split: a particle's
+  // Each thread takes the held particles of its share of the integrator (thread_rows): a particle's
   // lines stay with the core that integrates it.
   if (!held_.empty()) {
     const std::size_t np = p_.size();
     std::size_t released = 0;
 #pragma omp parallel num_threads(thread_count()) reduction(+ : released)
     {
-      const auto th = static_cast<std::size_t>(omp_get_thread_num());
-      const auto nth = static_cast<std::size_t>(omp_get_num_threads());
-      for (const std::int32_t h : held_between(np * th / nth, np * (th + 1) / nth)) {
+      const auto [lo, hi] = thread_rows(static_cast<std::size_t>(omp_get_thread_num()),
+                                        static_cast<std::size_t>(omp_get_num_threads()), np);
+      for (const std::int32_t h : held_between(lo, hi)) {
         const auto i = static_cast<std::size_t>(h);
         const Inserter& in = inserters_[static_cast<std::size_t>(p_.held_by[i])];
         const int a = in.hold_axis;

@@ -308,6 +308,7 @@ class World {
   std::vector<std::vector<std::int32_t>> sink_near_;  // per sink: particles within sink_reach_ then
   std::vector<std::int32_t> index_map_;  // index at last rebuild -> current index (-1 removed)
   std::vector<std::int32_t> scratch_;
+  std::vector<std::vector<std::int32_t>> search_buf_;  // rebuild(): each thread's rows of the pair list
   double time_ = 0.0;
   double dt_ = 0.0;
   double skin_ = 0.0;
