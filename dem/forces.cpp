@@ -651,19 +651,17 @@ void World::compute_forces_impl() {
   wall_part_f_.resize(nblocks * nw);
   wall_part_t_.resize(nblocks * nw);
   wall_part_e_.resize(nblocks);
-  element_of_slot_.clear();
-  for (std::size_t k = 0; k < nw; ++k)
-    for (Vec3& ef : walls_[k].element_force) element_of_slot_.push_back(&ef);
   // A wall of one element (a primitive) needs no shares of its own: its element's sum is its force.
   element_base_.resize(nw);
   bool meshes = false;
-  for (std::size_t k = 0, b = 0; k < nw; b += walls_[k].element_force.size(), ++k) {
-    element_base_[k] = walls_[k].element_force.size() > 1 ? static_cast<std::int32_t>(b) : -1;
+  std::size_t slots = 0;
+  for (std::size_t k = 0; k < nw; slots += walls_[k].element_force.size(), ++k) {
+    element_base_[k] = walls_[k].element_force.size() > 1 ? static_cast<std::int32_t>(slots) : -1;
     meshes = meshes || element_base_[k] >= 0;
   }
   element_slot_.resize(static_cast<std::size_t>(nt));
   for (auto& es : element_slot_)  // every slot a block uses is reset to -1 after it
-    if (es.size() != element_of_slot_.size()) es.assign(element_of_slot_.size(), -1);
+    if (es.size() != slots) es.assign(slots, -1);
   const std::int32_t* __restrict wall_of = wc_.wall.data();
   const std::int32_t* __restrict element_of = wc_.element.data();
   const Vec3* __restrict wtq = wc_.out_wall_torque.data();
@@ -716,15 +714,14 @@ void World::compute_forces_impl() {
       if (!wtouch[q]) continue;
       const std::int32_t base = ebase[wall_of[q]];
       if (base < 0) continue;
-      const std::int32_t e = base + element_of[q];
-      std::int32_t& at = slot_of[e];
+      std::int32_t& at = slot_of[base + element_of[q]];
       if (at < 0) {
         at = static_cast<std::int32_t>(parts.size());
-        parts.push_back({e, Vec3::Zero()});
+        parts.push_back({wall_of[q], element_of[q], Vec3::Zero()});
       }
       parts[static_cast<std::size_t>(at)].f -= wof[q];
     }
-    for (const ElementShare& es : parts) slot_of[es.slot] = -1;
+    for (const ElementShare& es : parts) slot_of[ebase[es.wall] + es.element] = -1;
     part_e[ob] = std::move(parts);
   };
   // Each thread takes the blocks of its share (cut_, world.h) in every phase: the wall contacts of
@@ -823,7 +820,8 @@ void World::compute_forces_impl() {
     std::fill(walls_[k].element_force.begin(), walls_[k].element_force.end(), element_base_[k] < 0 ? sf : Vec3::Zero());
   }
   for (std::size_t ob = 0; ob < nblocks; ++ob)
-    for (const ElementShare& es : wall_part_e_[ob]) *element_of_slot_[es.slot] += es.f;
+    for (const ElementShare& es : wall_part_e_[ob])
+      walls_[static_cast<std::size_t>(es.wall)].element_force[static_cast<std::size_t>(es.element)] += es.f;
 }
 
 void World::compute_forces() { compute_forces_by_model(); }

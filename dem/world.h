@@ -262,15 +262,14 @@ class World {
   BodyForceHook body_force_;
   std::function<void()> load_observer_;
   // The force blocks' shares of the wall loads (forces.cpp): per block and wall, force and torque;
-  // per block, the elements it touched (slot = element_base_[wall] + element) with their force.
+  // per block, the elements it touched with their force (found by slot element_base_[wall] + element).
   struct ElementShare {
-    std::int32_t slot;
+    std::int32_t wall, element;
     Vec3 f;
   };
   std::vector<Vec3> wall_part_f_, wall_part_t_;
   std::vector<std::vector<ElementShare>> wall_part_e_;
   std::vector<std::int32_t> element_base_;
-  std::vector<Vec3*> element_of_slot_;
   std::vector<std::vector<std::int32_t>> element_slot_;  // per thread: slot -> index in its block's list, or -1
   // Which force blocks each thread takes: a contiguous run, [at[t], at[t+1]). Every pass over the
   // particles follows it (compute_forces, kick_and_drift, closing_pass), so a thread reads the state
