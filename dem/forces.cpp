@@ -678,9 +678,9 @@ void World::compute_forces_impl() {
   Vec3* f = p_.f.data();
   Vec3* t = p_.t.data();
   // The particles [lo, hi) of block ob: to each its wall contacts (in entry order) and gravity; from
-  // the same entries, the block's share of the wall loads.
-  // The sums run in the thread's own scratch and are stored once at the end: blocks of two threads
-  // may share a cache line of the shares, and one store per contact would pass it back and forth.
+  // the same entries, the block's share of the wall loads. The shares are summed in the thread's own
+  // scratch and stored once at the end: the shares of two threads' blocks may share a cache line,
+  // and a store per contact would pass it back and forth.
   auto finish_block = [=](std::size_t ob, std::size_t lo, std::size_t hi, std::int32_t* __restrict slot_of) {
     thread_local std::vector<Vec3> acc;  // allocated by this thread, away from the others' data
     acc.assign(2 * nw, Vec3::Zero());

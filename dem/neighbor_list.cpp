@@ -164,7 +164,7 @@ void NeighborList::layout_blocks(std::size_t n, std::size_t blocks, int threads)
   resize_for_overwrite(block_f, block_off[blocks]);
   resize_for_overwrite(block_t, block_off[blocks]);
   // Zero between force evaluations (the evaluation that reads an entry clears it), each block by the
-  // thread whose static share it is in the pair pass.
+  // thread that takes it in the pair pass while the cut between threads is even (World::ThreadCut).
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::size_t b = 0; b < blocks; ++b) {
     std::fill(block_f.begin() + static_cast<std::ptrdiff_t>(block_off[b]), block_f.begin() + static_cast<std::ptrdiff_t>(block_off[b + 1]), Vec3::Zero());
