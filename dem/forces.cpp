@@ -740,7 +740,7 @@ void World::compute_forces_impl() {
     const auto nth = static_cast<std::size_t>(omp_get_num_threads());
     std::int32_t* slot_of = element_slot_[tn].data();
     const auto [b0, b1] = cut_.blocks(tn, nth, nblocks);
-    const std::size_t r0 = b0 < nblocks ? blo[b0] : n, r1 = b1 < nblocks ? blo[b1] : n;
+    const auto [r0, r1] = thread_rows(n);
     const Clock::time_point c0 = timed ? Clock::now() : Clock::time_point{};
     for (const std::int32_t* o = std::lower_bound(owners, owners + n_owners, static_cast<std::int32_t>(r0));
          o < owners + n_owners && static_cast<std::size_t>(*o) < r1; ++o)
@@ -854,7 +854,9 @@ void World::ThreadCut::step() {
   steps = 0;
 }
 
-std::pair<std::size_t, std::size_t> World::thread_rows(std::size_t t, std::size_t nt, std::size_t n) const {
+std::pair<std::size_t, std::size_t> World::thread_rows(std::size_t n) const {
+  const auto t = static_cast<std::size_t>(omp_get_thread_num());
+  const auto nt = static_cast<std::size_t>(omp_get_num_threads());
   const std::size_t nb = nl_.block_lo.size();
   if (nb == 0) return {n * t / nt, n * (t + 1) / nt};
   const auto [b0, b1] = cut_.blocks(t, nt, nb);

@@ -350,8 +350,7 @@ double World::kick_and_drift(double maxd2) {
   const double dt = dt_, h = 0.5 * dt;
 #pragma omp parallel num_threads(nt) reduction(max : maxd2)
   {
-    const auto [lo, hi] = thread_rows(static_cast<std::size_t>(omp_get_thread_num()),
-                                      static_cast<std::size_t>(omp_get_num_threads()), np);
+    const auto [lo, hi] = thread_rows(np);
     for (std::size_t i = lo; i < hi; ++i) {
       const Vec3 vi = v[i] + (h * im[i]) * f[i];
       v[i] = vi;
@@ -395,8 +394,7 @@ std::size_t World::closing_pass(bool check, bool and_drift, double& maxd2) {
   double m = maxd2;
 #pragma omp parallel num_threads(nt) reduction(min : first_bad) reduction(max : m)
   {
-    const auto [lo, hi] = thread_rows(static_cast<std::size_t>(omp_get_thread_num()),
-                                      static_cast<std::size_t>(omp_get_num_threads()), np);
+    const auto [lo, hi] = thread_rows(np);
     for (std::size_t i = lo; i < hi; ++i) {
       const Vec3 vi = v[i] + (h * im[i]) * f[i];
       const Vec3 wi = w[i] + (h * ii[i]) * t[i];
@@ -504,8 +502,7 @@ void World::insert_and_delete() {
     std::size_t released = 0;
 #pragma omp parallel num_threads(thread_count()) reduction(+ : released)
     {
-      const auto [lo, hi] = thread_rows(static_cast<std::size_t>(omp_get_thread_num()),
-                                        static_cast<std::size_t>(omp_get_num_threads()), np);
+      const auto [lo, hi] = thread_rows(np);
       for (const std::int32_t h : held_between(lo, hi)) {
         const auto i = static_cast<std::size_t>(h);
         const Inserter& in = inserters_[static_cast<std::size_t>(p_.held_by[i])];

@@ -286,8 +286,9 @@ class World {
     void step();
   };
   ThreadCut cut_;
-  // The particles [first, second) of thread t of nt: the rows of its blocks.
-  std::pair<std::size_t, std::size_t> thread_rows(std::size_t t, std::size_t nt, std::size_t n) const;
+  // Inside a parallel region, the particles [first, second) of n that the calling thread takes: the
+  // rows of its blocks.
+  std::pair<std::size_t, std::size_t> thread_rows(std::size_t n) const;
   struct WallFrame {  // a wall's motion at the current time, for the contacts (compute_forces)
     Vec3 ww, surf_lin, surf_omega, surf_centre, load_point;
     bool still, surface;
