@@ -470,6 +470,11 @@ void World::compute_forces_impl() {
     fr.surf_centre = fr.surface ? wl.to_world(wl.surface.centre) : Vec3::Zero();
     fr.load_point = wl.to_world(wl.load_point);
   }
+  const std::size_t n_observed = wall_observers_.size();
+  if (n_observed > 0) {
+    wc_.obs_normal.resize(wc_.wall.size());
+    wc_.obs_velocity.resize(wc_.wall.size());
+  }
   // Wall contacts of one particle, into per-entry storage. Within one mesh, face contacts win over
   // edge contacts and edges over vertices, so a sphere on a flat or convex seam touches once.
   auto walls_of = [&](std::size_t i) {
@@ -627,6 +632,12 @@ void World::compute_forces_impl() {
         const Vec3 lever = rad[i] * (gq.point - x[i]).normalized();
         const Vec3 rolling_couple = wc_.out_t[q] - lever.cross(wc_.out_f[q]);  // on the particle
         wc_.out_wall_torque[q] = (gq.point - load_point).cross(fw) - rolling_couple;
+        if (wi < n_observed && wall_observers_[wi]) {
+          const Vec3 nrm = (gq.point - x[i]).normalized();
+          wc_.obs_normal[q] = nrm;
+          // The slip velocity the contact law saw: the sphere's surface point against the wall's.
+          wc_.obs_velocity[q] = v[i] + (rad[i] * w[i]).cross(nrm) - wl.velocity_at(gq.point);
+        }
       }
       k = kend;
     }
@@ -733,6 +744,10 @@ void World::compute_forces_impl() {
   // Which thread takes a block changes no number.
   using Clock = std::chrono::steady_clock;
   cut_.fit(static_cast<std::size_t>(nt), nblocks);
+  const bool close = closing_.on;
+  closing_.on = false;
+  closing_.first_bad.assign(static_cast<std::size_t>(nt), n);
+  closing_.maxd2.assign(static_cast<std::size_t>(nt), 0.0);
   const bool timed = nt > 1;
 #pragma omp parallel num_threads(nt)
   {
@@ -741,6 +756,8 @@ void World::compute_forces_impl() {
     std::int32_t* slot_of = element_slot_[tn].data();
     const auto [b0, b1] = cut_.blocks(tn, nth, nblocks);
     const auto [r0, r1] = thread_rows(n);
+    std::size_t first_bad = n;
+    double maxd2 = 0.0;
     const Clock::time_point c0 = timed ? Clock::now() : Clock::time_point{};
     for (const std::int32_t* o = std::lower_bound(owners, owners + n_owners, static_cast<std::int32_t>(r0));
          o < owners + n_owners && static_cast<std::size_t>(*o) < r1; ++o)
@@ -803,6 +820,12 @@ void World::compute_forces_impl() {
         f[static_cast<std::size_t>(h)] = Vec3::Zero();
         t[static_cast<std::size_t>(h)] = Vec3::Zero();
       }
+      // After the barrier no thread reads another's particles, so these may move on now.
+      if (close) close_rows(lo, hi, closing_.check, closing_.and_drift, first_bad, maxd2);
+    }
+    if (close) {
+      closing_.first_bad[tn] = first_bad;
+      closing_.maxd2[tn] = maxd2;
     }
     if (timed) cut_.busy[tn] += std::chrono::duration<double>(c1 - c0 + (Clock::now() - c2)).count();
   }

@@ -23,15 +23,13 @@ void World::report_wall_contacts() const {
     const auto wi = static_cast<std::size_t>(wc_.wall[q]);
     if (wi >= wall_observers_.size() || !wall_observers_[wi]) continue;
     const auto i = static_cast<std::size_t>(wc_.owner[q]);
-    const Wall& wl = walls_[wi];
     c.wall = static_cast<int>(wi);
     c.element = wc_.element[q];
     c.particle = p_.id[i];
     c.point = wc_.out_point[q];
-    c.normal = (c.point - p_.x[i]).normalized();
+    c.normal = wc_.obs_normal[q];  // taken with the force (the particle has moved on since)
     c.force = -wc_.out_f[q];
-    // The slip velocity the contact law saw: the sphere's surface point against the wall's.
-    c.velocity = p_.v[i] + (p_.radius[i] * p_.w[i]).cross(c.normal) - wl.velocity_at(c.point);
+    c.velocity = wc_.obs_velocity[q];
     c.mass = p_.contact_mass[i];
     c.radius = p_.radius[i];
     wall_observers_[wi](c);

@@ -304,7 +304,9 @@ void World::step(std::int64_t n) {
   // the first half kick and drift of the next use the same forces, so they run as one pass over the
   // particles (one read of the state instead of two): the same operations in the same order, so the
   // same numbers. Not with clumps (their bodies are kicked between), and not across calls (the caller
-  // sees each call end on a full step).
+  // sees each call end on a full step). Without clumps that pass runs inside the force evaluation,
+  // on each block of particles as soon as its forces are final (FusedClosing, world.h); the wall
+  // observers then read what each contact saw, stored with it.
   bool drifted = false;  // this step's first half kick and drift were done by the last step's pass
   double maxd2_next = 0.0;
   for (std::int64_t s = 0; s < n; ++s) {
@@ -321,14 +323,26 @@ void World::step(std::int64_t n) {
       if (w.motion.moving()) w.set_time(time_);
     if (!inserters_.empty() || !sinks_.empty()) insert_and_delete();
     if (needs_rebuild()) rebuild();
-    compute_forces();
-    if (!wall_observers_.empty()) report_wall_contacts();
-    if (load_observer_) load_observer_();
     const bool check = (step_ + 1) % settings_.check_every == 0;
     drifted = s + 1 < n && clumps_.size() == 0;
     maxd2_next = max_disp_ * max_disp_;
-    const std::size_t first_bad = closing_pass(check, drifted, maxd2_next);
-    if (clumps_.size() > 0) clumps_after_forces(dt);
+    // Clumps gather their spheres' forces onto the bodies before any kick: then no fused pass.
+    const bool fused = clumps_.size() == 0;
+    closing_.on = fused;  // compute_forces() takes it and clears it
+    closing_.check = check;
+    closing_.and_drift = drifted;
+    compute_forces();
+    std::size_t first_bad = p_.size();
+    if (fused) {
+      for (const std::size_t b : closing_.first_bad) first_bad = std::min(first_bad, b);
+      for (const double m : closing_.maxd2) maxd2_next = std::max(maxd2_next, m);
+    }
+    if (!wall_observers_.empty()) report_wall_contacts();
+    if (load_observer_) load_observer_();
+    if (!fused) {
+      first_bad = closing_pass(check, drifted, maxd2_next);
+      clumps_after_forces(dt);
+    }
     ++step_;
     if (first_bad < p_.size()) report_bad(first_bad);
   }
@@ -380,6 +394,19 @@ inline bool state_ok(const Vec3& v, const Vec3& w, const Vec3& x, double vlim2, 
 std::size_t World::closing_pass(bool check, bool and_drift, double& maxd2) {
   const int nt = thread_count();
   const std::size_t np = p_.size();
+  std::size_t first_bad = np;
+  double m = maxd2;
+#pragma omp parallel num_threads(nt) reduction(min : first_bad) reduction(max : m)
+  {
+    const auto [lo, hi] = thread_rows(np);
+    close_rows(lo, hi, check, and_drift, first_bad, m);
+  }
+  maxd2 = m;
+  return first_bad;
+}
+
+void World::close_rows(std::size_t lo, std::size_t hi, bool check, bool and_drift, std::size_t& first_bad,
+                       double& maxd2) {
   Vec3* __restrict x = p_.x.data();
   Vec3* __restrict v = p_.v.data();
   Vec3* __restrict w = p_.w.data();
@@ -390,31 +417,27 @@ std::size_t World::closing_pass(bool check, bool and_drift, double& maxd2) {
   const Vec3* __restrict xr = x_ref_.data();
   const double dt = dt_, h = 0.5 * dt, vlim2 = max_speed_ * max_speed_;
   const Box dom = settings_.domain;
-  std::size_t first_bad = np;
+  std::size_t bad_first = first_bad;
   double m = maxd2;
-#pragma omp parallel num_threads(nt) reduction(min : first_bad) reduction(max : m)
-  {
-    const auto [lo, hi] = thread_rows(np);
-    for (std::size_t i = lo; i < hi; ++i) {
-      const Vec3 vi = v[i] + (h * im[i]) * f[i];
-      const Vec3 wi = w[i] + (h * ii[i]) * t[i];
-      const bool bad = check && !state_ok(vi, wi, x[i], vlim2, dom);
-      if (bad) first_bad = std::min(first_bad, i);
-      if (!and_drift || bad) {
-        v[i] = vi;
-        w[i] = wi;
-        continue;
-      }
-      const Vec3 vn = vi + (h * im[i]) * f[i];
-      v[i] = vn;
-      w[i] = wi + (h * ii[i]) * t[i];
-      const Vec3 xn = x[i] + dt * vn;
-      x[i] = xn;
-      m = std::max(m, (xn - xr[i]).squaredNorm());
+  for (std::size_t i = lo; i < hi; ++i) {
+    const Vec3 vi = v[i] + (h * im[i]) * f[i];
+    const Vec3 wi = w[i] + (h * ii[i]) * t[i];
+    const bool bad = check && !state_ok(vi, wi, x[i], vlim2, dom);
+    if (bad) bad_first = std::min(bad_first, i);
+    if (!and_drift || bad) {
+      v[i] = vi;
+      w[i] = wi;
+      continue;
     }
+    const Vec3 vn = vi + (h * im[i]) * f[i];
+    v[i] = vn;
+    w[i] = wi + (h * ii[i]) * t[i];
+    const Vec3 xn = x[i] + dt * vn;
+    x[i] = xn;
+    m = std::max(m, (xn - xr[i]).squaredNorm());
   }
+  first_bad = bad_first;
   maxd2 = m;
-  return first_bad;
 }
 
 void World::check_state() const {

@@ -126,6 +126,9 @@ struct WallCandidates {
   std::vector<Vec3> out_f, out_t, out_point;
   std::vector<Vec3> out_wall_torque;  // the wall's torque about its load point from each entry
   std::vector<std::uint8_t> touch;
+  // For the wall observers, when a wall is observed (else empty): what the contact saw of its
+  // particle, taken with the forces, since the particle moves on before the observers run.
+  std::vector<Vec3> obs_normal, obs_velocity;
   std::vector<std::int32_t> owners;  // particles with at least one candidate, ascending (derived)
   std::vector<std::int32_t> owner;   // particle of each entry (derived)
   void index_owners() {
@@ -169,7 +172,8 @@ class World {
   void observe_wall(int wall, WallContactObserver fn);
   // Calls `fn` once per step when that step's wall loads (Wall::force, torque, element_force) are
   // final, after the wall observers. For sampling loads every step inside one step(n) call; the
-  // particles are then mid-step (before the second half kick), so read loads only.
+  // particles have by then moved on (their closing kick, and the next step's drift, run with the
+  // forces), so read loads only.
   void observe_wall_loads(std::function<void()> fn) { load_observer_ = std::move(fn); }
   // Removes particles for which pred(index) is true (e.g. by id or region); a clump goes as a whole
   // when any of its spheres is selected.
@@ -241,6 +245,19 @@ class World {
   // The integrator's passes over the particles (dem/world.cpp, step()).
   double kick_and_drift(double maxd2);
   std::size_t closing_pass(bool check, bool and_drift, double& maxd2);
+  // closing_pass() on the particles [lo, hi); lowers first_bad, raises maxd2.
+  void close_rows(std::size_t lo, std::size_t hi, bool check, bool and_drift, std::size_t& first_bad,
+                  double& maxd2);
+  // The closing pass run inside compute_forces(), block by block as each block's forces are final
+  // (step() sets it when no clump needs the forces first): one parallel region a step fewer, the
+  // particles' forces still in cache, and the time of the pass inside the cut's balance (ThreadCut).
+  struct FusedClosing {
+    bool on = false;
+    bool check = false, and_drift = false;
+    std::vector<std::size_t> first_bad;  // per thread
+    std::vector<double> maxd2;           // per thread
+  };
+  FusedClosing closing_;
   // Clumps (dem/world_clumps.cpp): body half kick + drift + member placement (raises maxd2 to the
   // members' displacement since the last rebuild); gather + half kick + member velocities; removal of
   // whole bodies; insertion of one body by an inserter.
