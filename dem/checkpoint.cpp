@@ -162,7 +162,7 @@ void World::load_checkpoint(const std::string& path) {
   if (nl_.row_begin.front() != 0 || static_cast<std::size_t>(nl_.row_begin.back()) != nl_.nbr.size() ||
       nl_.shear.size() != nl_.nbr.size() || nl_.roll.size() != nl_.nbr.size() || nl_.touch.size() != nl_.nbr.size())
     throw InputError(path, 0, "neighbour list", "inconsistent neighbour list");
-  nl_.layout_blocks(n, kForceBlocks, thread_count());
+  nl_.layout_blocks(n, kForceBlocks, thread_count(), wc_.begin);
   nl_.measure_gaps(x_ref_.data(), p_.radius.data(), n, thread_count());
   for (auto& wl : walls_) {
     std::uint64_t ne;

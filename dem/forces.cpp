@@ -652,7 +652,7 @@ void World::compute_forces_impl() {
 
   // Pair forces into fixed blocks of rows (see world.h), then one pass per particle that adds the
   // block partial sums in block order, its wall contacts and gravity.
-  const std::size_t nblocks = nl_.block_lo.size();
+  const std::size_t nblocks = nl_.blocks();
   // Each force block also sums the wall loads of its particles' entries, in entry order, into its
   // own share (per wall, and per element touched); the shares are added in block order after the
   // forces. A serial sum over all entries read every entry the other threads had just written
@@ -766,9 +766,9 @@ void World::compute_forces_impl() {
       Vec3* fb = bf + boff[b] - blo[b];  // fb[p] is valid for p in [lo, hi); zero (see below)
       Vec3* tb = bt + boff[b] - blo[b];
       if (gather)
-        pair_rows<Model, GatherChunk>(arrays, n * b / nblocks, n * (b + 1) / nblocks, fb, tb);
+        pair_rows<Model, GatherChunk>(arrays, blo[b], blo[b + 1], fb, tb);
       else
-        pair_rows<Model, ContactChunk>(arrays, n * b / nblocks, n * (b + 1) / nblocks, fb, tb);
+        pair_rows<Model, ContactChunk>(arrays, blo[b], blo[b + 1], fb, tb);
     }
     const Clock::time_point c1 = timed ? Clock::now() : Clock::time_point{};
 #pragma omp barrier
@@ -780,7 +780,7 @@ void World::compute_forces_impl() {
     // forces are in cache (each is per particle, so the split does not change a number).
     const Clock::time_point c2 = timed ? Clock::now() : Clock::time_point{};
     for (std::size_t ob = b0; ob < b1; ++ob) {
-      const std::size_t lo = blo[ob], hi = n * (ob + 1) / nblocks;
+      const std::size_t lo = blo[ob], hi = blo[ob + 1];
       // The first buffer that reaches a particle is copied, not added to zero: a buffer never holds
       // -0.0 (it starts at +0.0 and, rounding to nearest, a sum or difference is -0.0 only when it
       // already was), and 0.0 + x is x for every other x. Zero beyond its reach.
@@ -880,10 +880,10 @@ void World::ThreadCut::step() {
 std::pair<std::size_t, std::size_t> World::thread_rows(std::size_t n) const {
   const auto t = static_cast<std::size_t>(omp_get_thread_num());
   const auto nt = static_cast<std::size_t>(omp_get_num_threads());
-  const std::size_t nb = nl_.block_lo.size();
-  if (nb == 0) return {n * t / nt, n * (t + 1) / nt};
+  const std::size_t nb = nl_.blocks();
+  if (nb == 0 || nl_.block_lo.back() != n) return {n * t / nt, n * (t + 1) / nt};
   const auto [b0, b1] = cut_.blocks(t, nt, nb);
-  return {b0 < nb ? std::min(nl_.block_lo[b0], n) : n, b1 < nb ? std::min(nl_.block_lo[b1], n) : n};
+  return {nl_.block_lo[b0], nl_.block_lo[b1]};
 }
 
 void World::compute_forces_by_model() {

@@ -102,9 +102,11 @@ struct NeighborList {
   std::vector<Vec3> shear;
   std::vector<Vec3> roll;
   std::vector<std::uint8_t> touch;
-  // Force blocks (derived from row_begin/nbr by layout_blocks): block b owns rows
-  // [b n / K, (b+1) n / K) and a partial-sum buffer covering particles [lo[b], hi[b]).
+  // Force blocks (derived from row_begin/nbr and the wall entries by layout_blocks): block b owns
+  // rows [block_lo[b], block_lo[b+1]) (K + 1 entries, the last N) and a partial-sum buffer covering
+  // particles [block_lo[b], block_hi[b]).
   std::vector<std::size_t> block_lo, block_hi, block_off;
+  std::size_t blocks() const { return block_hi.size(); }
   std::vector<std::size_t> block_first;  // first block whose buffer reaches into block b
   std::vector<Vec3> block_f, block_t;
   std::vector<std::int32_t> slot_row;  // row (particle i) of each slot, so the pair loop is one flat loop
@@ -113,7 +115,8 @@ struct NeighborList {
   // whose gap exceeds 2 d + gap_eps cannot touch (CHUTELAB_DEM_PAIR_GAPS builds only).
   std::vector<float> gap;
   double gap_eps = 0.0;
-  void layout_blocks(std::size_t n, std::size_t blocks, int threads);
+  // wall_begin: the wall entries' CSR by particle (WallCandidates::begin), for the blocks' work.
+  void layout_blocks(std::size_t n, std::size_t blocks, int threads, const std::vector<std::int32_t>& wall_begin);
   void measure_gaps(const Vec3* x_ref, const double* radius, std::size_t n, int threads);
 };
 inline constexpr std::size_t kForceBlocks = 16;
