@@ -629,14 +629,14 @@ void World::compute_forces_impl() {
         // The wall's torque from this contact, here in the parallel part: the serial sum below then
         // only adds, in entry order, as it always did (the same numbers at any thread count).
         const Vec3 fw = -wc_.out_f[q];
-        const Vec3 lever = rad[i] * (gq.point - x[i]).normalized();
+        const Vec3 towards = (gq.point - x[i]).normalized();
+        const Vec3 lever = rad[i] * towards;
         const Vec3 rolling_couple = wc_.out_t[q] - lever.cross(wc_.out_f[q]);  // on the particle
         wc_.out_wall_torque[q] = (gq.point - load_point).cross(fw) - rolling_couple;
         if (wi < n_observed && wall_observers_[wi]) {
-          const Vec3 nrm = (gq.point - x[i]).normalized();
-          wc_.obs_normal[q] = nrm;
+          wc_.obs_normal[q] = towards;
           // The slip velocity the contact law saw: the sphere's surface point against the wall's.
-          wc_.obs_velocity[q] = v[i] + (rad[i] * w[i]).cross(nrm) - wl.velocity_at(gq.point);
+          wc_.obs_velocity[q] = v[i] + (rad[i] * w[i]).cross(towards) - wl.velocity_at(gq.point);
         }
       }
       k = kend;
@@ -881,9 +881,11 @@ std::pair<std::size_t, std::size_t> World::thread_rows(std::size_t n) const {
   const auto t = static_cast<std::size_t>(omp_get_thread_num());
   const auto nt = static_cast<std::size_t>(omp_get_num_threads());
   const std::size_t nb = nl_.blocks();
-  if (nb == 0 || nl_.block_lo.back() != n) return {n * t / nt, n * (t + 1) / nt};
+  if (nb == 0) return {n * t / nt, n * (t + 1) / nt};
+  // n may differ from the list's rows (particles inserted or removed since the rebuild): the last
+  // thread then takes the rows beyond them.
   const auto [b0, b1] = cut_.blocks(t, nt, nb);
-  return {nl_.block_lo[b0], nl_.block_lo[b1]};
+  return {std::min(nl_.block_lo[b0], n), b1 == nb ? n : std::min(nl_.block_lo[b1], n)};
 }
 
 void World::compute_forces_by_model() {

@@ -150,9 +150,8 @@ void NeighborList::layout_blocks(std::size_t n, std::size_t blocks, int threads,
   // threads only, never a number, as the boundaries come from the lists alone (the same at any
   // thread count, and after a checkpoint's restore).
   constexpr std::int64_t kRowCost = 1, kWallCost = 6;
-  const bool walls = wall_begin.size() == n + 1;
   auto work_before = [&](std::size_t i) {
-    return kRowCost * static_cast<std::int64_t>(i) + row_begin[i] + (walls ? kWallCost * wall_begin[i] : 0);
+    return kRowCost * static_cast<std::int64_t>(i) + row_begin[i] + kWallCost * wall_begin[i];
   };
   const std::int64_t total = work_before(n);
   if (blocks > 0) block_lo[0] = 0;

@@ -115,7 +115,8 @@ struct NeighborList {
   // whose gap exceeds 2 d + gap_eps cannot touch (CHUTELAB_DEM_PAIR_GAPS builds only).
   std::vector<float> gap;
   double gap_eps = 0.0;
-  // wall_begin: the wall entries' CSR by particle (WallCandidates::begin), for the blocks' work.
+  // wall_begin: the wall entries' CSR by particle (WallCandidates::begin, n + 1 entries), for the
+  // blocks' work.
   void layout_blocks(std::size_t n, std::size_t blocks, int threads, const std::vector<std::int32_t>& wall_begin);
   void measure_gaps(const Vec3* x_ref, const double* radius, std::size_t n, int threads);
 };
