@@ -15,7 +15,9 @@ struct SynthesizeCli {
   std::string dataset, out;
   std::vector<std::string> effects;
   std::uint64_t seed = 1;
-  double noise_scale = 1.0;
+  double noise_scale = 1.0, noise_factor = 1.0;
+  int outliers = 0;
+  bool out_of_range = false;
 };
 
 int run_synthesize(const SynthesizeCli& o) {
@@ -24,11 +26,14 @@ int run_synthesize(const SynthesizeCli& o) {
   const auto d = validation::read_dataset(dir, validation::MeasurementsRequired::no);
   OutputFolder out(o.out, dataset_inputs(dir));
   std::vector<effects::EffectSetting> settings;
-  for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false));
+  for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false, o.out_of_range));
   validation::SynthesizeOptions opt;
   opt.effects = effects::instantiate(settings);
   opt.seed = o.seed;
   opt.noise_scale = o.noise_scale;
+  opt.noise_factor = o.noise_factor;
+  opt.outliers = o.outliers;
+  opt.out_of_range = o.out_of_range;
   std::vector<validation::ModelPtr> models;
   for (const auto& n : validation::model_names()) {
     auto m = validation::make_model(n);
@@ -53,6 +58,15 @@ void add_synthesize(CLI::App& app, Action& action) {
   cmd->add_option("--noise-scale", o->noise_scale, "multiplies every uncertainty")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
+  cmd->add_option("--noise-factor", o->noise_factor,
+                  "the real scatter in stated uncertainties (2: the stated uncertainties are half the truth)")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  cmd->add_option("--outliers", o->outliers, "gross reading errors (8-15 stated uncertainties) among the measurements")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  cmd->add_flag("--allow-out-of-range", o->out_of_range,
+                "accept effect strengths outside their physical range (test data only; the README says so)");
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_synthesize(*o); }; });
 }
