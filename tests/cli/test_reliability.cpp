@@ -307,6 +307,20 @@ BOOST_AUTO_TEST_CASE(class7_unbounded_work_is_refused_before_it_starts) {
   for (int i = 1; i < 2000; ++i) many += fmt::format(",{}", i * 1e-4);
   refused(s, s.args("calibrate") + " --rolling " + many, 2, "slump tests; at most 100 run in one command");
   refused(s, s.args("sensitivity") + " --sizes 4,5,6,7,8,9,10", 2, "--sizes: 7 values");
+  // Big data is drawn summarised: 40 000 stream points make a report of the usual size, not one of
+  // a marker each (a million rows made 386 MB; bench/SCALE.md has the timings).
+  std::string traj = "condition,boundary,x_mm,y_mm,uncertainty_mm\n";
+  for (const char* cond : {"V2-26", "V3-41"})
+    for (const char* b : {"upper", "lower"})
+      for (int k = 0; k < 10000; ++k)
+        traj += fmt::format("{},{},{},{},1.0\n", cond, b, 100 + 0.015 * k, 150 - 30 * (b[0] == 'l') - 0.0004 * k);
+  write_file(s.data / "trajectory.csv", traj);
+  accepted(s, s.args("validate"));
+  const std::string html = read_file(s.out / "report.html");
+  BOOST_TEST(html.size() < 2'000'000u);
+  BOOST_TEST(html.find("measured points drawn; all in trajectory.csv") != std::string::npos);
+  BOOST_TEST(html.find("values here, 40 drawn; all in errors.csv") != std::string::npos);
+  BOOST_TEST(count_lines(read_file(s.out / "errors.csv")) > 2 * 40000);  // every value in the CSV
 }
 
 // Class 8: one validator for every option, before any work: non-finite numbers, out-of-range values,
