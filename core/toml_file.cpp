@@ -8,6 +8,7 @@
 
 #include "core/input_error.h"
 #include "core/message.h"
+#include "core/text_file.h"
 
 namespace chutelab {
 namespace {
@@ -292,17 +293,7 @@ toml::table parse_toml_text(std::string_view text, const std::string& file) {
 }
 
 toml::table read_toml_file(const std::string& file, std::string_view field) {
-  require_readable_file(file, std::string(field));
-  std::ifstream in(file, std::ios::binary);
-  std::string text(kTomlMaxBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (in.bad()) throw InputError(file, 0, std::string(field), "cannot be read");
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > kTomlMaxBytes)
-    throw InputError(file, 0, std::string(field),
-                     fmt::format("is larger than {}, the most a TOML file chutelab reads may be",
-                                 byte_size(kTomlMaxBytes)));
-  return parse_toml_text(text, file);
+  return parse_toml_text(read_text_file(file, kTomlMaxBytes, field), file);
 }
 
 }  // namespace chutelab

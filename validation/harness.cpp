@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "core/input_error.h"
+#include "core/message.h"
 #include "validation/input_uncertainty.h"
 #include "validation/campaign_runs.h"
 #include "validation/models/external_model.h"
@@ -83,7 +84,7 @@ std::optional<double> ValidationResult::combined_rms_normalised() const {
 }
 
 std::string ValidationResult::brief() const {
-  std::string s = fmt::format("{}: {} conditions x {} models", dataset_name,
+  std::string s = fmt::format("{}: {} conditions x {} models", one_line(dataset_name, 120),
                               predictions.size() / std::max<std::size_t>(1, models.size()),
                               models.size());
   for (const auto& m : models)
