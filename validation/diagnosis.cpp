@@ -178,6 +178,8 @@ void confirm_leaders(std::vector<EffectFit>& singles, const Stage& s, int jobs) 
   for (auto& f : singles) {
     if (confirmed >= s.opt.confirm || !f.significant) break;
     const Fx fx = infos_of(f);
+    // A measurement effect acts on the expensive model's output exactly: a run would add nothing.
+    if (s.m.source().signature(*fx[0]) == PredictionSource::Signature::none) continue;
     f.estimate[0] = on_grid(f.estimate[0], f.uncertainty[0]);
     s.m.source().prepare_exact(fx, f.estimate, jobs);
     rescore(f, s.cost.chi2_of(s.m.residuals_exact(fx, f.estimate)), s);
@@ -454,7 +456,10 @@ void profile_best(EffectFit& f, const Stage& s, int jobs) {
   const double span = e->upper - e->lower;
   const double sd = std::isfinite(f.uncertainty[0]) ? f.uncertainty[0] : span;
   const double step = std::clamp(2.0 * sd, 0.01 * span, 0.25 * span);
-  ProfileFit p = profile_strength(chi2_at, f.estimate[0], step, e->lower, e->upper, s.opt.profile_runs);
+  // The confirming run at the estimate is the profile's first point.
+  std::vector<std::pair<double, double>> known;
+  if (f.chi2_from_signatures) known.emplace_back(f.estimate[0], f.chi2_after);
+  ProfileFit p = profile_strength(chi2_at, f.estimate[0], step, e->lower, e->upper, s.opt.profile_runs, known);
   f.profile = p;
   if (!p.bracketed) return;
   f.estimate[0] = p.estimate;
@@ -818,7 +823,12 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
       const auto& g = m.groups()[e->group];
       out.concentrated = Concentration{best->effects[e->effect], g.quantity, m.models()[g.model]->name(), e->share};
     }
-    if (m.source().reruns_expensive()) {
+    if (best->profile) {
+      // Its real runs are the profile's points.
+      double lowest = INFINITY;
+      for (const auto& [v, c] : best->profile->points) lowest = std::min(lowest, c);
+      out.confirmed_chi2 = lowest;
+    } else if (m.source().reruns_expensive()) {
       const Fx fx = infos_of(*best);
       m.source().prepare_exact(fx, best->estimate, jobs);
       out.confirmed_chi2 = s.cost.chi2_of(m.residuals_exact(fx, best->estimate));

@@ -289,11 +289,26 @@ const ModelPrediction& PredictionSource::signature_base(std::size_t c, std::size
   return *slot;
 }
 
+// An effect on the measurement only is applied to a run's output afterwards: the run is the one
+// without it (for no such effect at all, the baseline's standard run).
+PredictionSource::RunPart PredictionSource::run_part(std::span<const effects::EffectInfo* const> fx,
+                                                     std::span<const double> strengths) const {
+  RunPart out;
+  for (std::size_t i = 0; i < fx.size(); ++i)
+    if (signature(*fx[i]) != Signature::none) {
+      out.fx.push_back(fx[i]);
+      out.strengths.push_back(strengths[i]);
+    }
+  return out;
+}
+
 const ModelPrediction& PredictionSource::exact_run(std::size_t c, std::size_t k,
                                                    std::span<const effects::EffectInfo* const> fx,
                                                    std::span<const double> strengths) const {
-  auto& slot = exact_cache_[{c, k, strengths_key(fx, strengths)}];
-  if (!slot) slot = models_[k]->predict(d_->stations[c], with(fx, strengths), {queries_[c], false, false});
+  const RunPart part = run_part(fx, strengths);
+  if (part.fx.empty()) return expensive_base(c, k);
+  auto& slot = exact_cache_[{c, k, strengths_key(part.fx, part.strengths)}];
+  if (!slot) slot = models_[k]->predict(d_->stations[c], with(part.fx, part.strengths), {queries_[c], false, false});
   return *slot;
 }
 
@@ -337,10 +352,12 @@ void PredictionSource::prepare_signatures(std::span<const effects::EffectInfo* c
 
 void PredictionSource::prepare_exact(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
                                      int jobs) const {
-  const analytical::EffectList list = with(fx, strengths);
+  const RunPart part = run_part(fx, strengths);
+  if (part.fx.empty()) return;  // the baseline's runs, made already
+  const analytical::EffectList list = with(part.fx, part.strengths);
   run_expensive(std::span(&list, 1), false);  // the runs as one campaign; the predictions below read them
   std::vector<std::function<void()>> work;
-  const std::string key = strengths_key(fx, strengths);
+  const std::string key = strengths_key(part.fx, part.strengths);
   for (std::size_t k = 0; k < models_.size(); ++k)
     if (models_[k]->expensive())
       for (std::size_t c = 0; c < d_->stations.size(); ++c)

@@ -76,6 +76,11 @@ class PredictionSource {
   const ModelPrediction& expensive_probe(std::size_t condition, std::size_t model, const effects::EffectInfo& e) const;
   // The expensive model without candidates, made the way its probe runs are (their reference).
   const ModelPrediction& signature_base(std::size_t condition, std::size_t model) const;
+  struct RunPart {
+    std::vector<const effects::EffectInfo*> fx;
+    std::vector<double> strengths;
+  };
+  RunPart run_part(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
   const ModelPrediction& exact_run(std::size_t condition, std::size_t model, std::span<const effects::EffectInfo* const> fx,
                                    std::span<const double> strengths) const;
   // One candidate effect's shift of the expensive models at one condition and strength.

@@ -192,13 +192,13 @@ Parabola through(std::pair<double, double> p0, std::pair<double, double> p1, std
 }  // namespace
 
 ProfileFit profile_strength(const std::function<double(double)>& chi2_at, double first, double step, double lower,
-                            double upper, int budget) {
+                            double upper, int budget, const std::vector<std::pair<double, double>>& known) {
   ProfileFit out;
   // The step as a round number (1, 2 or 5 times a power of ten), strengths on its half-grid.
   const double h = std::min(std::max(round_number(std::abs(step)), 1e-12), (upper - lower) / 2.0);
   const double grid = h / 2.0;
-  std::map<double, double> seen;
-  auto snap = [&](double s) { return std::clamp(std::round(s / grid) * grid, lower, upper); };
+  std::map<double, double> seen(known.begin(), known.end());
+  auto snap = [&](double s) { return std::clamp(first + std::round((s - first) / grid) * grid, lower, upper); };
   auto at = [&](double s) {
     s = snap(s);
     if (seen.count(s)) return false;
@@ -209,7 +209,7 @@ ProfileFit profile_strength(const std::function<double(double)>& chi2_at, double
   auto lowest = [&] {
     return std::min_element(seen.begin(), seen.end(), [](auto& a, auto& b) { return a.second < b.second; });
   };
-  const double centre = std::clamp(snap(first), lower + h, upper - h);
+  const double centre = first - lower < h ? snap(lower + h) : upper - first < h ? snap(upper - h) : first;
   at(centre - h);
   at(centre);
   at(centre + h);
@@ -219,15 +219,15 @@ ProfileFit profile_strength(const std::function<double(double)>& chi2_at, double
   // outward where the three are not convex; stop when the next strength was seen.
   while (budget > 0) {
     const auto low = lowest();
-    const bool first = low == seen.begin(), last = std::next(low) == seen.end();
+    const bool at_low_end = low == seen.begin(), at_high_end = std::next(low) == seen.end();
     double next;
-    if (!first && !last) {
+    if (!at_low_end && !at_high_end) {
       const Parabola p = through(*std::prev(low), *low, *std::next(low));
       if (!(p.a > 0.0)) break;
       next = std::clamp(p.vertex, low->first - 4.0 * h, low->first + 4.0 * h);
     } else if (seen.size() >= 3) {
-      const double out_dir = first ? -1.0 : 1.0;
-      const auto a = first ? low : std::prev(low, 2);
+      const double out_dir = at_low_end ? -1.0 : 1.0;
+      const auto a = at_low_end ? low : std::prev(low, 2);
       const Parabola p = through(*a, *std::next(a), *std::next(a, 2));
       next = p.a > 0.0 ? std::clamp(p.vertex, low->first - 8.0 * h, low->first + 8.0 * h) : low->first + 2.0 * out_dir * h;
       if (snap(next) == low->first) next = low->first + out_dir * h;

@@ -50,8 +50,9 @@ struct ProfileFit {
   std::vector<std::pair<double, double>> points;          // (strength, chi^2) evaluated
   bool bracketed = false;  // the minimum lies between evaluated strengths and the curve is convex
 };
-// `step` is rounded to a round number and the strengths to a grid of half a step, so that nearby
-// first estimates evaluate (and cache) the same runs. At most `budget` evaluations.
+// `step` is rounded to a round number and the strengths lie on a grid of half a step from `first`
+// (itself on a grid: strength_fit.h's on_grid), so that nearby first estimates evaluate (and cache)
+// the same runs. At most `budget` evaluations.
 // 1, 2 or 5 times a power of ten, the nearest to x (> 0).
 double round_number(double x);
 // A strength rounded to a power of ten below a quarter of its sd: where an expensive model is run at
@@ -59,7 +60,10 @@ double round_number(double x);
 // rounding moves it by at most an eighth of its uncertainty.
 double on_grid(double value, double sd);
 
+// `known`: evaluations already made (a confirming run at the first estimate), counted as points.
+// The grid is anchored at `first`.
 ProfileFit profile_strength(const std::function<double(double)>& chi2_at, double first, double step,
-                            double lower, double upper, int budget = 5);
+                            double lower, double upper, int budget = 5,
+                            const std::vector<std::pair<double, double>>& known = {});
 
 }  // namespace chutelab::validation
