@@ -425,35 +425,33 @@ bool gather_in_law() {
 }  // namespace
 
 template <class Model>
-void World::compute_forces_impl() {
+void World::compute_forces_impl(const BlockCallback& after_block) {
   const std::size_t n = p_.size();
   const int nt = thread_count();
   const double dt = dt_;
-  const Vec3 g = settings_.gravity;
   const Vec3* x = p_.x.data();
   const Vec3* v = p_.v.data();
   const Vec3* w = p_.w.data();
   const double* rad = p_.radius.data();
   // Contact laws see a clump sphere's whole body mass (its damping and time scale are those of the body);
-  // gravity uses each sphere's share. For free spheres the two are the same number.
+  // gravity uses each sphere's share (finish_block). For free spheres the two are the same number.
   const double* mass = p_.contact_mass.data();
-  const double* share = p_.mass.data();
   const double* inv_i = p_.inv_inertia.data();
   const std::int32_t* mat = p_.material.data();
-  const std::int32_t* row = nl_.row_begin.data();
-  const std::int32_t* nbr = nl_.nbr.data();
-  Vec3* shear = nl_.shear.data();
-  Vec3* roll = nl_.roll.data();
-  std::uint8_t* touch = nl_.touch.data();
+  const std::int32_t* row = pair_list_.row_begin.data();
+  const std::int32_t* nbr = pair_list_.neighbor.data();
+  Vec3* shear = pair_list_.shear.data();
+  Vec3* roll = pair_list_.roll.data();
+  std::uint8_t* touch = pair_list_.touch.data();
   const MaterialTable& mt = materials_;
 
   const bool gather = gather_in_law();
   // Rounded up: a gap at or below the float limit goes to the full test.
-  const double gap_limit = 2.0 * max_disp_ + nl_.gap_eps;
+  const double gap_limit = 2.0 * max_disp_ + pair_list_.gap_eps;
   float gap_limit_f = static_cast<float>(gap_limit);
   if (static_cast<double>(gap_limit_f) < gap_limit) gap_limit_f = std::nextafter(gap_limit_f, std::numeric_limits<float>::infinity());
-  PairArrays arrays{x, v, w, rad, mass, inv_i, mat, row, nbr, nl_.slot_row.data(), shear, roll, touch, mt.coeff_table(),
-                    static_cast<std::size_t>(mt.size()), dt, nl_.gap.data(), gap_limit_f};
+  PairArrays arrays{x, v, w, rad, mass, inv_i, mat, row, nbr, pair_list_.slot_row.data(), shear, roll, touch, mt.coeff_table(),
+                    static_cast<std::size_t>(mt.size()), dt, pair_list_.gap.data(), gap_limit_f};
   // Wall::velocity_at, angular_velocity and to_world(load_point) with their per-wall products taken once
   // per wall and step, not per particle near it (the same operations on the same values, so the same
   // numbers): most particles near a wall do not touch it.
@@ -472,23 +470,23 @@ void World::compute_forces_impl() {
   }
   const std::size_t n_observed = wall_observers_.size();
   if (n_observed > 0) {
-    wc_.obs_normal.resize(wc_.wall.size());
-    wc_.obs_velocity.resize(wc_.wall.size());
+    wall_list_.observed_normal.resize(wall_list_.wall.size());
+    wall_list_.observed_velocity.resize(wall_list_.wall.size());
   }
   // Wall contacts of one particle, into per-entry storage. Within one mesh, face contacts win over
   // edge contacts and edges over vertices, so a sphere on a flat or convex seam touches once.
   auto walls_of = [&](std::size_t i) {
-    const auto b = static_cast<std::size_t>(wc_.begin[i]);
-    const auto e = static_cast<std::size_t>(wc_.begin[i + 1]);
+    const auto b = static_cast<std::size_t>(wall_list_.begin[i]);
+    const auto e = static_cast<std::size_t>(wall_list_.begin[i + 1]);
     thread_local std::vector<WallGeom> geo_big;  // only for a particle touching many triangles
     thread_local std::vector<char> hit_big;
     WallGeom geo_small[16];
     char hit_small[16];
     std::size_t k = b;
     while (k < e) {
-      const std::size_t wi = static_cast<std::size_t>(wc_.wall[k]);
+      const std::size_t wi = static_cast<std::size_t>(wall_list_.wall[k]);
       std::size_t kend = k;
-      while (kend < e && static_cast<std::size_t>(wc_.wall[kend]) == wi) ++kend;
+      while (kend < e && static_cast<std::size_t>(wall_list_.wall[kend]) == wi) ++kend;
       const Wall& wl = walls_[wi];
       WallGeom* geo = geo_small;
       char* hit = hit_small;
@@ -502,7 +500,7 @@ void World::compute_forces_impl() {
       if (const auto* m = std::get_if<TriangleMesh>(&wl.current)) {
         const double r2 = rad[i] * rad[i];
         for (std::size_t q = k; q < kend; ++q) {
-          const auto el = static_cast<std::size_t>(wc_.element[q]);
+          const auto el = static_cast<std::size_t>(wall_list_.element[q]);
           const auto& t = m->triangles[el];
           const Vec3& a = m->vertices[static_cast<std::size_t>(t[0])];
           // Many candidates are only within the skin. A sphere farther from the triangle's plane
@@ -532,11 +530,11 @@ void World::compute_forces_impl() {
         }
         // Resolve faces, then edges, then vertices.
         auto tri_has = [&](std::size_t q, std::int32_t vtx) {
-          const auto& t = m->triangles[static_cast<std::size_t>(wc_.element[q])];
+          const auto& t = m->triangles[static_cast<std::size_t>(wall_list_.element[q])];
           return t[0] == vtx || t[1] == vtx || t[2] == vtx;
         };
         auto feature_vertices = [&](std::size_t q, std::int32_t& a, std::int32_t& bb) {
-          const auto& t = m->triangles[static_cast<std::size_t>(wc_.element[q])];
+          const auto& t = m->triangles[static_cast<std::size_t>(wall_list_.element[q])];
           switch (geo[q - k].feature) {
             case TriFeature::edge_ab: a = t[0]; bb = t[1]; break;
             case TriFeature::edge_bc: a = t[1]; bb = t[2]; break;
@@ -595,10 +593,10 @@ void World::compute_forces_impl() {
       };
       for (std::size_t q = k; q < kend; ++q) {
         if (!hit[q - k]) {
-          if (wc_.touch[q]) {
-            wc_.touch[q] = 0;
-            wc_.shear[q].setZero();
-            wc_.roll[q].setZero();
+          if (wall_list_.touch[q]) {
+            wall_list_.touch[q] = 0;
+            wall_list_.shear[q].setZero();
+            wall_list_.roll[q].setZero();
           }
           continue;
         }
@@ -618,277 +616,94 @@ void World::compute_forces_impl() {
         kin.inv_inertia_j = 0.0;
         kin.m_i = mass[i];
         kin.m_j = 0.0;
-        LaneVec sh = LaneVec::of(wc_.shear[q]), ro = LaneVec::of(wc_.roll[q]);
+        LaneVec sh = LaneVec::of(wall_list_.shear[q]), ro = LaneVec::of(wall_list_.roll[q]);
         const ContactForce cf = Model::compute(c, kin, sh, &ro, dt);
-        wc_.shear[q] = sh.eigen();
-        wc_.roll[q] = ro.eigen();
-        wc_.touch[q] = 1;
-        wc_.out_f[q] = cf.force.eigen();
-        wc_.out_t[q] = cf.torque_i.eigen();
-        wc_.out_point[q] = gq.point;
+        wall_list_.shear[q] = sh.eigen();
+        wall_list_.roll[q] = ro.eigen();
+        wall_list_.touch[q] = 1;
+        wall_list_.force[q] = cf.force.eigen();
+        wall_list_.torque[q] = cf.torque_i.eigen();
+        wall_list_.point[q] = gq.point;
         // The wall's torque from this contact, here in the parallel part: the serial sum below then
         // only adds, in entry order, as it always did (the same numbers at any thread count).
-        const Vec3 fw = -wc_.out_f[q];
+        const Vec3 fw = -wall_list_.force[q];
         const Vec3 towards = (gq.point - x[i]).normalized();
         const Vec3 lever = rad[i] * towards;
-        const Vec3 rolling_couple = wc_.out_t[q] - lever.cross(wc_.out_f[q]);  // on the particle
-        wc_.out_wall_torque[q] = (gq.point - load_point).cross(fw) - rolling_couple;
+        const Vec3 rolling_couple = wall_list_.torque[q] - lever.cross(wall_list_.force[q]);  // on the particle
+        wall_list_.wall_torque[q] = (gq.point - load_point).cross(fw) - rolling_couple;
         if (wi < n_observed && wall_observers_[wi]) {
-          wc_.obs_normal[q] = towards;
+          wall_list_.observed_normal[q] = towards;
           // The slip velocity the contact law saw: the sphere's surface point against the wall's.
-          wc_.obs_velocity[q] = v[i] + (rad[i] * w[i]).cross(towards) - wl.velocity_at(gq.point);
+          wall_list_.observed_velocity[q] = v[i] + (rad[i] * w[i]).cross(towards) - wl.velocity_at(gq.point);
         }
       }
       k = kend;
     }
   };
 
-  const std::int32_t* wb = wc_.begin.data();
-  const std::uint8_t* wtouch = wc_.touch.data();
-  const Vec3* wof = wc_.out_f.data();
-  const Vec3* wot = wc_.out_t.data();
-  const std::int32_t* owners = wc_.owners.data();
-  const std::size_t n_owners = wc_.owners.size();
-
-  // Pair forces into fixed blocks of rows (see world.h), then one pass per particle that adds the
-  // block partial sums in block order, its wall contacts and gravity.
-  const std::size_t nblocks = nl_.blocks();
-  // Each force block also sums the wall loads of its particles' entries, in entry order, into its
-  // own share (per wall, and per element touched); the shares are added in block order after the
-  // forces. A serial sum over all entries read every entry the other threads had just written
-  // (bench bed, 2 threads: their wall contacts 45 % dearer), and fixed blocks, not threads, keep
-  // the numbers the same at any thread count.
-  const std::size_t nw = walls_.size();
-  wall_part_f_.resize(nblocks * nw);
-  wall_part_t_.resize(nblocks * nw);
-  wall_part_e_.resize(nblocks);
-  // A wall of one element (a primitive) needs no shares of its own: its element's sum is its force.
-  element_base_.resize(nw);
-  bool meshes = false;
-  std::size_t slots = 0;
-  for (std::size_t k = 0; k < nw; slots += walls_[k].element_force.size(), ++k) {
-    element_base_[k] = walls_[k].element_force.size() > 1 ? static_cast<std::int32_t>(slots) : -1;
-    meshes = meshes || element_base_[k] >= 0;
-  }
-  element_slot_.resize(static_cast<std::size_t>(nt));
-  for (auto& es : element_slot_)  // every slot a block uses is reset to -1 after it
-    if (es.size() != slots) es.assign(slots, -1);
-  const std::int32_t* __restrict wall_of = wc_.wall.data();
-  const std::int32_t* __restrict element_of = wc_.element.data();
-  const Vec3* __restrict wtq = wc_.out_wall_torque.data();
-  const std::int32_t* __restrict ebase = element_base_.data();
-  Vec3* const part_f = wall_part_f_.data();
-  Vec3* const part_t = wall_part_t_.data();
-  std::vector<ElementShare>* const part_e = wall_part_e_.data();
-  const std::size_t* blo = nl_.block_lo.data();
-  const std::size_t* bhi = nl_.block_hi.data();
-  const std::size_t* boff = nl_.block_off.data();
-  const std::size_t* bfirst = nl_.block_first.data();
-  Vec3* bf = nl_.block_f.data();
-  Vec3* bt = nl_.block_t.data();
-  Vec3* f = p_.f.data();
-  Vec3* t = p_.t.data();
-  // The particles [lo, hi) of block ob: to each its wall contacts (in entry order) and gravity; from
-  // the same entries, the block's share of the wall loads. The shares are summed in the thread's own
-  // scratch and stored once at the end: the shares of two threads' blocks may share a cache line,
-  // and a store per contact would pass it back and forth.
-  auto finish_block = [=](std::size_t ob, std::size_t lo, std::size_t hi, std::int32_t* __restrict slot_of) {
-    thread_local std::vector<Vec3> acc;  // allocated by this thread, away from the others' data
-    acc.assign(2 * nw, Vec3::Zero());
-    Vec3* __restrict sf = acc.data();
-    Vec3* __restrict st = acc.data() + nw;
-    std::vector<ElementShare> parts = std::move(part_e[ob]);
-    parts.clear();
-    for (std::size_t i = lo; i < hi; ++i) {
-      Vec3 fi = f[i], ti = t[i];
-      for (auto q = static_cast<std::size_t>(wb[i]); q < static_cast<std::size_t>(wb[i + 1]); ++q) {
-        if (!wtouch[q]) continue;
-        fi += wof[q];
-        ti += wot[q];
-        const auto k = static_cast<std::size_t>(wall_of[q]);
-        const Vec3 fw = -wof[q];
-        sf[k] += fw;
-        st[k] += wtq[q];
-      }
-      f[i] = fi + share[i] * g;
-      t[i] = ti;
-    }
-    std::copy(sf, sf + nw, part_f + ob * nw);
-    std::copy(st, st + nw, part_t + ob * nw);
-    if (!meshes) {
-      part_e[ob] = std::move(parts);
-      return;
-    }
-    // Apart from the loop above: its rare call (push_back) kept fi and ti on the stack (bench bed,
-    // one thread: 3 % slower).
-    for (auto q = static_cast<std::size_t>(wb[lo]); q < static_cast<std::size_t>(wb[hi]); ++q) {
-      if (!wtouch[q]) continue;
-      const std::int32_t base = ebase[wall_of[q]];
-      if (base < 0) continue;
-      std::int32_t& at = slot_of[base + element_of[q]];
-      if (at < 0) {
-        at = static_cast<std::int32_t>(parts.size());
-        parts.push_back({wall_of[q], element_of[q], Vec3::Zero()});
-      }
-      parts[static_cast<std::size_t>(at)].f -= wof[q];
-    }
-    for (const ElementShare& es : parts) slot_of[ebase[es.wall] + es.element] = -1;
-    part_e[ob] = std::move(parts);
-  };
-  // Each thread takes the blocks of its share (cut_, world.h) in every phase: the wall contacts of
-  // its particles, its pair blocks, their finishing, and the integrator's passes. So it works on the
-  // particles whose state it wrote: on this project's VM a cache line that crosses between the two
-  // cores costs ~250-500 ns (bench/core_latency); with dynamic schedules the wall entries and pair
-  // blocks changed hands every step (bench bed, 2 threads: 1.30 -> 0.86 s), and a serial sum of the
-  // wall loads or wall contacts split by count made a thread read what the other had just written.
-  // Which thread takes a block changes no number.
+  const std::int32_t* owners = wall_list_.owners.data();
+  const std::size_t n_owners = wall_list_.owners.size();
+  const std::size_t nblocks = blocks_.count();
+  wall_loads_.prepare(walls_, nblocks, static_cast<std::size_t>(nt));
+  // Each thread takes the blocks of its share (dem/force_blocks.h) in every phase: the wall contacts
+  // of its particles, its pair blocks, their finishing, and the integrator's passes. So it works on
+  // the particles whose state it wrote: with dynamic schedules the wall entries and pair blocks
+  // changed hands every step (bench bed, 2 threads: 1.30 -> 0.86 s), and a serial sum of the wall
+  // loads or wall contacts split by count made a thread read what the other had just written.
   using Clock = std::chrono::steady_clock;
-  cut_.fit(static_cast<std::size_t>(nt), nblocks);
-  const bool close = closing_.on;
-  closing_.on = false;
-  closing_.first_bad.assign(static_cast<std::size_t>(nt), n);
-  closing_.maxd2.assign(static_cast<std::size_t>(nt), 0.0);
+  ThreadCut& cut = blocks_.cut();
+  cut.fit(static_cast<std::size_t>(nt), nblocks);
   const bool timed = nt > 1;
 #pragma omp parallel num_threads(nt)
   {
-    const auto tn = static_cast<std::size_t>(omp_get_thread_num());
-    const auto nth = static_cast<std::size_t>(omp_get_num_threads());
-    std::int32_t* slot_of = element_slot_[tn].data();
-    const auto [b0, b1] = cut_.blocks(tn, nth, nblocks);
-    const auto [r0, r1] = thread_rows(n);
-    std::size_t first_bad = n;
-    double maxd2 = 0.0;
+    const auto thread = static_cast<std::size_t>(omp_get_thread_num());
+    const auto [b0, b1] = blocks_.thread_blocks();
+    const auto [r0, r1] = blocks_.thread_rows(n);
     const Clock::time_point c0 = timed ? Clock::now() : Clock::time_point{};
     for (const std::int32_t* o = std::lower_bound(owners, owners + n_owners, static_cast<std::int32_t>(r0));
          o < owners + n_owners && static_cast<std::size_t>(*o) < r1; ++o)
       walls_of(static_cast<std::size_t>(*o));
     for (std::size_t b = b0; b < b1; ++b) {
-      Vec3* fb = bf + boff[b] - blo[b];  // fb[p] is valid for p in [lo, hi); zero (see below)
-      Vec3* tb = bt + boff[b] - blo[b];
+      const std::size_t lo = blocks_.first_row(b), hi = blocks_.first_row(b + 1);
       if (gather)
-        pair_rows<Model, GatherChunk>(arrays, blo[b], blo[b + 1], fb, tb);
+        pair_rows<Model, GatherChunk>(arrays, lo, hi, blocks_.forces(b), blocks_.torques(b));
       else
-        pair_rows<Model, ContactChunk>(arrays, blo[b], blo[b + 1], fb, tb);
+        pair_rows<Model, ContactChunk>(arrays, lo, hi, blocks_.forces(b), blocks_.torques(b));
     }
     const Clock::time_point c1 = timed ? Clock::now() : Clock::time_point{};
 #pragma omp barrier
-    // Per particle the sum is, as always, zero, then the block buffers in block order, then its wall
-    // contacts and gravity; here it runs buffer by buffer over the particles of a block, as flat
-    // loops. Each buffer entry is read exactly once, by the block that owns its particle, which
-    // zeroes it for the next evaluation (layout_blocks zeroes new buffers): no separate pass to
-    // clear them. The body force and the held particles follow on the same particles while their
-    // forces are in cache (each is per particle, so the split does not change a number).
+    // After the barrier no thread reads another's particles.
     const Clock::time_point c2 = timed ? Clock::now() : Clock::time_point{};
-    for (std::size_t ob = b0; ob < b1; ++ob) {
-      const std::size_t lo = blo[ob], hi = blo[ob + 1];
-      // The first buffer that reaches a particle is copied, not added to zero: a buffer never holds
-      // -0.0 (it starts at +0.0 and, rounding to nearest, a sum or difference is -0.0 only when it
-      // already was), and 0.0 + x is x for every other x. Zero beyond its reach.
-      bool first = true;
-      for (std::size_t b = bfirst[ob]; b <= ob; ++b) {
-        const std::size_t end = std::min(hi, bhi[b]);
-        if (end <= lo) continue;
-        double* __restrict fs = (bf + boff[b] + (lo - blo[b]))->data();
-        double* __restrict ts = (bt + boff[b] + (lo - blo[b]))->data();
-        double* __restrict fd = f[lo].data();
-        double* __restrict td = t[lo].data();
-        const std::size_t m = 3 * (end - lo);
-        if (first) {
-          for (std::size_t k = 0; k < m; ++k) {
-            fd[k] = fs[k];
-            td[k] = ts[k];
-            fs[k] = 0.0;
-            ts[k] = 0.0;
-          }
-          std::fill(f + end, f + hi, Vec3::Zero());
-          std::fill(t + end, t + hi, Vec3::Zero());
-          first = false;
-          continue;
-        }
-        for (std::size_t k = 0; k < m; ++k) {
-          fd[k] += fs[k];
-          td[k] += ts[k];
-          fs[k] = 0.0;
-          ts[k] = 0.0;
-        }
-      }
-      finish_block(ob, lo, hi, slot_of);
-      if (body_force_) body_force_(p_, time_, lo, hi, p_.f);
-      // A held particle (Inserter::hold_to_face) feels nothing: with no force the kicks leave its
-      // velocity as set, so the drift moves it rigidly. Its partners still feel it.
-      for (const std::int32_t h : held_between(lo, hi)) {
-        f[static_cast<std::size_t>(h)] = Vec3::Zero();
-        t[static_cast<std::size_t>(h)] = Vec3::Zero();
-      }
-      // After the barrier no thread reads another's particles, so these may move on now.
-      if (close) close_rows(lo, hi, closing_.check, closing_.and_drift, first_bad, maxd2);
-    }
-    if (close) {
-      closing_.first_bad[tn] = first_bad;
-      closing_.maxd2[tn] = maxd2;
-    }
-    if (timed) cut_.busy[tn] += std::chrono::duration<double>(c1 - c0 + (Clock::now() - c2)).count();
+    for (std::size_t b = b0; b < b1; ++b) finish_block(b, thread, after_block);
+    if (timed) cut.busy[thread] += std::chrono::duration<double>(c1 - c0 + (Clock::now() - c2)).count();
   }
-  if (timed) cut_.step();
+  if (timed) cut.step();
+  wall_loads_.sum_into(walls_);
+}
 
-  // The wall loads: per wall the sum of the blocks' shares in block order, per element the same.
-  for (std::size_t k = 0; k < nw; ++k) {
-    Vec3 sf = Vec3::Zero(), st = Vec3::Zero();
-    for (std::size_t ob = 0; ob < nblocks; ++ob) {
-      sf += wall_part_f_[ob * nw + k];
-      st += wall_part_t_[ob * nw + k];
-    }
-    walls_[k].force = sf;
-    walls_[k].torque = st;
-    std::fill(walls_[k].element_force.begin(), walls_[k].element_force.end(), element_base_[k] < 0 ? sf : Vec3::Zero());
+void World::finish_block(std::size_t b, std::size_t thread, const BlockCallback& after_block) {
+  const std::size_t lo = blocks_.first_row(b), hi = blocks_.first_row(b + 1);
+  Vec3* f = p_.f.data();
+  Vec3* t = p_.t.data();
+  // Per particle the sum is, as always, zero, then the block buffers in block order, then its wall
+  // contacts and its weight; here it runs buffer by buffer over the particles of a block, as flat
+  // loops. The body force and the held particles follow on the same particles while their forces
+  // are in cache (each is per particle, so the split does not change a number).
+  blocks_.reduce(b, f, t);
+  wall_loads_.finish_block(b, thread, lo, hi, wall_list_, p_.mass.data(), settings_.gravity, f, t);
+  if (body_force_) body_force_(p_, time_, lo, hi, p_.f);
+  // A held particle (Inserter::hold_to_face) feels nothing: with no force the kicks leave its
+  // velocity as set, so the drift moves it rigidly. Its partners still feel it.
+  for (const std::int32_t h : held_between(lo, hi)) {
+    f[static_cast<std::size_t>(h)] = Vec3::Zero();
+    t[static_cast<std::size_t>(h)] = Vec3::Zero();
   }
-  for (std::size_t ob = 0; ob < nblocks; ++ob)
-    for (const ElementShare& es : wall_part_e_[ob])
-      walls_[static_cast<std::size_t>(es.wall)].element_force[static_cast<std::size_t>(es.element)] += es.f;
+  if (after_block) after_block(thread, lo, hi);
 }
 
-void World::compute_forces() { compute_forces_by_model(); }
 
-void World::ThreadCut::fit(std::size_t nt, std::size_t blocks) {
-  if (at.size() == nt + 1 && at.back() == blocks) return;
-  at.resize(nt + 1);
-  for (std::size_t t = 0; t <= nt; ++t) at[t] = blocks * t / nt;
-  busy.assign(nt, 0.0);
-  steps = 0;
-}
 
-std::pair<std::size_t, std::size_t> World::ThreadCut::blocks(std::size_t t, std::size_t nt, std::size_t nblocks) const {
-  if (at.size() == nt + 1 && at.back() == nblocks) return {at[t], at[t + 1]};
-  return {nblocks * t / nt, nblocks * (t + 1) / nt};  // a team smaller than asked for: even shares
-}
-
-// A block moves to the neighbouring thread only when the busier of the two would stay busier after
-// giving it (its time exceeds the other's by more than one of its blocks): so a cut never swings
-// back and forth, and an even pair stays as it is.
-void World::ThreadCut::step() {
-  if (++steps < kWindow) return;
-  for (std::size_t t = 0; t + 2 < at.size(); ++t) {
-    const double a = busy[t], b = busy[t + 1];
-    const std::size_t na = at[t + 1] - at[t], nb = at[t + 2] - at[t + 1];
-    if (a > b && na > 1 && a - b > a / static_cast<double>(na)) --at[t + 1];
-    else if (b > a && nb > 1 && b - a > b / static_cast<double>(nb)) ++at[t + 1];
-  }
-  std::fill(busy.begin(), busy.end(), 0.0);
-  steps = 0;
-}
-
-std::pair<std::size_t, std::size_t> World::thread_rows(std::size_t n) const {
-  const auto t = static_cast<std::size_t>(omp_get_thread_num());
-  const auto nt = static_cast<std::size_t>(omp_get_num_threads());
-  const std::size_t nb = nl_.blocks();
-  if (nb == 0) return {n * t / nt, n * (t + 1) / nt};
-  // n may differ from the list's rows (particles inserted or removed since the rebuild): the last
-  // thread then takes the rows beyond them.
-  const auto [b0, b1] = cut_.blocks(t, nt, nb);
-  return {std::min(nl_.block_lo[b0], n), b1 == nb ? n : std::min(nl_.block_lo[b1], n)};
-}
-
-void World::compute_forces_by_model() {
+void World::compute_forces(const BlockCallback& after_block) {
   using HM = HertzMindlin;
   using LSD = LinearSpringDashpot;
   using CH = CoulombHistorySpring;
@@ -897,16 +712,16 @@ void World::compute_forces_by_model() {
   const bool fric = settings_.tangential == TangentialModel::coulomb_history;
   switch (settings_.rolling) {
     case RollingModel::none:
-      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, NoRolling>>() : compute_forces_impl<ContactModel<HM, NT, NoRolling>>();
-      else fric ? compute_forces_impl<ContactModel<LSD, CH, NoRolling>>() : compute_forces_impl<ContactModel<LSD, NT, NoRolling>>();
+      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, NoRolling>>(after_block) : compute_forces_impl<ContactModel<HM, NT, NoRolling>>(after_block);
+      else fric ? compute_forces_impl<ContactModel<LSD, CH, NoRolling>>(after_block) : compute_forces_impl<ContactModel<LSD, NT, NoRolling>>(after_block);
       break;
     case RollingModel::constant_torque:
-      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, RollingConstantTorque>>() : compute_forces_impl<ContactModel<HM, NT, RollingConstantTorque>>();
-      else fric ? compute_forces_impl<ContactModel<LSD, CH, RollingConstantTorque>>() : compute_forces_impl<ContactModel<LSD, NT, RollingConstantTorque>>();
+      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, RollingConstantTorque>>(after_block) : compute_forces_impl<ContactModel<HM, NT, RollingConstantTorque>>(after_block);
+      else fric ? compute_forces_impl<ContactModel<LSD, CH, RollingConstantTorque>>(after_block) : compute_forces_impl<ContactModel<LSD, NT, RollingConstantTorque>>(after_block);
       break;
     case RollingModel::epsd:
-      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, RollingEpsd>>() : compute_forces_impl<ContactModel<HM, NT, RollingEpsd>>();
-      else fric ? compute_forces_impl<ContactModel<LSD, CH, RollingEpsd>>() : compute_forces_impl<ContactModel<LSD, NT, RollingEpsd>>();
+      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, RollingEpsd>>(after_block) : compute_forces_impl<ContactModel<HM, NT, RollingEpsd>>(after_block);
+      else fric ? compute_forces_impl<ContactModel<LSD, CH, RollingEpsd>>(after_block) : compute_forces_impl<ContactModel<LSD, NT, RollingEpsd>>(after_block);
       break;
   }
 }

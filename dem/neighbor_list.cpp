@@ -12,6 +12,7 @@
 #include <immintrin.h>
 #endif
 
+#include "dem/storage.h"
 #include "dem/walls/closest_point.h"
 #include "dem/world.h"
 
@@ -19,18 +20,6 @@ namespace chutelab::dem {
 namespace {
 
 constexpr double kInfinity() { return std::numeric_limits<double>::infinity(); }
-
-// Sizes an array whose old contents are not needed (all of it is written next). Storage is kept from
-// one rebuild to the next, so its pages are not faulted in anew; to grow, the old block is released
-// before the new one is taken, so the two are never held together (the rebuild's memory peak).
-template <class T>
-void resize_for_overwrite(std::vector<T>& v, std::size_t n) {
-  if (n > v.capacity()) {
-    v = std::vector<T>();
-    v.reserve(n + n / 16);
-  }
-  v.resize(n);
-}
 
 // Distance from a sphere centre to a wall element (for candidate lists), or +inf if out of reach.
 double element_distance(const Wall& w, std::size_t element, const Vec3& x) {
@@ -134,70 +123,15 @@ CHUTELAB_INLINE std::size_t near_in_range(const Vec3* __restrict px, const doubl
 
 }  // namespace
 
-void NeighborList::layout_blocks(std::size_t n, std::size_t blocks, int threads,
-                                 const std::vector<std::int32_t>& wall_begin) {
-  block_lo.assign(blocks + 1, n);
-  block_hi.assign(blocks, 0);
-  block_off.assign(blocks + 1, 0);
-  resize_for_overwrite(slot_row, nbr.size());
-  // Blocks of equal estimated work, not of equal rows: threads take whole blocks, so with blocks of
-  // very different cost no cut between threads is even (bench bed, one thread, per block: the floor
-  // layer's 115 ms against 90 and the top layer's 65, so the best cut of 16 blocks left two threads
-  // 42 ms apart in 1.47 s). The work of the rows before row i, in units of one pair slot, is
-  // kRowCost i + row_begin[i] + kWallCost wall_begin[i], rising with i, so each boundary is a binary
-  // search. The weights are that measurement's (per slot 13-15 ns with its share of contact laws,
-  // per wall entry 81 ns, per row ~15 ns of finishing and integration); they move work between
-  // threads only, never a number, as the boundaries come from the lists alone (the same at any
-  // thread count, and after a checkpoint's restore).
-  constexpr std::int64_t kRowCost = 1, kWallCost = 6;
-  auto work_before = [&](std::size_t i) {
-    return kRowCost * static_cast<std::int64_t>(i) + row_begin[i] + kWallCost * wall_begin[i];
-  };
-  const std::int64_t total = work_before(n);
-  if (blocks > 0) block_lo[0] = 0;
-  for (std::size_t b = 1; b < blocks; ++b) {
-    const std::int64_t target = total * static_cast<std::int64_t>(b) / static_cast<std::int64_t>(blocks);
-    std::size_t lo = block_lo[b - 1], hi = n;  // the first row with work_before >= target
-    while (lo < hi) {
-      const std::size_t mid = lo + (hi - lo) / 2;
-      if (work_before(mid) < target) lo = mid + 1;
-      else hi = mid;
-    }
-    block_lo[b] = lo;
-  }
-  // Each block's reach and its rows' slot_row entries are its own: the blocks in parallel.
+void NeighborList::index_slots(int threads) {
+  resize_for_overwrite(slot_row, neighbor.size());
+  const std::size_t rows = row_begin.empty() ? 0 : row_begin.size() - 1;
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::size_t b = 0; b < blocks; ++b) {
-    const std::size_t r0 = block_lo[b], r1 = block_lo[b + 1];
-    std::size_t hi = r1;
-    for (auto s = row_begin[r0]; s < row_begin[r1]; ++s) hi = std::max(hi, static_cast<std::size_t>(nbr[static_cast<std::size_t>(s)]) + 1);
-    block_hi[b] = hi;
-    for (std::size_t i = r0; i < r1; ++i)
-      std::fill(slot_row.begin() + row_begin[i], slot_row.begin() + row_begin[i + 1], static_cast<std::int32_t>(i));
-  }
-  for (std::size_t b = 0; b < blocks; ++b) block_off[b + 1] = block_off[b] + (block_hi[b] - block_lo[b]);
-  block_first.assign(blocks, 0);
-  for (std::size_t b = 0; b < blocks; ++b) {
-    std::size_t first = b;
-    for (std::size_t a = 0; a < b; ++a)
-      if (block_hi[a] > block_lo[b]) {
-        first = a;
-        break;
-      }
-    block_first[b] = first;
-  }
-  resize_for_overwrite(block_f, block_off[blocks]);
-  resize_for_overwrite(block_t, block_off[blocks]);
-  // Zero between force evaluations (the evaluation that reads an entry clears it), each block by the
-  // thread that takes it in the pair pass while the cut between threads is even (World::ThreadCut).
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::size_t b = 0; b < blocks; ++b) {
-    std::fill(block_f.begin() + static_cast<std::ptrdiff_t>(block_off[b]), block_f.begin() + static_cast<std::ptrdiff_t>(block_off[b + 1]), Vec3::Zero());
-    std::fill(block_t.begin() + static_cast<std::ptrdiff_t>(block_off[b]), block_t.begin() + static_cast<std::ptrdiff_t>(block_off[b + 1]), Vec3::Zero());
-  }
+  for (std::size_t i = 0; i < rows; ++i)
+    std::fill(slot_row.begin() + row_begin[i], slot_row.begin() + row_begin[i + 1], static_cast<std::int32_t>(i));
 }
 
-// The gaps need the list's slot_row (layout_blocks) and the positions max_disp_ is measured from.
+// The gaps need the list's slot_row (index_slots) and the positions max_disp_ is measured from.
 // eps covers the rounding of this pass, of the displacements and of the pair loop's own test (all
 // within a few units in the last place of the coordinates) a million times over.
 void NeighborList::measure_gaps([[maybe_unused]] const Vec3* x_ref, [[maybe_unused]] const double* radius,
@@ -210,11 +144,11 @@ void NeighborList::measure_gaps([[maybe_unused]] const Vec3* x_ref, [[maybe_unus
     rmax = std::max(rmax, radius[i]);
   }
   gap_eps = 1e-9 * (scale + 2.0 * rmax);
-  const std::size_t nslots = nbr.size();
+  const std::size_t nslots = neighbor.size();
   resize_for_overwrite(gap, nslots);
   const double* __restrict xb = x_ref->data();
   const std::int32_t* __restrict rows = slot_row.data();
-  const std::int32_t* __restrict nb = nbr.data();
+  const std::int32_t* __restrict nb = neighbor.data();
   float* __restrict out = gap.data();
   const __m512d eps = _mm512_set1_pd(gap_eps), zero = _mm512_setzero_pd();
   const std::size_t groups = (nslots + 7) / 8;
@@ -276,19 +210,19 @@ void compact_touching(const std::vector<std::int32_t>& begin, const std::vector<
 void World::save_touching_history(int nt) {
   TouchingHistory& h = history_;
   compact_touching(
-      nl_.row_begin, nl_.touch, nt, h.pair_begin,
+      pair_list_.row_begin, pair_list_.touch, nt, h.pair_begin,
       [&](std::size_t m) {
         resize_for_overwrite(h.pair_other, m);
         resize_for_overwrite(h.pair_shear, m);
         resize_for_overwrite(h.pair_roll, m);
       },
       [&](std::size_t from, std::size_t to) {
-        h.pair_other[to] = nl_.nbr[from];
-        h.pair_shear[to] = nl_.shear[from];
-        h.pair_roll[to] = nl_.roll[from];
+        h.pair_other[to] = pair_list_.neighbor[from];
+        h.pair_shear[to] = pair_list_.shear[from];
+        h.pair_roll[to] = pair_list_.roll[from];
       });
   compact_touching(
-      wc_.begin, wc_.touch, nt, h.wall_begin,
+      wall_list_.begin, wall_list_.touch, nt, h.wall_begin,
       [&](std::size_t m) {
         resize_for_overwrite(h.wall_wall, m);
         resize_for_overwrite(h.wall_element, m);
@@ -296,10 +230,10 @@ void World::save_touching_history(int nt) {
         resize_for_overwrite(h.wall_roll, m);
       },
       [&](std::size_t from, std::size_t to) {
-        h.wall_wall[to] = wc_.wall[from];
-        h.wall_element[to] = wc_.element[from];
-        h.wall_shear[to] = wc_.shear[from];
-        h.wall_roll[to] = wc_.roll[from];
+        h.wall_wall[to] = wall_list_.wall[from];
+        h.wall_element[to] = wall_list_.element[from];
+        h.wall_shear[to] = wall_list_.shear[from];
+        h.wall_roll[to] = wall_list_.roll[from];
       });
 }
 
@@ -385,7 +319,7 @@ void World::rebuild() {
   // With particles sorted by cell, cells of lower linear index hold only lower indices, so the half
   // list (j > i) needs just the own cell and the 13 "forward" neighbours of the 27-cell stencil.
   const bool sorted = settings_.sort_particles;
-  nl_.row_begin.assign(n + 1, 0);
+  pair_list_.row_begin.assign(n + 1, 0);
   std::vector<std::int32_t> local_start(n);
   auto visit_row = [&](std::size_t i, std::vector<std::int32_t>& out) {
     const Vec3 xi = p_.x[i];
@@ -487,21 +421,21 @@ void World::rebuild() {
 #pragma omp single
     {
       for (std::size_t k = 0; k < nth; ++k) block[k + 1] += block[k];
-      resize_for_overwrite(nl_.nbr, block[nth]);
+      resize_for_overwrite(pair_list_.neighbor, block[nth]);
     }
-    for (std::size_t i = lo; i < hi; ++i) nl_.row_begin[i] = static_cast<std::int32_t>(block[t]) + local_start[i];
-    std::copy(out.begin(), out.end(), nl_.nbr.begin() + static_cast<std::ptrdiff_t>(block[t]));
+    for (std::size_t i = lo; i < hi; ++i) pair_list_.row_begin[i] = static_cast<std::int32_t>(block[t]) + local_start[i];
+    std::copy(out.begin(), out.end(), pair_list_.neighbor.begin() + static_cast<std::ptrdiff_t>(block[t]));
     buf[t] = std::move(out);
   }
-  nl_.row_begin[n] = static_cast<std::int32_t>(nl_.nbr.size());
-  const std::size_t nslots = nl_.nbr.size();
-  resize_for_overwrite(nl_.shear, nslots);
-  resize_for_overwrite(nl_.roll, nslots);
-  resize_for_overwrite(nl_.touch, nslots);
+  pair_list_.row_begin[n] = static_cast<std::int32_t>(pair_list_.neighbor.size());
+  const std::size_t nslots = pair_list_.neighbor.size();
+  resize_for_overwrite(pair_list_.shear, nslots);
+  resize_for_overwrite(pair_list_.roll, nslots);
+  resize_for_overwrite(pair_list_.touch, nslots);
   {
-    Vec3* __restrict sh = nl_.shear.data();
-    Vec3* __restrict ro = nl_.roll.data();
-    std::uint8_t* __restrict to = nl_.touch.data();
+    Vec3* __restrict sh = pair_list_.shear.data();
+    Vec3* __restrict ro = pair_list_.roll.data();
+    std::uint8_t* __restrict to = pair_list_.touch.data();
 #pragma omp parallel for num_threads(nt) schedule(static)
     for (std::size_t k = 0; k < nslots; ++k) {
       sh[k].setZero();
@@ -570,15 +504,15 @@ void World::rebuild() {
   // serial order. Per particle the (wall, element) pairs must ascend: within one wall a particle's
   // entries come from ascending triangle ranges, so a stable counting sort by particle over the
   // walls in order (and, within a wall, the threads in order) keeps them ascending.
-  wc_.begin.assign(n + 1, 0);
+  wall_list_.begin.assign(n + 1, 0);
   for (const auto& b : cand_buf)
-    for (const auto& c : b) ++wc_.begin[static_cast<std::size_t>(c.p) + 1];
-  for (std::size_t i = 0; i < n; ++i) wc_.begin[i + 1] += wc_.begin[i];
-  const auto ncand = static_cast<std::size_t>(wc_.begin[n]);
-  resize_for_overwrite(wc_.wall, ncand);
-  resize_for_overwrite(wc_.element, ncand);
+    for (const auto& c : b) ++wall_list_.begin[static_cast<std::size_t>(c.p) + 1];
+  for (std::size_t i = 0; i < n; ++i) wall_list_.begin[i + 1] += wall_list_.begin[i];
+  const auto ncand = static_cast<std::size_t>(wall_list_.begin[n]);
+  resize_for_overwrite(wall_list_.wall, ncand);
+  resize_for_overwrite(wall_list_.element, ncand);
   {
-    std::vector<std::int32_t> next(wc_.begin.begin(), wc_.begin.end() - 1);
+    std::vector<std::int32_t> next(wall_list_.begin.begin(), wall_list_.begin.end() - 1);
     std::vector<std::size_t> pos(cand_buf.size(), 0);  // per thread buffer: first entry of the current wall
     for (std::size_t wi = 0; wi < walls_.size(); ++wi)
       for (std::size_t t = 0; t < cand_buf.size(); ++t) {
@@ -586,24 +520,25 @@ void World::rebuild() {
         std::size_t k = pos[t];
         for (; k < b.size() && static_cast<std::size_t>(b[k].wall) == wi; ++k) {
           const auto at = static_cast<std::size_t>(next[static_cast<std::size_t>(b[k].p)]++);
-          wc_.wall[at] = b[k].wall;
-          wc_.element[at] = b[k].element;
+          wall_list_.wall[at] = b[k].wall;
+          wall_list_.element[at] = b[k].element;
         }
         pos[t] = k;
       }
   }
-  resize_for_overwrite(wc_.shear, ncand);
-  resize_for_overwrite(wc_.roll, ncand);
-  resize_for_overwrite(wc_.touch, ncand);
-  std::fill(wc_.shear.begin(), wc_.shear.end(), Vec3::Zero());
-  std::fill(wc_.roll.begin(), wc_.roll.end(), Vec3::Zero());
-  std::fill(wc_.touch.begin(), wc_.touch.end(), std::uint8_t{0});
-  resize_for_overwrite(wc_.out_f, ncand);
-  resize_for_overwrite(wc_.out_t, ncand);
-  resize_for_overwrite(wc_.out_point, ncand);
-  resize_for_overwrite(wc_.out_wall_torque, ncand);
-  wc_.index_owners();
-  nl_.layout_blocks(n, kForceBlocks, nt, wc_.begin);
+  resize_for_overwrite(wall_list_.shear, ncand);
+  resize_for_overwrite(wall_list_.roll, ncand);
+  resize_for_overwrite(wall_list_.touch, ncand);
+  std::fill(wall_list_.shear.begin(), wall_list_.shear.end(), Vec3::Zero());
+  std::fill(wall_list_.roll.begin(), wall_list_.roll.end(), Vec3::Zero());
+  std::fill(wall_list_.touch.begin(), wall_list_.touch.end(), std::uint8_t{0});
+  resize_for_overwrite(wall_list_.force, ncand);
+  resize_for_overwrite(wall_list_.torque, ncand);
+  resize_for_overwrite(wall_list_.point, ncand);
+  resize_for_overwrite(wall_list_.wall_torque, ncand);
+  wall_list_.index_owners();
+  pair_list_.index_slots(nt);
+  blocks_.layout(n, kForceBlocks, nt, pair_list_.row_begin, pair_list_.neighbor, wall_list_.begin);
 
   // --- carry contact history over ---
   // Each old contact lands in its own new slot, so the rows can be carried over in parallel.
@@ -620,14 +555,14 @@ void World::rebuild() {
       if (b0 < 0) continue;
       const std::int32_t a = std::min(a0, b0), b = std::max(a0, b0);
       const double sign = a0 < b0 ? 1.0 : -1.0;  // history is i's view; swapping i and j negates it
-      const auto first = nl_.nbr.begin() + nl_.row_begin[static_cast<std::size_t>(a)];
-      const auto last = nl_.nbr.begin() + nl_.row_begin[static_cast<std::size_t>(a) + 1];
+      const auto first = pair_list_.neighbor.begin() + pair_list_.row_begin[static_cast<std::size_t>(a)];
+      const auto last = pair_list_.neighbor.begin() + pair_list_.row_begin[static_cast<std::size_t>(a) + 1];
       const auto it = std::lower_bound(first, last, b);
       if (it == last || *it != b) continue;
-      const auto sn = static_cast<std::size_t>(it - nl_.nbr.begin());
-      nl_.shear[sn] = sign * hist.pair_shear[so];
-      nl_.roll[sn] = sign * hist.pair_roll[so];
-      nl_.touch[sn] = 1;
+      const auto sn = static_cast<std::size_t>(it - pair_list_.neighbor.begin());
+      pair_list_.shear[sn] = sign * hist.pair_shear[so];
+      pair_list_.roll[sn] = sign * hist.pair_roll[so];
+      pair_list_.touch[sn] = 1;
     }
   }
   // Likewise each old particle's wall entries go to its own new particle's entries.
@@ -638,12 +573,12 @@ void World::rebuild() {
     if (a < 0) continue;
     for (auto e = hist.wall_begin[io]; e < hist.wall_begin[io + 1]; ++e) {
       const auto eo = static_cast<std::size_t>(e);
-      for (auto k = wc_.begin[static_cast<std::size_t>(a)]; k < wc_.begin[static_cast<std::size_t>(a) + 1]; ++k) {
+      for (auto k = wall_list_.begin[static_cast<std::size_t>(a)]; k < wall_list_.begin[static_cast<std::size_t>(a) + 1]; ++k) {
         const auto kn = static_cast<std::size_t>(k);
-        if (wc_.wall[kn] == hist.wall_wall[eo] && wc_.element[kn] == hist.wall_element[eo]) {
-          wc_.shear[kn] = hist.wall_shear[eo];
-          wc_.roll[kn] = hist.wall_roll[eo];
-          wc_.touch[kn] = 1;
+        if (wall_list_.wall[kn] == hist.wall_wall[eo] && wall_list_.element[kn] == hist.wall_element[eo]) {
+          wall_list_.shear[kn] = hist.wall_shear[eo];
+          wall_list_.roll[kn] = hist.wall_roll[eo];
+          wall_list_.touch[kn] = 1;
           break;
         }
       }
@@ -662,7 +597,7 @@ void World::rebuild() {
       xr[i] = px[i];
     }
   }
-  nl_.measure_gaps(x_ref_.data(), p_.radius.data(), n, nt);
+  pair_list_.measure_gaps(x_ref_.data(), p_.radius.data(), n, nt);
   // How far every particle is from each sink now: until one has moved that far, none can be behind
   // it, and insert_and_delete skips its scan (a particle moves at most max_disp_ from x_ref_). The
   // particles within one skin of a sink are listed: until max_disp_ reaches the skin no other can
