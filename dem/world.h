@@ -20,6 +20,7 @@
 #include "dem/particles.h"
 #include "dem/timestep.h"
 #include "dem/types.h"
+#include "dem/wall_forces.h"
 #include "dem/wall_loads.h"
 #include "dem/walls/wall.h"
 #include "dem/walls/wall_contact.h"
@@ -247,11 +248,8 @@ class World {
   std::function<void()> load_observer_;
   ForceBlocks blocks_;
   WallLoads wall_loads_;
-  struct WallFrame {  // a wall's motion at the current time, for the contacts (compute_forces)
-    Vec3 ww, surf_lin, surf_omega, surf_centre, load_point;
-    bool still, surface;
-  };
-  std::vector<WallFrame> wall_frames_;
+  std::vector<WallFrame> wall_frames_;      // per wall, each force evaluation (dem/wall_forces.h)
+  std::vector<std::uint8_t> wall_observed_;  // per wall, each force evaluation: has an observer
   std::vector<WallContactObserver> wall_observers_;  // by wall; empty = none observed
   ClumpBodies clumps_;
   std::int64_t next_clump_id_ = 0;
