@@ -80,7 +80,7 @@ void World::save_checkpoint(const std::string& path) const {
   w.vec(pair_list_.touch);
   w.vec(wall_list_.begin); w.vec(wall_list_.wall); w.vec(wall_list_.element); w.vec(wall_list_.shear); w.vec(wall_list_.roll); w.vec(wall_list_.touch);
   w.vec(wall_list_.force); w.vec(wall_list_.torque); w.vec(wall_list_.point);
-  w.vec(x_ref_); w.vec(wall_time_ref_); w.vec(index_map_);
+  w.vec(reference_.x); w.vec(reference_.wall_time); w.vec(reference_.index_map);
   for (const auto& wl : walls_) {
     w.pod(static_cast<std::uint64_t>(wl.element_count()));
     w.pod(wl.force); w.pod(wl.torque); w.vec(wl.element_force);
@@ -148,13 +148,13 @@ void World::load_checkpoint(const std::string& path) {
   r.vec(wall_list_.shear, "wall history"); r.vec(wall_list_.roll, "wall history"); r.vec(wall_list_.touch, "wall history");
   r.vec(wall_list_.force, "wall forces"); r.vec(wall_list_.torque, "wall forces"); r.vec(wall_list_.point, "wall forces");
   wall_list_.wall_torque.resize(wall_list_.point.size());  // derived in every force evaluation; not saved
-  r.vec(x_ref_, "reference positions"); r.vec(wall_time_ref_, "wall times"); r.vec(index_map_, "index map");
+  r.vec(reference_.x, "reference positions"); r.vec(reference_.wall_time, "wall times"); r.vec(reference_.index_map, "index map");
   // The saving World listed each wall by its motion then, which the scene being restored repeats (a
   // list of an older version covers the whole skin for every wall: more than needed, still right).
-  wall_listed_moving_.resize(walls_.size());
-  for (std::size_t k = 0; k < walls_.size(); ++k) wall_listed_moving_[k] = walls_[k].motion.moving() ? 1 : 0;
-  sink_clearance_.clear();  // derived at the next rebuild; until then the sinks scan every step
-  if (pair_list_.row_begin.size() != n + 1 || wall_list_.begin.size() != n + 1 || x_ref_.size() != n)
+  reference_.wall_listed_moving.resize(walls_.size());
+  for (std::size_t k = 0; k < walls_.size(); ++k) reference_.wall_listed_moving[k] = walls_[k].motion.moving() ? 1 : 0;
+  sink_scan_.clearance.clear();  // derived at the next rebuild; until then the sinks scan every step
+  if (pair_list_.row_begin.size() != n + 1 || wall_list_.begin.size() != n + 1 || reference_.x.size() != n)
     throw InputError(path, 0, "neighbour list", "sizes do not match the particle count");
   wall_list_.index_owners();
   for (auto j : pair_list_.neighbor)
@@ -164,7 +164,7 @@ void World::load_checkpoint(const std::string& path) {
     throw InputError(path, 0, "neighbour list", "inconsistent neighbour list");
   pair_list_.index_slots(thread_count());
   blocks_.layout(n, kForceBlocks, thread_count(), pair_list_.row_begin, pair_list_.neighbor, wall_list_.begin);
-  pair_list_.measure_gaps(x_ref_.data(), p_.radius.data(), n, thread_count());
+  pair_list_.measure_gaps(reference_.x.data(), p_.radius.data(), n, thread_count());
   for (auto& wl : walls_) {
     std::uint64_t ne;
     r.pod(ne, "wall elements");

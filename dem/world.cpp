@@ -18,26 +18,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string vec_str(const Vec3& v) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", v.x(), v.y(), v.z()); }
 
-// Largest distance of a wall's geometry from its pivot (for the displacement bound of a rotating wall).
-double reach_from_pivot(const Wall& w) {
-  if (const auto* m = std::get_if<TriangleMesh>(&w.shape)) {
-    double r = 0.0;
-    for (const auto& v : m->vertices) r = std::max(r, (v - w.motion.pivot).norm());
-    return r;
-  }
-  if (const auto* p = std::get_if<Plane>(&w.shape)) {
-    if (!p->bounded()) return kInf;
-    return (p->point - w.motion.pivot).norm() + std::hypot(p->half_u, p->half_v);
-  }
-  const auto& c = std::get<Cylinder>(w.shape);
-  const Vec3 off = c.point - w.motion.pivot;
-  const bool about_own_axis = w.motion.omega.normalized().cross(c.axis).norm() < 1e-12 &&
-                              (off - off.dot(c.axis) * c.axis).norm() < 1e-12;
-  if (about_own_axis) return 0.0;  // the shape maps onto itself
-  if (!std::isfinite(c.axial_min) || !std::isfinite(c.axial_max)) return kInf;
-  return off.norm() + std::max(std::abs(c.axial_min), std::abs(c.axial_max)) + c.radius;
-}
-
 }  // namespace
 
 World::World(Settings settings) : settings_(std::move(settings)) {
@@ -88,8 +68,8 @@ int World::add_wall(Wall w) {
                      "an unbounded plane or infinite cylinder cannot rotate (bound it or use a mesh)");
   w.set_time(time_);
   walls_.push_back(std::move(w));
-  wall_time_ref_.push_back(time_);
-  wall_listed_moving_.push_back(0);
+  reference_.wall_time.push_back(time_);
+  reference_.wall_listed_moving.push_back(0);
   list_dirty_ = true;
   return static_cast<int>(walls_.size()) - 1;
 }
@@ -150,7 +130,7 @@ void World::remove_particles_if(const std::function<bool(std::size_t)>& pred) {
   if (keep.size() == n) return;
   p_.permute(keep);
   if (!held_.empty()) index_held();
-  for (auto& m : index_map_)
+  for (auto& m : reference_.index_map)
     if (m >= 0) m = remap[static_cast<std::size_t>(m)];
   list_dirty_ = true;
 }
@@ -279,25 +259,6 @@ void World::initialise() {
   check_state();
 }
 
-bool World::needs_rebuild() const {
-  if (list_dirty_) return true;
-  if (2.0 * max_disp_ > skin_) return true;
-  for (std::size_t k = 0; k < walls_.size(); ++k)
-    if (walls_[k].motion.moving()) {
-      // Set moving after the last rebuild: its elements were listed only for a still wall's reach.
-      if (!wall_listed_moving_[k]) return true;
-      if (max_disp_ + wall_displacement_since_rebuild(walls_[k]) > skin_) return true;
-    }
-  return false;
-}
-
-double World::wall_displacement_since_rebuild(const Wall& w) const {
-  const std::size_t k = static_cast<std::size_t>(&w - walls_.data());
-  const double dt = time_ - wall_time_ref_[k];
-  return w.motion.velocity.norm() * std::abs(dt) +
-         std::abs(w.motion.omega.norm() * dt) * reach_from_pivot(w);
-}
-
 void World::step(std::int64_t n) {
   initialise();
   // Velocity Verlet (dem/integrator.h). Within one call the closing pass of a step also opens the
@@ -390,141 +351,6 @@ void World::index_held() {
   held_.clear();
   for (std::size_t i = 0; i < p_.held_by.size(); ++i)
     if (p_.held_by[i] >= 0) held_.push_back(static_cast<std::int32_t>(i));
-}
-
-void World::insert_and_delete() {
-  // Sinks first, so that their mass counts and indices are settled before new particles arrive.
-  if (!sinks_.empty()) {
-    // Skipping the scan is exact: a particle within max_disp_ of where it stood at the rebuild is
-    // still in front of a sink that every particle then cleared by more than that (the 1 nm margin
-    // covers the rounding of the dot products). No clearance yet (a checkpoint, a new sink): scan.
-    // A sink that cannot be skipped scans only the particles listed within a skin of it at the
-    // rebuild (the same margin argument), unless max_disp_ has reached that skin.
-    const bool listed = sink_clearance_.size() == sinks_.size();
-    bool any = false;
-    for (std::size_t k = 0; k < sinks_.size() && !any; ++k) {
-      const Sink& s = sinks_[k];
-      const double moved = max_disp_ * s.normal.norm();
-      if (listed && sink_clearance_[k] - moved > 1e-9) continue;
-      if (listed && moved + 1e-9 < sink_reach_[k]) {
-        for (const std::int32_t i : sink_near_[k])
-          if ((p_.x[static_cast<std::size_t>(i)] - s.point).dot(s.normal) < 0.0) any = true;
-      } else {
-        for (std::size_t i = 0; i < p_.size() && !any; ++i)
-          if ((p_.x[i] - s.point).dot(s.normal) < 0.0) any = true;
-      }
-    }
-    if (any) {
-      std::vector<int> sink_of(p_.size(), -1);
-      for (std::size_t i = 0; i < p_.size(); ++i)
-        for (std::size_t k = 0; k < sinks_.size(); ++k)
-          if ((p_.x[i] - sinks_[k].point).dot(sinks_[k].normal) < 0.0) {
-            sink_of[i] = static_cast<int>(k);
-            break;
-          }
-      if (clumps_.size() > 0) {  // a clump goes whole, to the sink that caught its first sphere
-        std::vector<int> body_sink(clumps_.size(), -1);
-        for (std::size_t i = 0; i < p_.size(); ++i)
-          if (p_.clump[i] >= 0 && sink_of[i] >= 0 && body_sink[static_cast<std::size_t>(p_.clump[i])] < 0)
-            body_sink[static_cast<std::size_t>(p_.clump[i])] = sink_of[i];
-        for (std::size_t i = 0; i < p_.size(); ++i)
-          if (p_.clump[i] >= 0) sink_of[i] = body_sink[static_cast<std::size_t>(p_.clump[i])];
-      }
-      for (std::size_t i = 0; i < p_.size(); ++i)
-        if (sink_of[i] >= 0) {
-          sinks_[static_cast<std::size_t>(sink_of[i])].removed_mass += p_.mass[i];
-          ++sinks_[static_cast<std::size_t>(sink_of[i])].removed_count;
-        }
-      remove_particles_if([&](std::size_t i) { return sink_of[i] >= 0; });
-    }
-  }
-  // Held particles whose centre has crossed their inserter's face go free with its full velocity.
-  // Each thread takes the held particles of its share of the integrator (ForceBlocks::thread_rows): a particle's
-  // lines stay with the core that integrates it.
-  if (!held_.empty()) {
-    const std::size_t np = p_.size();
-    std::size_t released = 0;
-#pragma omp parallel num_threads(thread_count()) reduction(+ : released)
-    {
-      const auto [lo, hi] = blocks_.thread_rows(np);
-      for (const std::int32_t h : held_between(lo, hi)) {
-        const auto i = static_cast<std::size_t>(h);
-        const Inserter& in = inserters_[static_cast<std::size_t>(p_.held_by[i])];
-        const int a = in.hold_axis;
-        const bool through = in.velocity[a] < 0.0 ? p_.x[i][a] <= in.region.lo[a] : p_.x[i][a] >= in.region.hi[a];
-        if (!through) continue;
-        p_.v[i] = in.velocity;
-        p_.held_by[i] = -1;
-        ++released;
-      }
-    }
-    if (released > 0)  // the released ones now have held_by = -1
-      std::erase_if(held_, [&](std::int32_t i) { return p_.held_by[static_cast<std::size_t>(i)] < 0; });
-  }
-  for (std::size_t k = 0; k < inserters_.size(); ++k) {
-    Inserter& in = inserters_[k];
-    if (time_ < in.start_time || time_ - dt_ >= in.end_time) continue;
-    in.pending_mass += in.mass_rate * dt_;
-    if (time_ + 0.5 * dt_ < in.next_time) continue;
-    in.next_time += in.interval;
-    const double rho = materials_.material(in.material).density;
-    // Nearby particles that a new one could overlap.
-    std::vector<std::size_t> near;
-    Box grow = in.region;
-    double rmax = in.radius_max;
-    for (double r : p_.radius) rmax = std::max(rmax, r);
-    grow.lo.array() -= 2.0 * rmax;
-    grow.hi.array() += 2.0 * rmax;
-    for (std::size_t i = 0; i < p_.size(); ++i)
-      if (grow.contains(p_.x[i])) near.push_back(i);
-    while (in.pending_mass > 0.0) {
-      bool placed = false;
-      const double r = in.clump_shape >= 0 ? 0.0 : in.radius_min + (in.radius_max - in.radius_min) * uniform01(in.rng_state);
-      if (in.clump_shape >= 0) placed = try_insert_clump(in, near);
-      for (int attempt = 0; in.clump_shape < 0 && attempt < in.max_attempts && !placed; ++attempt) {
-        Vec3 pos;
-        for (int d = 0; d < 3; ++d)
-          pos[d] = in.region.lo[d] + r + (in.region.hi[d] - in.region.lo[d] - 2.0 * r) * uniform01(in.rng_state);
-        bool free = true;
-        for (std::size_t j : near) {
-          const double rr = r + p_.radius[j];
-          if ((p_.x[j] - pos).squaredNorm() < rr * rr) {
-            free = false;
-            break;
-          }
-        }
-        if (!free) continue;
-        ParticleSpec spec;
-        spec.position = pos;
-        spec.velocity = in.velocity;
-        if (in.hold_to_face) {
-          spec.velocity = Vec3::Zero();
-          spec.velocity[in.hold_axis] = in.velocity[in.hold_axis];
-        }
-        spec.radius = r;
-        spec.material = in.material;
-        add_particle(spec);
-        if (in.hold_to_face) {
-          p_.held_by.back() = static_cast<std::int32_t>(k);
-          held_.push_back(static_cast<std::int32_t>(p_.size() - 1));
-        }
-        near.push_back(p_.size() - 1);
-        const double m = rho * 4.0 / 3.0 * std::numbers::pi * r * r * r;
-        in.pending_mass -= m;
-        in.inserted_mass += m;
-        placed = true;
-      }
-      if (!placed) {
-        if (!in.warned_full) {
-          warn(fmt::format("inserter cannot place particles fast enough at t = {:.4g} s ({:.3g} kg owed): the "
-                           "insertion region is full; enlarge it or lower the mass rate",
-                           time_, in.pending_mass));
-          in.warned_full = true;
-        }
-        break;
-      }
-    }
-  }
 }
 
 std::size_t World::contact_count() const {

@@ -13,10 +13,12 @@
 
 #include "dem/clump_bodies.h"
 #include "dem/contact/contact_model.h"
+#include "dem/contact_history.h"
 #include "dem/force_blocks.h"
 #include "dem/insertion.h"
 #include "dem/integrator.h"
 #include "dem/material.h"
+#include "dem/neighbor_list.h"
 #include "dem/particles.h"
 #include "dem/timestep.h"
 #include "dem/types.h"
@@ -87,40 +89,6 @@ class SimulationError : public std::runtime_error {
 // not throw.
 using BodyForceHook = std::function<void(const Particles& particles, double time, std::size_t begin,
                                          std::size_t end, std::vector<Vec3>& force)>;
-
-// The pair loop's AVX-512 form screens the slots by their gap at the rebuild (NeighborList::gap);
-// other builds test every slot and keep no gaps.
-#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512BW__)
-#define CHUTELAB_DEM_PAIR_GAPS 1
-#else
-#define CHUTELAB_DEM_PAIR_GAPS 0
-#endif
-
-// Pairs within cut-off (half list, j > i, ascending), with per-slot contact history.
-struct NeighborList {
-  std::vector<std::int32_t> row_begin;  // size N+1
-  std::vector<std::int32_t> neighbor;
-  std::vector<Vec3> shear;
-  std::vector<Vec3> roll;
-  std::vector<std::uint8_t> touch;
-  std::vector<std::int32_t> slot_row;  // row (particle i) of each slot, so the pair loop is one flat loop
-  // Per slot, a lower bound of the gap between the two surfaces at the reference positions (float,
-  // rounded down, less gap_eps): while every particle is within d of its reference position, a slot
-  // whose gap exceeds 2 d + gap_eps cannot touch (CHUTELAB_DEM_PAIR_GAPS builds only).
-  std::vector<float> gap;
-  double gap_eps = 0.0;
-  void index_slots(int threads);  // slot_row from row_begin
-  void measure_gaps(const Vec3* x_ref, const double* radius, std::size_t n, int threads);
-};
-
-// The history of the contacts that touch, copied out of the lists at the start of a rebuild (CSR by
-// the old particle index); kept between rebuilds only for its storage.
-struct TouchingHistory {
-  std::vector<std::int32_t> pair_begin, pair_other;
-  std::vector<Vec3> pair_shear, pair_roll;
-  std::vector<std::int32_t> wall_begin, wall_wall, wall_element;
-  std::vector<Vec3> wall_shear, wall_roll;
-};
 
 class World {
  public:
@@ -214,16 +182,25 @@ class World {
     const auto b = std::lower_bound(a, held_.end(), static_cast<std::int32_t>(hi));
     return {a, b};
   }
-  void rebuild();
-  void save_touching_history(int nt);
+  // Contact detection (dem/contact_detection.cpp): whether the lists must be rebuilt, and the rebuild.
   bool needs_rebuild() const;
+  void rebuild();
+  void sort_by_cell(CellGrid& grid, const std::vector<std::int32_t>& order, std::vector<std::int32_t>& map);
+  void take_reference(int threads);  // reference_ and the pair gaps from the current state
+  void scan_sinks();                 // sink_scan_ from the current state (dem/sources_and_sinks.cpp)
+  // Sources and sinks (dem/sources_and_sinks.cpp), once per step after the drift.
   void insert_and_delete();
+  bool anything_behind_sinks() const;
+  void remove_behind_sinks();
+  void release_held();
+  void insert_from(std::size_t inserter);
+  bool try_insert_sphere(std::size_t inserter, double radius, std::vector<std::size_t>& near);
   void check_state() const;
   [[noreturn]] void report_bad(std::size_t i) const;
   // A Verlet pass over all particles in a parallel region of its own, each thread on the rows of its
   // force blocks; returns the first bad particle (size() if none) and maxd2 raised by the drift.
   std::pair<std::size_t, double> verlet_pass(const VerletPass& pass, double maxd2);
-  VerletState verlet_state() { return VerletState::of(p_, x_ref_, dt_); }
+  VerletState verlet_state() { return VerletState::of(p_, reference_.x, dt_); }
   StateLimits state_limits() const { return {max_speed_, settings_.domain}; }
   void advance_time();  // to the end of the step being taken: time_ and the moving walls' poses
   // Clumps (dem/world_clumps.cpp): body half kick + drift + member placement (raises maxd2 to the
@@ -233,10 +210,10 @@ class World {
   void clumps_after_forces(double dt);
   void remove_whole_clumps(std::vector<char>& gone);
   bool try_insert_clump(Inserter& in, std::vector<std::size_t>& near);
+  double wall_displacement_since_rebuild(const Wall& w) const;
   void warn(const std::string& msg);
   void report_wall_contacts() const;  // dem/wall_observers.cpp
   int thread_count() const;
-  double wall_displacement_since_rebuild(const Wall& w) const;
 
   Settings settings_;
   MaterialTable materials_;
@@ -253,18 +230,25 @@ class World {
   std::vector<WallContactObserver> wall_observers_;  // by wall; empty = none observed
   ClumpBodies clumps_;
   std::int64_t next_clump_id_ = 0;
+  // Contact detection (dem/contact_detection.cpp): the pair and wall lists, rebuilt together.
   NeighborList pair_list_;
   WallContactList wall_list_;
-  TouchingHistory history_;              // scratch of rebuild()
-  std::vector<Vec3> x_ref_;              // positions at the last rebuild
-  std::vector<double> wall_time_ref_;    // wall pose times at the last rebuild
-  std::vector<std::uint8_t> wall_listed_moving_;  // per wall: listed with the whole skin (it moved then)
-  std::vector<double> sink_clearance_;   // per sink: the least (x - point) . normal at the last rebuild
-  std::vector<double> sink_reach_;       // per sink: one skin, in units of (x - point) . normal
-  std::vector<std::vector<std::int32_t>> sink_near_;  // per sink: particles within sink_reach_ then
-  std::vector<std::int32_t> index_map_;  // index at last rebuild -> current index (-1 removed)
-  std::vector<std::int32_t> scratch_;
-  std::vector<std::vector<std::int32_t>> search_buf_;  // rebuild(): each thread's rows of the pair list
+  TouchingHistory history_;  // scratch of rebuild()
+  // What the lists were built from: needs_rebuild() measures the displacements since against it.
+  struct ListReference {
+    std::vector<Vec3> x;                // positions at the last rebuild
+    std::vector<std::int32_t> index_map;  // index at the last rebuild -> current index (-1 removed)
+    std::vector<double> wall_time;      // wall pose times at the last rebuild
+    std::vector<std::uint8_t> wall_listed_moving;  // per wall: listed with the whole skin (it moved then)
+  };
+  ListReference reference_;
+  // Per sink, from the last rebuild (dem/sources_and_sinks.cpp): the least (x - point) . normal, one
+  // skin in those units, and the particles within that skin.
+  struct SinkScan {
+    std::vector<double> clearance, reach;
+    std::vector<std::vector<std::int32_t>> near;
+  };
+  SinkScan sink_scan_;
   double time_ = 0.0;
   double dt_ = 0.0;
   double skin_ = 0.0;

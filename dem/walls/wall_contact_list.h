@@ -1,10 +1,15 @@
 #pragma once
 // The wall elements near each particle (CSR by particle, sorted by wall then element) with each
-// entry's contact history and what its contact gave in the last force evaluation.
+// entry's contact history and what its contact gave in the last force evaluation: the walls'
+// counterpart of the neighbour list, built and kept with it (World::rebuild).
 #include <cstdint>
 #include <vector>
 
+#include "dem/cell_grid.h"
+#include "dem/contact_history.h"
+#include "dem/particles.h"
 #include "dem/types.h"
+#include "dem/walls/wall.h"
 
 namespace chutelab::dem {
 
@@ -22,6 +27,11 @@ struct WallContactList {
   std::vector<std::int32_t> owners;  // particles with at least one entry, ascending (derived)
   std::vector<std::int32_t> owner;   // particle of each entry (derived)
 
+  // Every (particle, wall, element) within R + skin of each other (a wall that does not move: within
+  // R + skin/2, all that can touch before the next rebuild); history starts at zero.
+  void build(const CellGrid& grid, const Particles& p, const std::vector<Wall>& walls, double skin, int threads);
+  // The touching entries of the last list into this one; map: old particle index -> new (-1 gone).
+  void carry_history(const TouchingHistory& saved, const std::vector<std::int32_t>& map, int threads);
   std::size_t size() const { return wall.size(); }
   void index_owners() {
     owners.clear();
