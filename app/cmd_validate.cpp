@@ -74,6 +74,7 @@ int run_validate(const ValidateCli& o) {
   }
   for (auto& p : model_inputs(o.models)) inputs.push_back(std::move(p));
   OutputFolder out(o.out, inputs);
+  own_validate_outputs(out);
   // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.
   configure_dem_model(o.dem, o.dataset, (out.staging() / "dem").string());
   const auto models = validation::make_models(split_list(o.models));
@@ -115,7 +116,10 @@ int run_validate(const ValidateCli& o) {
   // "What is missing" comes from the models as they are, so the reader sees why an effect was added.
   std::optional<validation::DiagnosisResult> diagnosis;
   if (o.diagnose || !o.effects.empty()) {
-    if (cheap.empty()) throw InputError("", 0, "--diagnose", "the diagnosis needs an analytical model in --models");
+    // Named by the flag that asked for the diagnosis (--effect implies it).
+    if (cheap.empty())
+      throw InputError("", 0, o.diagnose ? "--diagnose" : "--effect",
+                       "the diagnosis needs an analytical model in --models");
     validation::DiagnoseOptions dopt;
     dopt.progress = true;
     diagnosis = validation::diagnose(dataset, in_registry_order(cheap), dopt);

@@ -25,7 +25,8 @@ void add_sensitivity(CLI::App& app, Action& action);
 void add_import_digitised(CLI::App& app, Action& action);
 void add_design(CLI::App& app, Action& action);
 
-// "a,b,,c" -> {"a", "b", "c"}: the comma lists of --models.
+// "a,b,,c" -> {"a", "b", "", "c"}: the comma lists of --models, empty items kept for the library's
+// check (validation::make_models refuses them).
 std::vector<std::string> split_list(const std::string& s);
 
 // "unknown command 'valdate'; did you mean 'validate'?" for the first misspelt command or flag of
@@ -37,6 +38,10 @@ std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& d
 
 // The folders and files that --models external:NAME=DIR reads.
 std::vector<std::filesystem::path> model_inputs(const std::string& models);
+
+// What validate and diagnose may write in --out: one family (both write diagnosis.csv/.md), so either
+// one removes the other's earlier outputs it does not write (OutputFolder::owns).
+void own_validate_outputs(OutputFolder& out);
 
 // Refuses, before any long run, an --out where one of these files cannot be placed (a folder there).
 void check_entries(const OutputFolder& out, std::initializer_list<const char*> files);

@@ -10,33 +10,40 @@
 #include <unordered_map>
 
 #include "core/input_error.h"
+#include "core/message.h"
 #include "validation/input_uncertainty.h"
 #include "validation/campaign_runs.h"
 #include "validation/models/external_model.h"
 
 namespace chutelab::validation {
 
+namespace {
+// A metric that cannot be computed (0/0, x/0, x/1e-320 = inf, a NaN from a model) is no number:
+// it is left out of sums and maxima, and a limit on it fails (check_tolerance).
+std::optional<double> finite(double v) { return std::isfinite(v) ? std::optional(v) : std::nullopt; }
+}  // namespace
+
 std::optional<double> Comparison::relative_error() const {
   if (!predicted || measured == 0.0) return std::nullopt;
-  return error() / std::abs(measured);
+  return finite(error() / std::abs(measured));
 }
 
 std::optional<double> Comparison::normalised_error() const {
   if (!predicted || !uncertainty) return std::nullopt;
-  return error() / *uncertainty;
+  return finite(error() / *uncertainty);
 }
 
 std::optional<double> Comparison::validation_uncertainty() const {
   if (!predicted || (!uncertainty && !prediction_uncertainty && !u_num_disc && !u_input)) return std::nullopt;
   double sum = 0.0;
   for (const auto& u : {uncertainty, prediction_uncertainty, u_num_disc, u_input}) sum += std::pow(u.value_or(0.0), 2);
-  return std::sqrt(sum);
+  return finite(std::sqrt(sum));
 }
 
 std::optional<double> Comparison::vv20_ratio() const {
   const auto u = validation_uncertainty();
   if (!u || *u <= 0.0) return std::nullopt;
-  return std::abs(error()) / *u;
+  return finite(std::abs(error()) / *u);
 }
 
 const ConditionResult* ValidationResult::prediction(const std::string& condition,
@@ -77,7 +84,7 @@ std::optional<double> ValidationResult::combined_rms_normalised() const {
 }
 
 std::string ValidationResult::brief() const {
-  std::string s = fmt::format("{}: {} conditions x {} models", dataset_name,
+  std::string s = fmt::format("{}: {} conditions x {} models", one_line(dataset_name, 120),
                               predictions.size() / std::max<std::size_t>(1, models.size()),
                               models.size());
   for (const auto& m : models)
@@ -136,9 +143,16 @@ void check_tolerance(Comparison& c, const Tolerances& tol) {
     if (c.verdict.passed) c.verdict.limit = std::move(why);
     c.verdict.passed = false;
   };
-  if (t->relative)
-    if (auto r = c.relative_error(); r && std::abs(*r) > *t->relative)
+  // A limit whose metric cannot be computed is not met: a measured 0 against a relative limit has no
+  // relative error, and "within" would be a check that cannot fail.
+  if (!std::isfinite(c.measured) || !std::isfinite(*c.predicted)) fail("value not finite: nothing to compare");
+  if (t->relative) {
+    if (auto r = c.relative_error(); !r)
+      fail(c.measured == 0.0 ? "relative error undefined: the measured value is 0 (use an absolute limit)"
+                             : "relative error not finite (measured value too close to 0; use an absolute limit)");
+    else if (std::abs(*r) > *t->relative)
       fail(fmt::format("|rel| {:.3f} > {:.3f}", std::abs(*r), *t->relative));
+  }
   if (t->normalised) {
     // Without a stated uncertainty a normalised limit cannot be met: that is a failure to show,
     // not a pass to assume.
@@ -146,8 +160,11 @@ void check_tolerance(Comparison& c, const Tolerances& tol) {
     else if (std::abs(*z) > *t->normalised)
       fail(fmt::format("|z| {:.2f} > {:.2f}", std::abs(*z), *t->normalised));
   }
-  if (t->absolute && std::abs(c.error() * c.scale) > *t->absolute)
-    fail(fmt::format("|err| {:.3g} > {:.3g}", std::abs(c.error() * c.scale), *t->absolute));
+  if (t->absolute) {
+    const double e = std::abs(c.error() * c.scale);
+    if (!std::isfinite(e)) fail("error not finite");
+    else if (e > *t->absolute) fail(fmt::format("|err| {:.3g} > {:.3g}", e, *t->absolute));
+  }
 }
 
 }  // namespace
@@ -304,19 +321,23 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       s.model = m;
       s.quantity = qn;
       double se = 0.0, sz = 0.0, worst = 0.0;
-      int nz = 0, nr = 0;
+      int nz = 0, nr = 0, ne = 0;
       bool checked = false, ok = true;
       for (const Comparison* cp : by_key[{m, qn}]) {
         const Comparison& c = *cp;
         if (!c.predicted) continue;
         ++s.n;
-        se += std::pow(c.error() * c.scale, 2);
+        // Summaries over the finite values (a metric that is not one is left out, not propagated).
+        if (const double e = c.error() * c.scale; std::isfinite(e * e)) {
+          se += e * e;
+          ++ne;
+        }
         if (auto z = c.normalised_error()) { sz += *z * *z; ++nz; }
         if (auto rel = c.relative_error()) { worst = std::max(worst, std::abs(*rel)); ++nr; }
         if (c.verdict.checked) { checked = true; ok = ok && c.verdict.passed; }
       }
       if (s.n == 0) continue;
-      s.rms_error = std::sqrt(se / s.n);
+      s.rms_error = ne ? std::sqrt(se / ne) : std::nan("");
       if (nz) s.rms_normalised_error = std::sqrt(sz / nz);
       if (nr) s.max_abs_relative_error = worst;
       if (checked) s.within_tolerance = ok;

@@ -1,5 +1,7 @@
 #include "dem/station/progress.h"
 
+#include "core/message.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,7 +20,9 @@ std::string clock(double s) {
 
 }  // namespace
 
-ProgressPrinter::ProgressPrinter(std::string label) : label_(std::move(label)), tty_(isatty(2) != 0) {}
+// The label holds names from the data (a condition): shown through the one formatter, so a name
+// with a line end or a terminal escape cannot rewrite the terminal.
+ProgressPrinter::ProgressPrinter(std::string label) : label_(one_line(label, 120)), tty_(isatty(2) != 0) {}
 
 void ProgressPrinter::operator()(const Progress& p) {
   const double f = std::clamp(p.max_time > 0 ? p.time / p.max_time : 1.0, 0.0, 1.0);
