@@ -152,7 +152,6 @@ class Scanner {
     if (c == '"') return starts("\"\"\"") ? multiline_string('"', true) : basic_string();
     if (c == '\'') return starts("'''") ? multiline_string('\'', false) : literal_string();
     if (c == '[') {
-      if (depth + 1 > kTomlMaxDepth) return deep(depth + 1);
       ++i_;
       for (;;) {
         skip_blank();
@@ -160,6 +159,8 @@ class Scanner {
           ++i_;
           return true;
         }
+        // An element one level down: checked before the step (an empty array has none).
+        if (depth + 1 > kTomlMaxDepth) return deep(depth + 1);
         if (!value(depth + 1)) return false;
         skip_blank();
         if (peek() == ',') {
@@ -212,6 +213,7 @@ class Scanner {
   }
 
   bool statements() {
+    if (starts("\xEF\xBB\xBF")) i_ += 3;  // a UTF-8 byte-order mark, which toml++ skips too
     int base = 0;  // depth of the current [table]
     for (;;) {
       skip_blank();

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <cctype>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -42,6 +43,31 @@ std::string python_field(const std::string& field) {
   for (char& c : f)
     if (c == '-') c = '_';
   return f;
+}
+
+// The same inside a message: "use --dataset" is "use dataset=" here, for the keywords this package
+// has (a flag it has not, e.g. --dem-cache-only, is left as the command line's).
+std::string python_text(std::string text) {
+  static const char* const keywords[] = {"dataset", "setup", "condition", "effect", "models", "tolerances",
+                                         "seed", "noise-scale", "out", "alpha", "dem-quality", "dem-threads",
+                                         "dem-cache", "no-dem-cache", "belt-speed", "mass-flow", "plate-distance",
+                                         "plate-top", "stream-thickness"};
+  for (const char* k : keywords) {
+    const std::string flag = std::string("--") + k;
+    const std::string word = python_field(flag) + "=";
+    for (std::size_t at = 0; (at = text.find(flag, at)) != std::string::npos;) {
+      const std::size_t end = at + flag.size();
+      const bool whole = (at == 0 || text[at - 1] == ' ' || text[at - 1] == '(') &&
+                         (end == text.size() || !(std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '-'));
+      if (whole) {
+        text.replace(at, flag.size(), word);
+        at += word.size();
+      } else {
+        at = end;
+      }
+    }
+  }
+  return text;
 }
 
 // A whole number from Python: an int (not a bool), or a float that is whole; checked by `rule`, the
@@ -269,7 +295,7 @@ PYBIND11_MODULE(_chutelab, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      const InputError shown(e.file(), e.line(), python_field(e.field()), e.problem());
+      const InputError shown(e.file(), e.line(), python_field(e.field()), python_text(e.problem()));
       py::object err = py::reinterpret_borrow<py::object>(input_error)(py::str(shown.what()));
       err.attr("file") = shown.file();
       err.attr("line") = shown.line();

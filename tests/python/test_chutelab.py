@@ -311,6 +311,10 @@ def test_arguments_are_checked_by_the_command_lines_rules(tmp_path):
         with pytest.raises(chutelab.InputError) as e:
             call()
         assert e.value.field == field, field
+    # A message names the keyword as typed here, not the command line's flag.
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.estimate(condition="V3-41", setup=os.path.join(RIG, "setup.toml"))
+    assert "use dataset=" in str(e.value) and "--dataset" not in str(e.value)
 
 
 def test_a_deep_or_huge_toml_file_is_refused_not_a_crash(tmp_path):
