@@ -1,5 +1,7 @@
 #include "core/campaign.h"
 
+#include "core/message.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -101,7 +103,7 @@ std::vector<std::string> run_threads(std::span<const Job> jobs, const Options& o
       ++done;
       if (o.progress)
         std::cerr << fmt::format("{}[{}/{}] {} done ({:.0f} s){}\n", o.label.empty() ? "" : o.label + " ", done,
-                                 jobs.size(), jobs[k].key, seconds_since(t),
+                                 jobs.size(), one_line(jobs[k].key, 120), seconds_since(t),
                                  out[k].rfind("ok\n", 0) == 0 ? "" : ", failed")
                   << std::flush;
     }
@@ -130,7 +132,8 @@ std::vector<std::string> run_mpi(std::span<const Job> jobs, const Options& o) {
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     if (owner[k] != g_rank) continue;
     if (g_rank == 0 && o.progress)
-      std::cerr << fmt::format("{}{} ({}/{}, rank 0 of {})\n", prefix(o), jobs[k].key, k + 1, jobs.size(), g_ranks)
+      std::cerr << fmt::format("{}{} ({}/{}, rank 0 of {})\n", prefix(o), one_line(jobs[k].key, 120), k + 1, jobs.size(),
+                               g_ranks)
                 << std::flush;
     const auto t = std::chrono::steady_clock::now();
     out[k] = run_one(jobs[k], JobContext{g_rank == 0, 1});
@@ -213,7 +216,8 @@ std::vector<std::string> run_campaign(std::span<const Job> jobs, const Options& 
     // In order, each job with its own progress: today's behaviour. The first failure ends it.
     for (const auto& j : jobs) {
       if (options.progress)
-        std::cerr << fmt::format("{}{} ({}/{})\n", prefix(options), j.key, wrapped.size() + 1, jobs.size()) << std::flush;
+        std::cerr << fmt::format("{}{} ({}/{})\n", prefix(options), one_line(j.key, 120), wrapped.size() + 1, jobs.size())
+                  << std::flush;
       wrapped.push_back(run_one(j, JobContext{true, 0}));
       if (wrapped.back().rfind("ok\n", 0) != 0) break;
     }

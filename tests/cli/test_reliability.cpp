@@ -211,7 +211,7 @@ BOOST_AUTO_TEST_CASE(class4_every_signal_cleans_up) {
       // --default-signal: a background job of a script starts with some signals ignored.
       write_file(script, "env --default-signal '" + std::string(CHUTELAB_BINARY) + "' " + cmd + " >/dev/null 2>'" +
                              (s.root / "err").string() + "' &\np=$!\n"
-                             "i=0; while [ $i -lt 100 ] && ! ls -a '" + s.root.string() + "' | grep -q partial; do sleep 0.05; i=$((i+1)); done\n"
+                             "i=0; while [ $i -lt 600 ] && ! ls -a '" + s.root.string() + "' | grep -q partial; do sleep 0.05; i=$((i+1)); done\n"
                              "sleep 0.5\nkill -" + name + " $p\nwait $p\necho $? >'" + rc.string() + "'\n");
       BOOST_REQUIRE(std::system(("sh '" + script.string() + "' 2>/dev/null").c_str()) == 0);
       BOOST_TEST(std::stoi(read_file(rc)) == 128 + sig);
