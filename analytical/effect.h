@@ -40,11 +40,18 @@ struct FlightContext {
   double solid_density = 0.0;
 };
 
+class Effect;
+using EffectList = std::vector<std::shared_ptr<const Effect>>;
+
 class Effect {
  public:
   virtual ~Effect() = default;
   virtual std::string name() const = 0;
 
+  // The rig as it really was, from the rig as recorded (a plate further than the drawing says, a
+  // belt faster than its nameplate): a wrong number in the record, not physics. Called first, by
+  // every model that reads the station.
+  virtual void adjust_station(Station&) const {}
   virtual void adjust_operating_point(OperatingPoint&) const {}
   virtual void adjust_discharge(DischargeInput&, const Station&) const {}
   // Extra acceleration in flight (beyond gravity); has_flight_force() lets the chain keep the
@@ -63,6 +70,11 @@ class Effect {
   virtual void adjust_measurement(QuantityValues&) const {}
 };
 
-using EffectList = std::vector<std::shared_ptr<const Effect>>;
+// The station as every effect's adjust_station leaves it, in the order the effects were given.
+inline Station as_really_was(const Station& recorded, const EffectList& effects) {
+  Station s = recorded;
+  for (const auto& e : effects) e->adjust_station(s);
+  return s;
+}
 
 }  // namespace chutelab::analytical

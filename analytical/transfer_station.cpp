@@ -73,7 +73,8 @@ std::optional<double> farthest_plate_distance(const TransferAnalysis& a, double 
 
 }  // namespace
 
-TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects, TransferMemo* memo) {
+TransferAnalysis analyse_transfer(const Station& recorded, const EffectList& effects, TransferMemo* memo) {
+  const Station st = as_really_was(recorded, effects);
   check_station(st);
   TransferAnalysis a;
   a.station = st;
@@ -84,14 +85,19 @@ TransferAnalysis analyse_transfer(const Station& st, const EffectList& effects, 
   // is really on the belt, at belt speed (the layer rides the belt before the pulley).
   a.thickness_from_continuity = !st.stream_thickness;
   const bool known = memo && memo->operating && memo->operating->belt_speed == a.operating.belt_speed &&
-                     memo->operating->mass_flow == a.operating.mass_flow;
+                     memo->operating->mass_flow == a.operating.mass_flow &&
+                     memo->belt.belt_width == st.belt.belt_width && memo->belt.loaded_width == st.belt.loaded_width &&
+                     memo->belt.trough.idler_angle == st.belt.trough.idler_angle &&
+                     memo->belt.trough.centre_roll == st.belt.trough.centre_roll &&
+                     memo->belt.trough.surcharge_angle == st.belt.trough.surcharge_angle &&
+                     memo->bulk_density == st.material.bulk_density && memo->stream_thickness == st.stream_thickness;
   if (known) {
     a.load = memo->load;
   } else {
     a.load = st.stream_thickness ? load_shape_for_thickness(st.belt, *st.stream_thickness)
                                  : load_shape_for_flow(st.belt, a.operating.mass_flow, st.material.bulk_density,
                                                        a.operating.belt_speed);
-    if (memo) *memo = {a.operating, a.load};
+    if (memo) *memo = {a.operating, a.load, st.belt, st.material.bulk_density, st.stream_thickness};
   }
 
   a.plate.top = {st.plate_distance, st.plate_top};

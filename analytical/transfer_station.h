@@ -49,6 +49,10 @@ struct TransferAnalysis {
 // speed, delivered mass flow) changes it. One memo belongs to one station.
 struct TransferMemo {
   std::optional<OperatingPoint> operating;
+  // What else the load shape depends on: an effect on the record may change it.
+  Belt belt;
+  double bulk_density = 0.0;
+  std::optional<double> stream_thickness;
   LoadShape load;
 };
 

@@ -16,6 +16,7 @@ namespace {
 struct SynthesizeCli {
   std::string dataset, out;
   std::vector<std::string> effects;
+  std::vector<std::string> inputs;
   std::uint64_t seed = 1;
   double noise_scale = 1.0, noise_factor = 1.0;
   int outliers = 0;
@@ -29,7 +30,8 @@ int run_synthesize(const SynthesizeCli& o) {
   // Checked before any work (and again, the same way, where the dataset is written).
   { OutputFolder check(o.out, dataset_inputs(dir)); }
   std::vector<effects::EffectSetting> settings;
-  for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false, o.out_of_range));
+  for (const auto& e : effects_and_inputs(o.effects, o.inputs))
+    settings.push_back(effects::parse_setting(e, false, o.out_of_range));
   validation::SynthesizeOptions opt;
   opt.effects = effects::instantiate(settings);
   opt.seed = o.seed;
@@ -56,6 +58,9 @@ void add_synthesize(CLI::App& app, Action& action) {
                                  "plus hidden effects plus Gaussian noise.");
   cmd->add_option("--dataset", o->dataset, "rig and conditions to use (default: bundled grima2010)");
   cmd->add_option("--effect", o->effects, "hidden effect NAME=VALUE (repeatable)");
+  cmd->add_option("--input", o->inputs,
+                  "a wrong record: the recorded input NAME is off by VALUE (truth minus record, e.g. "
+                  "plate_distance=25 in mm); the measurements come from the truth (repeatable)");
   with_rule(cmd->add_option("--seed", o->seed, "random seed")->capture_default_str(), options::rules::seed);
   with_rule(cmd->add_option("--noise-scale", o->noise_scale, "multiplies every uncertainty")->capture_default_str(),
             options::rules::noise_scale);

@@ -24,6 +24,7 @@ namespace {
 struct ValidateCli {
   std::string dataset, out, tolerances, models = "korzen,booth-cema", junit;
   std::vector<std::string> effects;
+  std::vector<std::string> inputs;
   bool diagnose = false;
   DemCli dem;
   std::vector<std::string> studies;
@@ -50,6 +51,7 @@ void check_junit_path(const ValidateCli& o, const std::filesystem::path& toleran
 int run_validate(const ValidateCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.dataset);
+  const std::vector<std::string> effect_args = effects_and_inputs(o.effects, o.inputs);
   const auto dataset = validation::read_dataset(dir);
   // Read before any model runs: a bad study file ends the command before anything is written.
   const auto studies = reports::read_studies({o.studies.begin(), o.studies.end()}, dataset.setup.name);
@@ -80,7 +82,7 @@ int run_validate(const ValidateCli& o) {
   const auto models = validation::make_models(split_list(o.models));
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
   check_entries(out, {"predictions.csv", "errors.csv", "summary.csv", "report.md", "report.html"});
-  if (o.diagnose || !o.effects.empty()) check_entries(out, {"diagnosis.csv", "diagnosis.md"});
+  if (o.diagnose || !effect_args.empty()) check_entries(out, {"diagnosis.csv", "diagnosis.md"});
   if (std::any_of(models.begin(), models.end(), [](const auto& m) { return m->expensive(); }))
     out.check_entry("dem", true);
 
@@ -101,7 +103,7 @@ int run_validate(const ValidateCli& o) {
   std::vector<validation::ModelPtr> cheap;
   for (const auto& m : models)
     if (!m->expensive()) cheap.push_back(m);
-  const auto applied = resolve_effects(o.effects, dataset, cheap, report.effects);
+  const auto applied = resolve_effects(effect_args, dataset, cheap, report.effects);
   std::optional<validation::ValidationResult> after;
   if (!applied.effects.empty()) {
     validation::ValidateOptions opts = base_opts;
@@ -115,10 +117,10 @@ int run_validate(const ValidateCli& o) {
 
   // "What is missing" comes from the models as they are, so the reader sees why an effect was added.
   std::optional<validation::DiagnosisResult> diagnosis;
-  if (o.diagnose || !o.effects.empty()) {
-    // Named by the flag that asked for the diagnosis (--effect implies it).
+  if (o.diagnose || !effect_args.empty()) {
+    // Named by the flag that asked for the diagnosis (--effect and --input imply it).
     if (cheap.empty())
-      throw InputError("", 0, o.diagnose ? "--diagnose" : "--effect",
+      throw InputError("", 0, o.diagnose ? "--diagnose" : o.effects.empty() ? "--input" : "--effect",
                        "the diagnosis needs an analytical model in --models");
     validation::DiagnoseOptions dopt;
     dopt.progress = true;
@@ -174,6 +176,9 @@ void add_validate(CLI::App& app, Action& action) {
   cmd->add_option("--models", o->models, "comma-separated models")->capture_default_str();
   cmd->add_option("--effect", o->effects,
                   "add a physical effect: NAME=VALUE or NAME=fit (calibrated on the dataset)");
+  cmd->add_option("--input", o->inputs,
+                  "correct a recorded input: NAME=ERROR (truth minus record, e.g. plate_distance=25 in mm) or "
+                  "NAME=fit");
   cmd->add_option("--tolerances", o->tolerances,
                   "acceptance tolerances (default: the dataset's tolerances.toml if present)");
   cmd->add_flag("--diagnose", o->diagnose,

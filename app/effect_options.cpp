@@ -18,6 +18,26 @@ std::vector<validation::ModelPtr> in_registry_order(const std::vector<validation
   return sorted;
 }
 
+std::vector<std::string> effects_and_inputs(const std::vector<std::string>& effects,
+                                            const std::vector<std::string>& inputs) {
+  std::vector<std::string> out = effects;
+  for (const auto& a : inputs) {
+    const std::string name = a.substr(0, a.find('='));
+    const auto* e = effects::find(name);
+    if (!e || e->kind != effects::EffectInfo::Kind::record) {
+      std::vector<std::string> names;
+      for (const auto& i : effects::library())
+        if (i.kind == effects::EffectInfo::Kind::record) names.push_back(fmt::format("{} ({})", i.name, i.unit.empty() ? "fraction" : i.unit));
+      throw InputError("", 0, "--input",
+                       fmt::format("'{}' is {}; --input takes a recorded input and its error, truth minus record: {}",
+                                   name, e ? "a physical effect (give it with --effect)" : "not a recorded input",
+                                   fmt::join(names, ", ")));
+    }
+    out.push_back(a);
+  }
+  return out;
+}
+
 AppliedEffects resolve_effects(const std::vector<std::string>& args, const validation::Dataset& d,
                                const std::vector<validation::ModelPtr>& models,
                                std::vector<reports::EffectDescription>& described) {

@@ -20,6 +20,12 @@ AppliedEffects resolve_effects(const std::vector<std::string>& args, const valid
                                const std::vector<validation::ModelPtr>& models,
                                std::vector<reports::EffectDescription>& described);
 
+// --input NAME=VALUE|fit: a recorded input's error (effects/registry.h, Kind::record), given as an
+// effect is; the arguments of --effect followed by those of --input. An --input that names a
+// physical effect is refused, naming the flag and the recorded inputs there are.
+std::vector<std::string> effects_and_inputs(const std::vector<std::string>& effects,
+                                            const std::vector<std::string>& inputs);
+
 // Models in registry order (where they overlap, fits take each quantity from the first).
 std::vector<validation::ModelPtr> in_registry_order(const std::vector<validation::ModelPtr>& models);
 

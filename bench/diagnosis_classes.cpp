@@ -26,7 +26,7 @@ namespace {
 struct Tally {
   int runs = 0, named_truth = 0, named_other = 0, out_of_range = 0, consistent = 0, outside_library = 0, partial = 0;
   int covered = 0, covered_of = 0;
-  int outlier_named = 0, model_form_named = 0, thin = 0, scale_flagged = 0;
+  int outlier_named = 0, model_form_named = 0, thin = 0, scale_flagged = 0, record_differs = 0;
   std::map<std::string, int> others;
 };
 
@@ -40,6 +40,8 @@ struct Case {
   std::function<void(Dataset&)> alter_data;             // after the readings (a model-form error)
   std::vector<std::string> expect;     // the explanation that should be named (empty: none)
   std::uint64_t seed = 9100;
+  // The true errors of a record altered by alter_rig, in the candidates' units (for the coverage).
+  std::vector<std::pair<std::string, double>> record = {};
 };
 
 Tally run(const Case& c, int n) {
@@ -97,13 +99,15 @@ Tally run(const Case& c, int n) {
       ++t.covered_of;
       bool all = true;
       for (std::size_t k = 0; k < judged->estimate.size(); ++k)
-        for (const auto& [name, v] : c.truth)
-          if (name == judged->effects[k]) all = all && std::abs(judged->estimate[k] - v) <= 2.0 * judged->uncertainty[k];
+        for (const auto* list : {&c.truth, &c.record})
+          for (const auto& [name, v] : *list)
+            if (name == judged->effects[k]) all = all && std::abs(judged->estimate[k] - v) <= 2.0 * judged->uncertainty[k];
       t.covered += all ? 1 : 0;
     }
     t.outlier_named += r.outliers.empty() ? 0 : 1;
     t.model_form_named += r.model_form.empty() ? 0 : 1;
     t.thin += r.thin_data ? 1 : 0;
+    t.record_differs += r.record_scope && r.record_scope->differs ? 1 : 0;
     t.scale_flagged += (r.scale.applied || r.scale.too_large) ? 1 : 0;
   }
   return t;
@@ -127,6 +131,12 @@ int main(int argc, char** argv) {
       for (auto& st : s) st.plate_distance += dx;
     };
   };
+  auto alter = [](std::function<void(Station&)> f) {
+    return [f](std::vector<Station>& s) {
+      for (auto& st : s) f(st);
+    };
+  };
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
   auto thin = [](Dataset& d) {
     std::set<std::string> keep = {d.stations[0].condition, d.stations[1].condition};
     std::erase_if(d.measurements, [&](const auto& m) { return !keep.count(m.condition); });
@@ -144,7 +154,16 @@ int main(int argc, char** argv) {
       {"drag -0.56 (wrong sign)", rig, {{"air_drag", -0.56}}, 1.0, 0, {}, {}, {}, 9980},
       {"drag -0.3 (wrong sign)", rig, {{"air_drag", -0.3}}, 1.0, 0, {}, {}, {}, 10000},
       {"slip -0.03 (wrong sign)", rig, {{"belt_slip", -0.03}}, 1.0, 0, {}, {}, {}, 10020},
-      {"plate 25 mm further than recorded", rig, {}, 1.0, 0, plate_further(0.025), {}, {}, 10040},
+      {"plate 25 mm further than recorded", rig, {}, 1.0, 0, plate_further(0.025), {}, {"plate_distance"}, 10040, {{"plate_distance", 25.0}}},
+      {"plate leaning 4 deg more than recorded", rig, {}, 1.0, 0, alter([](Station& s) { s.plate.angle += 4.0 * kDeg; }), {}, {"plate_angle"}, 11000, {{"plate_angle", 4.0}}},
+      {"plate top 25 mm higher than recorded", rig, {}, 1.0, 0, alter([](Station& s) { s.plate_top += 0.025; }), {}, {"plate_top"}, 11020, {{"plate_top", 25.0}}},
+      {"belt 5 % faster than recorded", rig, {}, 1.0, 0, alter([](Station& s) { s.belt_speed *= 1.05; }), {}, {"belt_speed"}, 11040, {{"belt_speed", 5.0}}},
+      {"bulk density 10 % above the record", rig, {}, 1.0, 0, alter([](Station& s) { s.material.bulk_density *= 1.1; }), {}, {"bulk_density"}, 11060, {{"bulk_density", 10.0}}},
+      {"pulley lagging: diameter 25 mm more than recorded", rig, {}, 1.0, 0, alter([](Station& s) { s.belt.pulley_diameter += 0.025; }), {}, {"pulley_diameter"}, 11080, {{"pulley_diameter", 25.0}}},
+      {"plate 25 mm further, noise 2x stated", rig, {}, 2.0, 0, plate_further(0.025), {}, {"plate_distance"}, 11100, {{"plate_distance", 25.0}}},
+      {"one condition's plate 40 mm further than recorded", rig, {}, 1.0, 0,
+       [](std::vector<Station>& s) { s[3].plate_distance += 0.040; }, {}, {}, 11140},
+      {"belt incline 3 deg off (no candidate)", rig, {}, 1.0, 0, alter([](Station& s) { s.belt.incline += 3.0 * kDeg; }), {}, {}, 11120},
       {"flow bias 0.1 + one gross outlier (peer design)", peer, {{"mass_flow_bias", 0.1}}, 1.0, 1, {}, {}, {"mass_flow_bias"}, 10060},
       {"drag 0.6 + one gross outlier", rig, {{"air_drag", 0.6}}, 1.0, 1, {}, {}, {"air_drag"}, 10080},
       {"drag 0.6 + Korzen R_s 30 % off", rig, {{"air_drag", 0.6}}, 1.0, 0, {}, scale_rs(1.3), {"air_drag"}, 10100},
@@ -154,8 +173,8 @@ int main(int argc, char** argv) {
     cases.push_back({fmt::format("{} {} (typical), honest noise", e.name, e.typical), rig, {{e.name, e.typical}}, 1.0, 0, {},
                      {}, {e.name}, 10200 + 20 * static_cast<std::uint64_t>(&e - effects::library().data())});
   fmt::print("| class | replicas | named the truth | named another | out of range | partial | outside library | "
-             "consistent | ±2 sd covers | outlier named | model form named | scale flagged | thin |\n");
-  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+             "consistent | ±2 sd covers | outlier named | model form named | scale flagged | thin | record differs by condition |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   const char* show = std::getenv("DIAGNOSIS_SHOW");
   for (const auto& c : cases) {
     if (show && c.name.find(show) == std::string::npos) continue;
@@ -163,10 +182,10 @@ int main(int argc, char** argv) {
     const Tally t = run(c, null ? n_null : n);
     std::string others;
     for (const auto& [k, v] : t.others) others += fmt::format(" {}×{}", v, k);
-    fmt::print("| {} | {} | {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c.name, t.runs,
+    fmt::print("| {} | {} | {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c.name, t.runs,
                c.expect.empty() ? "–" : fmt::format("{}", t.named_truth), t.named_other, others, t.out_of_range, t.partial,
                t.outside_library, t.consistent, t.covered_of ? fmt::format("{}/{}", t.covered, t.covered_of) : "–",
-               t.outlier_named, t.model_form_named, t.scale_flagged, t.thin);
+               t.outlier_named, t.model_form_named, t.scale_flagged, t.thin, t.record_differs);
     std::fflush(stdout);
   }
   return 0;

@@ -24,12 +24,22 @@ class MassFlowBias final : public analytical::Effect {
   double b_;
 };
 
-const Registration registration({
-    "mass_flow_bias", "flow_bias", "", "inputs",
+EffectInfo info() {
+  EffectInfo e{
+    "mass_flow_bias", "flow_bias", "", "record",
     "m_true = (1 + b) m_recorded: all forces scale with (1 + b); h_b from continuity grows with it.",
     "Grima & Wypych (2010) section 4.1 (mass flow recalculated from load-cell data)",
     0.0, -0.3, 0.3, 0.1, [](double v) { return std::make_shared<MassFlowBias>(v); },
-    "an independent mass-flow reading (a belt scale, timed bin weights, or the free-stream mass flux stream_mass_flow_tph)"});
+    "an independent mass-flow reading (a belt scale, timed bin weights, or the free-stream mass flux stream_mass_flow_tph)"};
+  // A recorded input (the flow the feeder was set to), plausibly 5 % off when nothing is stated.
+  e.kind = EffectInfo::Kind::record;
+  e.prior_width = 0.05;
+  e.input = "mass_flow";
+  e.width_in_unit = [](const Station& s, double u) { return u / s.mass_flow; };
+  return e;
+}
+
+const Registration registration(info());
 
 }  // namespace
 }  // namespace chutelab::effects

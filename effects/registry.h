@@ -26,6 +26,24 @@ struct EffectInfo {
   // An independent measurement that confirms or rules the effect out, for when the data at hand
   // cannot tell it from another candidate ("" = none beyond chutelab's vocabulary).
   std::string check = {};
+  // physics: an effect the models miss. record: a recorded input that may be wrong (the plate
+  // further than the drawing says); its strength is the truth minus the record, in `unit`.
+  enum class Kind { physics, record };
+  Kind kind = Kind::physics;
+  // record: how far the input is plausibly off, one standard deviation in `unit`, when the dataset
+  // states no uncertainty for it (a documented default: a taped distance, a nameplate speed). An
+  // input three of these off is suspicious, thirty is a typo; the diagnosis charges a candidate the
+  // implausibility of its fitted strength (validation/diagnosis.h).
+  double prior_width = 0.0;
+  // record: the input's name in the dataset's stated uncertainties (InputUncertainties: belt_speed,
+  // mass_flow, plate_distance, plate_top, stream_thickness, or a rig field as "section.key"), and
+  // the stated one-sigma uncertainty (SI) expressed in `unit` at a station.
+  std::string input = {};
+  std::function<double(const Station&, double)> width_in_unit = {};
+  // record: the number may differ between conditions (a plate moved between tests, a belt run at
+  // other speeds), not only for the whole rig (a drawing error): the diagnosis then asks which.
+  // Such a candidate acts through adjust_station alone.
+  bool per_condition = false;
 };
 
 // How far a fit may go past the physical range when it asks what strength the data want, whatever

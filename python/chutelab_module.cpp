@@ -447,6 +447,7 @@ PYBIND11_MODULE(_chutelab, m) {
       d["parameter"] = e.parameter;
       d["unit"] = e.unit;
       d["stage"] = e.stage;
+      d["kind"] = e.kind == effects::EffectInfo::Kind::record ? "record" : "physics";
       d["neutral"] = e.neutral;
       d["lower"] = e.lower;
       d["upper"] = e.upper;

@@ -193,10 +193,19 @@ void what_is_missing(Doc& d, const Context& c) {
     d.figure(chart, "Fall of χ² when each candidate effect is fitted; significant candidates in colour, the "
                     "recommended one highlighted.");
   d.table(ranking_table(g));
+  if (std::any_of(g.singles.begin(), g.singles.end(), [](const auto& f) { return f.is_record(); })) {
+    d.h(3, "missing-record", "Is the rig's record wrong?");
+    d.p("Each recorded input that a rig's record can get wrong (plate position and angle, pulley and belt, belt "
+        "speed, mass flow, particle size, bulk density, a measured stream thickness) was tried as a candidate "
+        "beside the physical effects: its error, truth minus record, fitted to the same data and tested against "
+        "the same family-wise false-alarm rate.");
+    d.table(ranking_table(g, true));
+  }
 
   if (const auto* best = g.best()) {
     d.h(3, "missing-physics",
-        g.convincing ? fmt::format("The recommended effect: {}", best->label())
+        g.convincing ? fmt::format(best->is_record() ? "The recorded input to check: {}" : "The recommended effect: {}",
+                                   best->label())
                      : fmt::format("The best explanation, which leaves a misfit that is not noise: {}",
                                    best->label()));
     for (std::size_t i = 0; i < best->effects.size(); ++i) {
@@ -210,8 +219,9 @@ void what_is_missing(Doc& d, const Context& c) {
       const auto e = std::find_if(c.in.effects.begin(), c.in.effects.end(),
                                   [&](const EffectDescription& x) { return x.name == nm; });
       if (e == c.in.effects.end()) {
-        d.definition(nm, fit + " Its physics is described in the effect library (effects/" + nm +
-                             ".cpp); validate with --effect " + nm + "=fit to see the models with it.");
+        d.definition(nm, fit + " It is described in the effect library (effects/" + nm + ".cpp); validate with " +
+                             (best->is_record() ? "--input " : "--effect ") + nm +
+                             "=fit to see the models with it.");
         continue;
       }
       std::string body = fit;

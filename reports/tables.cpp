@@ -359,34 +359,48 @@ Table effects_table(const std::vector<EffectDescription>& effects) {
   return t;
 }
 
-Table ranking_table(const validation::DiagnosisResult& d) {
+Table ranking_table(const validation::DiagnosisResult& d, bool records) {
   Table t;
-  t.id = "ranking";
-  t.caption = "Candidate effects, ranked";
-  t.columns = {{"", "rank", "", false},        {"", "effect", "", true},  {"", "estimate ± sd", "", true},
+  t.id = records ? "ranking-records" : "ranking";
+  t.caption = records ? "Recorded inputs as candidates, ranked among all candidates" : "Candidate effects, ranked";
+  t.columns = {{"", "rank", "", false},        {"", records ? "recorded input" : "effect", "", true},
+               {"", records ? "error (truth − record) ± sd" : "estimate ± sd", "", true},
                {"", "χ² after", "", false},    {"", "Δχ²", "", false},    {"", "ΔBIC", "", false},
                {"", "explained (%)", "", false}, {"", "p (adjusted)", "", false}, {"", "significant", "", false}};
+  if (records) t.columns.insert(t.columns.begin() + 3, {"", "plausible errors off", "", false});
   auto add = [&](const validation::EffectFit& f, std::string rank) {
-    std::vector<std::string> est;
-    for (std::size_t i = 0; i < f.estimate.size() && i < f.parameters.size(); ++i)
+    std::vector<std::string> est, off;
+    for (std::size_t i = 0; i < f.estimate.size() && i < f.parameters.size(); ++i) {
       est.push_back(fmt::format("{} = {:.4g} ± {}", f.parameters[i], f.estimate[i],
                                 i < f.uncertainty.size() && std::isfinite(f.uncertainty[i])
                                     ? fmt::format("{:.2g}", f.uncertainty[i])
                                     : std::string("unconstrained")));
-    t.rows.push_back({{std::move(rank)},
-                      {f.label(), "", false, "", true, f.significant},
-                      {fmt::format("{}", fmt::join(est, "; ")), "", false, "", true},
-                      {fixed(f.chi2_after, 1)},
-                      {fixed(f.chi2_before - f.chi2_after, 1)},
-                      {fixed(f.delta_bic, 1)},
-                      {fixed(100.0 * f.explained_fraction, 0)},
-                      {fmt::format("{:.2g}", f.p_adjusted)},
-                      {f.significant ? "yes" : "no", "", false, "", false, f.significant}});
+      if (i < f.prior_width.size() && f.prior_width[i] > 0.0)
+        off.push_back(fmt::format("{:.1f} ({} {:.3g})", std::abs(f.estimate[i]) / f.prior_width[i],
+                                  f.prior_stated[i] ? "stated" : "default", f.prior_width[i]));
+    }
+    std::vector<Cell> row = {{std::move(rank)},
+                             {f.label(), "", false, "", true, f.significant},
+                             {fmt::format("{}", fmt::join(est, "; ")), "", false, "", true},
+                             {fixed(f.chi2_after, 1)},
+                             {fixed(f.chi2_before - f.chi2_after, 1)},
+                             {fixed(f.delta_bic, 1)},
+                             {fixed(100.0 * f.explained_fraction, 0)},
+                             {fmt::format("{:.2g}", f.p_adjusted)},
+                             {f.significant ? "yes" : "no", "", false, "", false, f.significant}};
+    if (records) row.insert(row.begin() + 3, Cell{fmt::format("{}", fmt::join(off, "; "))});
+    t.rows.push_back(std::move(row));
   };
-  for (const auto& f : d.singles) add(f, fmt::format("{}", f.rank));
-  for (const auto& f : d.pairs) add(f, "pair");
+  for (const auto& f : d.singles)
+    if (f.is_record() == records) add(f, fmt::format("{}", f.rank));
+  for (const auto& f : d.pairs)
+    if (f.is_record() == records) add(f, "pair");
   t.notes.push_back("Δχ² = χ² of the models as they are minus χ² with the effect fitted; ΔBIC < 0 favours "
                     "the effect; significance after correcting for the number of candidates tried.");
+  if (records)
+    t.notes.push_back("A recorded input's error is charged its implausibility, 2 ln(1 + (error / plausible error)²), "
+                      "in ΔBIC and in the test: the plausible error is the dataset's stated uncertainty of that input, "
+                      "or the input's documented default (effects/<input>.cpp).");
   return t;
 }
 

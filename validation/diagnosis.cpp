@@ -23,6 +23,12 @@ namespace chutelab::validation {
 
 std::string EffectFit::label() const { return fmt::format("{}", fmt::join(effects, " + ")); }
 
+bool EffectFit::is_record() const {
+  for (const auto& n : effects)
+    if (const auto* e = effects::find(n); !e || e->kind != effects::EffectInfo::Kind::record) return false;
+  return !effects.empty();
+}
+
 const EffectFit* DiagnosisResult::best() const {
   if (!any_significant) return nullptr;
   const EffectFit* b = !pairs.empty() ? &pairs.front() : singles.empty() ? nullptr : &singles.front();
@@ -58,6 +64,31 @@ Fx infos_of(const EffectFit& f) {
   return v;
 }
 
+// How far a recorded input is plausibly off, in its candidate's unit: the dataset's stated
+// uncertainty of that input (the median over the conditions that state it), else the input's
+// documented default (effects/registry.h, EffectInfo::prior_width).
+std::pair<double, bool> record_width(const Dataset& d, const effects::EffectInfo& e) {
+  std::vector<double> w;
+  for (std::size_t c = 0; c < d.stations.size() && c < d.input_uncertainty.size() && e.width_in_unit; ++c) {
+    const InputUncertainties& iu = d.input_uncertainty[c];
+    std::optional<double> u = e.input == "belt_speed"         ? iu.belt_speed
+                              : e.input == "mass_flow"        ? iu.mass_flow
+                              : e.input == "plate_distance"   ? iu.plate_distance
+                              : e.input == "plate_top"        ? iu.plate_top
+                              : e.input == "stream_thickness" ? iu.stream_thickness
+                                                              : std::nullopt;
+    for (const auto& [field, value] : iu.rig)
+      if (fmt::format("{}.{}", field->section, field->key) == e.input) u = value;
+    if (u && *u > 0.0) {
+      const double x = e.width_in_unit(d.stations[c], *u);
+      if (std::isfinite(x) && x > 0.0) w.push_back(x);
+    }
+  }
+  if (w.empty()) return {e.prior_width, false};
+  std::nth_element(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(w.size() / 2), w.end());
+  return {w[w.size() / 2], true};
+}
+
 // A step of the diagnosis under one noise model: the cost fits minimise and the tests' yardsticks.
 struct Stage {
   const Misfit& m;
@@ -68,11 +99,15 @@ struct Stage {
   double n = 0.0;       // points that count
   std::size_t candidates = 0;
 
+  std::map<std::string, std::pair<double, bool>> prior;  // recorded input -> (width, stated)
+
   Stage(const Misfit& misfit, const DiagnoseOptions& o, NoiseModel noise)
       : m(misfit), opt(o), nm(std::move(noise)), cost(misfit, nm.weights(misfit)) {
     chi2_0 = cost.chi2({}, {});
     n = static_cast<double>(cost.size());
     candidates = effects::library().size();
+    for (const auto& e : effects::library())
+      if (e.kind == effects::EffectInfo::Kind::record) prior[e.name] = record_width(misfit.dataset(), e);
   }
   double dof(double k) const { return std::max(1.0, n - k); }
   // The chance of a fall of chi^2 this large from k more strengths: a likelihood ratio against the
@@ -88,11 +123,21 @@ void score(EffectFit& e, double chi2, const Stage& s) {
   const double k = static_cast<double>(e.effects.size());
   e.chi2_before = s.chi2_0;
   e.chi2_after = chi2;
-  e.delta_bic = (chi2 + k * std::log(std::max(s.n, 2.0))) - s.chi2_0;
+  e.prior_width.assign(e.effects.size(), 0.0);
+  e.prior_stated.assign(e.effects.size(), false);
+  e.prior_penalty = 0.0;
+  for (std::size_t i = 0; i < e.effects.size(); ++i)
+    if (auto it = s.prior.find(e.effects[i]); it != s.prior.end()) {
+      const auto [w, stated] = it->second;
+      e.prior_width[i] = w;
+      e.prior_stated[i] = stated;
+      e.prior_penalty += 2.0 * std::log1p(std::pow(e.estimate[i] / w, 2));
+    }
+  e.delta_bic = (chi2 + e.prior_penalty + k * std::log(std::max(s.n, 2.0))) - s.chi2_0;
   // The misfit beyond noise: what is left counts as noise up to its degrees of freedom.
   const double floor = std::min(chi2, s.dof(k));
   e.explained_fraction = s.chi2_0 - floor > 0.0 ? std::clamp((s.chi2_0 - chi2) / (s.chi2_0 - floor), 0.0, 1.0) : 0.0;
-  e.p_value = s.p_improvement(s.chi2_0 - chi2, k, chi2);
+  e.p_value = s.p_improvement(s.chi2_0 - chi2 - e.prior_penalty, k, chi2);
 }
 
 EffectFit make_fit(const Fx& fx, const StrengthFit& f, const Stage& s) {
@@ -156,7 +201,7 @@ void judge_singles(std::vector<EffectFit>& singles, const Stage& s) {
     f.p_adjusted = std::min(1.0, f.p_value * k);
     f.significant = f.p_adjusted < s.opt.alpha;
   }
-  std::stable_sort(singles.begin(), singles.end(), [](const auto& a, const auto& b) { return a.chi2_after < b.chi2_after; });
+  std::stable_sort(singles.begin(), singles.end(), [](const auto& a, const auto& b) { return a.ranked_chi2() < b.ranked_chi2(); });
   for (std::size_t i = 0; i < singles.size(); ++i) singles[i].rank = static_cast<int>(i) + 1;
 }
 
@@ -226,7 +271,7 @@ void veto_by_outside(std::vector<EffectFit>& fits, const EffectFit* outside, con
   const double bic_out = outside->unbounded->chi2 + ln_n;
   // Only the leader is at stake (the list is ranked; the others could not be named anyway).
   for (auto& f : fits) {
-    const double bic = f.chi2_after + static_cast<double>(f.effects.size()) * ln_n;
+    const double bic = f.ranked_chi2() + static_cast<double>(f.effects.size()) * ln_n;
     if (bic_out < bic - s.opt.tie_margin_bic) f.beaten_outside_range_by = outside->effects[0];
     break;
   }
@@ -280,7 +325,7 @@ std::vector<EffectFit> fit_pairs(const Stage& s, const std::vector<EffectFit>& s
   for (const auto& f : singles) single_estimate[f.effects[0]] = f.estimate[0];
   const double npairs = static_cast<double>(lib.size() * (lib.size() - 1) / 2);
   auto test_pair = [&](EffectFit& f) {
-    f.p_value = s.p_improvement(top.chi2_after - f.chi2_after, 1.0, f.chi2_after);
+    f.p_value = s.p_improvement(top.ranked_chi2() - f.ranked_chi2(), 1.0, f.chi2_after);
     f.p_adjusted = std::min(1.0, f.p_value * npairs);
     f.significant = f.p_adjusted < s.opt.alpha && f.delta_bic < top.delta_bic - s.opt.pair_margin_bic;
   };
@@ -300,7 +345,7 @@ std::vector<EffectFit> fit_pairs(const Stage& s, const std::vector<EffectFit>& s
       test_pair(f);
       if (f.significant) out.push_back(f);
     }
-  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.chi2_after < b.chi2_after; });
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.ranked_chi2() < b.ranked_chi2(); });
   if (jobs > 0 && s.m.source().reruns_expensive() && !out.empty()) {
     // Only a pair whose real runs still beat the best single by the same tests is kept.
     EffectFit f = out.front();
@@ -440,6 +485,110 @@ Settled settle(const Misfit& m, const DiagnoseOptions& opt, const Drivers& drive
   }
   out.rounds = max_rounds;
   return out;
+}
+
+// A recorded input's error at one condition only: the candidate's station change applied where the
+// station is that condition (analytical/effect.h adjust_station), nothing elsewhere.
+class AtCondition final : public analytical::Effect {
+ public:
+  AtCondition(std::shared_ptr<const analytical::Effect> inner, std::string condition)
+      : inner_(std::move(inner)), condition_(std::move(condition)) {}
+  std::string name() const override { return inner_->name() + "@" + condition_; }
+  void adjust_station(Station& s) const override {
+    if (s.condition == condition_) inner_->adjust_station(s);
+  }
+
+ private:
+  std::shared_ptr<const analytical::Effect> inner_;
+  std::string condition_;
+};
+
+effects::EffectInfo at_condition(const effects::EffectInfo& e, const std::string& condition) {
+  effects::EffectInfo c = e;
+  c.name = e.name + "@" + condition;
+  c.make = [make = e.make, condition](double v) { return std::make_shared<AtCondition>(make(v), condition); };
+  return c;
+}
+
+struct ConditionFit {
+  std::vector<double> estimate, uncertainty, drop;
+};
+
+// Each condition's error of one input, fitted on its own: the conditions' residuals depend on their
+// own station only, so the joint fit of n errors is n fits of one, and its chi^2 falls by the sum.
+ConditionFit fit_per_condition(const Stage& s, const effects::EffectInfo& e) {
+  ConditionFit out;
+  for (const auto& st : s.m.dataset().stations) {
+    const effects::EffectInfo c = at_condition(e, st.condition);
+    const Fx fx = {&c};
+    const StrengthFit f = fit_strengths(s.cost, fx);
+    out.estimate.push_back(f.estimate[0]);
+    out.uncertainty.push_back(f.uncertainty[0]);
+    out.drop.push_back(std::max(0.0, s.chi2_0 - f.chi2));
+  }
+  return out;
+}
+
+// For the recommended record (per_condition inputs): one error for the rig, or one per condition?
+// With nothing named: is the misfit one condition's record? Analytical models only: with a DEM each
+// condition's candidate would need probe runs of its own.
+std::optional<RecordScope> record_scope_of(const Stage& s, const EffectFit* best, double alpha) {
+  if (s.m.source().has_expensive()) return std::nullopt;
+  const auto& stations = s.m.dataset().stations;
+  const double n = static_cast<double>(stations.size());
+  if (n < 2) return std::nullopt;
+  auto fill = [&](RecordScope& r, const effects::EffectInfo& e, const ConditionFit& f) {
+    r.input = e.name;
+    r.unit = e.unit;
+    for (std::size_t c = 0; c < stations.size(); ++c) r.conditions.push_back(stations[c].condition);
+    r.estimate = f.estimate;
+    r.uncertainty = f.uncertainty;
+  };
+  if (best && best->effects.size() == 1 && best->is_record()) {
+    const auto* e = effects::find(best->effects[0]);
+    if (!e->per_condition) return std::nullopt;
+    const ConditionFit f = fit_per_condition(s, *e);
+    RecordScope r;
+    fill(r, *e, f);
+    double drop = 0.0;
+    for (double d : f.drop) drop += d;
+    r.rig_wide_chi2 = best->chi2_after;
+    r.per_condition_chi2 = std::max(0.0, s.chi2_0 - drop);
+    r.p = s.p_improvement(r.rig_wide_chi2 - r.per_condition_chi2, n - 1.0, r.per_condition_chi2);
+    r.differs = r.p < alpha;
+    return r;
+  }
+  if (best) return std::nullopt;
+  // Nothing named: the single condition and input that explain most, Bonferroni over all the pairs.
+  std::optional<RecordScope> top;
+  double tried = 0.0;
+  for (const auto& e : effects::library())
+    tried += e.kind == effects::EffectInfo::Kind::record && e.per_condition ? n : 0.0;
+  for (const auto& e : effects::library()) {
+    if (e.kind != effects::EffectInfo::Kind::record || !e.per_condition) continue;
+    const ConditionFit f = fit_per_condition(s, e);
+    for (std::size_t c = 0; c < stations.size(); ++c) {
+      const double chi2 = s.chi2_0 - f.drop[c];
+      const double penalty = 2.0 * std::log1p(std::pow(f.estimate[c] / s.prior.at(e.name).first, 2));
+      const double p = std::min(1.0, s.p_improvement(f.drop[c] - penalty, 1.0, chi2) * tried);
+      if (top && p >= top->p) continue;
+      RecordScope r;
+      r.input = e.name;
+      r.unit = e.unit;
+      r.conditions = {stations[c].condition};
+      r.estimate = {f.estimate[c]};
+      r.uncertainty = {f.uncertainty[c]};
+      r.per_condition_chi2 = chi2;
+      r.p = p;
+      r.one_condition = true;
+      const double floor = std::min(chi2, s.dof(1.0));
+      r.explained_fraction = s.chi2_0 - floor > 0.0 ? std::clamp(f.drop[c] / (s.chi2_0 - floor), 0.0, 1.0) : 0.0;
+      top = r;
+    }
+  }
+  // Named only where it is significant and removes most of the misfit beyond noise.
+  if (top) top->differs = top->p < alpha && top->explained_fraction >= 0.7;
+  return top && top->differs ? top : std::nullopt;
 }
 
 // The expensive model's own chi^2 at a few strengths around a single's estimate: the estimate and sd
@@ -848,6 +997,9 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
   if (out.any_significant && out.singles.front().beaten_outside_range_by.empty()) ties_of(out, s, r0);
   out.thin_data = out.n_conditions < 3 || out.n_quantities < 2 || out.n_data < 10;
   out.verdict_code = verdict_of(out, best, outside);
+  if (out.verdict_code == Verdict::missing_effect || out.verdict_code == Verdict::partial_explanation ||
+      out.verdict_code == Verdict::outside_library)
+    out.record_scope = record_scope_of(s, out.verdict_code == Verdict::outside_library ? nullptr : best, opt.alpha);
   out.convincing = out.verdict_code == Verdict::missing_effect;
   describe(out, opt);
   return out;

@@ -75,6 +75,17 @@ struct EffectFit {
   // The expensive model's own chi^2 at a few strengths around the estimate (the recommended single
   // fit): its minimum and curvature replace the estimate and sd of the linear signature.
   std::optional<ProfileFit> profile;
+  // Recorded inputs (effects/registry.h, Kind::record): per parameter, the plausible error of the
+  // record (one sd in its unit; 0 for physics), whether the dataset stated it (else the input's
+  // documented default), and the charge for the fitted offsets' implausibility, 2 ln(1 + (x/w)^2)
+  // summed (a Cauchy prior of width w: three widths off costs 4.6, thirty 13.6). It is added to
+  // chi2_after where candidates are ranked and tested, never to the fit itself (a typo is fitted
+  // at its size, not pulled towards the record).
+  std::vector<double> prior_width;
+  std::vector<bool> prior_stated;
+  double prior_penalty = 0.0;
+  bool is_record() const;                 // every effect of it is a recorded input
+  double ranked_chi2() const { return chi2_after + prior_penalty; }
   std::string label() const;              // "air_drag" or "air_drag + belt_slip"
 };
 
@@ -163,6 +174,23 @@ struct Concentration {
   double share = 0.0;                     // of the effect's fall of chi^2
 };
 
+// Whether a recorded input is off by the same at every condition (the rig's drawing) or differs
+// between them (the rig changed between tests): each condition's error fitted on its own data.
+struct RecordScope {
+  std::string input;                       // effects/registry.h name
+  std::string unit;
+  // The recommended record's error per condition (it is named), or the one condition where an
+  // input alone explains most of an otherwise unexplained misfit (nothing is named).
+  std::vector<std::string> conditions;
+  std::vector<double> estimate, uncertainty;
+  double rig_wide_chi2 = 0.0, per_condition_chi2 = 0.0;
+  double p = 1.0;                          // per condition against one error for the rig (chi^2, n - 1 dof), or
+                                           // one condition's error against none (Bonferroni over inputs x conditions)
+  bool differs = false;                    // significant at the family's alpha
+  bool one_condition = false;              // the second case above
+  double explained_fraction = 0.0;         // one_condition: share of the misfit beyond noise removed
+};
+
 struct DiagnosisResult {
   std::string dataset;
   std::vector<std::string> models;
@@ -191,6 +219,7 @@ struct DiagnosisResult {
   int noise_rounds = 0;                   // fits run before the noise model settled
   std::vector<Discriminator> ties;        // about as good as the best, and what would separate them
   std::optional<Concentration> concentrated;  // the recommended effect rests on one quantity
+  std::optional<RecordScope> record_scope;  // analytical models only (a DEM would need runs per condition)
 
   // Sentences for an engineer, rendered from the above (validation/diagnosis_words.cpp).
   std::string verdict;                    // the headline

@@ -43,6 +43,44 @@ std::string fitted_words(const EffectFit& f) {
   return fmt::format("{}", fmt::join(parts, " + "));
 }
 
+// A recorded input's fitted error in words: "the plate distance is 25 ± 2 mm more than recorded
+// (2.5 times its plausible error of 10 mm, the documented default for this input: more than a
+// tolerance)".
+std::string record_words(const EffectFit& f) {
+  std::vector<std::string> parts;
+  for (std::size_t i = 0; i < f.effects.size(); ++i) {
+    const auto* e = effects::find(f.effects[i]);
+    // A fraction reads as %.
+    const double scale = e->unit.empty() ? 100.0 : 1.0;
+    const std::string unit = e->unit.empty() ? "%" : e->unit;
+    const double v = f.estimate[i] * scale, sd = f.uncertainty[i] * scale;
+    std::string name = f.effects[i] == "mass_flow_bias" ? "mass flow" : f.effects[i];
+    std::replace(name.begin(), name.end(), '_', ' ');
+    const bool relative = unit == "%";
+    std::string s = fmt::format("the {} is {} {} than recorded", name,
+                                std::isfinite(sd) ? fmt::format("{:.3g} ± {:.2g} {}", std::abs(v), sd, unit)
+                                                  : fmt::format("{:.3g} {} (unconstrained)", std::abs(v), unit),
+                                relative ? (v >= 0 ? "higher" : "lower") : (v >= 0 ? "more" : "less"));
+    if (i < f.prior_width.size() && f.prior_width[i] > 0.0) {
+      const double w = f.prior_width[i] * scale, ratio = std::abs(v) / w;
+      s += fmt::format(" ({:.1f} times its {} of {:.3g} {}: {})", ratio,
+                       f.prior_stated[i] ? "stated uncertainty" : "plausible error (the documented default)", w, unit,
+                       ratio >= 10.0 ? "a wrong entry or a changed rig rather than a tolerance"
+                       : ratio >= 3.0 ? "more than a tolerance"
+                                      : "within about a tolerance, so the record may be right and this a stand-in");
+    }
+    parts.push_back(s);
+  }
+  return fmt::format("{}", fmt::join(parts, ", and "));
+}
+
+std::string record_checks(const EffectFit& f) {
+  std::vector<std::string> c;
+  for (const auto& n : f.effects)
+    if (const auto* e = effects::find(n); e && !e->check.empty()) c.push_back(e->check);
+  return c.empty() ? "" : fmt::format(" Check it: {}.", fmt::join(c, "; "));
+}
+
 // How far the models are off for one quantity, in its units: "R_n 6.1 % high", "the impact point 14 mm low".
 std::string off_words(const QuantityShift& q, bool after) {
   const double v = after ? q.after : q.before, rel = after ? q.after_relative : q.before_relative;
@@ -80,7 +118,11 @@ std::string physics_words(const DiagnosisResult& r, const char* with_what) {
 std::string evidence_words(const EffectFit& f, int n) {
   return fmt::format("Evidence: chi^2 {:.1f} -> {:.1f} for {} data ({:.0f} % of the misfit beyond noise removed), "
                      "delta BIC {:.1f}, p (adjusted for the candidates tried) {:.2g}.",
-                     f.chi2_before, f.chi2_after, n, 100 * f.explained_fraction, f.delta_bic, f.p_adjusted);
+                     f.chi2_before, f.chi2_after, n, 100 * f.explained_fraction, f.delta_bic, f.p_adjusted) +
+         (f.prior_penalty > 0.0 ? fmt::format(" The record's implausibility is charged {:.1f} in chi^2 before the "
+                                              "test (a Cauchy prior of the plausible error's width).",
+                                              f.prior_penalty)
+                                : "");
 }
 
 std::string leftover_words(const Leftover& l) {
@@ -177,6 +219,36 @@ void describe_findings(DiagnosisResult& r) {
         c->effect, quantity_words(c->quantity), 100 * c->share, c->model,
         e && !e->check.empty() ? fmt::format(" ({})", e->check) : ""));
   }
+  if (const auto& rs = r.record_scope) {
+    const auto* e = effects::find(rs->input);
+    const double scale = rs->unit.empty() ? 100.0 : 1.0;
+    const std::string unit = rs->unit.empty() ? "%" : rs->unit;
+    std::string name = rs->input;
+    std::replace(name.begin(), name.end(), '_', ' ');
+    std::vector<std::string> per;
+    for (std::size_t c = 0; c < rs->conditions.size(); ++c)
+      per.push_back(fmt::format("{} {:+.3g} ± {:.2g} {}", rs->conditions[c], rs->estimate[c] * scale,
+                                rs->uncertainty[c] * scale, unit));
+    if (rs->one_condition)
+      r.findings.push_back(fmt::format(
+          "Suspect the record at one condition: at {} alone the {} fits {} than recorded, which removes {:.0f} % of "
+          "the misfit beyond noise (p = {:.2g}, adjusted for every input and condition tried). Was the rig changed "
+          "for that test?{}",
+          rs->conditions[0], name,
+          fmt::format("{:.3g} ± {:.2g} {} {}", std::abs(rs->estimate[0] * scale), rs->uncertainty[0] * scale, unit,
+                      rs->estimate[0] >= 0 ? (unit == "%" ? "higher" : "more") : (unit == "%" ? "lower" : "less")),
+          100 * rs->explained_fraction, rs->p, e && !e->check.empty() ? " Check it: " + e->check + "." : ""));
+    else if (rs->differs)
+      r.findings.push_back(fmt::format(
+          "The {} error differs between conditions (p = {:.2g} that one error for the rig fits as well; chi^2 {:.1f} "
+          "-> {:.1f} with one per condition): {}. The rig changed between tests, not only its drawing.",
+          name, rs->p, rs->rig_wide_chi2, rs->per_condition_chi2, fmt::join(per, ", ")));
+    else
+      r.findings.push_back(fmt::format(
+          "The {} error is the same at every condition within the noise (p = {:.2g} for one error per condition "
+          "against one for the rig): a drawing or set-up error common to the whole rig.",
+          name, rs->p));
+  }
   if (const auto s = scale_words(r.scale); !s.empty()) r.findings.push_back(s);
   if (r.thin_data)
     r.findings.push_back(fmt::format(
@@ -231,8 +303,13 @@ std::string verdict_words(const DiagnosisResult& r) {
                          "(chi^2 = {:.1f} for {} data, p = {:.2g}).",
                          r.scale.applied ? "widened" : "stated", r.chi2_baseline, r.n_data, r.baseline_p_value);
     case Verdict::missing_effect: {
-      std::string v = fmt::format("Missing effect: {}.{} {}", fitted_words(*b),
-                                  physics_words(r, "with it what is left is noise:"), evidence_words(*b, r.n_data));
+      std::string v =
+          b->is_record()
+              ? fmt::format("The record looks wrong, not the physics: {}.{}{} {}", record_words(*b),
+                            physics_words(r, "with the corrected record what is left is noise:"), record_checks(*b),
+                            evidence_words(*b, r.n_data))
+              : fmt::format("Missing effect: {}.{} {}", fitted_words(*b),
+                            physics_words(r, "with it what is left is noise:"), evidence_words(*b, r.n_data));
       if (!r.indistinguishable.empty())
         v += fmt::format(" About as good: {}.", fmt::join(r.indistinguishable, ", "));
       for (const auto& p : r.proportional) v += " But " + p + ".";
@@ -244,7 +321,8 @@ std::string verdict_words(const DiagnosisResult& r) {
       bool edge = false;
       for (bool e : b->at_bound) edge = edge || e;
       std::string v = fmt::format("{} explains most of the misfit ({:.0f} % of it beyond noise), but {}.{} {}",
-                                  fitted_words(*b), 100 * b->explained_fraction,
+                                  b->is_record() ? "A wrong record (" + record_words(*b) + ")" : fitted_words(*b),
+                                  100 * b->explained_fraction,
                                   left.empty() ? "needs a strength at the edge of its physical range: it is probably "
                                                  "standing in for something else"
                                                : fmt::format("the rest is not noise: {}", fmt::join(left, "; ")),

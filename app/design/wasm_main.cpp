@@ -84,13 +84,16 @@ std::string rig_fields_json() {
 
 std::string effects_json() {
   std::string o = "[";
-  for (const auto& e : effects::library())
+  for (const auto& e : effects::library()) {
+    // A designer changes an input itself; a recorded input's error is for measured data.
+    if (e.kind == effects::EffectInfo::Kind::record) continue;
     o += fmt::format("{}{{\"name\": {}, \"parameter\": {}, \"unit\": {}, \"stage\": {}, \"physics\": {}, \"neutral\": {}, "
                      "\"lower\": {}, \"upper\": {}, \"typical\": {}}}",
                      o.size() > 1 ? "," : "", app::json_string(e.name), app::json_string(e.parameter),
                      app::json_string(e.unit), app::json_string(e.stage), app::json_string(e.physics),
                      app::json_number(e.neutral), app::json_number(e.lower), app::json_number(e.upper),
                      app::json_number(e.typical));
+  }
   return o + "]";
 }
 

@@ -57,7 +57,12 @@ BOOST_AUTO_TEST_CASE(true_effect_ranked_first_and_error_falls_to_noise) {
   BOOST_REQUIRE(effects::library().size() <= 50);
   int first = 0, total = 0;
   std::uint64_t seed = 7100;
+  int physics = 0;
   for (const auto& e : effects::library()) {
+    // The recorded inputs have their own test (test_record_inputs.cpp): some have no signature on
+    // this design (the particle size without drag, a stream thickness it does not state).
+    if (e.kind != effects::EffectInfo::Kind::physics) continue;
+    ++physics;
     BOOST_TEST_CONTEXT(e.name << "=" << e.typical << " seed " << seed) {
       const fs::path d = fresh_dir("blind-" + e.name);
       const auto syn = run_chutelab(fmt::format("synthesize --dataset '{}' --effect {}={} --seed {} --out '{}'",
@@ -84,8 +89,8 @@ BOOST_AUTO_TEST_CASE(true_effect_ranked_first_and_error_falls_to_noise) {
     }
   }
   BOOST_TEST_MESSAGE(fmt::format("true effect ranked first for {} of {}", first, total));
-  // Every registered effect was tried, and at most one may lose first place (8 effects: >= 7).
-  BOOST_TEST(total == static_cast<int>(effects::library().size()));
+  // Every registered physical effect was tried, and at most one may lose first place (8 effects: >= 7).
+  BOOST_TEST(total == physics);
   BOOST_TEST(total >= 8);  // the eight of DESIGN.md section 4 at least
   BOOST_TEST(first >= total - 1);
 }

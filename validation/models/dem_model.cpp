@@ -124,11 +124,12 @@ class DemModel final : public Model {
   }
   bool expensive() const override { return true; }
   // The DEM responds to an effect when the effect changes one of its inputs (feed, belt speed,
-  // plate friction, flight force, belt cohesion): the run's key then differs.
+  // plate friction, flight force, belt cohesion, the rig as really built): the run's key then differs.
   bool cheaper_signatures() const override { return c_.signature_quality.has_value(); }
   bool represents(const Station& station, const analytical::EffectList& fixed,
                   const analytical::EffectList& with_candidate) const override {
-    return dem_effect_inputs(station, fixed).key != dem_effect_inputs(station, with_candidate).key;
+    const DemEffectInputs a = dem_effect_inputs(station, fixed), b = dem_effect_inputs(station, with_candidate);
+    return a.key != b.key || canonical_station(a.station) != canonical_station(b.station);
   }
 
   // The settings a request runs at: the command line's, or for a signature at a cheaper quality
@@ -495,9 +496,11 @@ std::string canonical_station(const Station& s) {
   return o;
 }
 
-DemEffectInputs dem_effect_inputs(const Station& station, const analytical::EffectList& effects) {
+DemEffectInputs dem_effect_inputs(const Station& recorded, const analytical::EffectList& effects) {
   DemEffectInputs out;
-  out.station = station;
+  // A wrong number in the record: the DEM runs the rig as it really was.
+  out.station = analytical::as_really_was(recorded, effects);
+  const Station station = out.station;  // as really built, before the operating effects
   double friction = station.material.friction_plate;
   bool friction_changed = false;
   double adhesive_stress = 0.0;

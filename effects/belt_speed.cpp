@@ -1,0 +1,37 @@
+// belt_speed: the belt ran at another speed than the record says.
+//
+// The record: V_b, from the drive's setting or nameplate. Strength: (V_true / V_recorded - 1) in
+// %. Range -20 to +20 %. Default plausible error 2 % (a drive under load slips; a VFD's set point is
+// not the speed). Unlike belt_slip, which slows the material against a belt running at V_b, the
+// whole belt and its load run at V_true: the layer is as much thinner as continuity asks.
+// DEM: honoured (the belt runs at V_true).
+#include "effects/recorded_input.h"
+#include "effects/registry.h"
+
+namespace chutelab::effects {
+namespace {
+
+EffectInfo info() {
+  EffectInfo e{"belt_speed", "error", "%", "record",
+               "V_true = (1 + e) V_recorded: the stream leaves faster or slower, thinner or thicker.",
+               "",
+               0.0, -20.0, 20.0, 5.0,
+               [](double v) {
+                 return std::make_shared<RecordedInput>("belt_speed", v, [](Station& s, double x) { s.belt_speed *= 1.0 + x * kPercent; });
+               },
+               "a tachometer on the belt or a timed mark over a measured length"};
+  e.kind = EffectInfo::Kind::record;
+  e.per_condition = true;
+  e.prior_width = 2.0;
+  e.input = "belt_speed";
+  e.width_in_unit = [](const Station& s, double u) {
+    (void)s;
+    return u / s.belt_speed / kPercent;
+  };
+  return e;
+}
+
+const Registration registration(info());
+
+}  // namespace
+}  // namespace chutelab::effects

@@ -1,0 +1,36 @@
+// belt_thickness: the belt is thicker or thinner than the record says.
+//
+// The record: t_b, the belt's thickness. Strength: t_true - t_recorded in mm. Range -10 to +20 mm
+// (a thickness below zero has no answer: the chain says so and the fit steps back). Default
+// plausible error 2 mm (a nominal catalogue value; top covers wear). Same signature as half a
+// pulley diameter error (R_b = D/2 + t_b).
+// DEM: honoured.
+#include "effects/recorded_input.h"
+#include "effects/registry.h"
+
+namespace chutelab::effects {
+namespace {
+
+EffectInfo info() {
+  EffectInfo e{"belt_thickness", "offset", "mm", "record",
+               "t_true = t_recorded + dt: the discharge radius R_b = D/2 + t_b grows by dt.",
+               "",
+               0.0, -10.0, 20.0, 5.0,
+               [](double v) {
+                 return std::make_shared<RecordedInput>("belt_thickness", v, [](Station& s, double x) { s.belt.belt_thickness += x * kMm; });
+               },
+               "a thickness gauge on the belt's edge"};
+  e.kind = EffectInfo::Kind::record;
+  e.prior_width = 2.0;
+  e.input = "belt.belt_thickness_mm";
+  e.width_in_unit = [](const Station& s, double u) {
+    (void)s;
+    return u / kMm;
+  };
+  return e;
+}
+
+const Registration registration(info());
+
+}  // namespace
+}  // namespace chutelab::effects
