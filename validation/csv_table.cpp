@@ -10,10 +10,15 @@
 
 // fccp copies file names with strncpy into fixed buffers; GCC flags the (harmless, terminated)
 // truncation wherever the reader is inlined, so the warning is silenced for that header only.
+// clang has no such warning (and would warn about the unknown name), so only GCC is told.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wstringop-truncation"
+#endif
 #include <libfccp/csv.h>
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 
 namespace chutelab::validation {
 namespace {
