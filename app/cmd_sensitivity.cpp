@@ -248,6 +248,7 @@ void add_sensitivity(CLI::App& app, Action& action) {
   cmd->add_option("--threads", o->threads, "OpenMP threads per run (default 1; results do not depend on it)");
   cmd->add_option("--seed", o->seed, "feed random seed");
   add_jobs_option(*cmd, o->jobs);
+  add_quiet_option(*cmd);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_sensitivity(*o); }; });
 }
