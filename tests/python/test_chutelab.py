@@ -243,12 +243,12 @@ def test_tables_without_pandas_or_numpy(blocked, kind):
     assert r.stdout.split() == ["dict", kind, first.condition, repr(float(first.value))]
 
 
-# ---- the README's example -------------------------------------------------------------------------
+# ---- the researcher guide's example----------------------------------------------------------------------
 
-def test_the_readme_example_runs(tmp_path):
-    readme = open(os.path.join(SOURCE, "README.md"), encoding="utf-8").read()
+def test_the_guide_example_runs(tmp_path):
+    readme = open(os.path.join(SOURCE, "docs", "guide-researcher.md"), encoding="utf-8").read()
     m = re.search(r"<!-- python example -->\s*```python\n(.*?)```", readme, re.S)
-    assert m, "README.md has no python example block"
+    assert m, "docs/guide-researcher.md has no python example block"
     os.symlink(os.path.join(SOURCE, "datasets"), tmp_path / "datasets")
     cwd = os.getcwd()
     out = io.StringIO()
@@ -256,7 +256,7 @@ def test_the_readme_example_runs(tmp_path):
         os.chdir(tmp_path)
         import contextlib
         with contextlib.redirect_stdout(out):
-            exec(compile(m.group(1), "README.md", "exec"), {})
+            exec(compile(m.group(1), "docs/guide-researcher.md", "exec"), {})
     finally:
         os.chdir(cwd)
     assert (tmp_path / "residuals.png").stat().st_size > 10000
