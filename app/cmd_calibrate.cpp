@@ -13,9 +13,12 @@
 #include "app/calibration_output.h"
 #include "app/commands.h"
 #include "app/dem_options.h"
+#include "app/option_checks.h"
 #include "core/campaign.h"
 #include "core/progress.h"
 #include "core/input_error.h"
+#include "core/message.h"
+#include "core/option_check.h"
 #include "core/number.h"
 #include "dem/rigs/calibration.h"
 #include "core/output_folder.h"
@@ -37,42 +40,48 @@ struct CalibrateCli {
   int jobs = 0;  // 0: one per idle core (resolve_jobs)
 };
 
-std::vector<double> numbers(const std::string& list, const char* flag) {
-  std::vector<double> out;
-  for (const auto& item : split_list(list)) {
-    const std::optional<double> parsed = parse_number(item);
-    const double v = parsed.value_or(0.0);
-    if (!parsed || !std::isfinite(v))
-      throw InputError("", 0, flag, fmt::format("'{}' is not a number (give a comma list, e.g. 0.05,0.1)", item));
-    out.push_back(v);
-  }
-  if (out.empty()) throw InputError("", 0, flag, "the list is empty");
-  return out;
-}
+// What each list and number may be (core/option_check.h): physical ranges, wide enough for any
+// bulk solid (the densest solid, osmium, is 22 600 kg/m^3).
+constexpr options::NumberRule kRolling{"--rolling", 0.0, 1.0, false, false, false, ""};
+constexpr options::NumberRule kDensity{"--density", 0.0, 25000.0, true, false, false, "kg/m^3"};
+constexpr options::NumberRule kDiameter{"", 0.0, 100.0, true, false, false, "mm"};
+constexpr options::NumberRule kTargetBulk{"", 0.0, 25000.0, true, false, false, "kg/m^3"};
+constexpr options::NumberRule kTargetPile{"", 0.0, 10000.0, true, false, false, "mm"};
+constexpr options::NumberRule kRigThreads{"", 1.0, 256.0, false, false, true, ""};
+// A quick slump test takes ~20 s of one core, a standard one minutes (bench/CALIBRATION.md): beyond
+// this many a command would run for hours; it is refused before the first one starts.
+constexpr std::size_t kMaxSlumpTests = 100;
 
 int run_calibrate(const CalibrateCli& o) {
   namespace fs = std::filesystem;
   using namespace dem::rigs;
+  // Every list checked before anything is read or run.
+  CalibrationPlan plan;
+  plan.rolling = options::number_list(kRolling, o.rolling);
+  plan.density = options::number_list(kDensity, o.density);
+  for (const auto& s : options::list("--shape", o.shape)) {
+    if (s == "sphere") plan.shapes.push_back(GrainKind::sphere);
+    else if (s == "clump") plan.shapes.push_back(GrainKind::clump);
+    else throw InputError("", 0, "--shape", fmt::format("unknown shape {} (sphere, clump)", shown(s)));
+  }
+  const auto count_tests = plan.shapes.size() * plan.rolling.size() * plan.density.size();
+  if (count_tests > kMaxSlumpTests)
+    throw InputError("", 0, "--rolling",
+                     fmt::format("{} shapes x {} rolling frictions x {} densities = {} slump tests; at most {} run in one "
+                                 "command (each takes ~20 s to minutes): shorten the lists or split them over runs",
+                                 plan.shapes.size(), plan.rolling.size(), plan.density.size(), count_tests,
+                                 kMaxSlumpTests));
   const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
   CalibrationContext ctx;
   ctx.dataset = dir.string();
   ctx.quality = o.quality;
   ctx.setup = validation::read_setup(dir / "setup.toml");
   OutputFolder out(o.out, dataset_inputs(dir));  // checked before minutes of slump tests
+  out.owns({"calibration.csv", "incline.csv", "calibration.md", "calibration.html", "material.toml",
+            "calibration-timing.csv"});
   check_entries(out, {"calibration.csv", "incline.csv", "calibration.md", "calibration.html", "material.toml",
                       "calibration-timing.csv"});
 
-  CalibrationPlan plan;
-  plan.rolling = numbers(o.rolling, "--rolling");
-  plan.density = numbers(o.density, "--density");
-  for (const auto& s : split_list(o.shape)) {
-    if (s == "sphere") plan.shapes.push_back(GrainKind::sphere);
-    else if (s == "clump") plan.shapes.push_back(GrainKind::clump);
-    else throw InputError("", 0, "--shape", fmt::format("unknown shape '{}' (sphere, clump)", s));
-  }
-  if (plan.shapes.empty()) throw InputError("", 0, "--shape", "the list is empty");
-  if (!(o.sphere_diameter_mm > 0.0) || !(o.clump_diameter_mm > 0.0))
-    throw InputError("", 0, "--sphere-diameter", "particle diameters must be > 0 mm");
   plan.sphere = Grain::sphere(o.sphere_diameter_mm * 1e-3);
   plan.clump = Grain::seed_clump(o.clump_diameter_mm * 1e-3);
   plan.settings = slump_preset(o.quality == "standard" ? RigQuality::standard : RigQuality::quick);
@@ -149,15 +158,19 @@ void add_calibrate(CLI::App& app, Action& action) {
   cmd->add_option("--density", o->density, "solid densities, kg/m^3")->capture_default_str();
   cmd->add_option("--shape", o->shape, "particle shapes: sphere (seed Fig. 4b), clump (2 overlapping spheres, Fig. 4c)")
       ->capture_default_str();
-  cmd->add_option("--sphere-diameter", o->sphere_diameter_mm, "sphere diameter, mm")->capture_default_str();
-  cmd->add_option("--clump-diameter", o->clump_diameter_mm, "diameter of the clump's spheres, mm")->capture_default_str();
-  cmd->add_option("--target-bulk-density", o->target_bulk,
-                  "measured loose-poured bulk density, kg/m^3 (default: the dataset's bulk_density_kgm3)");
-  cmd->add_option("--target-pile-height", o->target_pile_mm, "measured pile height, mm");
+  with_rule(cmd->add_option("--sphere-diameter", o->sphere_diameter_mm, "sphere diameter, mm")->capture_default_str(),
+            kDiameter);
+  with_rule(
+      cmd->add_option("--clump-diameter", o->clump_diameter_mm, "diameter of the clump's spheres, mm")->capture_default_str(),
+      kDiameter);
+  with_rule(cmd->add_option("--target-bulk-density", o->target_bulk,
+                            "measured loose-poured bulk density, kg/m^3 (default: the dataset's bulk_density_kgm3)"),
+            kTargetBulk);
+  with_rule(cmd->add_option("--target-pile-height", o->target_pile_mm, "measured pile height, mm"), kTargetPile);
   cmd->add_flag("--no-target", o->no_target, "mark no combination (and write the first one)");
   cmd->add_flag("--no-incline", o->no_incline, "skip the inclined-plane rig");
-  cmd->add_option("--threads", o->threads, "OpenMP threads per run")->check(CLI::Range(1, 256))->capture_default_str();
-  cmd->add_option("--seed", o->seed, "random seed of the pour")->capture_default_str();
+  with_rule(cmd->add_option("--threads", o->threads, "OpenMP threads per run")->capture_default_str(), kRigThreads);
+  with_rule(cmd->add_option("--seed", o->seed, "random seed of the pour")->capture_default_str(), options::rules::seed);
   add_jobs_option(*cmd, o->jobs);
   add_quiet_option(*cmd);
   cmd->add_option("--out", o->out, "output folder")->required();

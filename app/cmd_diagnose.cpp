@@ -8,6 +8,7 @@
 #include "app/commands.h"
 #include "core/campaign.h"
 #include "app/dem_options.h"
+#include "app/option_checks.h"
 #include "app/effect_options.h"
 #include "core/input_error.h"
 #include "core/output_folder.h"
@@ -32,6 +33,7 @@ int run_diagnose(const DiagnoseCli& o) {
   auto inputs = dataset_inputs(dir);
   for (auto& p : model_inputs(o.models)) inputs.push_back(std::move(p));
   OutputFolder out(o.out, inputs);
+  own_validate_outputs(out);
   check_entries(out, {"diagnosis.csv", "diagnosis.md"});
   const auto names = split_list(o.models);
   validation::DiagnoseOptions opt;
@@ -70,14 +72,14 @@ void add_diagnose(CLI::App& app, Action& action) {
   cmd->add_option("--models", o->models,
                   "comma-separated models; each measurement is compared with the first that predicts it")
       ->capture_default_str();
-  cmd->add_option("--alpha", o->alpha, "family-wise false-alarm rate over all candidates")
-      ->check(CLI::Range(1e-6, 0.5))
-      ->capture_default_str();
+  with_rule(cmd->add_option("--alpha", o->alpha, "family-wise false-alarm rate over all candidates")
+                ->capture_default_str(),
+            options::rules::alpha);
   cmd->add_flag("--no-pairs", o->no_pairs, "do not fit pairs of effects");
   cmd->add_option("--jobs", o->jobs,
                   "expensive (DEM) runs side by side, and threads of the analytical fits (default: one per core "
                   "left free by the load average; results do not depend on it)")
-      ->check(CLI::Range(0, 256));
+      ->check(CLI::Range(0, 256));  // 0: the default (one per idle core)
   add_dem_options(*cmd, o->dem);
   add_quiet_option(*cmd);
   cmd->add_option("--out", o->out, "output folder")->required();

@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "app/dem_options.h"
+#include "app/option_checks.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
 #include "dem/station/cache.h"
@@ -98,6 +99,8 @@ int run_simulate(const SimulateCli& o) {
       if (*s) inputs.emplace_back(**s);
     for (const auto& w : table.stl_walls) inputs.emplace_back(w);
     out.emplace(o.out, inputs);
+    out->owns({"timeseries.csv", "sensors.csv", "steady.csv", "trajectory.csv", "side_view.csv", "run.txt",
+               "plate_map.csv", "plate_map.vtk", "side_view.vtk", "vtk"});
     check_entries(*out, {"timeseries.csv", "sensors.csv", "side_view.vtk"});
     if (o.vtk_every) out->check_entry("vtk", true);
   }
@@ -114,7 +117,9 @@ int run_simulate(const SimulateCli& o) {
   try {
     r = st::run_station(fx.station, ro);
   } catch (const dem::SimulationError& e) {
-    throw InputError("", 0, "--dt-fraction", fmt::format("the DEM run failed: {}", e.what()));
+    // Not the fault of one flag the user may not have typed: said as the run's, with the usual remedy.
+    throw InputError("", 0, "simulate",
+                     fmt::format("the DEM run failed: {} (a smaller --dt-fraction may help)", e.what()));
   }
   if (!o.out.empty()) {
     st::write_result_files(out->staging().string(), r);
@@ -181,20 +186,29 @@ void add_simulate(CLI::App& app, Action& action) {
   cmd->add_option("--condition", o->condition, "condition (row of conditions.csv)")->required();
   add_quiet_option(*cmd);
   cmd->add_option("--quality", o->quality, "quick (tests, first looks), standard (the dataset's particles), paper (5.6 mm)");
-  cmd->add_option("--diameter-mm", o->diameter_mm, "particle diameter (scale-up), mm");
-  cmd->add_option("--shear-modulus-scale", o->shear_modulus_scale, "factor on E and G of particles and walls");
-  cmd->add_option("--dt-fraction", o->dt_fraction, "time step as a fraction of the Hertz collision time");
+  // The ranges of dem/station/settings.cpp's check(), so that a bad value is refused here, by the
+  // flag as typed, before the dataset is read.
+  with_rule(cmd->add_option("--diameter-mm", o->diameter_mm, "particle diameter (scale-up), mm"),
+            options::NumberRule{"", 0.0, 200.0, true, true, false, "mm"});
+  with_rule(cmd->add_option("--shear-modulus-scale", o->shear_modulus_scale, "factor on E and G of particles and walls"),
+            options::NumberRule{"", 0.0, 1000.0, true, false, false, ""});
+  with_rule(cmd->add_option("--dt-fraction", o->dt_fraction, "time step as a fraction of the Hertz collision time"),
+            options::NumberRule{"", 0.0, 0.5, true, false, false, ""});
   cmd->add_option("--contact", o->contact, "hertz-mindlin or lsd");
   cmd->add_option("--shape", o->shape, "sphere, or clump (the seed's two-sphere pellet, Fig. 4c; --diameter-mm is its spheres')");
-  cmd->add_option("--threads", o->threads, "OpenMP threads (results do not depend on it)");
-  cmd->add_option("--seed", o->seed, "seed of the particle feed");
-  cmd->add_option("--max-time", o->max_time, "simulated time limit, s (the run stops earlier when steady)");
+  with_rule(cmd->add_option("--threads", o->threads, "OpenMP threads (results do not depend on it)"),
+            options::rules::threads);
+  with_rule(cmd->add_option("--seed", o->seed, "seed of the particle feed"), options::rules::seed);
+  with_rule(cmd->add_option("--max-time", o->max_time, "simulated time limit, s (the run stops earlier when steady)"),
+            options::NumberRule{"", 0.0, 100.0, true, false, false, "s"});
   cmd->add_option("--effect", o->effects, "physical effect NAME=VALUE (those with a DEM counterpart act)");
   cmd->add_option("--out", o->out, "output folder: CSV series, steady means, side view, VTK");
-  cmd->add_option("--vtk-every", o->vtk_every, "write particle VTK files every this many simulated seconds");
+  with_rule(cmd->add_option("--vtk-every", o->vtk_every, "write particle VTK files every this many simulated seconds"),
+            options::NumberRule{"", 0.0, 100.0, true, false, false, "s"});
   cmd->add_flag("--no-cache", o->no_cache, "do not store the result in the DEM cache");
-  cmd->add_option("--plate-cells", o->plate_cells,
-                  "rows of cells down the generated plate for the pressure and wear maps (0: two triangles)");
+  with_rule(cmd->add_option("--plate-cells", o->plate_cells,
+                            "rows of cells down the generated plate for the pressure and wear maps (0: two triangles)"),
+            options::NumberRule{"", 0.0, 400.0, false, false, true, ""});
   for (const auto& f : st::wear_fields()) {
     std::string flag = std::string("--") + f.key;
     for (auto& ch : flag) ch = ch == '_' ? '-' : ch;

@@ -4,8 +4,10 @@
 
 #include "app/commands.h"
 #include "app/effect_options.h"
+#include "app/option_checks.h"
 #include "core/output_folder.h"
 #include "effects/registry.h"
+#include "validation/dataset_output.h"
 #include "validation/synthesize.h"
 
 namespace chutelab::app {
@@ -22,7 +24,8 @@ int run_synthesize(const SynthesizeCli& o) {
   namespace fs = std::filesystem;
   const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
   const auto d = validation::read_dataset(dir, validation::MeasurementsRequired::no);
-  OutputFolder out(o.out, dataset_inputs(dir));
+  // Checked before any work (and again, the same way, where the dataset is written).
+  { OutputFolder check(o.out, dataset_inputs(dir)); }
   std::vector<effects::EffectSetting> settings;
   for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false));
   validation::SynthesizeOptions opt;
@@ -34,8 +37,7 @@ int run_synthesize(const SynthesizeCli& o) {
     auto m = validation::make_model(n);
     if (!m->expensive()) models.push_back(m);
   }
-  for (const auto& [name, content] : validation::synthesize(d, models, opt)) out.write(name, content);
-  out.commit();
+  validation::write_dataset(o.out, validation::synthesize(d, models, opt), dir);
   std::cout << fmt::format("synthetic dataset: {}\n", o.out);
   return 0;
 }
@@ -49,10 +51,9 @@ void add_synthesize(CLI::App& app, Action& action) {
                                  "plus hidden effects plus Gaussian noise.");
   cmd->add_option("--dataset", o->dataset, "rig and conditions to use (default: bundled grima2010)");
   cmd->add_option("--effect", o->effects, "hidden effect NAME=VALUE (repeatable)");
-  cmd->add_option("--seed", o->seed, "random seed")->capture_default_str();
-  cmd->add_option("--noise-scale", o->noise_scale, "multiplies every uncertainty")
-      ->check(CLI::Range(0.0, 100.0))
-      ->capture_default_str();
+  with_rule(cmd->add_option("--seed", o->seed, "random seed")->capture_default_str(), options::rules::seed);
+  with_rule(cmd->add_option("--noise-scale", o->noise_scale, "multiplies every uncertainty")->capture_default_str(),
+            options::rules::noise_scale);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_synthesize(*o); }; });
 }

@@ -78,6 +78,7 @@ int run_validate(const ValidateCli& o) {
   }
   for (auto& p : model_inputs(o.models)) inputs.push_back(std::move(p));
   OutputFolder out(o.out, inputs);
+  own_validate_outputs(out);
   // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.
   configure_dem_model(o.dem, o.dataset, (out.staging() / "dem").string());
   const auto models = validation::make_models(split_list(o.models));
@@ -108,7 +109,10 @@ int run_validate(const ValidateCli& o) {
   // "What is missing" comes from the models as they are, so the reader sees why an effect was added.
   std::optional<validation::DiagnosisResult> diagnosis;
   if (o.diagnose || o.add_missing || !o.effects.empty()) {
-    if (cheap.empty()) throw InputError("", 0, "--diagnose", "the diagnosis needs an analytical model in --models");
+    // Named by the flag that asked for the diagnosis (--effect and --add-missing imply it).
+    if (cheap.empty())
+      throw InputError("", 0, o.diagnose ? "--diagnose" : o.add_missing ? "--add-missing" : "--effect",
+                       "the diagnosis needs an analytical model in --models");
     validation::DiagnoseOptions dopt;
     dopt.progress = true;
     diagnosis = validation::diagnose(dataset, in_registry_order(cheap), dopt);
@@ -129,7 +133,6 @@ int run_validate(const ValidateCli& o) {
     report.with_effects = &*after;
   }
   report.notes = applied.notes;
-  if (const auto w = reports::effect_choice_warning(report); !w.empty()) report.notes.insert(report.notes.begin(), w);
   const auto& final_result = after ? *after : baseline;
 
   std::vector<validation::OutputFile> files = {

@@ -38,6 +38,10 @@ std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& d
 // The folders and files that --models external:NAME=DIR reads.
 std::vector<std::filesystem::path> model_inputs(const std::string& models);
 
+// What validate and diagnose may write in --out: one family (both write diagnosis.csv/.md), so either
+// one removes the other's earlier outputs it does not write (OutputFolder::owns).
+void own_validate_outputs(OutputFolder& out);
+
 // Refuses, before any long run, an --out where one of these files cannot be placed (a folder there).
 void check_entries(const OutputFolder& out, std::initializer_list<const char*> files);
 

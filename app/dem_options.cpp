@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "app/option_checks.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
 #include "core/progress.h"
@@ -10,12 +11,18 @@
 #include "validation/models/liggghts_model.h"
 
 namespace chutelab::app {
+namespace {
+// As the [dem] table and dem/station/settings.cpp's check() allow them.
+constexpr options::NumberRule kPlateCells{"", 0.0, 400.0, false, false, true, ""};
+constexpr options::NumberRule kSimulatedTime{"", 0.0, 100.0, true, false, false, "s"};
+}  // namespace
 
 void add_dem_options(CLI::App& cmd, DemCli& o) {
   cmd.add_option("--dem-quality", o.quality,
                  "DEM quality: quick (default; seconds to minutes per condition), standard (the dataset's "
                  "particles), paper");
-  cmd.add_option("--dem-threads", o.threads, "OpenMP threads of the DEM (default: one per idle core)");
+  with_rule(cmd.add_option("--dem-threads", o.threads, "OpenMP threads of the DEM (default: one per idle core)"),
+            options::rules::dem_threads);
   cmd.add_option("--dem-cache", o.cache, "DEM result cache folder (default $XDG_CACHE_HOME/chutelab/dem)");
   cmd.add_flag("--no-dem-cache", o.no_cache, "run the DEM again even when a cached result exists");
   cmd.add_option("--dem-ladder", o.ladder,
@@ -28,22 +35,26 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
       ->check(CLI::IsMember({"quick", "standard", "paper"}));
   cmd.add_flag("--dem-cache-only", o.cache_only,
                "never run the DEM: every run must be in the cache (recorded acceptance cases; exit 2 otherwise)");
-  cmd.add_option("--dem-plate-cells", o.plate_cells,
-                 "rows of cells down the generated plate for the DEM's pressure and wear maps (0: two triangles)");
-  cmd.add_option("--liggghts-ranks", o.liggghts_ranks, "MPI ranks of each LIGGGHTS run (mpirun -n K liggghts; default 1)")
-      ->check(CLI::PositiveNumber);
+  with_rule(cmd.add_option("--dem-plate-cells", o.plate_cells,
+                           "rows of cells down the generated plate for the DEM's pressure and wear maps (0: two "
+                           "triangles)"),
+            kPlateCells);
+  with_rule(cmd.add_option("--liggghts-ranks", o.liggghts_ranks,
+                           "MPI ranks of each LIGGGHTS run (mpirun -n K liggghts; default 1)"),
+            options::NumberRule{"", 1.0, 1e6, false, false, true, ""});
   cmd.add_option("--liggghts-command", o.liggghts_command,
                  "launcher and program that run a LIGGGHTS deck, e.g. \"srun liggghts\" (replaces mpirun -n K liggghts)");
-  cmd.add_option("--liggghts-time", o.liggghts_time,
-                 "seconds simulated per LIGGGHTS run (default: the quality's maximum, 1.3 s at standard)")
-      ->check(CLI::PositiveNumber);
+  with_rule(cmd.add_option("--liggghts-time", o.liggghts_time,
+                           "seconds simulated per LIGGGHTS run (default: the quality's maximum, 1.3 s at standard)"),
+            kSimulatedTime);
 }
 
 void add_jobs_option(CLI::App& cmd, int& jobs) {
-  cmd.add_option("--jobs", jobs,
-                 "independent DEM runs at a time in this process, each on one thread (under mpirun the ranks share "
-                 "the runs instead); default: one per core left free by the load average; results do not depend on it")
-      ->check(CLI::Range(1, 256));
+  with_rule(cmd.add_option("--jobs", jobs,
+                           "independent DEM runs at a time in this process, each on one thread (under mpirun the "
+                           "ranks share the runs instead); default: one per core left free by the load average; "
+                           "results do not depend on it"),
+            options::rules::jobs);
 }
 
 void add_quiet_option(CLI::App& cmd) {

@@ -10,9 +10,12 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/option_checks.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
+#include "core/message.h"
 #include "core/output_folder.h"
+#include "validation/dataset_output.h"
 
 namespace chutelab::app {
 std::vector<std::string> split_list(const std::string& s) {
@@ -95,8 +98,7 @@ std::optional<std::string> misspelt(CLI::App& app, int argc, char** argv) {
 }
 
 std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& dir) {
-  return {dir, dir / "setup.toml", dir / "conditions.csv", dir / "measurements.csv", dir / "trajectory.csv",
-          dir / "plate_map.csv", dir / "tolerances.toml", dir / "README.md"};
+  return validation::dataset_files(dir);
 }
 
 std::vector<std::filesystem::path> model_inputs(const std::string& models) {
@@ -108,6 +110,11 @@ std::vector<std::filesystem::path> model_inputs(const std::string& models) {
         for (const char* f : {"", "predictions.csv", "trajectory.csv", "README.md"}) out.push_back(*f ? d / f : d);
       }
   return out;
+}
+
+void own_validate_outputs(OutputFolder& out) {
+  out.owns({"predictions.csv", "errors.csv", "summary.csv", "report.md", "report.html", "diagnosis.csv",
+            "diagnosis.md", "dem"});
 }
 
 void check_entries(const OutputFolder& out, std::initializer_list<const char*> files) {
@@ -135,7 +142,7 @@ int main(int argc, char** argv) {
       } catch (...) {
       }
     }
-    std::cerr << "chutelab: internal error: " << what << "\n";
+    std::cerr << "chutelab: internal error: " << one_line(what) << "\n";
     std::_Exit(kExitInternalError);
   });
   // Under mpirun every rank runs the command; rank 0 alone prints and writes (core/campaign.h).
@@ -157,6 +164,7 @@ int main(int argc, char** argv) {
   app::add_sensitivity(app, action);
   app::add_import_digitised(app, action);
   app::add_design(app, action);
+  app::check_every_option(app);  // after every command's own rules (core/option_check.h)
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -168,8 +176,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // A misspelt command or flag is the cause of whatever CLI11 says next ("--dataset is required"
     // after --datset): name it first, with the nearest real one.
-    if (auto m = app::misspelt(app, argc, argv)) std::cerr << "chutelab: " << *m << "\n";
-    else std::cerr << "chutelab: " << e.what() << " (see --help)\n";
+    if (auto m = app::misspelt(app, argc, argv)) std::cerr << "chutelab: " << one_line(*m) << "\n";
+    else std::cerr << "chutelab: " << one_line(e.what()) << " (see --help)\n";
     return kExitBadInput;
   }
   // The one exception barrier: bad input is exit 2 with file:line:field; a file-system failure on a
@@ -186,13 +194,13 @@ int main(int argc, char** argv) {
     } catch (const std::filesystem::filesystem_error& e) {
       std::string where = e.path1().string();
       if (!e.path2().empty()) where += " -> " + e.path2().string();
-      std::cerr << "chutelab: " << (where.empty() ? "" : where + ": ") << e.code().message() << "\n";
+      std::cerr << "chutelab: " << one_line((where.empty() ? "" : where + ": ") + e.code().message()) << "\n";
       return kExitBadInput;
     } catch (const std::bad_alloc&) {
       std::cerr << "chutelab: internal error: out of memory\n";
       return kExitInternalError;
     } catch (const std::exception& e) {
-      std::cerr << "chutelab: internal error: " << e.what() << "\n";
+      std::cerr << "chutelab: internal error: " << one_line(e.what()) << "\n";
       return kExitInternalError;
     } catch (...) {
       std::cerr << "chutelab: internal error: unknown exception\n";

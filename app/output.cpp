@@ -28,7 +28,8 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "null"; }
+// The shortest decimal that reads back as the same double (as CSV cells, core/csv_field.h).
+std::string json_number(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
 
 namespace {
 
@@ -164,7 +165,7 @@ std::string estimate_table(const analytical::TransferAnalysis& a, const ModelVal
 std::string estimate_csv(const analytical::TransferAnalysis& a, const ModelValues& models) {
   std::string o = "condition,model,quantity,value\n";
   for (const auto& [n, v] : estimate_scalars(a))
-    o += fmt::format("{},analysis,{},{:.10g}\n", csv_field(a.station.condition), n, v);
+    o += fmt::format("{},analysis,{},{}\n", csv_field(a.station.condition), n, csv_number(v));
   o += fmt::format("{},analysis,stationary_flow,{}\n", csv_field(a.station.condition),
                    a.korzen.stationary_flow ? 1 : 0);
   o += fmt::format("{},analysis,stream_thickness_from_continuity,{}\n", csv_field(a.station.condition),
@@ -178,8 +179,8 @@ std::string estimate_csv(const analytical::TransferAnalysis& a, const ModelValue
   for (const auto& [m, vals] : models)
     for (Quantity q : kAllQuantities)
       if (vals[q])
-        o += fmt::format("{},{},{},{:.10g}\n", csv_field(a.station.condition), csv_field(m), name(q),
-                         *vals[q] * info(q).to_boundary);
+        o += fmt::format("{},{},{},{}\n", csv_field(a.station.condition), csv_field(m), name(q),
+                         csv_number(*vals[q] * info(q).to_boundary));
   return o;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "core/csv_field.h"
 #include "core/input_error.h"
 #include "core/number.h"
 #include "reports/design.h"
@@ -60,14 +61,9 @@ std::string unit_label(std::string_view column) {
   return s;
 }
 
-std::string csv_cell(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string o = "\"";
-  for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return o + "\"";
-}
-
-std::string number_cell(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; }
+// The one CSV writer's cells (core/csv_field.h): quoted text, numbers that read back exactly.
+std::string csv_cell(const std::string& s) { return csv_field(s); }
+std::string number_cell(double v) { return csv_number(v); }
 
 }  // namespace
 
@@ -147,6 +143,15 @@ SweepSpec parse_sweep(const std::string& text) {
       throw InputError("", 0, "--sweep",
                        fmt::format("{:.3g} points from {} to {} in steps of {}: at most {} (a larger STEP?)",
                                    (s.to - s.from) / s.step + 1.0, s.from, s.to, s.step, kMaxPoints));
+    // Every point a different number: a STEP below the resolution of a double near FROM would give
+    // rows of one value under different labels.
+    const auto v = s.values();
+    for (std::size_t i = 1; i < v.size(); ++i)
+      if (v[i] == v[i - 1])
+        throw InputError("", 0, "--sweep",
+                         fmt::format("STEP {} is below the resolution of a number near {} (points {} and {} are the "
+                                     "same number)",
+                                     s.step, v[i], i, i + 1));
   }
   return s;
 }
@@ -239,8 +244,16 @@ std::string sweep_table(const SweepSpec& s, const std::vector<SweepRow>& rows) {
                               s.column, s.from, s.to, rows.size());
   o += fmt::format("  {:>14} {:>8} {:>9} {:>10} {:>8} {:>9} {:>9} {:>9} {:>12} {:>12}\n", s.column, "V_p_mps",
                    "alpha_deg", "stationary", "V_a_mps", "R_n_N", "R_s_N", "R_N", "y_korzen_mm", "y_cema_mm");
+  // Enough digits that neighbouring points differ (a sweep in steps of 1e-13 from 300 shows them),
+  // at least the 6 a designer reads.
+  int digits = 6;
+  if (s.step != 0.0)
+    digits = std::clamp(static_cast<int>(std::ceil(std::log10(std::max(std::abs(s.from), std::abs(s.to)) /
+                                                                std::abs(s.step)))) +
+                            2,
+                        6, 17);
   for (const auto& r : rows) {
-    o += fmt::format("  {:>14.6g} ", r.value);
+    o += fmt::format("  {:>14.{}g} ", r.value, digits);
     if (!r.point) {
       o += r.note + "\n";
       continue;

@@ -1,5 +1,7 @@
 #include "core/input_error.h"
 
+#include "core/message.h"
+
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -9,10 +11,12 @@ namespace chutelab {
 namespace {
 std::string compose(const std::string& file, long line, const std::string& field,
                     const std::string& problem) {
+  // Every part may come from the user (a file name with a line end, a 10 MB cell in the problem):
+  // the whole message goes through the one formatter (core/message.h).
   std::string where = file;
   if (line > 0) where += fmt::format(":{}", line);
   if (!field.empty()) where += where.empty() ? fmt::format("{}", field) : fmt::format(": {}", field);
-  return where.empty() ? problem : where + ": " + problem;
+  return one_line(where.empty() ? problem : where + ": " + problem);
 }
 }  // namespace
 

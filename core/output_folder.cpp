@@ -3,10 +3,18 @@
 #include <atomic>
 
 #include <unistd.h>
+#ifndef __EMSCRIPTEN__
+#include <fcntl.h>
+#include <sys/file.h>
+#endif
+
+#include <cerrno>
 
 #include <csignal>
 #include <fmt/format.h>
 #include <fstream>
+#include <iostream>
+#include <algorithm>
 #include <mutex>
 #include <thread>
 #ifndef __EMSCRIPTEN__
@@ -14,6 +22,7 @@
 #endif
 
 #include "core/input_error.h"
+#include "core/message.h"
 #ifndef __EMSCRIPTEN__
 #include "core/campaign.h"
 #endif
@@ -88,6 +97,48 @@ std::atomic<bool>& interrupts_quiet() {
   static std::atomic<bool> quiet{false};
   return quiet;
 }
+
+#ifndef __EMSCRIPTEN__
+// Every signal whose default action ends the process and that a process may catch. SIGKILL and
+// SIGSTOP cannot be caught; a crash (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT) is a bug whose state
+// cannot be trusted: their staging folders, like SIGKILL's, are swept by the next run
+// (sweep_dead_staging()).
+constexpr int kCleanupSignals[] = {SIGHUP,  SIGINT,  SIGQUIT, SIGTERM, SIGALRM, SIGVTALRM, SIGPROF,
+                                   SIGXCPU, SIGXFSZ, SIGUSR1, SIGUSR2, SIGPIPE, SIGIO,     SIGPWR,
+#ifdef SIGSTKFLT
+                                   SIGSTKFLT,
+#endif
+};
+
+int& wake_fd() {
+  static int fd = -1;
+  return fd;
+}
+
+// The handler only says which signal came (write(2) is async-signal-safe); the thread below, which
+// may use the file system freely, does the cleanup. A handler rather than a blocked mask: masks are
+// inherited by the programs chutelab starts (LIGGGHTS, mpirun), handlers are reset by exec.
+extern "C" void on_cleanup_signal(int sig) {
+  const int saved = errno;
+  const auto b = static_cast<unsigned char>(sig);
+  [[maybe_unused]] const auto n = ::write(wake_fd(), &b, 1);
+  errno = saved;
+}
+
+const char* signal_message(int sig) {
+  switch (sig) {
+    case SIGINT: return "\nchutelab: interrupted; nothing was written\n";
+    case SIGTERM: return "\nchutelab: terminated; nothing was written\n";
+    case SIGHUP: return "\nchutelab: terminated by SIGHUP (terminal closed); nothing was written\n";
+    case SIGQUIT: return "\nchutelab: terminated by SIGQUIT; nothing was written\n";
+    case SIGALRM: return "\nchutelab: terminated by SIGALRM; nothing was written\n";
+    case SIGXCPU: return "\nchutelab: terminated by SIGXCPU (CPU time limit); nothing was written\n";
+    case SIGXFSZ: return "\nchutelab: terminated by SIGXFSZ (file size limit); nothing was written\n";
+    case SIGPIPE: return nullptr;  // the reader of the output went away: silent, as every Unix tool
+    default: return "\nchutelab: terminated by a signal; nothing was written\n";
+  }
+}
+#endif
 }  // namespace
 
 void quiet_interrupts() { interrupts_quiet() = true; }
@@ -96,31 +147,87 @@ void install_interrupt_cleanup() {
 #ifndef __EMSCRIPTEN__  // the designer's page has no signals and no threads
   static std::once_flag once;
   std::call_once(once, [] {
-    sigset_t set;
-    sigemptyset(&set);
-    // A signal the parent ignores (SIGINT of a background job in a script) stays ignored.
-    for (int sig : {SIGINT, SIGTERM}) {
-      struct sigaction old {};
-      if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
-      sigaddset(&set, sig);
-    }
-    // Blocked here, before any worker thread exists, so that every thread inherits the mask and the
-    // signal is taken only by the thread below, which may use the file system freely.
-    pthread_sigmask(SIG_BLOCK, &set, nullptr);
-    std::thread([set] {
-      int sig = 0;
-      while (sigwait(&set, &sig) != 0) {
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) return;
+    wake_fd() = fds[1];
+    std::thread([rd = fds[0]] {
+      unsigned char b = 0;
+      while (::read(rd, &b, 1) != 1) {
       }
+      const int sig = b;
       // Holding the lock also waits for a commit in progress to finish: --out is then complete.
       std::lock_guard lock(registry_mutex());
       std::error_code ec;
       for (const auto& p : registry()) fs::remove_all(p, ec);
-      const char* msg = sig == SIGINT ? "\nchutelab: interrupted; nothing was written\n"
-                                      : "\nchutelab: terminated; nothing was written\n";
-      if (!interrupts_quiet()) [[maybe_unused]] const auto n = ::write(2, msg, std::char_traits<char>::length(msg));
+      const char* msg = signal_message(sig);
+      if (msg && !interrupts_quiet()) [[maybe_unused]] const auto n = ::write(2, msg, std::char_traits<char>::length(msg));
       ::_exit(128 + sig);
     }).detach();
+    for (int sig : kCleanupSignals) {
+      struct sigaction old {};
+      // A signal the parent ignores (SIGINT of a background job in a script, SIGHUP under nohup)
+      // stays ignored.
+      if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+      struct sigaction sa {};
+      sa.sa_handler = on_cleanup_signal;
+      sigemptyset(&sa.sa_mask);
+      sa.sa_flags = SA_RESTART;
+      sigaction(sig, &sa, nullptr);
+    }
   });
+#endif
+}
+
+namespace {
+constexpr const char* kLockName = ".chutelab-lock";
+#ifndef __EMSCRIPTEN__
+
+// "123" -> 123; anything else -> -1.
+long pid_of(std::string_view s) {
+  if (s.empty() || s.size() > 10) return -1;
+  long v = 0;
+  for (char c : s) {
+    if (c < '0' || c > '9') return -1;
+    v = v * 10 + (c - '0');
+  }
+  return v;
+}
+
+// A staging folder whose process is gone: its id names no process here, and no process (on this or
+// another machine sharing the folder) holds its lock.
+bool owner_gone(const fs::path& staging, long pid) {
+  if (pid <= 0 || pid == static_cast<long>(::getpid())) return false;
+  if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) return false;
+  const int fd = ::open((staging / kLockName).c_str(), O_RDWR | O_CLOEXEC);
+  if (fd < 0) return true;  // never locked (a run of an older chutelab, or killed before locking)
+  const bool free = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+  ::close(fd);
+  return free;
+}
+#endif
+}  // namespace
+
+void sweep_dead_staging(const fs::path& out) {
+#ifndef __EMSCRIPTEN__
+  const fs::path t = tidy(out);
+  fs::path parent = t.parent_path();
+  if (parent.empty()) parent = ".";
+  const std::string beside = fmt::format(".{}.partial-", t.filename().string());
+  auto sweep = [](const fs::path& dir, const std::string& prefix) {
+    std::error_code ec;
+    std::vector<fs::path> dead;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string n = it->path().filename().string();
+      if (n.rfind(prefix, 0) != 0) continue;
+      if (owner_gone(it->path(), pid_of(std::string_view(n).substr(prefix.size())))) dead.push_back(it->path());
+    }
+    for (const auto& d : dead) fs::remove_all(d, ec);
+  };
+  sweep(parent, beside);
+  std::error_code ec;
+  if (fs::is_directory(t, ec)) sweep(t, ".chutelab.partial-");
+#else
+  (void)out;
 #endif
 }
 
@@ -148,6 +255,7 @@ OutputFolder::OutputFolder(const fs::path& out, std::vector<fs::path> inputs, st
   if (!writer_) return;
   fs::create_directories(parent, ec);
   if (ec) throw InputError(parent.string(), 0, flag_, fmt::format("cannot create the folder: {}", ec.message()));
+  sweep_dead_staging(out_);
   fs::remove_all(staging_, ec);  // left by a killed run of the same process id
   register_temporary(staging_);
   fs::create_directory(staging_, ec);
@@ -165,6 +273,12 @@ OutputFolder::OutputFolder(const fs::path& out, std::vector<fs::path> inputs, st
     unregister_temporary(staging_);
     throw InputError(parent.string(), 0, flag_, fmt::format("cannot write in this folder: {}", ec.message()));
   }
+#ifndef __EMSCRIPTEN__
+  // Held while this process lives (the kernel releases it however the process ends): a later run
+  // sweeps this folder only when no process holds it (sweep_dead_staging()).
+  lock_fd_ = ::open((staging_ / kLockName).c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0600);
+  if (lock_fd_ >= 0) [[maybe_unused]] const int locked = ::flock(lock_fd_, LOCK_EX | LOCK_NB);
+#endif
 }
 
 OutputFolder::~OutputFolder() {
@@ -172,6 +286,23 @@ OutputFolder::~OutputFolder() {
   std::error_code ec;
   if (!committed_) fs::remove_all(staging_, ec);
   unregister_temporary(staging_);
+#ifndef __EMSCRIPTEN__
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+#endif
+}
+
+void OutputFolder::owns(std::initializer_list<std::string_view> names) {
+  for (auto n : names) owned_.emplace_back(n);
+}
+
+fs::path OutputFolder::staged_path(const std::string& name) const {
+  // Every file a command writes lies under --out: a name is a relative path of plain components.
+  const fs::path p(name);
+  bool plain = !name.empty() && p.is_relative() && !p.has_root_name();
+  for (const auto& c : p) plain = plain && !c.empty() && c != "." && c != "..";
+  if (!plain)
+    throw InputError(name, 0, flag_, "is not a plain file name inside the output folder (internal error: a name from the data was used as a path)");
+  return staging_ / p;
 }
 
 void OutputFolder::check_not_input(const fs::path& dest, bool is_dir) const {
@@ -202,9 +333,9 @@ bool OutputFolder::check_entry(const std::string& name, bool is_dir) const {
 }
 
 void OutputFolder::write(const std::string& name, std::string_view content) {
+  const fs::path p = staged_path(name);
   check_not_input(out_ / name, false);
   if (!writer_) return;
-  const fs::path p = staging_ / name;
   std::error_code ec;
   if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
   std::ofstream f(p, std::ios::binary | std::ios::trunc);
@@ -225,12 +356,35 @@ void OutputFolder::commit() {
   std::vector<Entry> entries;
   std::error_code ec;
   // Check every entry before moving any, so that nothing is half-replaced by a foreseeable problem.
+  std::vector<std::string> staged_names;
   for (const auto& e : fs::directory_iterator(staging_, ec)) {
+    const std::string n = e.path().filename().string();
+    if (n == kLockName || n == ".replaced") continue;
     Entry en{e.path(), out_ / e.path().filename(), staging_ / ".replaced" / e.path().filename()};
-    en.replaced = check_entry(e.path().filename().string(), e.is_directory());
+    en.replaced = check_entry(n, e.is_directory());
     entries.push_back(std::move(en));
+    staged_names.push_back(n);
   }
   if (ec) throw InputError(staging_.string(), 0, flag_, fmt::format("cannot list the staged files: {}", ec.message()));
+  // What this command writes and did not write this time is an earlier run's: it goes with the
+  // rest of that run (moved aside like a replaced entry, so a failure puts it back). Never an input.
+  std::vector<std::string> removed;
+  for (const auto& n : owned_) {
+    if (std::find(staged_names.begin(), staged_names.end(), n) != staged_names.end()) continue;
+    const fs::path dest = out_ / n;
+    const auto st = fs::symlink_status(dest, ec);
+    if (ec || !fs::exists(st)) continue;
+    try {
+      check_not_input(dest, fs::is_directory(st));
+    } catch (const InputError&) {
+      continue;
+    }
+    Entry en{fs::path(), dest, staging_ / ".replaced" / n};
+    en.replaced = true;
+    entries.push_back(std::move(en));
+    removed.push_back(n);
+  }
+  ec.clear();
 
   std::lock_guard lock(registry_mutex());  // an interrupt waits until --out is whole again
   const bool created = !fs::exists(out_);
@@ -240,7 +394,7 @@ void OutputFolder::commit() {
   auto roll_back = [&] {
     std::error_code e2;
     for (auto it = entries.rbegin(); it != entries.rend(); ++it) {
-      if (it->placed) fs::rename(it->dest, it->staged, e2);
+      if (it->placed && !it->staged.empty()) fs::rename(it->dest, it->staged, e2);
       if (it->replaced && fs::exists(it->backup, e2)) fs::rename(it->backup, it->dest, e2);
     }
     if (created) fs::remove(out_, e2);
@@ -248,7 +402,7 @@ void OutputFolder::commit() {
   for (auto& en : entries) {
     ec.clear();
     if (en.replaced) fs::rename(en.dest, en.backup, ec);
-    if (!ec) fs::rename(en.staged, en.dest, ec);
+    if (!ec && !en.staged.empty()) fs::rename(en.staged, en.dest, ec);
     if (ec) {
       const std::string why = ec.message();
       if (en.replaced && !fs::exists(en.dest)) {
@@ -262,6 +416,11 @@ void OutputFolder::commit() {
     en.placed = true;
   }
   committed_ = true;
+  if (!removed.empty())
+    std::cerr << one_line(fmt::format("chutelab: removed from {} what an earlier run left there and this run does "
+                                      "not write: {}",
+                                      out_.string(), fmt::join(removed, ", ")))
+              << "\n";
   fs::remove_all(staging_, ec);
   auto& r = registry();
   for (auto it = r.begin(); it != r.end(); ++it)

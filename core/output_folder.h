@@ -38,25 +38,41 @@ class OutputFolder {
   // Moves every staged entry into --out, all or none. Throws InputError naming the entry that
   // cannot be placed (then --out is as it was).
   void commit();
+  // The entries (files or folders) this command may write in --out: those it does not write this
+  // time are an earlier run's and are removed by commit() (all or none, like the rest; never an
+  // input; a line on stderr names them), so --out never holds a mix of two runs' outputs.
+  void owns(std::initializer_list<std::string_view> names);
+  // staging() / name, after checking that name is a relative path of plain components (no "..",
+  // no root): a name from the data can never make a command write outside --out.
+  std::filesystem::path staged_path(const std::string& name) const;
 
  private:
   void check_not_input(const std::filesystem::path& dest, bool is_dir) const;
   std::filesystem::path out_, staging_;
   std::vector<std::filesystem::path> inputs_;  // weakly canonical
+  std::vector<std::string> owned_;
   std::string flag_;
   bool committed_ = false;
   bool writer_ = true;  // rank 0 (or no MPI)
+  [[maybe_unused]] int lock_fd_ = -1;  // held while the staging folder is in use (sweep_dead_staging())
 };
+
+// Removes the staging folders beside `out` (and inside it) that a process left when it was killed
+// by a signal it could not catch (SIGKILL), crashed or lost power: those whose process id is gone and
+// whose lock nobody holds. Every OutputFolder does it before it stages.
+void sweep_dead_staging(const std::filesystem::path& out);
 
 // The same path test used by OutputFolder, for commands that must refuse before doing work:
 // weakly canonical, symlinks resolved; a symlink loop or unreadable path is an InputError naming it.
 std::filesystem::path resolved_path(const std::filesystem::path& p, std::string_view field);
 
-// Temporary paths removed when SIGINT or SIGTERM arrives (install_interrupt_cleanup()).
+// Temporary paths removed when a signal ends the process (install_interrupt_cleanup()).
 void register_temporary(const std::filesystem::path& p);
 void unregister_temporary(const std::filesystem::path& p);
-// Blocks SIGINT/SIGTERM in every thread (call before any thread starts) and handles them on a thread
-// of their own: removes the registered temporaries, says so on stderr, exits 130 (SIGINT) or 143.
+// Catches every signal that would end the process and can be caught (SIGHUP, SIGINT, SIGQUIT,
+// SIGTERM, SIGALRM, SIGXCPU, SIGPIPE, ...; call before any thread starts) and handles it on a thread
+// of its own: removes the registered temporaries, says so on stderr, exits 128 + the signal's number
+// (130 for SIGINT, 143 for SIGTERM). SIGKILL's leftovers are swept by the next run (above).
 void install_interrupt_cleanup();
 // The command has said in its one line why it ends: a signal from now on still removes the
 // temporaries and exits, but adds no second line. (Under mpirun, the launcher kills the ranks still

@@ -14,9 +14,12 @@
 #include "app/estimate.h"
 #include "app/output.h"
 #include "core/input_error.h"
+#include "core/message.h"
+#include "core/option_check.h"
 #include "core/units.h"
 #include "effects/registry.h"
 #include "validation/dataset.h"
+#include "validation/dataset_output.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
 #include "validation/model.h"
@@ -41,8 +44,24 @@ std::string python_field(const std::string& field) {
   return f;
 }
 
+// A whole number from Python: an int (not a bool), or a float that is whole; checked by `rule`, the
+// command line's (core/option_check.h). seed=1.5 is refused, not truncated to 1.
+double whole_number(const py::object& v, const options::NumberRule& rule) {
+  if (py::isinstance<py::bool_>(v) || !(py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v) ||
+                                         py::hasattr(v, "__index__")))
+    throw InputError("", 0, std::string(rule.flag),
+                     fmt::format("must be {}, got {}", rule.describe(), std::string(py::str(py::repr(v)))));
+  if (py::isinstance<py::float_>(v)) return rule.check(v.cast<double>());
+  // An int of any size: range-checked as a double first, so a huge one is refused, not wrapped.
+  const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
+  if (!i) throw py::error_already_set();
+  rule.check(PyLong_AsDouble(i.ptr()));
+  return static_cast<double>(i.cast<unsigned long long>());
+}
+
 app::DemCli dem_cli(const std::string& quality, std::optional<int> threads, const std::string& cache,
                     bool no_cache) {
+  if (threads) options::rules::dem_threads.check(static_cast<double>(*threads));
   app::DemCli d;
   d.quality = quality;
   d.threads = threads;
@@ -174,8 +193,7 @@ py::dict diagnose(const validation::Dataset& d, const std::vector<std::string>& 
     app::configure_dem_model(dem_cli(dem_quality, dem_threads, dem_cache, no_dem_cache), d.dir.string(), "");
     const auto models = validation::make_models(model_names);
     if (models.empty()) throw InputError("", 0, "--models", "no model given");
-    if (!(alpha >= 1e-6 && alpha <= 0.5))
-      throw InputError("", 0, "--alpha", fmt::format("must be in [1e-6, 0.5], got {}", alpha));
+    options::rules::alpha.check(alpha);
     validation::DiagnoseOptions opt;
     opt.alpha = alpha;
     opt.pairs = pairs;
@@ -216,10 +234,14 @@ py::dict diagnose(const validation::Dataset& d, const std::vector<std::string>& 
 }
 
 void synthesize(const validation::Dataset& source, const std::vector<std::string>& effect_args,
-                std::uint64_t seed, double noise_scale, const std::filesystem::path& out) {
+                const py::object& seed_arg, double noise_scale, const std::filesystem::path& out) {
+  // The command line's rules, before any work (core/option_check.h).
+  const double seed_checked = whole_number(seed_arg, options::rules::seed);
+  const std::uint64_t seed = py::isinstance<py::float_>(seed_arg) ? static_cast<std::uint64_t>(seed_checked)
+                                                                   : seed_arg.cast<std::uint64_t>();
+  options::rules::noise_scale.check(noise_scale);
+  if (out.empty()) throw InputError("", 0, "--out", "is empty; give a folder");
   py::gil_scoped_release free;
-  if (!(noise_scale >= 0.0 && noise_scale <= 100.0))
-    throw InputError("", 0, "--noise-scale", fmt::format("must be in [0, 100], got {}", noise_scale));
   std::vector<effects::EffectSetting> settings;
   for (const auto& e : effect_args) settings.push_back(effects::parse_setting(e, false));
   validation::SynthesizeOptions opt;
@@ -231,7 +253,8 @@ void synthesize(const validation::Dataset& source, const std::vector<std::string
     auto m = validation::make_model(n);
     if (!m->expensive()) models.push_back(m);
   }
-  validation::write_outputs(out, validation::synthesize(source, models, opt));
+  // The command line's writer, with its protection of the source dataset (--out may not be it).
+  validation::write_dataset(out, validation::synthesize(source, models, opt), source.dir);
 }
 
 }  // namespace
@@ -250,8 +273,8 @@ PYBIND11_MODULE(_chutelab, m) {
       py::object err = py::reinterpret_borrow<py::object>(input_error)(py::str(shown.what()));
       err.attr("file") = shown.file();
       err.attr("line") = shown.line();
-      err.attr("field") = shown.field();
-      err.attr("problem") = shown.problem();
+      err.attr("field") = one_line(shown.field());
+      err.attr("problem") = one_line(shown.problem());
       PyErr_SetObject(input_error.ptr(), err.ptr());
     }
   });

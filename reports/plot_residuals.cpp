@@ -46,21 +46,53 @@ std::size_t slot_of(const Context& c, const std::string& condition) {
   return it == c.slot.end() ? c.conditions.size() : it->second;
 }
 
-// Every normalised error of one quantity in a result, with its tooltip.
+// At most this many points of one model are drawn at one condition: a stream boundary measured at
+// thousands of x values (a million-row trajectory.csv) would otherwise be a million markers and
+// hundreds of MB of report. Beyond it the points drawn are spread evenly over the sorted values
+// (the extremes and every failing value among them), each tooltip saying how many there are.
+constexpr std::size_t kDrawnPerCondition = 40;
+
+// Every normalised error of one quantity in a result, with its tooltip (summarised as above).
 std::vector<Point> points_of(const Context& c, const validation::ValidationResult& r, const std::string& qname,
                              const QuantityName& qn) {
-  std::vector<Point> out;
+  struct Raw {
+    std::size_t slot;
+    double z;
+    bool fail;
+    const validation::Comparison* cmp;
+  };
+  std::map<std::pair<std::size_t, std::string>, std::vector<Raw>> groups;
   for (const auto& cmp : r.comparisons) {
     if (cmp.quantity != qname) continue;
     const auto z = cmp.normalised_error();
+    if (!z) continue;
     const std::size_t slot = slot_of(c, cmp.condition);
-    if (!z || slot >= c.conditions.size()) continue;
-    std::string tip = fmt::format("{}, {}, {}", cmp.condition, cmp.model, qn.symbol);
-    if (cmp.boundary) tip += fmt::format(" at x = {:.0f} mm", cmp.x * 1e3);
-    tip += fmt::format(": E/u_val = {:+.2f} (E = {:+.3g} {})", *z, cmp.error() * qn.scale, qn.unit);
-    const bool fail = cmp.verdict.checked && !cmp.verdict.passed;
-    if (fail) tip += "; outside tolerance: " + cmp.verdict.limit;
-    out.push_back({slot, cmp.model, *z, tip, fail});
+    if (slot >= c.conditions.size()) continue;
+    groups[{slot, cmp.model}].push_back({slot, *z, cmp.verdict.checked && !cmp.verdict.passed, &cmp});
+  }
+  std::vector<Point> out;
+  for (auto& [key, raw] : groups) {
+    std::vector<const Raw*> kept;
+    if (raw.size() <= kDrawnPerCondition) {
+      for (const auto& x : raw) kept.push_back(&x);
+    } else {
+      std::stable_sort(raw.begin(), raw.end(), [](const Raw& a, const Raw& b) { return a.z < b.z; });
+      for (std::size_t k = 0; k < kDrawnPerCondition; ++k)
+        kept.push_back(&raw[k * (raw.size() - 1) / (kDrawnPerCondition - 1)]);
+      std::size_t failing = 0;
+      for (const auto& x : raw)
+        if (x.fail && failing++ < kDrawnPerCondition) kept.push_back(&x);
+    }
+    for (const Raw* x : kept) {
+      const auto& cmp = *x->cmp;
+      std::string tip = fmt::format("{}, {}, {}", cmp.condition, cmp.model, qn.symbol);
+      if (cmp.boundary) tip += fmt::format(" at x = {:.0f} mm", cmp.x * 1e3);
+      tip += fmt::format(": E/u_val = {:+.2f} (E = {:+.3g} {})", x->z, cmp.error() * qn.scale, qn.unit);
+      if (x->fail) tip += "; outside tolerance: " + cmp.verdict.limit;
+      if (raw.size() > kDrawnPerCondition)
+        tip += fmt::format(" (one of {} values here, {} drawn; all in errors.csv)", raw.size(), kDrawnPerCondition);
+      out.push_back({x->slot, cmp.model, x->z, tip, x->fail});
+    }
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <map>
 
 #include "reports/common.h"
 
@@ -13,6 +14,9 @@ namespace {
 // Dash patterns given to curve names in order of first appearance: the picture distinguishes a
 // model by colour and a streamline by dash, whatever the models call their curves.
 constexpr std::array<std::string_view, 6> kDashes = {"", "8 4", "2 3", "10 3 2 3", "5 2", "1 4"};
+
+// At most this many measured points of one boundary are drawn in a panel (see trajectory_grid).
+constexpr std::size_t kDrawnPerBoundary = 60;
 
 Shape boundary_shape(Boundary b) {
   switch (b) {
@@ -249,6 +253,26 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
     std::vector<const validation::TrajectoryPoint*> points;
     for (const auto& pt : c.in.dataset->trajectory)
       if (pt.condition == row.name) points.push_back(&pt);
+    // A boundary measured at thousands of x values is drawn thinned, evenly along x (kDrawnPerBoundary
+    // markers, first and last included): a marker per point would make a report of hundreds of MB.
+    std::size_t measured_here = points.size();
+    std::map<Boundary, std::size_t> per_boundary;
+    for (const auto* pt : points) ++per_boundary[pt->boundary];
+    if (std::any_of(per_boundary.begin(), per_boundary.end(),
+                    [](const auto& b) { return b.second > kDrawnPerBoundary; })) {
+      std::stable_sort(points.begin(), points.end(), [](const auto* a, const auto* b) {
+        return a->boundary != b->boundary ? a->boundary < b->boundary : a->x < b->x;
+      });
+      std::vector<const validation::TrajectoryPoint*> thinned;
+      for (std::size_t i = 0; i < points.size();) {
+        const std::size_t n = per_boundary[points[i]->boundary];
+        const std::size_t keep = std::min(n, kDrawnPerBoundary);
+        for (std::size_t k = 0; k < keep; ++k) thinned.push_back(points[i + (keep > 1 ? k * (n - 1) / (keep - 1) : 0)]);
+        i += n;
+      }
+      points = std::move(thinned);
+    }
+    const bool thinned = points.size() < measured_here;
     const auto* meas_y = find_measurement(*c.in.dataset, row.name, Quantity::impact_point_y);
 
     if (!s) {
@@ -372,6 +396,7 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
       const double px_ = X(pt->x * 1e3), py = Y(pt->y * 1e3);
       std::string tip = fmt::format("measured {} boundary at x = {:.1f} mm: y = {:.1f}", name(pt->boundary),
                                     pt->x * 1e3, pt->y * 1e3);
+
       if (pt->uncertainty) {
         const double u = *pt->uncertainty * 1e3;
         tip += fmt::format(" ± {:.1f}", u);
@@ -381,7 +406,12 @@ std::string trajectory_grid(const Context& c, const validation::ValidationResult
           svg.line(px_ - 3, Y(pt->y * 1e3 - u), px_ + 3, Y(pt->y * 1e3 - u), "stroke=\"#111\"");
         }
       }
-      svg.marker(boundary_shape(pt->boundary), px_, py, 7, kMeasuredColour, true, tip + " mm");
+      if (thinned)
+        tip += fmt::format(" mm ({} of the condition's {} measured points drawn; all in trajectory.csv)", points.size(),
+                           measured_here);
+      else
+        tip += " mm";
+      svg.marker(boundary_shape(pt->boundary), px_, py, 7, kMeasuredColour, true, tip);
     }
     // Impact points on the plate face: models hollow and larger, measured filled on top.
     for (const auto& [m, y] : model_impacts) {

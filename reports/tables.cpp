@@ -290,7 +290,8 @@ Table summary_table(const ValidationResult& r, std::string_view id) {
     row.push_back({s.model, "", false, "", true});
     row.push_back({fmt::format("{} {}", qn.symbol, qn.label), symbol_html(qn.symbol) + " " + esc(qn.label), false, "", true});
     row.push_back({fmt::format("{}", s.n)});
-    row.push_back({fmt::format("{} {}", fixed(s.rms_error, decimals_for(s.rms_error, 3)), qn.unit)});
+    row.push_back({std::isfinite(s.rms_error) ? fmt::format("{} {}", fixed(s.rms_error, decimals_for(s.rms_error, 3)), qn.unit)
+                                              : std::string(kDash)});
     row.push_back({s.rms_normalised_error ? fixed(*s.rms_normalised_error, decimals_for(*s.rms_normalised_error, 3))
                                           : std::string(kDash)});
     row.push_back({s.max_abs_relative_error ? fixed(100.0 * *s.max_abs_relative_error, 1) : std::string(kDash)});

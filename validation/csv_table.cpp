@@ -2,23 +2,15 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <iostream>
+#include <fstream>
+#include <sstream>
 
+#include "core/csv_field.h"
 #include "core/input_error.h"
+#include "core/message.h"
 #include "core/number.h"
 #include "core/utf8.h"
 
-// fccp copies file names with strncpy into fixed buffers; GCC flags the (harmless, terminated)
-// truncation wherever the reader is inlined, so the warning is silenced for that header only.
-// clang has no such warning (and would warn about the unknown name), so only GCC is told.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wstringop-truncation"
-#endif
-#include <libfccp/csv.h>
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 
 namespace chutelab::validation {
 namespace {
@@ -51,7 +43,7 @@ std::vector<std::string> split(std::string_view line, const std::string& file, l
     } else if (c == '"') {
       quoted = was_quoted = true;
     } else if (c == ',') {
-      out.push_back(was_quoted ? cell : trim(cell));
+      out.push_back(csv_unescape(was_quoted ? cell : trim(cell)));
       cell.clear();
       was_quoted = false;
     } else {
@@ -59,7 +51,7 @@ std::vector<std::string> split(std::string_view line, const std::string& file, l
     }
   }
   if (quoted) throw InputError(file, line_no, "", "unterminated quoted field");
-  out.push_back(was_quoted ? cell : trim(cell));
+  out.push_back(csv_unescape(was_quoted ? cell : trim(cell)));
   return out;
 }
 
@@ -70,51 +62,60 @@ CsvTable CsvTable::read(const std::filesystem::path& path,
   CsvTable t;
   t.file_ = path.string();
   require_readable_file(t.file_);
-  bool warned_latin1 = false;
-  try {
-    io::LineReader reader(t.file_);
-    bool have_header = false;
-    while (char* raw = reader.next_line()) {
-      const long line_no = static_cast<long>(reader.get_file_line());
-      std::string_view line(raw);
-      if (!have_header && line.size() >= 3 && line.substr(0, 3) == "\xEF\xBB\xBF")
-        line.remove_prefix(3);  // UTF-8 byte-order mark from spreadsheet exports
-      if (trim(line).empty() || trim(line)[0] == '#') continue;  // blank lines and comments
-      // A CR inside a line: the file ends its lines with CR alone (classic Mac OS, some loggers),
-      // so the whole file arrived as one line; the columns would be reported missing otherwise.
-      if (const auto cr = line.find('\r'); cr != std::string_view::npos && cr + 1 < line.size())
-        throw InputError(t.file_, line_no, "",
-                         "lines end with CR only (classic Mac OS line ends); save the file with LF or CRLF "
-                         "line ends");
-      auto cells = split(line, t.file_, line_no);
-      for (auto& c : cells)
-        if (!valid_utf8(c)) {
-          if (!warned_latin1)
-            std::cerr << fmt::format("warning: {}:{}: text is not UTF-8; read as Latin-1\n", t.file_, line_no);
-          warned_latin1 = true;
-          c = to_utf8(c);
-        }
-      if (!have_header) {
-        t.header_ = std::move(cells);
-        for (std::size_t i = 0; i < t.header_.size(); ++i)
-          for (std::size_t j = 0; j < i; ++j)
-            if (t.header_[i] == t.header_[j])
-              throw InputError(t.file_, line_no, t.header_[i], "column appears twice in the header");
-        have_header = true;
-        for (std::string_view r : required)
-          if (!t.column(r)) t.explain_missing(r, line_no);
-        continue;
-      }
-      if (cells.size() != t.header_.size())
-        throw InputError(t.file_, line_no, "",
-                         fmt::format("row has {} fields, the header has {}", cells.size(),
-                                     t.header_.size()));
-      t.rows_.push_back({line_no, std::move(cells)});
-    }
-    if (!have_header) throw InputError(t.file_, 0, "", "file is empty (no header line)");
-  } catch (const io::error::base& e) {
-    throw InputError(t.file_, 0, "", e.what());
+  std::string content;
+  {
+    std::ifstream in(t.file_, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    if (in.bad()) throw InputError(t.file_, 0, "", "cannot be read");
+    content = std::move(ss).str();
   }
+  // Before any line is split: a NUL would end a line early ("row has 1 fields"), UTF-16 reads as
+  // NULs, and a byte-order mark in mid-file would stick to the first cell of its line.
+  if (auto p = text_encoding_problem(content)) throw InputError(t.file_, p->line, "", p->problem);
+  bool warned_latin1 = false;
+  bool have_header = false;
+  long line_no = 0;
+  for (std::size_t start = 0; start < content.size();) {
+    const std::size_t nl = content.find('\n', start);
+    const std::size_t end = nl == std::string::npos ? content.size() : nl;
+    std::string_view line(content.data() + start, end - start);
+    start = end + 1;
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line_no == 1 && line.size() >= 3 && line.substr(0, 3) == "\xEF\xBB\xBF")
+      line.remove_prefix(3);  // UTF-8 byte-order mark from spreadsheet exports
+    if (trim(line).empty() || trim(line)[0] == '#') continue;  // blank lines and comments
+    // A CR inside a line: the file ends its lines with CR alone (classic Mac OS, some loggers),
+    // so the whole file arrived as one line; the columns would be reported missing otherwise.
+    if (const auto cr = line.find('\r'); cr != std::string_view::npos)
+      throw InputError(t.file_, line_no, "",
+                       "lines end with CR only (classic Mac OS line ends); save the file with LF or CRLF "
+                       "line ends");
+    auto cells = split(line, t.file_, line_no);
+    for (auto& c : cells)
+      if (!valid_utf8(c)) {
+        if (!warned_latin1) warn(fmt::format("{}:{}: text is not UTF-8; read as Latin-1", t.file_, line_no));
+        warned_latin1 = true;
+        c = to_utf8(c);
+      }
+    if (!have_header) {
+      t.header_ = std::move(cells);
+      for (std::size_t i = 0; i < t.header_.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+          if (t.header_[i] == t.header_[j])
+            throw InputError(t.file_, line_no, t.header_[i], "column appears twice in the header");
+      have_header = true;
+      for (std::string_view r : required)
+        if (!t.column(r)) t.explain_missing(r, line_no);
+      continue;
+    }
+    if (cells.size() != t.header_.size())
+      throw InputError(t.file_, line_no, "",
+                       fmt::format("row has {} fields, the header has {}", cells.size(), t.header_.size()));
+    t.rows_.push_back({line_no, std::move(cells)});
+  }
+  if (!have_header) throw InputError(t.file_, 0, "", "file is empty (no header line)");
   return t;
 }
 
@@ -152,10 +153,10 @@ double CsvTable::number(const CsvRow& row, std::size_t col) const {
   const std::string& field = header_.at(col);
   if (s.empty()) throw InputError(file_, row.line, field, "value is missing");
   const std::optional<double> parsed = parse_number(s);
-  if (!parsed) throw InputError(file_, row.line, field, fmt::format("'{}' is not a number", s));
+  if (!parsed) throw InputError(file_, row.line, field, fmt::format("{} is not a number", shown(s)));
   const double v = *parsed;
   if (!std::isfinite(v))
-    throw InputError(file_, row.line, field, fmt::format("'{}' is not a finite number", s));
+    throw InputError(file_, row.line, field, fmt::format("{} is not a finite number", shown(s)));
   return v;
 }
 

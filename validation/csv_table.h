@@ -1,6 +1,6 @@
 #pragma once
-// A small CSV table on top of fccp's LineReader (Debian libfccp-dev): header by name, every cell
-// kept with its line number so that each error can name file, line and column.
+// A small CSV table: header by name, every cell kept with its line number so that each error can
+// name file, line and column. The file is read whole and its encoding checked first (core/message.h).
 #include <filesystem>
 #include <initializer_list>
 #include <optional>

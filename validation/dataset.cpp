@@ -12,6 +12,8 @@
 #include <toml++/toml.h>
 
 #include "core/input_error.h"
+#include "core/message.h"
+#include "core/toml_file.h"
 #include "core/units.h"
 #include "validation/csv_table.h"
 
@@ -174,17 +176,17 @@ InputUncertainties read_uncertainty_table(const toml::table& doc, const std::str
 
 Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
   const std::string file = path.string();
-  require_readable_file(file);
-  toml::table doc;
-  try {
-    doc = toml::parse_file(file);
-  } catch (const toml::parse_error& e) {
-    throw InputError(file, static_cast<long>(e.source().begin.line), "",
-                     fmt::format("malformed TOML: {}", e.description()));
-  }
+  toml::table doc = read_toml_file(file);
   Setup s;
-  if (auto n = doc["name"].value<std::string>()) s.name = *n;
-  if (auto n = doc["source"].value<std::string>()) s.source = *n;
+  // Texts, when given: `name = 42` is a mistake to say, not a name to drop.
+  for (const char* key : {"name", "source"})
+    if (const toml::node* n = doc.get(key)) {
+      const auto v = n->value<std::string>();
+      if (!v || !n->is_string())
+        throw InputError(file, static_cast<long>(n->source().begin.line), key,
+                         fmt::format("must be a text in quotes, e.g. {} = \"...\"", key));
+      (std::string_view(key) == "name" ? s.name : s.source) = *v;
+    }
 
   std::vector<std::string_view> present;
   for (const auto& f : rig_fields()) {
@@ -213,7 +215,7 @@ Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
     const std::string k(key.str());
     if (!node.is_table()) {
       if (k != "name" && k != "source" && k != "gravity_mps2")
-        std::cerr << fmt::format("warning: {}:{}: unknown key {} ignored\n", file, key.source().begin.line, k);
+        warn(fmt::format("{}:{}: unknown key {} ignored", file, key.source().begin.line, shown(k)));
       continue;
     }
     if (k == "belt" || k == "plate" || k == "material" || k == "dem" || k == "uncertainty") continue;
@@ -228,8 +230,8 @@ Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
       bool known = false;
       for (const auto& f : rig_fields()) known = known || (f.section == section && f.key == key.str());
       if (!known)
-        std::cerr << fmt::format("warning: {}:{}: unknown key {}.{} ignored\n", file,
-                                 node.source().begin.line, section, key.str());
+        warn(fmt::format("{}:{}: unknown key {}.{} ignored", file, node.source().begin.line, section,
+                         std::string_view(key.str())));
     }
   }
   check_geometry(s, file, 0);
@@ -306,7 +308,7 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
     if (const RigField* f = find_override_column(col))
       overrides.emplace_back(i, f);
     else
-      std::cerr << fmt::format("warning: {}:1: unknown column '{}' ignored\n", t.file(), col);
+      warn(fmt::format("{}:1: unknown column {} ignored", t.file(), shown(col)));
   }
 
   std::vector<Station> out;

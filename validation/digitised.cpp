@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "core/input_error.h"
+#include "core/toml_file.h"
 #include "core/number.h"
 #include "core/units.h"
 #include "validation/json_reader.h"
@@ -354,14 +355,7 @@ std::vector<DigitisedCurve> read_digitised(const fs::path& file) {
 DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
                                  const std::vector<DigitisedCurve>& curves) {
   const std::string mfile = mapping_path.string();
-  if (!fs::exists(mapping_path)) throw InputError(mfile, 0, "", "file not found");
-  toml::table doc;
-  try {
-    doc = toml::parse_file(mfile);
-  } catch (const toml::parse_error& e) {
-    throw InputError(mfile, static_cast<long>(e.source().begin.line), "",
-                     fmt::format("malformed TOML: {}", e.description()));
-  }
+  toml::table doc = read_toml_file(mfile, "--mapping");
   static const toml::table empty;
   const toml::table* defaults = doc["defaults"].as_table();
   Mapping top(mfile, doc, "", nullptr);

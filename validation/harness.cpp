@@ -29,15 +29,21 @@ std::string folder_name(const std::filesystem::path& dir) {
 
 }  // namespace
 
+namespace {
+// A metric that cannot be computed (0/0, x/0, x/1e-320 = inf, a NaN from a model) is no number:
+// it is left out of sums and maxima, and a limit on it fails (check_tolerance).
+std::optional<double> finite(double v) { return std::isfinite(v) ? std::optional(v) : std::nullopt; }
+}  // namespace
+
 std::optional<double> Comparison::relative_error() const {
   if (!predicted || measured == 0.0) return std::nullopt;
-  return error() / std::abs(measured);
+  return finite(error() / std::abs(measured));
 }
 
 std::optional<double> Comparison::normalised_error() const {
   const auto u = validation_uncertainty();
   if (!u || !(*u > 0.0)) return std::nullopt;
-  return error() / *u;
+  return finite(error() / *u);
 }
 
 std::string Comparison::unit() const {
@@ -50,7 +56,7 @@ std::optional<double> Comparison::validation_uncertainty() const {
   if (!predicted || (!uncertainty && !prediction_uncertainty && !u_num_disc && !u_input)) return std::nullopt;
   double sum = 0.0;
   for (const auto& u : {uncertainty, prediction_uncertainty, u_num_disc, u_input}) sum += std::pow(u.value_or(0.0), 2);
-  return std::sqrt(sum);
+  return finite(std::sqrt(sum));
 }
 
 std::optional<double> Comparison::vv20_ratio() const {
@@ -179,10 +185,19 @@ void check_tolerance(Comparison& c, const Tolerances& tol) {
     }
     c.verdict.passed = false;
   };
-  if (t->relative)
-    if (auto r = c.relative_error(); r && std::abs(*r) > *t->relative)
+  // A limit whose metric cannot be computed is not met: a measured 0 against a relative limit has no
+  // relative error, and "within" would be a check that cannot fail.
+  if (!std::isfinite(c.measured) || !std::isfinite(*c.predicted))
+    fail("", 0.0, 0.0, "value not finite: nothing to compare");
+  if (t->relative) {
+    if (auto r = c.relative_error(); !r)
+      fail("", 0.0, *t->relative,
+           c.measured == 0.0 ? "relative error undefined: the measured value is 0 (use an absolute limit)"
+                             : "relative error not finite (measured value too close to 0; use an absolute limit)");
+    else if (std::abs(*r) > *t->relative)
       fail("relative", std::abs(*r), *t->relative,
            fmt::format("relative error {:.1f} % > {} %", 100.0 * std::abs(*r), plain(100.0 * *t->relative)));
+  }
   if (t->normalised) {
     // Without a stated uncertainty a normalised limit cannot be met: that is a failure to show,
     // not a pass to assume.
@@ -192,10 +207,13 @@ void check_tolerance(Comparison& c, const Tolerances& tol) {
       fail("normalised", std::abs(*z), *t->normalised,
            fmt::format("|E|/u_val {:.2f} > {}", std::abs(*z), plain(*t->normalised)));
   }
-  if (t->absolute && std::abs(c.error() * c.scale) > *t->absolute)
-    fail("absolute", std::abs(c.error() * c.scale), *t->absolute,
-         fmt::format("error {} {} > {} {}", plain(std::abs(c.error() * c.scale)), c.unit(), plain(*t->absolute),
-                     c.unit()));
+  if (t->absolute) {
+    const double e = std::abs(c.error() * c.scale);
+    if (!std::isfinite(e)) fail("", 0.0, *t->absolute, "error not finite");
+    else if (e > *t->absolute)
+      fail("absolute", e, *t->absolute,
+           fmt::format("error {} {} > {} {}", plain(e), c.unit(), plain(*t->absolute), c.unit()));
+  }
 }
 
 }  // namespace
@@ -353,19 +371,23 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       s.model = m;
       s.quantity = qn;
       double se = 0.0, sz = 0.0, worst = 0.0;
-      int nz = 0, nr = 0;
+      int nz = 0, nr = 0, ne = 0;
       bool checked = false, ok = true;
       for (const Comparison* cp : by_key[{m, qn}]) {
         const Comparison& c = *cp;
         if (!c.predicted) continue;
         ++s.n;
-        se += std::pow(c.error() * c.scale, 2);
+        // Summaries over the finite values (a metric that is not one is left out, not propagated).
+        if (const double e = c.error() * c.scale; std::isfinite(e * e)) {
+          se += e * e;
+          ++ne;
+        }
         if (auto z = c.normalised_error()) { sz += *z * *z; ++nz; }
         if (auto rel = c.relative_error()) { worst = std::max(worst, std::abs(*rel)); ++nr; }
         if (c.verdict.checked) { checked = true; ok = ok && c.verdict.passed; }
       }
       if (s.n == 0) continue;
-      s.rms_error = std::sqrt(se / s.n);
+      s.rms_error = ne ? std::sqrt(se / ne) : std::nan("");
       if (nz) s.rms_normalised_error = std::sqrt(sz / nz);
       if (nr) s.max_abs_relative_error = worst;
       if (checked) s.within_tolerance = ok;

@@ -9,7 +9,7 @@
 
 namespace chutelab::validation {
 
-std::string csv_number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : ""; }
+std::string csv_number(double v) { return chutelab::csv_number(v); }
 std::string csv_number(const std::optional<double>& v) { return v ? csv_number(*v) : ""; }
 
 namespace {

@@ -20,7 +20,8 @@ using OutputFile = std::pair<std::string, std::string>;  // file name, content
 void write_outputs(const std::filesystem::path& dir, const std::vector<OutputFile>& files,
                    const std::vector<std::filesystem::path>& inputs = {});
 
-// Number formatting shared by every CSV: enough digits to round-trip what matters, no noise.
+// Number formatting shared by every CSV (core/csv_field.h): the shortest decimal that reads back as
+// the same double; empty for a value that is not finite.
 std::string csv_number(double v);
 std::string csv_number(const std::optional<double>& v);
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/input_error.h"
+#include "core/toml_file.h"
 #include "core/quantity.h"
 #include "validation/model.h"
 
@@ -44,14 +45,7 @@ long line_of(const toml::key& k, const toml::node& n) {
 Tolerances Tolerances::read(const std::filesystem::path& path) {
   Tolerances t;
   t.file_ = path.string();
-  require_readable_file(t.file_, "--tolerances");
-  toml::table doc;
-  try {
-    doc = toml::parse_file(t.file_);
-  } catch (const toml::parse_error& e) {
-    throw InputError(t.file_, static_cast<long>(e.source().begin.line), "",
-                     fmt::format("malformed TOML: {}", e.description()));
-  }
+  toml::table doc = read_toml_file(t.file_, "--tolerances");
   const auto models = tolerance_models();
   const auto known_quantities = tolerance_quantities();
   for (const auto& [model, node] : doc) {

@@ -8,8 +8,11 @@
 #include <sstream>
 
 #include "app/commands.h"
+#include "app/option_checks.h"
 #include "app/output.h"
+#include "core/csv_field.h"
 #include "core/input_error.h"
+#include "core/message.h"
 #include "core/rig.h"
 #include "effects/registry.h"
 #include "validation/dataset.h"
@@ -38,6 +41,7 @@ RunResult run(const std::vector<std::string>& args) {
     app.require_subcommand(1);
     app::Action action;
     app::add_estimate(app, action);
+    app::check_every_option(app);
     std::vector<std::string> argv = {"chutelab"};
     argv.insert(argv.end(), args.begin(), args.end());
     std::vector<char*> ptrs;
@@ -48,7 +52,7 @@ RunResult run(const std::vector<std::string>& args) {
     } catch (const CLI::CallForHelp& e) {
       r.code = app.exit(e, out, err);
     } catch (const CLI::ParseError& e) {
-      err << "chutelab: " << e.what() << " (see --help)\n";
+      err << "chutelab: " << one_line(e.what()) << " (see --help)\n";
       r.code = kExitBadInput;
     } catch (const InputError& e) {
       err << "chutelab: " << e.what() << "\n";
@@ -109,6 +113,8 @@ std::string setup_json(const std::string& path) {
   }
 }
 
+std::string csv_field_of(const std::string& text) { return csv_field(text); }
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(chutelab_design) {
@@ -121,4 +127,7 @@ EMSCRIPTEN_BINDINGS(chutelab_design) {
   emscripten::function("rigFields", &rig_fields_json);
   emscripten::function("effects", &effects_json);
   emscripten::function("setup", &setup_json);
+  // The page's conditions.csv export goes through the one CSV writer (core/csv_field.h): quoting
+  // and the spreadsheet-formula policy are the command line's.
+  emscripten::function("csvField", &csv_field_of);
 }

@@ -110,10 +110,10 @@ CalibrationStudy run_calibration(const chutelab::Material& m, const CalibrationP
   for (double d : plan.density)
     if (!(d > 0.0) || !std::isfinite(d) || d > 3e4)
       throw InputError("", 0, "--density", fmt::format("solid density must be in (0, 30000] kg/m^3, got {}", d));
-  if (plan.targets.bulk_density && !(*plan.targets.bulk_density > 0.0))
-    throw InputError("", 0, "--target-bulk-density", "must be > 0 kg/m^3");
-  if (plan.targets.pile_height && !(*plan.targets.pile_height > 0.0))
-    throw InputError("", 0, "--target-pile-height", "must be > 0 mm");
+  if (plan.targets.bulk_density && !(*plan.targets.bulk_density > 0.0 && std::isfinite(*plan.targets.bulk_density)))
+    throw InputError("", 0, "--target-bulk-density", "must be a finite number > 0 kg/m^3");
+  if (plan.targets.pile_height && !(*plan.targets.pile_height > 0.0 && std::isfinite(*plan.targets.pile_height)))
+    throw InputError("", 0, "--target-pile-height", "must be a finite number > 0 mm");
 
   CalibrationStudy st;
   st.plan = plan;

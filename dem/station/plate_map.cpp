@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "core/csv_field.h"
 #include "core/input_error.h"
 
 namespace chutelab::dem::station {
@@ -255,11 +256,13 @@ void write_plate_map_csv(const std::string& path, const std::vector<PlateMap>& m
       const Vec3 x = c.centroid();
       const double a = c.area > 0.0 ? c.area : 1.0;
       const double ar = c.archard_rate(w) * kUmPerHour, fr = c.finnie_rate(w) * kUmPerHour;
-      f << fmt::format("{},{},{},{:.2f},{:.2f},{:.2f},{:.4g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
-                       "{:.6g},{:.6g},{:.6g},{:.4f}\n",
-                       condition, m.wall, t, x.x() * 1e3, x.y() * 1e3, x.z() * 1e3, c.area * 1e6, c.pressure(),
-                       c.shear_stress(), c.force.x(), c.force.y(), c.force.z(), c.impact_power / a,
-                       c.sliding_power / a, c.impacts / a, ar, fr, ar + fr, m.duration);
+      // The dataset reader takes a plate_map.csv back (core/csv_field.h): quoted names, exact numbers.
+      const auto n = [](double v) { return csv_number(v); };
+      f << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_field(condition),
+                       csv_field(m.wall), t, n(x.x() * 1e3), n(x.y() * 1e3), n(x.z() * 1e3), n(c.area * 1e6),
+                       n(c.pressure()), n(c.shear_stress()), n(c.force.x()), n(c.force.y()), n(c.force.z()),
+                       n(c.impact_power / a), n(c.sliding_power / a), n(c.impacts / a), n(ar), n(fr), n(ar + fr),
+                       n(m.duration));
     }
 }
 

@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include "core/input_error.h"
+#include "core/toml_file.h"
 
 namespace chutelab::dem::station {
 
@@ -193,13 +194,7 @@ void read_feed_table(const toml::node& node, const std::string& file, const std:
 
 DemTable read_dem_table(const std::string& file) {
   DemTable t;
-  toml::table doc;
-  try {
-    doc = toml::parse_file(file);
-  } catch (const toml::parse_error& e) {
-    throw InputError(file, static_cast<long>(e.source().begin.line), "",
-                     fmt::format("malformed TOML: {}", e.description()));
-  }
+  toml::table doc = read_toml_file(file);
   const toml::node* dem_node = doc.get("dem");
   if (!dem_node) return t;
   t.file = file;

@@ -9,7 +9,8 @@
     after = chutelab.validate(ds, effects={"air_drag": "fit"})
 
 Units are the command line's and the files': m/s, t/h, mm, N, degrees. Tables carry the column
-names and numbers of the CSV files the commands write (6 significant digits, as written there).
+names and numbers of the CSV files the commands write (each number as written there: the shortest
+decimal that reads back as the computed double).
 Bad input raises chutelab.InputError (a ValueError) with .file, .line (0 = none) and .field.
 NumPy and pandas are optional: without pandas a table is a dict of NumPy arrays, without NumPy a
 dict of lists.
@@ -182,10 +183,10 @@ def synthesize(dataset=None, effects=None, *, seed=1, noise_scale=1.0, out=None)
     source = _dataset(DEFAULT_DATASET if dataset is None else dataset, measurements_required=False)
     args = _effect_args(effects)
     if out is not None:
-        _chutelab.synthesize(source._core, args, int(seed), float(noise_scale), _os.fspath(out))
+        _chutelab.synthesize(source._core, args, seed, float(noise_scale), _os.fspath(out))
         return read_dataset(out)
     with _tempfile.TemporaryDirectory(prefix="chutelab-synthetic-") as tmp:
-        _chutelab.synthesize(source._core, args, int(seed), float(noise_scale), tmp)
+        _chutelab.synthesize(source._core, args, seed, float(noise_scale), tmp)
         return read_dataset(tmp)
 
 

@@ -17,9 +17,18 @@ except ImportError:  # pragma: no cover - pandas is optional
     _pd = None
 
 
+_FORMULA_START = ("=", "+", "-", "@", "\t", "\r", "'")
+
+
+def _unescape(cell):
+    """The apostrophe chutelab's CSV writer puts before a text that a spreadsheet would take as a
+    formula (core/csv_field.h) is removed, so names read back as they were."""
+    return cell[1:] if len(cell) >= 2 and cell[0] == "'" and cell[1] in _FORMULA_START else cell
+
+
 def parse_csv(text):
     """CSV text with a header row -> {column: [cell text, ...]} in file order."""
-    rows = list(_csv.reader(_io.StringIO(text)))
+    rows = [[_unescape(c) for c in r] for r in _csv.reader(_io.StringIO(text))]
     if not rows:
         return {}
     header, body = rows[0], rows[1:]

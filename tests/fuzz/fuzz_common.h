@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/input_error.h"
+#include "core/toml_file.h"
 
 namespace chutelab::fuzz {
 
@@ -49,6 +50,33 @@ inline std::vector<std::string> split_parts(std::string_view s, std::size_t n) {
     pos = end + 1;
   }
   return parts;
+}
+
+// The TOML bound's own invariant (core/toml_file.h), checked on every input of a TOML target before
+// the reader runs: whatever the scanner lets through, toml++ parses to a tree no deeper than the bound
+// (else the scanner missed a nesting, and only the check after parsing stood between toml++ and
+// its stack). The depth is measured here without recursion, independently of the library's walk.
+inline void check_toml_scanner(std::string_view text) {
+  if (check_toml_bounds(text)) return;  // refused before toml++: nothing to compare
+  toml::table doc;
+  try {
+    doc = toml::parse(text);
+  } catch (const toml::parse_error&) {
+    return;  // a syntax error toml++ reports itself
+  }
+  std::vector<std::pair<const toml::node*, int>> todo = {{&doc, 0}};
+  while (!todo.empty()) {
+    const auto [n, d] = todo.back();
+    todo.pop_back();
+    if (d > kTomlMaxDepth) {
+      std::fprintf(stderr, "fuzz: the TOML scanner let through a value %d levels deep\n", d);
+      std::abort();
+    }
+    if (const auto* t = n->as_table())
+      for (const auto& [k, v] : *t) todo.emplace_back(&v, d + 1);
+    else if (const auto* a = n->as_array())
+      for (const auto& v : *a) todo.emplace_back(&v, d + 1);
+  }
 }
 
 template <class F>

@@ -5,7 +5,9 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace chutelab;
   const auto f = fuzz::scratch() / "setup.toml";
-  fuzz::write_file(f, {reinterpret_cast<const char*>(data), size});
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  fuzz::check_toml_scanner(text);
+  fuzz::write_file(f, text);
   return fuzz::guarded([&] {
     const auto t = dem::station::read_dem_table(f.string());
     (void)dem::station::resolve(t, {});

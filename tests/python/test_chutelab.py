@@ -36,7 +36,9 @@ def read_csv(path, text=("condition", "model", "quantity", "boundary", "toleranc
                      float_precision="round_trip")
     for c in df.columns:
         if c not in text and df[c].dtype == object:
-            df[c] = pd.to_numeric(df[c].replace("", np.nan))
+            # float() reads the shortest round-trip decimals the files hold exactly (pandas'
+            # to_numeric may not: it has a faster, less exact parser).
+            df[c] = df[c].map(lambda s: float(s) if s != "" else np.nan)
     return df
 
 
@@ -261,3 +263,60 @@ def test_the_guide_example_runs(tmp_path):
         os.chdir(cwd)
     assert (tmp_path / "residuals.png").stat().st_size > 10000
     assert "air_drag" in out.getvalue()
+
+
+# ---- issue 30: every guarantee of the command line holds here too ---------------------------------
+
+def _files(folder):
+    return {f: open(os.path.join(folder, f), "rb").read() for f in sorted(os.listdir(folder))}
+
+
+def test_synthesize_refuses_to_overwrite_its_source_dataset(tmp_path):
+    ds = tmp_path / "rig"
+    shutil.copytree(RIG, ds)
+    before = _files(ds)
+    for out in (ds, ds / ".", str(ds) + "/"):
+        with pytest.raises(chutelab.InputError) as e:
+            chutelab.synthesize(ds, out=out)
+        assert e.value.field == "out" and "is the input folder" in str(e.value)
+    os.symlink(ds, tmp_path / "alias")
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.synthesize(chutelab.read_dataset(ds), out=tmp_path / "alias")
+    assert "is the input folder" in str(e.value)
+    assert _files(ds) == before
+    assert not [f for f in os.listdir(tmp_path) if ".partial" in f]
+
+
+def test_arguments_are_checked_by_the_command_lines_rules(tmp_path):
+    out = tmp_path / "out"
+    for kwargs, field, says in (({"seed": 1.5}, "seed", "whole number"), ({"seed": True}, "seed", "whole number"),
+                                ({"seed": -1}, "seed", "whole number"), ({"seed": "1"}, "seed", "whole number"),
+                                ({"noise_scale": math.nan}, "noise_scale", "finite number"),
+                                ({"noise_scale": math.inf}, "noise_scale", "finite number")):
+        with pytest.raises(chutelab.InputError) as e:
+            chutelab.synthesize(RIG, out=out, **kwargs)
+        assert e.value.field == field and says in str(e.value), kwargs
+        assert not out.exists()
+    assert len(chutelab.synthesize(RIG, seed=2.0).measurements) > 0  # a whole number as a float is that number
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.diagnose(RIG, alpha=math.nan)
+    assert e.value.field == "alpha"
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.validate(RIG, models=["korzen"], dem_threads=-2)
+    assert e.value.field == "dem_threads"
+
+
+def test_a_deep_or_huge_toml_file_is_refused_not_a_crash(tmp_path):
+    ds = tmp_path / "rig"
+    shutil.copytree(RIG, ds)
+    setup = (ds / "setup.toml").read_text()
+    for deep in ("a" + ".a" * 49999 + " = 1\n", "x = " + "[" * 100000 + "]" * 100000 + "\n"):
+        (ds / "setup.toml").write_text(deep + setup)
+        with pytest.raises(chutelab.InputError) as e:
+            chutelab.read_dataset(ds)
+        assert e.value.file == str(ds / "setup.toml") and e.value.line == 1 and "levels deep" in str(e.value)
+    tol = tmp_path / "tol.toml"
+    tol.write_text("[" + "a." * 40000 + "b]\n")
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.validate(RIG, tolerances=tol)
+    assert e.value.file == str(tol) and "levels deep" in str(e.value)

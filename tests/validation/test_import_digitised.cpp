@@ -49,13 +49,15 @@ BOOST_AUTO_TEST_CASE(the_bundled_example_becomes_rows_that_validate) {
   const std::string traj = read_file(out / "trajectory.csv");
   BOOST_TEST(traj.rfind("condition,boundary,x_mm,y_mm,uncertainty_mm\n", 0) == 0);
   BOOST_TEST(row_starting(traj, "V3-41,upper,102.108,") == "V3-41,upper,102.108,152.908,0.508");
-  BOOST_TEST(row_starting(traj, "V3-41,lower,100.838,") == "V3-41,lower,100.838,127.762,0.508");
+  // Round-trip precision: each number is the double the conversion gave, which reads back as itself
+  // (5.03 in x 0.0254 m/in is not the double nearest 0.127762 m).
+  BOOST_TEST(row_starting(traj, "V3-41,lower,100.838,") == "V3-41,lower,100.838,127.76200000000001,0.508");
   BOOST_TEST(count_lines(traj) == 1 + 10);
   // Each force point is the high-flow condition at its belt speed. R_n's uncertainty is 2 px
   // through the project's y calibration (70 N over 420 px), R_s's 0.3 N as stated.
   const std::string meas = read_file(out / "measurements.csv");
-  BOOST_TEST(row_starting(meas, "V2-41,normal_force_N") == "V2-41,normal_force_N,23.3,0.333333");
-  BOOST_TEST(row_starting(meas, "V5-44,normal_force_N") == "V5-44,normal_force_N,60.5,0.333333");
+  BOOST_TEST(row_starting(meas, "V2-41,normal_force_N") == "V2-41,normal_force_N,23.3,0.3333333333333333");
+  BOOST_TEST(row_starting(meas, "V5-44,normal_force_N") == "V5-44,normal_force_N,60.5,0.3333333333333333");
   BOOST_TEST(row_starting(meas, "V4-41,shear_force_N") == "V4-41,shear_force_N,3.3,0.3");
   BOOST_TEST(count_lines(meas) == 1 + 8);
   // The rest of the dataset comes along unchanged; the README says where the rows came from.
@@ -68,7 +70,7 @@ BOOST_AUTO_TEST_CASE(the_bundled_example_becomes_rows_that_validate) {
   BOOST_TEST_REQUIRE(v.exit_code == 0, v.err);
   const std::string errors = read_file(dir / "val" / "errors.csv");
   BOOST_TEST(errors.find("V3-41,booth-cema,trajectory_upper_y_mm,152.908,0.508,") != std::string::npos);
-  BOOST_TEST(errors.find("V5-44,korzen,normal_force_N,60.5,0.333333,") != std::string::npos);
+  BOOST_TEST(errors.find("V5-44,korzen,normal_force_N,60.5,0.3333333333333333,") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(csv_exports_with_and_without_headers) {
@@ -117,8 +119,9 @@ BOOST_AUTO_TEST_CASE(pixels_become_y_units_through_the_calibration_also_on_a_log
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   const std::string meas = read_file(dir / "out" / "measurements.csv");
   // The curve's own uncertainty_px replaces the defaults' 5 N.
-  BOOST_TEST(row_starting(meas, "V3-41,shear_force_N") == "V3-41,shear_force_N,10,0.230259");
-  BOOST_TEST(row_starting(meas, "V3-41,normal_force_N") == "V3-41,normal_force_N,10,0.251036");  // hypot(0.1, 0.230259)
+  // 10 N x ln(10) x (1/200 decades per px) x 2 px = 0.2302585 N; with 0.1 N in quadrature 0.2510358 N.
+  BOOST_TEST(row_starting(meas, "V3-41,shear_force_N") == "V3-41,shear_force_N,10,0.2302585092994046");
+  BOOST_TEST(row_starting(meas, "V3-41,normal_force_N") == "V3-41,normal_force_N,10,0.25103581637842837");
 }
 
 BOOST_AUTO_TEST_CASE(bad_mappings_and_points_are_one_message_and_nothing_written) {

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "core/file_name.h"
 #include "core/input_error.h"
 #include "core/campaign.h"
 #include "dem/station/cache.h"
@@ -152,7 +153,8 @@ class DemModel final : public Model {
     std::string cache_file;
     const st::StationResult r = run_or_load(station, fx, settings, table, &from_cache, &cache_file);
     if (!c_.output_dir.empty() && campaign::output_rank()) {
-      const auto dir = std::filesystem::path(c_.output_dir) / station.condition;
+      // The condition's name is data ("../../ds"): mapped to one plain folder name (core/file_name.h).
+      const auto dir = std::filesystem::path(c_.output_dir) / file_name_for(station.condition);
       st::write_result_files(dir.string(), r);
       st::write_side_view_vtk((dir / "side_view.vtk").string(), r.side_view);
     }

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "core/file_name.h"
 #include "dem/liggghts/run.h"
 #include "dem/station/cache.h"
 #include "dem/station/progress.h"
@@ -79,7 +80,7 @@ class LiggghtsModel final : public Model {
       if (dc.use_cache) cache.store(key, r);
     }
     if (!dc.output_dir.empty()) {
-      const auto dir = fs::path(dc.output_dir) / "liggghts" / station.condition;
+      const auto dir = fs::path(dc.output_dir) / "liggghts" / file_name_for(station.condition);
       st::write_result_files(dir.string(), r);
       st::write_side_view_vtk((dir / "side_view.vtk").string(), r.side_view);
       lg::write_deck(deck, dir.string());

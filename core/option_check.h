@@ -1,0 +1,53 @@
+#pragma once
+// One validator for every option and argument, whichever door it comes in by: the command line
+// (app/option_checks.h attaches these rules to CLI11 options, and a finite / whole / non-empty check
+// to every option that has no rule of its own) and the Python package (python/chutelab_module.cpp
+// calls the same rules with the keyword's value). Every check happens before any work, and a
+// failure is an InputError naming the flag (the Python package shows it as the keyword).
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace chutelab::options {
+
+// A number an option takes: finite, within [lo, hi] (an open end excludes the bound itself), whole
+// when `whole` (1.5 is not a thread count; 2.0 is 2).
+struct NumberRule {
+  std::string_view flag;
+  double lo = -std::numeric_limits<double>::max();
+  double hi = std::numeric_limits<double>::max();
+  bool lo_open = false, hi_open = false;
+  bool whole = false;
+  std::string_view unit;
+  // Returns v, or throws InputError(flag) saying what the value must be.
+  double check(double v) const;
+  // The same for a value as typed ("nan", "1e400", "0x10", "5mm"): shown as typed when refused.
+  double check(std::string_view typed) const;
+  std::string describe() const;  // "a whole number in [1, 256]"
+};
+
+// Throws InputError(flag) for an empty text value ("--only ''").
+void non_empty(std::string_view flag, std::string_view value);
+
+// A comma list: every item non-empty ("a,,b" and a trailing comma are mistakes, not gaps to skip)
+// and given once; an empty list is refused too.
+std::vector<std::string> list(std::string_view flag, std::string_view text);
+// A comma list of numbers, each checked by `rule` (whose flag names them), none given twice.
+std::vector<double> number_list(const NumberRule& rule, std::string_view text);
+// Refuses a list longer than `max` items, saying what each item costs (a DEM run, a slump test).
+void at_most(std::string_view flag, std::size_t n, std::size_t max, std::string_view each);
+
+// Rules shared by the command line and the Python package.
+namespace rules {
+inline constexpr NumberRule seed{"--seed", 0.0, 18446744073709551615.0, false, false, true, ""};
+inline constexpr NumberRule noise_scale{"--noise-scale", 0.0, 100.0, false, false, false, ""};
+inline constexpr NumberRule alpha{"--alpha", 1e-6, 0.5, false, false, false, ""};
+// OpenMP threads of a DEM run: 0 is one per idle core.
+inline constexpr NumberRule dem_threads{"--dem-threads", 0.0, 256.0, false, false, true, ""};
+inline constexpr NumberRule threads{"--threads", 0.0, 256.0, false, false, true, ""};
+inline constexpr NumberRule jobs{"--jobs", 1.0, 256.0, false, false, true, ""};
+}  // namespace rules
+
+}  // namespace chutelab::options

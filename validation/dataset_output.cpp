@@ -1,0 +1,21 @@
+#include "validation/dataset_output.h"
+
+#include "core/output_folder.h"
+
+namespace chutelab::validation {
+
+std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& dir) {
+  return {dir, dir / "setup.toml", dir / "conditions.csv", dir / "measurements.csv", dir / "trajectory.csv",
+          dir / "plate_map.csv", dir / "tolerances.toml", dir / "README.md"};
+}
+
+void write_dataset(const std::filesystem::path& out, const std::vector<OutputFile>& files,
+                   const std::filesystem::path& source_dir) {
+  OutputFolder folder(out, dataset_files(source_dir));
+  folder.owns({"setup.toml", "conditions.csv", "measurements.csv", "trajectory.csv", "plate_map.csv",
+               "tolerances.toml", "README.md"});
+  for (const auto& [name, content] : files) folder.write(name, content);
+  folder.commit();
+}
+
+}  // namespace chutelab::validation
