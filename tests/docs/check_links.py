@@ -118,7 +118,9 @@ def check_comments(rel, files, problems):
             # A repository path starts at one of the repository's top folders, or next to the file
             # (or, with "..", above it). Placeholders (OUT/, DIR/, TARGET) and build products are not.
             if parts[0] == "..":
-                pass
+                # Above the file: a reference names a file with its extension; "../../ds" is data.
+                if "." not in parts[-1]:
+                    continue
             elif parts[0] not in KNOWN_TOP and not os.path.exists(os.path.join(ROOT, here, parts[0])):
                 continue
             if parts[0] in ("build", "out") or any(x.isupper() and len(x) > 1 for x in parts):
