@@ -1,5 +1,6 @@
 #include "app/calibration_output.h"
 #include "core/csv_field.h"
+#include "core/message.h"
 
 #include <algorithm>
 #include <cmath>
@@ -322,7 +323,7 @@ std::string material_toml(const CalibrationContext& c, const CalibrationStudy& s
       "# chutelab calibrate: slump tests ({} quality) on {}; {} {}.\n"
       "# Calibrated for DEM {}: solid_density_kgm3 and rolling_friction_particle are the DEM values for that\n"
       "# particle; every other value is the dataset's.\n[material]\n",
-      c.quality, c.dataset, s.closest >= 0 ? "closest to the target" : "no target given, first combination",
+      c.quality, one_line(c.dataset), s.closest >= 0 ? "closest to the target" : "no target given, first combination",
       targets_text(s), grain_label(s, ch.shape));
   for (const auto& f : rig_fields()) {
     if (f.section != "material") continue;

@@ -96,7 +96,8 @@ int run_calibrate(const CalibrateCli& o) {
   campaign::set_threads(resolve_jobs(o.jobs));
 
   const int count = static_cast<int>(plan.shapes.size() * plan.rolling.size() * plan.density.size());
-  std::cout << fmt::format("calibrate: {} slump tests ({} quality) on {} ({})\n", count, o.quality, ctx.setup.name,
+  std::cout << fmt::format("calibrate: {} slump tests ({} quality) on {} ({})\n", count, o.quality,
+                           one_line(ctx.setup.name, 80),
                            ctx.dataset)
             << std::flush;
   auto progress = [&](const CalibrationProgress& p) {

@@ -86,7 +86,11 @@ int run_design(const DesignOptions& o) {
   std::error_code ec;
   if (fs::equivalent(fs::path(o.out) / "design.html", setup, ec))
     throw InputError(o.out, 0, "--out", "design.html there is this run's input; choose another folder");
-  validation::write_outputs(o.out, {{"design.html", html}});
+  // --out may not be the dataset folder the page starts from (nor replace its setup.toml).
+  std::vector<fs::path> inputs = {setup};
+  if (!o.dataset.empty())
+    for (auto& p : dataset_inputs(o.dataset)) inputs.push_back(std::move(p));
+  validation::write_outputs(o.out, {{"design.html", html}}, inputs);
   std::cout << fmt::format("wrote {} ({:.1f} MB, self-contained: open it in a browser, no server needed)\n",
                            (fs::path(o.out) / "design.html").string(), html.size() / 1e6);
   return kExitOk;

@@ -40,7 +40,11 @@ void write_svg(const EstimateOptions& o, const std::string& svg) {
     if (!r.empty() && fs::exists(out, ec) && fs::equivalent(out, r, ec))
       throw InputError(o.svg, 0, "--svg", "is an input of this run; choose another file");
   if (fs::is_directory(out, ec)) throw InputError(o.svg, 0, "--svg", "is a folder; give a file name");
-  validation::write_outputs(out.parent_path(), {{out.filename().string(), reports::standalone_svg(svg)}});
+  // The same inputs to the one writer, which refuses them whatever a check above missed.
+  std::vector<fs::path> inputs;
+  for (const auto& r : read)
+    if (!r.empty()) inputs.push_back(r);
+  validation::write_outputs(out.parent_path(), {{out.filename().string(), reports::standalone_svg(svg)}}, inputs);
 }
 
 QuantityValues korzen_reading(const EstimatePoint& p) {

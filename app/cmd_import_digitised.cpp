@@ -153,7 +153,7 @@ int run_import(const ImportCli& o) {
   out.commit();
   for (const auto& n : imp.unmapped)
     warn(fmt::format("curve {} is not in the mapping and was not imported", shown(n)));
-  for (const auto& s : imp.summary) std::cout << s << "\n";
+  for (const auto& s : imp.summary) std::cout << one_line(s) << "\n";
   std::cout << fmt::format("dataset: {} ({} measurements, {} trajectory points imported)\n", o.out,
                            imp.measurements.size(), imp.trajectory.size());
   return kExitOk;

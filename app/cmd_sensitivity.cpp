@@ -18,6 +18,7 @@
 #include "dem/station/cache.h"
 #include "reports/sensitivity_study.h"
 #include "core/input_error.h"
+#include "core/message.h"
 #include "core/option_check.h"
 #include "core/number.h"
 #include "dem/station/progress.h"
@@ -153,8 +154,9 @@ int run_sensitivity(const SensitivityCli& o) {
   study.belt_speed = station->belt_speed;
   study.mass_flow = station->mass_flow;
   study.limit_percent = o.limit;
-  std::cout << fmt::format("sensitivity: {} DEM runs of {} / {} ({} quality), base {}\n", variants.size(), setup.name,
-                           station->condition, o.quality, variants[0].label);
+  std::cout << fmt::format("sensitivity: {} DEM runs of {} / {} ({} quality), base {}\n", variants.size(),
+                           one_line(setup.name, 80),
+                           one_line(station->condition, 80), o.quality, variants[0].label);
   for (const auto& n : reports::run_notes(study)) std::cout << "note: " << n << "\n";
   std::cout << std::flush;
   // One campaign job per variant (core/campaign.h): in order in one process, side by side with

@@ -10,6 +10,7 @@
 #include "app/option_checks.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
+#include "core/message.h"
 #include "dem/station/cache.h"
 #include "dem/station/progress.h"
 #include "dem/station/run.h"
@@ -131,7 +132,8 @@ int run_simulate(const SimulateCli& o) {
     st::ResultCache(st::ResultCache::default_dir()).store(validation::dem_cache_key(fx, settings, table), r);
   }
 
-  std::cout << fmt::format("DEM run of {} / {} ({} quality, {:.1f} mm {}s, dt {:.3g} s)\n", setup.name, station->condition,
+  std::cout << fmt::format("DEM run of {} / {} ({} quality, {:.1f} mm {}s, dt {:.3g} s)\n", one_line(setup.name, 80),
+                           one_line(station->condition, 80),
                            r.quality, r.diameter * 1e3, r.shape == "clump" ? "two-sphere clump" : "sphere", r.dt);
   std::cout << fmt::format("simulated {:.2f} s in {:.0f} s wall ({} steps, up to {} particles){}\n", r.simulated_time,
                            r.wall_seconds, r.steps, r.peak_particles, r.early_stop ? ", stopped when steady" : "");

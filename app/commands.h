@@ -25,7 +25,8 @@ void add_sensitivity(CLI::App& app, Action& action);
 void add_import_digitised(CLI::App& app, Action& action);
 void add_design(CLI::App& app, Action& action);
 
-// "a,b,,c" -> {"a", "b", "c"}: the comma lists of --models.
+// "a,b,,c" -> {"a", "b", "", "c"}: the comma lists of --models, empty items kept for the library's
+// check (validation::make_models refuses them).
 std::vector<std::string> split_list(const std::string& s);
 
 // "unknown command 'valdate'; did you mean 'validate'?" for the first misspelt command or flag of

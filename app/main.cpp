@@ -20,11 +20,11 @@
 namespace chutelab::app {
 std::vector<std::string> split_list(const std::string& s) {
   std::vector<std::string> out;
+  if (s.empty()) return out;
   std::size_t start = 0;
   while (start <= s.size()) {
     const auto end = s.find(',', start);
-    std::string item = s.substr(start, end == std::string::npos ? std::string::npos : end - start);
-    if (!item.empty()) out.push_back(item);
+    out.push_back(s.substr(start, end == std::string::npos ? std::string::npos : end - start));
     if (end == std::string::npos) break;
     start = end + 1;
   }

@@ -5,6 +5,7 @@
 
 #include "analytical/impact_zone.h"
 #include "core/csv_field.h"
+#include "core/message.h"
 #include "core/units.h"
 
 namespace chutelab::app {
@@ -102,7 +103,7 @@ std::string estimate_table(const analytical::TransferAnalysis& a, const ModelVal
   const auto& k = a.korzen;
   const auto& rel = a.line(Streamline::cema_centroid).release;
   std::string o;
-  o += fmt::format("chutelab estimate: condition {} (analytical models)\n\n", st.condition);
+  o += fmt::format("chutelab estimate: condition {} (analytical models)\n\n", one_line(st.condition, 80));
   o += fmt::format("  belt speed {:.2f} m/s, mass flow {:.1f} t/h, plate face x = {:.0f} mm, top y = "
                    "{:.0f} mm, plate angle {:.1f} deg, belt incline {:.1f} deg\n",
                    st.belt_speed, st.mass_flow / units::tph, st.plate_distance * 1e3,

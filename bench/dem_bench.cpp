@@ -301,6 +301,23 @@ double peak_rss_bytes() {
   return 0.0;
 }
 
+// FNV-1a over the bytes of every particle's state (position, velocities, force, torque, in index
+// order) and every wall's load: equal hashes mean bit-identical runs, which ke's six digits do not show.
+std::uint64_t state_hash(const World& w) {
+  std::uint64_t h = 1469598103934665603ULL;
+  auto add = [&](const void* data, std::size_t bytes) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < bytes; ++k) h = (h ^ b[k]) * 1099511628211ULL;
+  };
+  const auto& p = w.particles();
+  for (const auto* a : {&p.x, &p.v, &p.w, &p.f, &p.t}) add(a->data(), a->size() * sizeof(Vec3));
+  for (const auto& wl : w.walls()) {
+    add(&wl.force, sizeof(Vec3));
+    add(&wl.torque, sizeof(Vec3));
+  }
+  return h;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -371,10 +388,10 @@ int main(int argc, char** argv) {
     // counted by the peak), so it is an upper bound on the engine's own footprint.
     const double bytes_per_particle = (peak_rss_bytes() - rss0) / static_cast<double>(w.particles().size());
     std::printf("threads=%d particles=%zu steps=%lld seconds=%.3f cpu_s=%.3f rebuilds=%lld pairs=%zu contacts=%zu "
-                "ke=%.6g bytes_per_particle=%.0f psps=%.0f\n",
+                "ke=%.6g bytes_per_particle=%.0f psps=%.0f state=%016llx\n",
                 P.threads, w.particles().size(), static_cast<long long>(P.steps), t1 - t0, c1 - c0,
                 static_cast<long long>(w.rebuild_count() - r0), w.neighbor_pair_count(), w.contact_count(),
-                w.energy().translational, bytes_per_particle, psps);
+                w.energy().translational, bytes_per_particle, psps, static_cast<unsigned long long>(state_hash(w)));
     return 0;
   }
   if (mode == "chute-init") {
@@ -394,11 +411,12 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < p.size(); ++i)
       if (p.material[i] == 0) ke += 0.5 * p.mass[i] * p.v[i].squaredNorm();
     std::printf("threads=%d particles=%zu steps=%lld seconds=%.3f cpu_s=%.3f rebuilds=%lld pairs=%zu contacts=%zu "
-                "ke=%.6g bytes_per_particle=%.0f psps=%.0f\n",
+                "ke=%.6g bytes_per_particle=%.0f psps=%.0f state=%016llx\n",
                 P.threads, p.size(), static_cast<long long>(P.steps), t1 - t0, c1 - c0,
                 static_cast<long long>(w.rebuild_count() - r0), w.neighbor_pair_count(), w.contact_count(), ke,
                 (peak_rss_bytes() - rss0) / static_cast<double>(p.size()),
-                static_cast<double>(p.size()) * static_cast<double>(P.steps) / (t1 - t0));
+                static_cast<double>(p.size()) * static_cast<double>(P.steps) / (t1 - t0),
+                static_cast<unsigned long long>(state_hash(w)));
     return 0;
   }
   std::fprintf(stderr, "unknown mode %s\n", mode.c_str());

@@ -1,5 +1,7 @@
 #include "core/campaign.h"
 
+#include "core/message.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -103,7 +105,7 @@ struct Tally {
     if (!o.progress) return;
     const bool ok = out.rfind("ok\n", 0) == 0;
     if (!was_reused || !ok)
-      progress::line(fmt::format("{}[{}/{}] {} {} in {}", prefix(o), done, total, job.key, ok ? "done" : "failed",
+      progress::line(fmt::format("{}[{}/{}] {} {} in {}", prefix(o), done, total, one_line(job.key, 120), ok ? "done" : "failed",
                                  clock(seconds)));
     show();
   }
@@ -167,7 +169,7 @@ std::vector<std::string> run_mpi(std::span<const Job> jobs, const Options& o) {
     busy += seconds_since(t);
     ++mine;
     if (g_rank == 0 && o.progress)
-      progress::line(fmt::format("{}{} done in {} ({}/{}, rank 0 of {})", prefix(o), jobs[k].key, clock(seconds_since(t)),
+      progress::line(fmt::format("{}{} done in {} ({}/{}, rank 0 of {})", prefix(o), one_line(jobs[k].key, 120), clock(seconds_since(t)),
                                  k + 1, jobs.size(), g_ranks));
   }
   const double local = seconds_since(t0);

@@ -86,7 +86,7 @@ std::string byte_size(std::size_t n) {
 }
 
 std::string shown(std::string_view value, std::size_t max) {
-  if (value.size() <= max) return "'" + escaped(value) + "'";
+  if (value.size() <= max) return fmt::format("'{}'", escaped(value));
   const std::size_t cut = boundary(value, max);
   return fmt::format("'{}…' ({})", escaped(value.substr(0, cut)), byte_size(value.size()));
 }
@@ -114,7 +114,8 @@ std::optional<TextProblem> text_encoding_problem(std::string_view t) {
     std::size_t even = 0, odd = 0;
     for (std::size_t i = 0; i < n; ++i)
       if (t[i] == '\0') (i % 2 ? odd : even)++;
-    if (n >= 4 && std::max(even, odd) * 4 >= n)
+    // (One parity of bytes mostly NUL and the other mostly not; all NUL is no text at all.)
+    if (n >= 4 && ((even * 4 >= n && odd * 8 < n) || (odd * 4 >= n && even * 8 < n)))
       return TextProblem{0, "looks like UTF-16 text (every other byte is NUL); save it as UTF-8"};
     const std::size_t line_start = t.rfind('\n', nul) == std::string_view::npos ? 0 : t.rfind('\n', nul) + 1;
     return TextProblem{line_at(t, nul),

@@ -8,6 +8,7 @@
 
 #include "core/input_error.h"
 #include "core/message.h"
+#include "core/text_file.h"
 
 namespace chutelab {
 namespace {
@@ -151,7 +152,6 @@ class Scanner {
     if (c == '"') return starts("\"\"\"") ? multiline_string('"', true) : basic_string();
     if (c == '\'') return starts("'''") ? multiline_string('\'', false) : literal_string();
     if (c == '[') {
-      if (depth + 1 > kTomlMaxDepth) return deep(depth + 1);
       ++i_;
       for (;;) {
         skip_blank();
@@ -159,6 +159,8 @@ class Scanner {
           ++i_;
           return true;
         }
+        // An element one level down: checked before the step (an empty array has none).
+        if (depth + 1 > kTomlMaxDepth) return deep(depth + 1);
         if (!value(depth + 1)) return false;
         skip_blank();
         if (peek() == ',') {
@@ -211,6 +213,7 @@ class Scanner {
   }
 
   bool statements() {
+    if (starts("\xEF\xBB\xBF")) i_ += 3;  // a UTF-8 byte-order mark, which toml++ skips too
     int base = 0;  // depth of the current [table]
     for (;;) {
       skip_blank();
@@ -292,17 +295,7 @@ toml::table parse_toml_text(std::string_view text, const std::string& file) {
 }
 
 toml::table read_toml_file(const std::string& file, std::string_view field) {
-  require_readable_file(file, std::string(field));
-  std::ifstream in(file, std::ios::binary);
-  std::string text(kTomlMaxBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (in.bad()) throw InputError(file, 0, std::string(field), "cannot be read");
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > kTomlMaxBytes)
-    throw InputError(file, 0, std::string(field),
-                     fmt::format("is larger than {}, the most a TOML file chutelab reads may be",
-                                 byte_size(kTomlMaxBytes)));
-  return parse_toml_text(text, file);
+  return parse_toml_text(read_text_file(file, kTomlMaxBytes, field), file);
 }
 
 }  // namespace chutelab

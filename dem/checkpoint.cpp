@@ -76,11 +76,11 @@ void World::save_checkpoint(const std::string& path) const {
   w.vec(p_.x); w.vec(p_.v); w.vec(p_.w); w.vec(p_.f); w.vec(p_.t);
   w.vec(p_.radius); w.vec(p_.mass); w.vec(p_.inv_mass); w.vec(p_.inv_inertia);
   w.vec(p_.material); w.vec(p_.id);
-  w.vec(nl_.row_begin); w.vec(nl_.nbr); w.vec(nl_.shear); w.vec(nl_.roll);
-  w.vec(nl_.touch);
-  w.vec(wc_.begin); w.vec(wc_.wall); w.vec(wc_.element); w.vec(wc_.shear); w.vec(wc_.roll); w.vec(wc_.touch);
-  w.vec(wc_.out_f); w.vec(wc_.out_t); w.vec(wc_.out_point);
-  w.vec(x_ref_); w.vec(wall_time_ref_); w.vec(index_map_);
+  w.vec(pair_list_.row_begin); w.vec(pair_list_.neighbor); w.vec(pair_list_.shear); w.vec(pair_list_.roll);
+  w.vec(pair_list_.touch);
+  w.vec(wall_list_.begin); w.vec(wall_list_.wall); w.vec(wall_list_.element); w.vec(wall_list_.shear); w.vec(wall_list_.roll); w.vec(wall_list_.touch);
+  w.vec(wall_list_.force); w.vec(wall_list_.torque); w.vec(wall_list_.point);
+  w.vec(reference_.x); w.vec(reference_.wall_time); w.vec(reference_.index_map);
   for (const auto& wl : walls_) {
     w.pod(static_cast<std::uint64_t>(wl.element_count()));
     w.pod(wl.force); w.pod(wl.torque); w.vec(wl.element_force);
@@ -141,29 +141,30 @@ void World::load_checkpoint(const std::string& path) {
     throw InputError(path, 0, "particles", "particle arrays have different lengths");
   for (auto m : p_.material)
     if (m < 0 || m >= materials_.size()) throw InputError(path, 0, "particles", "particle material index out of range");
-  r.vec(nl_.row_begin, "neighbour list"); r.vec(nl_.nbr, "neighbour list"); r.vec(nl_.shear, "history");
-  r.vec(nl_.roll, "history");
-  r.vec(nl_.touch, "history");
-  r.vec(wc_.begin, "wall list"); r.vec(wc_.wall, "wall list"); r.vec(wc_.element, "wall list");
-  r.vec(wc_.shear, "wall history"); r.vec(wc_.roll, "wall history"); r.vec(wc_.touch, "wall history");
-  r.vec(wc_.out_f, "wall forces"); r.vec(wc_.out_t, "wall forces"); r.vec(wc_.out_point, "wall forces");
-  wc_.out_wall_torque.resize(wc_.out_point.size());  // derived in every force evaluation; not saved
-  r.vec(x_ref_, "reference positions"); r.vec(wall_time_ref_, "wall times"); r.vec(index_map_, "index map");
+  r.vec(pair_list_.row_begin, "neighbour list"); r.vec(pair_list_.neighbor, "neighbour list"); r.vec(pair_list_.shear, "history");
+  r.vec(pair_list_.roll, "history");
+  r.vec(pair_list_.touch, "history");
+  r.vec(wall_list_.begin, "wall list"); r.vec(wall_list_.wall, "wall list"); r.vec(wall_list_.element, "wall list");
+  r.vec(wall_list_.shear, "wall history"); r.vec(wall_list_.roll, "wall history"); r.vec(wall_list_.touch, "wall history");
+  r.vec(wall_list_.force, "wall forces"); r.vec(wall_list_.torque, "wall forces"); r.vec(wall_list_.point, "wall forces");
+  wall_list_.wall_torque.resize(wall_list_.point.size());  // derived in every force evaluation; not saved
+  r.vec(reference_.x, "reference positions"); r.vec(reference_.wall_time, "wall times"); r.vec(reference_.index_map, "index map");
   // The saving World listed each wall by its motion then, which the scene being restored repeats (a
   // list of an older version covers the whole skin for every wall: more than needed, still right).
-  wall_listed_moving_.resize(walls_.size());
-  for (std::size_t k = 0; k < walls_.size(); ++k) wall_listed_moving_[k] = walls_[k].motion.moving() ? 1 : 0;
-  sink_clearance_.clear();  // derived at the next rebuild; until then the sinks scan every step
-  if (nl_.row_begin.size() != n + 1 || wc_.begin.size() != n + 1 || x_ref_.size() != n)
+  reference_.wall_listed_moving.resize(walls_.size());
+  for (std::size_t k = 0; k < walls_.size(); ++k) reference_.wall_listed_moving[k] = walls_[k].motion.moving() ? 1 : 0;
+  sink_scan_.clearance.clear();  // derived at the next rebuild; until then the sinks scan every step
+  if (pair_list_.row_begin.size() != n + 1 || wall_list_.begin.size() != n + 1 || reference_.x.size() != n)
     throw InputError(path, 0, "neighbour list", "sizes do not match the particle count");
-  wc_.index_owners();
-  for (auto j : nl_.nbr)
+  wall_list_.index_owners();
+  for (auto j : pair_list_.neighbor)
     if (j < 0 || static_cast<std::size_t>(j) >= n) throw InputError(path, 0, "neighbour list", "neighbour index out of range");
-  if (nl_.row_begin.front() != 0 || static_cast<std::size_t>(nl_.row_begin.back()) != nl_.nbr.size() ||
-      nl_.shear.size() != nl_.nbr.size() || nl_.roll.size() != nl_.nbr.size() || nl_.touch.size() != nl_.nbr.size())
+  if (pair_list_.row_begin.front() != 0 || static_cast<std::size_t>(pair_list_.row_begin.back()) != pair_list_.neighbor.size() ||
+      pair_list_.shear.size() != pair_list_.neighbor.size() || pair_list_.roll.size() != pair_list_.neighbor.size() || pair_list_.touch.size() != pair_list_.neighbor.size())
     throw InputError(path, 0, "neighbour list", "inconsistent neighbour list");
-  nl_.layout_blocks(n, kForceBlocks, thread_count(), wc_.begin);
-  nl_.measure_gaps(x_ref_.data(), p_.radius.data(), n, thread_count());
+  pair_list_.index_slots(thread_count());
+  blocks_.layout(n, kForceBlocks, thread_count(), pair_list_.row_begin, pair_list_.neighbor, wall_list_.begin);
+  pair_list_.measure_gaps(reference_.x.data(), p_.radius.data(), n, thread_count());
   for (auto& wl : walls_) {
     std::uint64_t ne;
     r.pod(ne, "wall elements");

@@ -1,9 +1,9 @@
-// Neighbour search: a cell grid over the particles' bounding box (cell >= largest cut-off), particles
-// sorted by cell for memory locality, and a Verlet half list with cut-off R_i + R_j + skin that is kept
-// until some particle has moved more than skin/2 (or a wall more than skin minus that). Contact history
-// is carried over to the new list by particle index maps.
+// The neighbour list's search (dem/neighbor_list.h): a cell grid over the particles' bounding box
+// (cell >= largest cut-off), particles sorted by cell for memory locality, and the rows of the half
+// list found from the forward half of each particle's 27-cell stencil.
+#include "dem/neighbor_list.h"
+
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 
@@ -12,54 +12,10 @@
 #include <immintrin.h>
 #endif
 
-#include "dem/walls/closest_point.h"
-#include "dem/world.h"
+#include "dem/storage.h"
 
 namespace chutelab::dem {
 namespace {
-
-constexpr double kInfinity() { return std::numeric_limits<double>::infinity(); }
-
-// Sizes an array whose old contents are not needed (all of it is written next). Storage is kept from
-// one rebuild to the next, so its pages are not faulted in anew; to grow, the old block is released
-// before the new one is taken, so the two are never held together (the rebuild's memory peak).
-template <class T>
-void resize_for_overwrite(std::vector<T>& v, std::size_t n) {
-  if (n > v.capacity()) {
-    v = std::vector<T>();
-    v.reserve(n + n / 16);
-  }
-  v.resize(n);
-}
-
-// Distance from a sphere centre to a wall element (for candidate lists), or +inf if out of reach.
-double element_distance(const Wall& w, std::size_t element, const Vec3& x) {
-  if (const auto* p = std::get_if<Plane>(&w.current)) {
-    const Vec3 r = x - p->point;
-    const double s = r.dot(p->normal);
-    if (std::abs(r.dot(p->axis_u)) > p->half_u + 1e-300 || std::abs(r.dot(p->axis_v)) > p->half_v + 1e-300) {
-      // Outside the strip: distance to the rectangle.
-      const double du = std::max(std::abs(r.dot(p->axis_u)) - p->half_u, 0.0);
-      const double dv = std::max(std::abs(r.dot(p->axis_v)) - p->half_v, 0.0);
-      return std::sqrt(s * s + du * du + dv * dv);
-    }
-    return s;  // signed: behind the plane counts as touching
-  }
-  if (const auto* c = std::get_if<Cylinder>(&w.current)) {
-    const Vec3 r = x - c->point;
-    const double a = r.dot(c->axis);
-    const double rho = (r - a * c->axis).norm();
-    const double radial = c->inside ? c->radius - rho : rho - c->radius;
-    const double axial = std::max({c->axial_min - a, a - c->axial_max, 0.0});
-    return std::hypot(std::max(radial, 0.0), axial) + std::min(radial, 0.0);
-  }
-  const auto& m = std::get<TriangleMesh>(w.current);
-  const auto& t = m.triangles[element];
-  const TriClosest cp = closest_point_on_triangle(x, m.vertices[static_cast<std::size_t>(t[0])],
-                                                  m.vertices[static_cast<std::size_t>(t[1])],
-                                                  m.vertices[static_cast<std::size_t>(t[2])]);
-  return (cp.point - x).norm();
-}
 
 // The candidates j in [k0, k1) of one stencil range that are within cut-off of particle i (centre
 // xi, radius plus skin ri), written to out (which has room for k1 - k0 entries), in ascending j;
@@ -132,72 +88,151 @@ CHUTELAB_INLINE std::size_t near_in_range(const Vec3* __restrict px, const doubl
   return m;
 }
 
-}  // namespace
-
-void NeighborList::layout_blocks(std::size_t n, std::size_t blocks, int threads,
-                                 const std::vector<std::int32_t>& wall_begin) {
-  block_lo.assign(blocks + 1, n);
-  block_hi.assign(blocks, 0);
-  block_off.assign(blocks + 1, 0);
-  resize_for_overwrite(slot_row, nbr.size());
-  // Blocks of equal estimated work, not of equal rows: threads take whole blocks, so with blocks of
-  // very different cost no cut between threads is even (bench bed, one thread, per block: the floor
-  // layer's 115 ms against 90 and the top layer's 65, so the best cut of 16 blocks left two threads
-  // 42 ms apart in 1.47 s). The work of the rows before row i, in units of one pair slot, is
-  // kRowCost i + row_begin[i] + kWallCost wall_begin[i], rising with i, so each boundary is a binary
-  // search. The weights are that measurement's (per slot 13-15 ns with its share of contact laws,
-  // per wall entry 81 ns, per row ~15 ns of finishing and integration); they move work between
-  // threads only, never a number, as the boundaries come from the lists alone (the same at any
-  // thread count, and after a checkpoint's restore).
-  constexpr std::int64_t kRowCost = 1, kWallCost = 6;
-  auto work_before = [&](std::size_t i) {
-    return kRowCost * static_cast<std::int64_t>(i) + row_begin[i] + kWallCost * wall_begin[i];
-  };
-  const std::int64_t total = work_before(n);
-  if (blocks > 0) block_lo[0] = 0;
-  for (std::size_t b = 1; b < blocks; ++b) {
-    const std::int64_t target = total * static_cast<std::int64_t>(b) / static_cast<std::int64_t>(blocks);
-    std::size_t lo = block_lo[b - 1], hi = n;  // the first row with work_before >= target
-    while (lo < hi) {
-      const std::size_t mid = lo + (hi - lo) / 2;
-      if (work_before(mid) < target) lo = mid + 1;
-      else hi = mid;
-    }
-    block_lo[b] = lo;
-  }
-  // Each block's reach and its rows' slot_row entries are its own: the blocks in parallel.
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::size_t b = 0; b < blocks; ++b) {
-    const std::size_t r0 = block_lo[b], r1 = block_lo[b + 1];
-    std::size_t hi = r1;
-    for (auto s = row_begin[r0]; s < row_begin[r1]; ++s) hi = std::max(hi, static_cast<std::size_t>(nbr[static_cast<std::size_t>(s)]) + 1);
-    block_hi[b] = hi;
-    for (std::size_t i = r0; i < r1; ++i)
-      std::fill(slot_row.begin() + row_begin[i], slot_row.begin() + row_begin[i + 1], static_cast<std::int32_t>(i));
-  }
-  for (std::size_t b = 0; b < blocks; ++b) block_off[b + 1] = block_off[b] + (block_hi[b] - block_lo[b]);
-  block_first.assign(blocks, 0);
-  for (std::size_t b = 0; b < blocks; ++b) {
-    std::size_t first = b;
-    for (std::size_t a = 0; a < b; ++a)
-      if (block_hi[a] > block_lo[b]) {
-        first = a;
-        break;
+// The row of particle i when the particles are not in cell order: the 27 cells of its stencil, then
+// sorted. Appended to out, which holds the row from row_start.
+void search_row(std::size_t i, const CellGrid& grid, const Particles& p, double skin, std::size_t row_start,
+                std::vector<std::int32_t>& out) {
+  const Vec3 xi = p.x[i];
+  const double ri = p.radius[i] + skin;
+  const std::int32_t body_i = p.clump[i];  // spheres of one clump never contact each other
+  const auto& dim = grid.dim;
+  const std::int64_t cx = grid.coord(xi, 0), cy = grid.coord(xi, 1), cz = grid.coord(xi, 2);
+  for (std::int64_t z = std::max<std::int64_t>(cz - 1, 0); z <= std::min(cz + 1, dim[2] - 1); ++z)
+    for (std::int64_t y = std::max<std::int64_t>(cy - 1, 0); y <= std::min(cy + 1, dim[1] - 1); ++y)
+      for (std::int64_t x = std::max<std::int64_t>(cx - 1, 0); x <= std::min(cx + 1, dim[0] - 1); ++x) {
+        const auto c = static_cast<std::size_t>(grid.index(x, y, z));
+        for (std::int32_t k = grid.cell_start[c]; k < grid.cell_start[c + 1]; ++k) {
+          const std::int32_t j = grid.members[static_cast<std::size_t>(k)];
+          if (j <= static_cast<std::int32_t>(i)) continue;
+          if (body_i >= 0 && p.clump[static_cast<std::size_t>(j)] == body_i) continue;
+          const double cut = ri + p.radius[static_cast<std::size_t>(j)];
+          if ((p.x[static_cast<std::size_t>(j)] - xi).squaredNorm() < cut * cut) out.push_back(j);
+        }
       }
-    block_first[b] = first;
-  }
-  resize_for_overwrite(block_f, block_off[blocks]);
-  resize_for_overwrite(block_t, block_off[blocks]);
-  // Zero between force evaluations (the evaluation that reads an entry clears it), each block by the
-  // thread that takes it in the pair pass while the cut between threads is even (World::ThreadCut).
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::size_t b = 0; b < blocks; ++b) {
-    std::fill(block_f.begin() + static_cast<std::ptrdiff_t>(block_off[b]), block_f.begin() + static_cast<std::ptrdiff_t>(block_off[b + 1]), Vec3::Zero());
-    std::fill(block_t.begin() + static_cast<std::ptrdiff_t>(block_off[b]), block_t.begin() + static_cast<std::ptrdiff_t>(block_off[b + 1]), Vec3::Zero());
-  }
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(row_start), out.end());
 }
 
-// The gaps need the list's slot_row (layout_blocks) and the positions max_disp_ is measured from.
+// The same rows when particles are sorted by cell, found faster: with cells of lower linear index
+// holding only lower indices, the half list (j > i) needs just the own cell and the 13 "forward"
+// neighbours of the stencil. A row of three cells along x is one contiguous index range, and that
+// forward half is five such ranges (the own row from i + 1, the next row up, and three in the next
+// layer), visited in increasing cell order, so j still ascends. Each range is scanned without
+// branching on the outcome. The ranges are the same for every particle of a cell (only the own
+// row's start, i + 1, moves), so they are found once per cell: per particle, the cell coordinates
+// and eight lookups were two fifths of the search.
+struct CellRanges {
+  std::int64_t cell = -1;
+  std::size_t lo_k[5], hi_k[5];  // [0]: the own row, from i + 1 (set per particle); empty: lo = hi
+  std::size_t others = 0;        // the total length of [1..4]
+
+  void find(const CellGrid& grid, std::int64_t c) {
+    const auto& dim = grid.dim;
+    const auto& start = grid.cell_start;
+    cell = c;
+    const std::int64_t cx = c % dim[0], cy = (c / dim[0]) % dim[1], cz = c / (dim[0] * dim[1]);
+    const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, dim[0] - 1);
+    hi_k[0] = static_cast<std::size_t>(start[static_cast<std::size_t>((cz * dim[1] + cy) * dim[0] + x1 + 1)]);
+    others = 0;
+    auto range = [&](int r, std::int64_t y, std::int64_t z) {
+      lo_k[r] = hi_k[r] = 0;
+      if (y < 0 || y >= dim[1] || z >= dim[2]) return;
+      const std::int64_t base = (z * dim[1] + y) * dim[0];
+      const auto k0 = static_cast<std::size_t>(start[static_cast<std::size_t>(base + x0)]);
+      const auto k1 = static_cast<std::size_t>(start[static_cast<std::size_t>(base + x1 + 1)]);
+      if (k1 <= k0) return;
+      lo_k[r] = k0, hi_k[r] = k1;
+      others += k1 - k0;
+    };
+    range(1, cy + 1, cz);
+    range(2, cy - 1, cz + 1);
+    range(3, cy, cz + 1);
+    range(4, cy + 1, cz + 1);
+  }
+};
+
+void search_row_sorted(std::size_t i, CellRanges& cr, const Particles& p, double skin, std::vector<std::int32_t>& out) {
+  const Vec3 xi = p.x[i];
+  const double ri = p.radius[i] + skin;
+  const std::int32_t body_i = p.clump[i];
+  const Vec3* __restrict px = p.x.data();
+  const double* __restrict pr = p.radius.data();
+  const std::int32_t* __restrict pc = p.clump.data();
+  // The own row holds i itself (its cell lies between the row's first and last), so it starts at i + 1.
+  cr.lo_k[0] = std::min(i + 1, cr.hi_k[0]);
+  std::size_t m = out.size();
+  out.resize(m + (cr.hi_k[0] - cr.lo_k[0]) + cr.others);  // `out` grows once per row (not once per range)
+  for (int r = 0; r < 5; ++r)
+    if (cr.hi_k[r] > cr.lo_k[r]) m += near_in_range(px, pr, pc, cr.lo_k[r], cr.hi_k[r], xi, ri, body_i, out.data() + m);
+  out.resize(m);
+}
+
+}  // namespace
+
+void NeighborList::build(const CellGrid& grid, const Particles& p, double skin, bool sorted, int nt) {
+  const std::size_t n = p.size();
+  row_begin.assign(n + 1, 0);
+  std::vector<std::int32_t> local_start(n);
+  if (row_buffers_.size() < static_cast<std::size_t>(nt)) row_buffers_.resize(static_cast<std::size_t>(nt));
+  std::vector<std::size_t> block(static_cast<std::size_t>(nt) + 1, 0);
+  // One pass: each thread fills a contiguous block of rows into its own buffer.
+#pragma omp parallel num_threads(nt)
+  {
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto nth = static_cast<std::size_t>(omp_get_num_threads());
+    const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
+    // The buffer is moved to this thread's stack while it grows: the vector objects of all threads
+    // share a cache line, and each row's resize wrote it, so it went back and forth between the
+    // cores at every row (bench bed, 2 threads: the search took as long as on one).
+    std::vector<std::int32_t> out = std::move(row_buffers_[t]);
+    out.clear();
+    out.reserve((hi - lo) * 8);
+    CellRanges cr;
+    for (std::size_t i = lo; i < hi; ++i) {
+      local_start[i] = static_cast<std::int32_t>(out.size());
+      if (sorted) {
+        if (grid.cell[i] != cr.cell) cr.find(grid, grid.cell[i]);
+        search_row_sorted(i, cr, p, skin, out);
+      } else {
+        search_row(i, grid, p, skin, static_cast<std::size_t>(local_start[i]), out);
+      }
+    }
+    block[t + 1] = out.size();
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::size_t k = 0; k < nth; ++k) block[k + 1] += block[k];
+      resize_for_overwrite(neighbor, block[nth]);
+    }
+    for (std::size_t i = lo; i < hi; ++i) row_begin[i] = static_cast<std::int32_t>(block[t]) + local_start[i];
+    std::copy(out.begin(), out.end(), neighbor.begin() + static_cast<std::ptrdiff_t>(block[t]));
+    row_buffers_[t] = std::move(out);
+  }
+  row_begin[n] = static_cast<std::int32_t>(neighbor.size());
+  const std::size_t nslots = neighbor.size();
+  resize_for_overwrite(shear, nslots);
+  resize_for_overwrite(roll, nslots);
+  resize_for_overwrite(touch, nslots);
+  Vec3* __restrict sh = shear.data();
+  Vec3* __restrict ro = roll.data();
+  std::uint8_t* __restrict to = touch.data();
+#pragma omp parallel for num_threads(nt) schedule(static)
+  for (std::size_t k = 0; k < nslots; ++k) {
+    sh[k].setZero();
+    ro[k].setZero();
+    to[k] = 0;
+  }
+  index_slots(nt);
+}
+
+void NeighborList::index_slots(int threads) {
+  resize_for_overwrite(slot_row, neighbor.size());
+  const std::size_t rows = row_begin.empty() ? 0 : row_begin.size() - 1;
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::size_t i = 0; i < rows; ++i)
+    std::fill(slot_row.begin() + row_begin[i], slot_row.begin() + row_begin[i + 1], static_cast<std::int32_t>(i));
+}
+
+// The gaps need the list's slot_row (index_slots) and the positions max_disp_ is measured from.
 // eps covers the rounding of this pass, of the displacements and of the pair loop's own test (all
 // within a few units in the last place of the coordinates) a million times over.
 void NeighborList::measure_gaps([[maybe_unused]] const Vec3* x_ref, [[maybe_unused]] const double* radius,
@@ -210,11 +245,11 @@ void NeighborList::measure_gaps([[maybe_unused]] const Vec3* x_ref, [[maybe_unus
     rmax = std::max(rmax, radius[i]);
   }
   gap_eps = 1e-9 * (scale + 2.0 * rmax);
-  const std::size_t nslots = nbr.size();
+  const std::size_t nslots = neighbor.size();
   resize_for_overwrite(gap, nslots);
   const double* __restrict xb = x_ref->data();
   const std::int32_t* __restrict rows = slot_row.data();
-  const std::int32_t* __restrict nb = nbr.data();
+  const std::int32_t* __restrict nb = neighbor.data();
   float* __restrict out = gap.data();
   const __m512d eps = _mm512_set1_pd(gap_eps), zero = _mm512_setzero_pd();
   const std::size_t groups = (nslots + 7) / 8;
@@ -239,459 +274,30 @@ void NeighborList::measure_gaps([[maybe_unused]] const Vec3* x_ref, [[maybe_unus
 #endif
 }
 
-namespace {
-
-// The touching entries of a list in CSR form (row `begin`, per-entry `touch`), compacted into
-// `out_begin` by the same rows: count per row, prefix sum, then `size(total)` and `copy(from, to)`
-// for each touching entry, every row its own range (rows in parallel, entry order kept).
-template <class Size, class Copy>
-void compact_touching(const std::vector<std::int32_t>& begin, const std::vector<std::uint8_t>& touch, int nt,
-                      std::vector<std::int32_t>& out_begin, Size size, Copy copy) {
-  const std::size_t rows = begin.empty() ? 0 : begin.size() - 1;
-  resize_for_overwrite(out_begin, rows + 1);
-  out_begin[0] = 0;
-  {
-    const std::int32_t* __restrict rb = begin.data();
-    const std::uint8_t* __restrict to = touch.data();
-    std::int32_t* __restrict ob = out_begin.data();
-#pragma omp parallel for num_threads(nt) schedule(static)
-    for (std::size_t r = 0; r < rows; ++r) {
-      std::int32_t c = 0;
-      for (auto e = rb[r]; e < rb[r + 1]; ++e) c += to[static_cast<std::size_t>(e)];
-      ob[r + 1] = c;
-    }
-  }
-  for (std::size_t r = 0; r < rows; ++r) out_begin[r + 1] += out_begin[r];
-  size(static_cast<std::size_t>(out_begin[rows]));
-#pragma omp parallel for num_threads(nt) schedule(static)
-  for (std::size_t r = 0; r < rows; ++r) {
-    auto to = static_cast<std::size_t>(out_begin[r]);
-    for (auto e = begin[r]; e < begin[r + 1]; ++e)
-      if (touch[static_cast<std::size_t>(e)]) copy(static_cast<std::size_t>(e), to++);
-  }
-}
-
-}  // namespace
-
-void World::save_touching_history(int nt) {
-  TouchingHistory& h = history_;
-  compact_touching(
-      nl_.row_begin, nl_.touch, nt, h.pair_begin,
-      [&](std::size_t m) {
-        resize_for_overwrite(h.pair_other, m);
-        resize_for_overwrite(h.pair_shear, m);
-        resize_for_overwrite(h.pair_roll, m);
-      },
-      [&](std::size_t from, std::size_t to) {
-        h.pair_other[to] = nl_.nbr[from];
-        h.pair_shear[to] = nl_.shear[from];
-        h.pair_roll[to] = nl_.roll[from];
-      });
-  compact_touching(
-      wc_.begin, wc_.touch, nt, h.wall_begin,
-      [&](std::size_t m) {
-        resize_for_overwrite(h.wall_wall, m);
-        resize_for_overwrite(h.wall_element, m);
-        resize_for_overwrite(h.wall_shear, m);
-        resize_for_overwrite(h.wall_roll, m);
-      },
-      [&](std::size_t from, std::size_t to) {
-        h.wall_wall[to] = wc_.wall[from];
-        h.wall_element[to] = wc_.element[from];
-        h.wall_shear[to] = wc_.shear[from];
-        h.wall_roll[to] = wc_.roll[from];
-      });
-}
-
-void World::rebuild() {
-  const std::size_t n = p_.size();
-  const int nt = thread_count();
-  // Only the touching contacts' history outlives a rebuild: it is copied out compactly, and the lists
-  // are rebuilt in their own storage. (Fresh list arrays at every rebuild cost a page fault per 4 kB
-  // of new slots, most of them in the 48 B of history per slot: a fifth of a station run's time.
-  // Keeping the old lists whole beside the new ones raised the bench bed's peak memory from 0.97 to
-  // 1.15 kB per particle.)
-  save_touching_history(nt);
-  std::vector<std::int32_t> map = std::move(index_map_);  // old list index -> current index
-
-  // --- cell grid ---
-  double rmax = 0.0;
-  double lx = kInfinity(), ly = kInfinity(), lz = kInfinity();
-  double hx = -kInfinity(), hy = -kInfinity(), hz = -kInfinity();
-  {
-    const Vec3* __restrict px = p_.x.data();
-    const double* __restrict pr = p_.radius.data();
-    // min and max are exact, so the box does not depend on the thread count.
-#pragma omp parallel for num_threads(nt) schedule(static) reduction(max : rmax, hx, hy, hz) reduction(min : lx, ly, lz)
-    for (std::size_t i = 0; i < n; ++i) {
-      rmax = std::max(rmax, pr[i]);
-      lx = std::min(lx, px[i].x()), ly = std::min(ly, px[i].y()), lz = std::min(lz, px[i].z());
-      hx = std::max(hx, px[i].x()), hy = std::max(hy, px[i].y()), hz = std::max(hz, px[i].z());
-    }
-  }
-  const Vec3 lo(lx, ly, lz), hi(hx, hy, hz);
-  double h = 2.0 * rmax + skin_;
-  std::array<std::int64_t, 3> dim{1, 1, 1};
-  if (n > 0) {
-    // Cap the number of cells (sparse scenes, long trajectories) at a few per particle.
-    const double cap = std::max(8.0 * static_cast<double>(n), 4096.0);
-    for (;;) {
-      double total = 1.0;
-      for (int d = 0; d < 3; ++d) total *= std::floor((hi[d] - lo[d]) / h) + 1.0;
-      if (total <= cap) break;
-      h *= 1.25;
-    }
-    for (int d = 0; d < 3; ++d) dim[static_cast<std::size_t>(d)] = static_cast<std::int64_t>(std::floor((hi[d] - lo[d]) / h)) + 1;
-  }
-  const std::int64_t ncell = dim[0] * dim[1] * dim[2];
-  auto cell_coord = [&](const Vec3& x, int d) {
-    auto c = static_cast<std::int64_t>(std::floor((x[d] - lo[d]) / h));
-    return std::clamp<std::int64_t>(c, 0, dim[static_cast<std::size_t>(d)] - 1);
-  };
-  auto cell_of = [&](const Vec3& x) {
-    return (cell_coord(x, 2) * dim[1] + cell_coord(x, 1)) * dim[0] + cell_coord(x, 0);
-  };
-  // int32: the grid is capped at a few cells per particle (above), and the array is part of the
-  // rebuild's memory peak.
-  std::vector<std::int32_t> cell(n);
-  std::vector<std::int32_t> cell_start(static_cast<std::size_t>(ncell) + 1, 0);
-#pragma omp parallel for num_threads(nt) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) cell[i] = static_cast<std::int32_t>(cell_of(p_.x[i]));
-  for (std::size_t i = 0; i < n; ++i) ++cell_start[static_cast<std::size_t>(cell[i]) + 1];
-  for (std::int64_t c = 0; c < ncell; ++c) cell_start[static_cast<std::size_t>(c) + 1] += cell_start[static_cast<std::size_t>(c)];
-  std::vector<std::int32_t> order(n);
-  {
-    std::vector<std::int32_t> fill(cell_start.begin(), cell_start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) order[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell[i])]++)] = static_cast<std::int32_t>(i);
-  }
-  std::vector<std::int32_t> cell_members;  // particle indices by cell
-  if (settings_.sort_particles) {
-    p_.permute(order, nt);
-    if (!held_.empty()) index_held();
-    std::vector<std::int32_t> inv(n);
-    for (std::size_t k = 0; k < n; ++k) inv[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k);
-    for (auto& m : map)
-      if (m >= 0) m = inv[static_cast<std::size_t>(m)];
-    std::vector<std::int32_t> sorted_cell(n);
-    for (std::size_t k = 0; k < n; ++k) sorted_cell[k] = cell[static_cast<std::size_t>(order[k])];
-    cell = std::move(sorted_cell);
-    cell_members.resize(n);
-    for (std::size_t k = 0; k < n; ++k) cell_members[k] = static_cast<std::int32_t>(k);
-  } else {
-    cell_members = order;
-  }
-
-  // --- pair half list: one pass, each thread fills a contiguous block of rows into its own buffer ---
-  // With particles sorted by cell, cells of lower linear index hold only lower indices, so the half
-  // list (j > i) needs just the own cell and the 13 "forward" neighbours of the 27-cell stencil.
-  const bool sorted = settings_.sort_particles;
-  nl_.row_begin.assign(n + 1, 0);
-  std::vector<std::int32_t> local_start(n);
-  auto visit_row = [&](std::size_t i, std::vector<std::int32_t>& out) {
-    const Vec3 xi = p_.x[i];
-    const double ri = p_.radius[i] + skin_;
-    const std::int32_t body_i = p_.clump[i];  // spheres of one clump never contact each other
-    const std::int64_t cx = cell_coord(xi, 0), cy = cell_coord(xi, 1), cz = cell_coord(xi, 2);
-    const std::int64_t own = (cz * dim[1] + cy) * dim[0] + cx;
-    for (std::int64_t z = std::max<std::int64_t>(cz - 1, 0); z <= std::min(cz + 1, dim[2] - 1); ++z)
-      for (std::int64_t y = std::max<std::int64_t>(cy - 1, 0); y <= std::min(cy + 1, dim[1] - 1); ++y)
-        for (std::int64_t x = std::max<std::int64_t>(cx - 1, 0); x <= std::min(cx + 1, dim[0] - 1); ++x) {
-          const std::int64_t cl = (z * dim[1] + y) * dim[0] + x;
-          if (sorted && cl < own) continue;
-          const std::size_t c = static_cast<std::size_t>(cl);
-          for (std::int32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
-            const std::int32_t j = cell_members[static_cast<std::size_t>(k)];
-            if (j <= static_cast<std::int32_t>(i)) continue;
-            if (body_i >= 0 && p_.clump[static_cast<std::size_t>(j)] == body_i) continue;
-            const double cut = ri + p_.radius[static_cast<std::size_t>(j)];
-            if ((p_.x[static_cast<std::size_t>(j)] - xi).squaredNorm() < cut * cut) out.push_back(j);
-          }
-        }
-    if (!sorted) std::sort(out.begin() + local_start[i], out.end());
-  };
-  // The same rows when particles are sorted by cell, found faster: a row of three cells along x is
-  // one contiguous index range, and the forward half of the stencil is five such ranges (the own
-  // row from i + 1, the next row up, and three in the next layer), visited in increasing cell
-  // order, so j still ascends. Each range is scanned without branching on the outcome. The ranges
-  // are the same for every particle of a cell (only the own row's start, i + 1, moves), so they are
-  // found once per cell: per particle, the cell coordinates and eight lookups were two fifths of
-  // the search.
-  struct CellRanges {
-    std::int64_t cell = -1;
-    std::size_t lo_k[5], hi_k[5];   // [0]: the own row, from i + 1 (set per particle); empty: lo = hi
-    std::size_t others = 0;         // the total length of [1..4]
-  };
-  auto cell_ranges = [&](std::int64_t c, CellRanges& cr) {
-    cr.cell = c;
-    const std::int64_t cx = c % dim[0], cy = (c / dim[0]) % dim[1], cz = c / (dim[0] * dim[1]);
-    const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, dim[0] - 1);
-    cr.hi_k[0] = static_cast<std::size_t>(cell_start[static_cast<std::size_t>((cz * dim[1] + cy) * dim[0] + x1 + 1)]);
-    cr.others = 0;
-    auto range = [&](int r, std::int64_t y, std::int64_t z) {
-      cr.lo_k[r] = cr.hi_k[r] = 0;
-      if (y < 0 || y >= dim[1] || z >= dim[2]) return;
-      const std::int64_t base = (z * dim[1] + y) * dim[0];
-      const auto k0 = static_cast<std::size_t>(cell_start[static_cast<std::size_t>(base + x0)]);
-      const auto k1 = static_cast<std::size_t>(cell_start[static_cast<std::size_t>(base + x1 + 1)]);
-      if (k1 <= k0) return;
-      cr.lo_k[r] = k0, cr.hi_k[r] = k1;
-      cr.others += k1 - k0;
-    };
-    range(1, cy + 1, cz);
-    range(2, cy - 1, cz + 1);
-    range(3, cy, cz + 1);
-    range(4, cy + 1, cz + 1);
-  };
-  auto visit_row_sorted = [&](std::size_t i, CellRanges& cr, std::vector<std::int32_t>& out) {
-    const Vec3 xi = p_.x[i];
-    const double ri = p_.radius[i] + skin_;
-    const std::int32_t body_i = p_.clump[i];
-    const Vec3* __restrict px = p_.x.data();
-    const double* __restrict pr = p_.radius.data();
-    const std::int32_t* __restrict pc = p_.clump.data();
-    // The own row holds i itself (its cell lies between the row's first and last), so it starts at i + 1.
-    cr.lo_k[0] = std::min(i + 1, cr.hi_k[0]);
-    std::size_t m = out.size();
-    out.resize(m + (cr.hi_k[0] - cr.lo_k[0]) + cr.others);  // `out` grows once per row (not once per range)
-    for (int r = 0; r < 5; ++r)
-      if (cr.hi_k[r] > cr.lo_k[r]) m += near_in_range(px, pr, pc, cr.lo_k[r], cr.hi_k[r], xi, ri, body_i, out.data() + m);
-    out.resize(m);
-  };
-  // Each thread's rows go to its own buffer, kept between rebuilds as the lists are.
-  std::vector<std::vector<std::int32_t>>& buf = search_buf_;
-  if (buf.size() < static_cast<std::size_t>(nt)) buf.resize(static_cast<std::size_t>(nt));
-  std::vector<std::size_t> block(static_cast<std::size_t>(nt) + 1, 0);
-#pragma omp parallel num_threads(nt)
-  {
-    const auto t = static_cast<std::size_t>(omp_get_thread_num());
-    const auto nth = static_cast<std::size_t>(omp_get_num_threads());
-    const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
-    // The buffer is moved to this thread's stack while it grows: the vector objects of all threads
-    // share a cache line, and each row's resize wrote it, so it went back and forth between the
-    // cores at every row (bench bed, 2 threads: the search took as long as on one).
-    std::vector<std::int32_t> out = std::move(buf[t]);
-    out.clear();
-    out.reserve((hi - lo) * 8);
-    CellRanges cr;
-    for (std::size_t i = lo; i < hi; ++i) {
-      local_start[i] = static_cast<std::int32_t>(out.size());
-      if (sorted) {
-        if (cell[i] != cr.cell) cell_ranges(cell[i], cr);
-        visit_row_sorted(i, cr, out);
-      } else {
-        visit_row(i, out);
-      }
-    }
-    block[t + 1] = out.size();
-#pragma omp barrier
-#pragma omp single
-    {
-      for (std::size_t k = 0; k < nth; ++k) block[k + 1] += block[k];
-      resize_for_overwrite(nl_.nbr, block[nth]);
-    }
-    for (std::size_t i = lo; i < hi; ++i) nl_.row_begin[i] = static_cast<std::int32_t>(block[t]) + local_start[i];
-    std::copy(out.begin(), out.end(), nl_.nbr.begin() + static_cast<std::ptrdiff_t>(block[t]));
-    buf[t] = std::move(out);
-  }
-  nl_.row_begin[n] = static_cast<std::int32_t>(nl_.nbr.size());
-  const std::size_t nslots = nl_.nbr.size();
-  resize_for_overwrite(nl_.shear, nslots);
-  resize_for_overwrite(nl_.roll, nslots);
-  resize_for_overwrite(nl_.touch, nslots);
-  {
-    Vec3* __restrict sh = nl_.shear.data();
-    Vec3* __restrict ro = nl_.roll.data();
-    std::uint8_t* __restrict to = nl_.touch.data();
-#pragma omp parallel for num_threads(nt) schedule(static)
-    for (std::size_t k = 0; k < nslots; ++k) {
-      sh[k].setZero();
-      ro[k].setZero();
-      to[k] = 0;
-    }
-  }
-
-  // --- wall candidates: (particle, wall, element) within R + skin, CSR by particle ---
-  // Each thread takes a contiguous range (of particles for a primitive, of triangles for a mesh) of
-  // every wall into its own buffer; the buffers are then placed by a counting sort (below).
-  struct Cand {
-    std::int32_t p, wall, element;
-  };
-  std::vector<std::vector<Cand>> cand_buf(static_cast<std::size_t>(nt));
-#pragma omp parallel num_threads(nt)
-  {
-    const auto t = static_cast<std::size_t>(omp_get_thread_num());
-    const auto nth = static_cast<std::size_t>(omp_get_num_threads());
-    std::vector<Cand> local;  // on this thread's stack while it grows (see the pair search)
-    for (std::size_t wi = 0; wi < walls_.size(); ++wi) {
-      const Wall& w = walls_[wi];
-      const auto wall_id = static_cast<std::int32_t>(wi);
-      // Until the next rebuild no particle moves more than skin/2 (needs_rebuild), so an element of a
-      // wall that does not move, farther than R + skin/2 now, cannot be touched before then: listing
-      // it only cost its pre-test at every step (three in four of a station's entries were such).
-      // The relative margin is far above the rounding of the distances. A moving wall keeps the
-      // whole skin, which its own test in needs_rebuild shares with the particles.
-      const double wall_skin = w.motion.moving() ? skin_ : 0.5 * skin_ * (1.0 + 1e-6);
-      const double reach = rmax + wall_skin;
-      if (const auto* m = std::get_if<TriangleMesh>(&w.current)) {
-        const std::size_t nt_all = m->triangles.size();
-        for (std::size_t tr = nt_all * t / nth; tr < nt_all * (t + 1) / nth; ++tr) {
-          Vec3 tlo = m->vertices[static_cast<std::size_t>(m->triangles[tr][0])], thi = tlo;
-          for (int k = 1; k < 3; ++k) {
-            tlo = tlo.cwiseMin(m->vertices[static_cast<std::size_t>(m->triangles[tr][static_cast<std::size_t>(k)])]);
-            thi = thi.cwiseMax(m->vertices[static_cast<std::size_t>(m->triangles[tr][static_cast<std::size_t>(k)])]);
-          }
-          tlo.array() -= reach;
-          thi.array() += reach;
-          if (n == 0 || (tlo.array() > hi.array()).any() || (thi.array() < lo.array()).any()) continue;
-          const std::int64_t x0 = cell_coord(tlo, 0), x1 = cell_coord(thi, 0);
-          const std::int64_t y0 = cell_coord(tlo, 1), y1 = cell_coord(thi, 1);
-          const std::int64_t z0 = cell_coord(tlo, 2), z1 = cell_coord(thi, 2);
-          for (std::int64_t z = z0; z <= z1; ++z)
-            for (std::int64_t y = y0; y <= y1; ++y)
-              for (std::int64_t x = x0; x <= x1; ++x) {
-                const std::size_t c = static_cast<std::size_t>((z * dim[1] + y) * dim[0] + x);
-                for (std::int32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
-                  const std::int32_t pi = cell_members[static_cast<std::size_t>(k)];
-                  const auto ps = static_cast<std::size_t>(pi);
-                  if (element_distance(w, tr, p_.x[ps]) < p_.radius[ps] + wall_skin)
-                    local.push_back({pi, wall_id, static_cast<std::int32_t>(tr)});
-                }
-              }
-        }
-      } else {
-        for (std::size_t i = n * t / nth; i < n * (t + 1) / nth; ++i)
-          if (element_distance(w, 0, p_.x[i]) < p_.radius[i] + wall_skin)
-            local.push_back({static_cast<std::int32_t>(i), wall_id, 0});
-      }
-    }
-    cand_buf[t] = std::move(local);
-  }
-  // The thread buffers hold, per thread, all walls in order; joined wall by wall they give the
-  // serial order. Per particle the (wall, element) pairs must ascend: within one wall a particle's
-  // entries come from ascending triangle ranges, so a stable counting sort by particle over the
-  // walls in order (and, within a wall, the threads in order) keeps them ascending.
-  wc_.begin.assign(n + 1, 0);
-  for (const auto& b : cand_buf)
-    for (const auto& c : b) ++wc_.begin[static_cast<std::size_t>(c.p) + 1];
-  for (std::size_t i = 0; i < n; ++i) wc_.begin[i + 1] += wc_.begin[i];
-  const auto ncand = static_cast<std::size_t>(wc_.begin[n]);
-  resize_for_overwrite(wc_.wall, ncand);
-  resize_for_overwrite(wc_.element, ncand);
-  {
-    std::vector<std::int32_t> next(wc_.begin.begin(), wc_.begin.end() - 1);
-    std::vector<std::size_t> pos(cand_buf.size(), 0);  // per thread buffer: first entry of the current wall
-    for (std::size_t wi = 0; wi < walls_.size(); ++wi)
-      for (std::size_t t = 0; t < cand_buf.size(); ++t) {
-        const auto& b = cand_buf[t];
-        std::size_t k = pos[t];
-        for (; k < b.size() && static_cast<std::size_t>(b[k].wall) == wi; ++k) {
-          const auto at = static_cast<std::size_t>(next[static_cast<std::size_t>(b[k].p)]++);
-          wc_.wall[at] = b[k].wall;
-          wc_.element[at] = b[k].element;
-        }
-        pos[t] = k;
-      }
-  }
-  resize_for_overwrite(wc_.shear, ncand);
-  resize_for_overwrite(wc_.roll, ncand);
-  resize_for_overwrite(wc_.touch, ncand);
-  std::fill(wc_.shear.begin(), wc_.shear.end(), Vec3::Zero());
-  std::fill(wc_.roll.begin(), wc_.roll.end(), Vec3::Zero());
-  std::fill(wc_.touch.begin(), wc_.touch.end(), std::uint8_t{0});
-  resize_for_overwrite(wc_.out_f, ncand);
-  resize_for_overwrite(wc_.out_t, ncand);
-  resize_for_overwrite(wc_.out_point, ncand);
-  resize_for_overwrite(wc_.out_wall_torque, ncand);
-  wc_.index_owners();
-  nl_.layout_blocks(n, kForceBlocks, nt, wc_.begin);
-
-  // --- carry contact history over ---
+void NeighborList::carry_history(const TouchingHistory& saved, const std::vector<std::int32_t>& map, int threads) {
   // Each old contact lands in its own new slot, so the rows can be carried over in parallel.
-  const TouchingHistory& hist = history_;
-  const std::size_t old_rows = hist.pair_begin.empty() ? 0 : hist.pair_begin.size() - 1;
-#pragma omp parallel for num_threads(nt) schedule(dynamic, 512)
+  const std::size_t old_rows = saved.pair_begin.empty() ? 0 : saved.pair_begin.size() - 1;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 512)
   for (std::size_t io = 0; io < old_rows; ++io) {
     const std::int32_t a0 = io < map.size() ? map[io] : -1;
     if (a0 < 0) continue;
-    for (auto s = hist.pair_begin[io]; s < hist.pair_begin[io + 1]; ++s) {
+    for (auto s = saved.pair_begin[io]; s < saved.pair_begin[io + 1]; ++s) {
       const auto so = static_cast<std::size_t>(s);
-      const auto jo = static_cast<std::size_t>(hist.pair_other[so]);
+      const auto jo = static_cast<std::size_t>(saved.pair_other[so]);
       const std::int32_t b0 = jo < map.size() ? map[jo] : -1;
       if (b0 < 0) continue;
       const std::int32_t a = std::min(a0, b0), b = std::max(a0, b0);
       const double sign = a0 < b0 ? 1.0 : -1.0;  // history is i's view; swapping i and j negates it
-      const auto first = nl_.nbr.begin() + nl_.row_begin[static_cast<std::size_t>(a)];
-      const auto last = nl_.nbr.begin() + nl_.row_begin[static_cast<std::size_t>(a) + 1];
+      const auto first = neighbor.begin() + row_begin[static_cast<std::size_t>(a)];
+      const auto last = neighbor.begin() + row_begin[static_cast<std::size_t>(a) + 1];
       const auto it = std::lower_bound(first, last, b);
       if (it == last || *it != b) continue;
-      const auto sn = static_cast<std::size_t>(it - nl_.nbr.begin());
-      nl_.shear[sn] = sign * hist.pair_shear[so];
-      nl_.roll[sn] = sign * hist.pair_roll[so];
-      nl_.touch[sn] = 1;
+      const auto sn = static_cast<std::size_t>(it - neighbor.begin());
+      shear[sn] = sign * saved.pair_shear[so];
+      roll[sn] = sign * saved.pair_roll[so];
+      touch[sn] = 1;
     }
   }
-  // Likewise each old particle's wall entries go to its own new particle's entries.
-  const std::size_t old_owners = hist.wall_begin.empty() ? 0 : hist.wall_begin.size() - 1;
-#pragma omp parallel for num_threads(nt) schedule(dynamic, 512)
-  for (std::size_t io = 0; io < old_owners; ++io) {
-    const std::int32_t a = io < map.size() ? map[io] : -1;
-    if (a < 0) continue;
-    for (auto e = hist.wall_begin[io]; e < hist.wall_begin[io + 1]; ++e) {
-      const auto eo = static_cast<std::size_t>(e);
-      for (auto k = wc_.begin[static_cast<std::size_t>(a)]; k < wc_.begin[static_cast<std::size_t>(a) + 1]; ++k) {
-        const auto kn = static_cast<std::size_t>(k);
-        if (wc_.wall[kn] == hist.wall_wall[eo] && wc_.element[kn] == hist.wall_element[eo]) {
-          wc_.shear[kn] = hist.wall_shear[eo];
-          wc_.roll[kn] = hist.wall_roll[eo];
-          wc_.touch[kn] = 1;
-          break;
-        }
-      }
-    }
-  }
-
-  index_map_.resize(n);
-  x_ref_.resize(n);
-  {
-    const Vec3* __restrict px = p_.x.data();
-    Vec3* __restrict xr = x_ref_.data();
-    std::int32_t* __restrict im = index_map_.data();
-#pragma omp parallel for num_threads(nt) schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      im[i] = static_cast<std::int32_t>(i);
-      xr[i] = px[i];
-    }
-  }
-  nl_.measure_gaps(x_ref_.data(), p_.radius.data(), n, nt);
-  // How far every particle is from each sink now: until one has moved that far, none can be behind
-  // it, and insert_and_delete skips its scan (a particle moves at most max_disp_ from x_ref_). The
-  // particles within one skin of a sink are listed: until max_disp_ reaches the skin no other can
-  // be behind it, so the scan, when it cannot be skipped, looks at them only.
-  sink_clearance_.resize(sinks_.size());
-  sink_near_.resize(sinks_.size());
-  sink_reach_.resize(sinks_.size());
-  for (std::size_t k = 0; k < sinks_.size(); ++k) {
-    // A local minimum: stored through the member each time, it was a store-to-load chain per
-    // particle (aliasing), about a fifth of a station rebuild's serial time.
-    const Vec3 point = sinks_[k].point, normal = sinks_[k].normal;
-    const double reach = skin_ * normal.norm();
-    double c = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < n; ++i) c = std::min(c, (p_.x[i] - point).dot(normal));
-    sink_clearance_[k] = c;
-    sink_reach_[k] = reach;
-    std::vector<std::int32_t>& near = sink_near_[k];
-    near.clear();
-    if (c <= reach)  // only a sink some particle is near needs the list
-      for (std::size_t i = 0; i < n; ++i)
-        if ((p_.x[i] - point).dot(normal) <= reach) near.push_back(static_cast<std::int32_t>(i));
-  }
-  for (std::size_t k = 0; k < walls_.size(); ++k) {
-    wall_time_ref_[k] = time_;
-    wall_listed_moving_[k] = walls_[k].motion.moving() ? 1 : 0;
-  }
-  max_disp_ = 0.0;
-  list_dirty_ = false;
-  ++rebuilds_;
 }
 
 }  // namespace chutelab::dem

@@ -18,18 +18,18 @@ void World::report_wall_contacts() const {
   WallContact c;
   c.step = step_;
   c.dt = dt_;
-  for (std::size_t q = 0; q < wc_.touch.size(); ++q) {
-    if (!wc_.touch[q]) continue;
-    const auto wi = static_cast<std::size_t>(wc_.wall[q]);
+  for (std::size_t q = 0; q < wall_list_.touch.size(); ++q) {
+    if (!wall_list_.touch[q]) continue;
+    const auto wi = static_cast<std::size_t>(wall_list_.wall[q]);
     if (wi >= wall_observers_.size() || !wall_observers_[wi]) continue;
-    const auto i = static_cast<std::size_t>(wc_.owner[q]);
+    const auto i = static_cast<std::size_t>(wall_list_.owner[q]);
     c.wall = static_cast<int>(wi);
-    c.element = wc_.element[q];
+    c.element = wall_list_.element[q];
     c.particle = p_.id[i];
-    c.point = wc_.out_point[q];
-    c.normal = wc_.obs_normal[q];  // taken with the force (the particle has moved on since)
-    c.force = -wc_.out_f[q];
-    c.velocity = wc_.obs_velocity[q];
+    c.point = wall_list_.point[q];
+    c.normal = wall_list_.observed_normal[q];  // taken with the force (the particle has moved on since)
+    c.force = -wall_list_.force[q];
+    c.velocity = wall_list_.observed_velocity[q];
     c.mass = p_.contact_mass[i];
     c.radius = p_.radius[i];
     wall_observers_[wi](c);

@@ -18,26 +18,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string vec_str(const Vec3& v) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", v.x(), v.y(), v.z()); }
 
-// Largest distance of a wall's geometry from its pivot (for the displacement bound of a rotating wall).
-double reach_from_pivot(const Wall& w) {
-  if (const auto* m = std::get_if<TriangleMesh>(&w.shape)) {
-    double r = 0.0;
-    for (const auto& v : m->vertices) r = std::max(r, (v - w.motion.pivot).norm());
-    return r;
-  }
-  if (const auto* p = std::get_if<Plane>(&w.shape)) {
-    if (!p->bounded()) return kInf;
-    return (p->point - w.motion.pivot).norm() + std::hypot(p->half_u, p->half_v);
-  }
-  const auto& c = std::get<Cylinder>(w.shape);
-  const Vec3 off = c.point - w.motion.pivot;
-  const bool about_own_axis = w.motion.omega.normalized().cross(c.axis).norm() < 1e-12 &&
-                              (off - off.dot(c.axis) * c.axis).norm() < 1e-12;
-  if (about_own_axis) return 0.0;  // the shape maps onto itself
-  if (!std::isfinite(c.axial_min) || !std::isfinite(c.axial_max)) return kInf;
-  return off.norm() + std::max(std::abs(c.axial_min), std::abs(c.axial_max)) + c.radius;
-}
-
 }  // namespace
 
 World::World(Settings settings) : settings_(std::move(settings)) {
@@ -88,8 +68,8 @@ int World::add_wall(Wall w) {
                      "an unbounded plane or infinite cylinder cannot rotate (bound it or use a mesh)");
   w.set_time(time_);
   walls_.push_back(std::move(w));
-  wall_time_ref_.push_back(time_);
-  wall_listed_moving_.push_back(0);
+  reference_.wall_time.push_back(time_);
+  reference_.wall_listed_moving.push_back(0);
   list_dirty_ = true;
   return static_cast<int>(walls_.size()) - 1;
 }
@@ -150,7 +130,7 @@ void World::remove_particles_if(const std::function<bool(std::size_t)>& pred) {
   if (keep.size() == n) return;
   p_.permute(keep);
   if (!held_.empty()) index_held();
-  for (auto& m : index_map_)
+  for (auto& m : reference_.index_map)
     if (m >= 0) m = remap[static_cast<std::size_t>(m)];
   list_dirty_ = true;
 }
@@ -279,165 +259,67 @@ void World::initialise() {
   check_state();
 }
 
-bool World::needs_rebuild() const {
-  if (list_dirty_) return true;
-  if (2.0 * max_disp_ > skin_) return true;
-  for (std::size_t k = 0; k < walls_.size(); ++k)
-    if (walls_[k].motion.moving()) {
-      // Set moving after the last rebuild: its elements were listed only for a still wall's reach.
-      if (!wall_listed_moving_[k]) return true;
-      if (max_disp_ + wall_displacement_since_rebuild(walls_[k]) > skin_) return true;
-    }
-  return false;
-}
-
-double World::wall_displacement_since_rebuild(const Wall& w) const {
-  const std::size_t k = static_cast<std::size_t>(&w - walls_.data());
-  const double dt = time_ - wall_time_ref_[k];
-  return w.motion.velocity.norm() * std::abs(dt) +
-         std::abs(w.motion.omega.norm() * dt) * reach_from_pivot(w);
-}
-
 void World::step(std::int64_t n) {
   initialise();
-  // Velocity Verlet is kick, drift, forces, kick. Within one call the second half kick of a step and
-  // the first half kick and drift of the next use the same forces, so they run as one pass over the
-  // particles (one read of the state instead of two): the same operations in the same order, so the
-  // same numbers. Not with clumps (their bodies are kicked between), and not across calls (the caller
-  // sees each call end on a full step). Without clumps that pass runs inside the force evaluation,
-  // on each block of particles as soon as its forces are final (FusedClosing, world.h); the wall
-  // observers then read what each contact saw, stored with it.
-  bool drifted = false;  // this step's first half kick and drift were done by the last step's pass
+  // Velocity Verlet (dem/integrator.h). Within one call the closing pass of a step also opens the
+  // next (its first half kick and drift), and without clumps that pass runs inside the force
+  // evaluation, block by block (BlockClosing). Not with clumps: their bodies gather the spheres'
+  // forces before any kick. Not across calls: the caller sees each call end on a full step.
+  bool opened = false;  // this step's first half kick and drift were done by the last closing pass
   double maxd2_next = 0.0;
   for (std::int64_t s = 0; s < n; ++s) {
-    if (list_dirty_) {  // particles added or removed by the caller since the last step (never after a fused pass)
+    if (list_dirty_) {  // particles added or removed by the caller since the last step (never after an opening pass)
       rebuild();
       compute_forces();
     }
-    const double dt = dt_;
-    double maxd2 = drifted ? maxd2_next : kick_and_drift(max_disp_ * max_disp_);
-    if (clumps_.size() > 0) clumps_after_drift(dt, maxd2);
+    double maxd2 = opened ? maxd2_next : verlet_pass({.open = true}, max_disp_ * max_disp_).second;
+    if (clumps_.size() > 0) clumps_after_drift(dt_, maxd2);
     max_disp_ = std::sqrt(maxd2);
-    time_ = static_cast<double>(step_ + 1) * dt;  // no accumulated round-off in time
-    for (auto& w : walls_)
-      if (w.motion.moving()) w.set_time(time_);
+    advance_time();
     if (!inserters_.empty() || !sinks_.empty()) insert_and_delete();
     if (needs_rebuild()) rebuild();
-    const bool check = (step_ + 1) % settings_.check_every == 0;
-    drifted = s + 1 < n && clumps_.size() == 0;
-    maxd2_next = max_disp_ * max_disp_;
-    // Clumps gather their spheres' forces onto the bodies before any kick: then no fused pass.
     const bool fused = clumps_.size() == 0;
-    closing_.on = fused;  // compute_forces() takes it and clears it
-    closing_.check = check;
-    closing_.and_drift = drifted;
-    compute_forces();
+    opened = fused && s + 1 < n;
+    const VerletPass closing{.close = true, .check = (step_ + 1) % settings_.check_every == 0, .open = opened};
     std::size_t first_bad = p_.size();
     if (fused) {
-      for (const std::size_t b : closing_.first_bad) first_bad = std::min(first_bad, b);
-      for (const double m : closing_.maxd2) maxd2_next = std::max(maxd2_next, m);
+      BlockClosing close_block(verlet_state(), closing, state_limits(), static_cast<std::size_t>(thread_count()),
+                               p_.size());
+      compute_forces(std::ref(close_block));
+      first_bad = close_block.first_bad();
+      maxd2_next = std::max(max_disp_ * max_disp_, close_block.maxd2());
+    } else {
+      compute_forces();
     }
+    // The observers read what each contact saw, stored with it: the particles may have moved on.
     if (!wall_observers_.empty()) report_wall_contacts();
     if (load_observer_) load_observer_();
     if (!fused) {
-      first_bad = closing_pass(check, drifted, maxd2_next);
-      clumps_after_forces(dt);
+      first_bad = verlet_pass(closing, 0.0).first;
+      clumps_after_forces(dt_);
     }
     ++step_;
     if (first_bad < p_.size()) report_bad(first_bad);
   }
 }
 
-// The first half kick with the forces of the last evaluation, then the drift; returns the largest
-// squared displacement since the last rebuild (at least maxd2).
-double World::kick_and_drift(double maxd2) {
-  const int nt = thread_count();
-  const std::size_t np = p_.size();
-  Vec3* __restrict x = p_.x.data();
-  Vec3* __restrict v = p_.v.data();
-  Vec3* __restrict w = p_.w.data();
-  const Vec3* __restrict f = p_.f.data();
-  const Vec3* __restrict t = p_.t.data();
-  const double* __restrict im = p_.inv_mass.data();
-  const double* __restrict ii = p_.inv_inertia.data();
-  const Vec3* __restrict xr = x_ref_.data();
-  const double dt = dt_, h = 0.5 * dt;
-#pragma omp parallel num_threads(nt) reduction(max : maxd2)
-  {
-    const auto [lo, hi] = thread_rows(np);
-    for (std::size_t i = lo; i < hi; ++i) {
-      const Vec3 vi = v[i] + (h * im[i]) * f[i];
-      v[i] = vi;
-      w[i] += (h * ii[i]) * t[i];
-      const Vec3 xi = x[i] + dt * vi;
-      x[i] = xi;
-      maxd2 = std::max(maxd2, (xi - xr[i]).squaredNorm());
-    }
-  }
-  return maxd2;
+void World::advance_time() {
+  time_ = static_cast<double>(step_ + 1) * dt_;  // no accumulated round-off in time
+  for (auto& w : walls_)
+    if (w.motion.moving()) w.set_time(time_);
 }
 
-namespace {
-// The blow-up and lost-particle test (NaN fails every comparison, so one chain of && catches
-// non-finite states too).
-inline bool state_ok(const Vec3& v, const Vec3& w, const Vec3& x, double vlim2, const Box& dom) {
-  return v.squaredNorm() <= vlim2 && w.squaredNorm() < 1e300 && x.x() >= dom.lo.x() && x.x() <= dom.hi.x() &&
-         x.y() >= dom.lo.y() && x.y() <= dom.hi.y() && x.z() >= dom.lo.z() && x.z() <= dom.hi.z();
-}
-}  // namespace
-
-// The second half kick; with `check`, returns the lowest index of a particle in a bad state (size()
-// if none; min is exact, so the reported particle does not depend on the thread count). With
-// `and_drift`, the next step's first half kick and drift follow in the same pass, raising maxd2 as
-// kick_and_drift() does; a particle that fails the check is then left after the second half kick,
-// so report_bad() describes the same state either way (the step ends with the error).
-std::size_t World::closing_pass(bool check, bool and_drift, double& maxd2) {
-  const int nt = thread_count();
+std::pair<std::size_t, double> World::verlet_pass(const VerletPass& pass, double maxd2) {
+  const VerletState state = verlet_state();
+  const StateLimits limits = state_limits();
   const std::size_t np = p_.size();
   std::size_t first_bad = np;
-  double m = maxd2;
-#pragma omp parallel num_threads(nt) reduction(min : first_bad) reduction(max : m)
+#pragma omp parallel num_threads(thread_count()) reduction(min : first_bad) reduction(max : maxd2)
   {
-    const auto [lo, hi] = thread_rows(np);
-    close_rows(lo, hi, check, and_drift, first_bad, m);
+    const auto [lo, hi] = blocks_.thread_rows(np);
+    verlet_rows(state, pass, limits, lo, hi, first_bad, maxd2);
   }
-  maxd2 = m;
-  return first_bad;
-}
-
-void World::close_rows(std::size_t lo, std::size_t hi, bool check, bool and_drift, std::size_t& first_bad,
-                       double& maxd2) {
-  Vec3* __restrict x = p_.x.data();
-  Vec3* __restrict v = p_.v.data();
-  Vec3* __restrict w = p_.w.data();
-  const Vec3* __restrict f = p_.f.data();
-  const Vec3* __restrict t = p_.t.data();
-  const double* __restrict im = p_.inv_mass.data();
-  const double* __restrict ii = p_.inv_inertia.data();
-  const Vec3* __restrict xr = x_ref_.data();
-  const double dt = dt_, h = 0.5 * dt, vlim2 = max_speed_ * max_speed_;
-  const Box dom = settings_.domain;
-  std::size_t bad_first = first_bad;
-  double m = maxd2;
-  for (std::size_t i = lo; i < hi; ++i) {
-    const Vec3 vi = v[i] + (h * im[i]) * f[i];
-    const Vec3 wi = w[i] + (h * ii[i]) * t[i];
-    const bool bad = check && !state_ok(vi, wi, x[i], vlim2, dom);
-    if (bad) bad_first = std::min(bad_first, i);
-    if (!and_drift || bad) {
-      v[i] = vi;
-      w[i] = wi;
-      continue;
-    }
-    const Vec3 vn = vi + (h * im[i]) * f[i];
-    v[i] = vn;
-    w[i] = wi + (h * ii[i]) * t[i];
-    const Vec3 xn = x[i] + dt * vn;
-    x[i] = xn;
-    m = std::max(m, (xn - xr[i]).squaredNorm());
-  }
-  first_bad = bad_first;
-  maxd2 = m;
+  return {first_bad, maxd2};
 }
 
 void World::check_state() const {
@@ -471,150 +353,15 @@ void World::index_held() {
     if (p_.held_by[i] >= 0) held_.push_back(static_cast<std::int32_t>(i));
 }
 
-void World::insert_and_delete() {
-  // Sinks first, so that their mass counts and indices are settled before new particles arrive.
-  if (!sinks_.empty()) {
-    // Skipping the scan is exact: a particle within max_disp_ of where it stood at the rebuild is
-    // still in front of a sink that every particle then cleared by more than that (the 1 nm margin
-    // covers the rounding of the dot products). No clearance yet (a checkpoint, a new sink): scan.
-    // A sink that cannot be skipped scans only the particles listed within a skin of it at the
-    // rebuild (the same margin argument), unless max_disp_ has reached that skin.
-    const bool listed = sink_clearance_.size() == sinks_.size();
-    bool any = false;
-    for (std::size_t k = 0; k < sinks_.size() && !any; ++k) {
-      const Sink& s = sinks_[k];
-      const double moved = max_disp_ * s.normal.norm();
-      if (listed && sink_clearance_[k] - moved > 1e-9) continue;
-      if (listed && moved + 1e-9 < sink_reach_[k]) {
-        for (const std::int32_t i : sink_near_[k])
-          if ((p_.x[static_cast<std::size_t>(i)] - s.point).dot(s.normal) < 0.0) any = true;
-      } else {
-        for (std::size_t i = 0; i < p_.size() && !any; ++i)
-          if ((p_.x[i] - s.point).dot(s.normal) < 0.0) any = true;
-      }
-    }
-    if (any) {
-      std::vector<int> sink_of(p_.size(), -1);
-      for (std::size_t i = 0; i < p_.size(); ++i)
-        for (std::size_t k = 0; k < sinks_.size(); ++k)
-          if ((p_.x[i] - sinks_[k].point).dot(sinks_[k].normal) < 0.0) {
-            sink_of[i] = static_cast<int>(k);
-            break;
-          }
-      if (clumps_.size() > 0) {  // a clump goes whole, to the sink that caught its first sphere
-        std::vector<int> body_sink(clumps_.size(), -1);
-        for (std::size_t i = 0; i < p_.size(); ++i)
-          if (p_.clump[i] >= 0 && sink_of[i] >= 0 && body_sink[static_cast<std::size_t>(p_.clump[i])] < 0)
-            body_sink[static_cast<std::size_t>(p_.clump[i])] = sink_of[i];
-        for (std::size_t i = 0; i < p_.size(); ++i)
-          if (p_.clump[i] >= 0) sink_of[i] = body_sink[static_cast<std::size_t>(p_.clump[i])];
-      }
-      for (std::size_t i = 0; i < p_.size(); ++i)
-        if (sink_of[i] >= 0) {
-          sinks_[static_cast<std::size_t>(sink_of[i])].removed_mass += p_.mass[i];
-          ++sinks_[static_cast<std::size_t>(sink_of[i])].removed_count;
-        }
-      remove_particles_if([&](std::size_t i) { return sink_of[i] >= 0; });
-    }
-  }
-  // Held particles whose centre has crossed their inserter's face go free with its full velocity.
-  // Each thread takes the held particles of its share of the integrator (thread_rows): a particle's
-  // lines stay with the core that integrates it.
-  if (!held_.empty()) {
-    const std::size_t np = p_.size();
-    std::size_t released = 0;
-#pragma omp parallel num_threads(thread_count()) reduction(+ : released)
-    {
-      const auto [lo, hi] = thread_rows(np);
-      for (const std::int32_t h : held_between(lo, hi)) {
-        const auto i = static_cast<std::size_t>(h);
-        const Inserter& in = inserters_[static_cast<std::size_t>(p_.held_by[i])];
-        const int a = in.hold_axis;
-        const bool through = in.velocity[a] < 0.0 ? p_.x[i][a] <= in.region.lo[a] : p_.x[i][a] >= in.region.hi[a];
-        if (!through) continue;
-        p_.v[i] = in.velocity;
-        p_.held_by[i] = -1;
-        ++released;
-      }
-    }
-    if (released > 0)  // the released ones now have held_by = -1
-      std::erase_if(held_, [&](std::int32_t i) { return p_.held_by[static_cast<std::size_t>(i)] < 0; });
-  }
-  for (std::size_t k = 0; k < inserters_.size(); ++k) {
-    Inserter& in = inserters_[k];
-    if (time_ < in.start_time || time_ - dt_ >= in.end_time) continue;
-    in.pending_mass += in.mass_rate * dt_;
-    if (time_ + 0.5 * dt_ < in.next_time) continue;
-    in.next_time += in.interval;
-    const double rho = materials_.material(in.material).density;
-    // Nearby particles that a new one could overlap.
-    std::vector<std::size_t> near;
-    Box grow = in.region;
-    double rmax = in.radius_max;
-    for (double r : p_.radius) rmax = std::max(rmax, r);
-    grow.lo.array() -= 2.0 * rmax;
-    grow.hi.array() += 2.0 * rmax;
-    for (std::size_t i = 0; i < p_.size(); ++i)
-      if (grow.contains(p_.x[i])) near.push_back(i);
-    while (in.pending_mass > 0.0) {
-      bool placed = false;
-      const double r = in.clump_shape >= 0 ? 0.0 : in.radius_min + (in.radius_max - in.radius_min) * uniform01(in.rng_state);
-      if (in.clump_shape >= 0) placed = try_insert_clump(in, near);
-      for (int attempt = 0; in.clump_shape < 0 && attempt < in.max_attempts && !placed; ++attempt) {
-        Vec3 pos;
-        for (int d = 0; d < 3; ++d)
-          pos[d] = in.region.lo[d] + r + (in.region.hi[d] - in.region.lo[d] - 2.0 * r) * uniform01(in.rng_state);
-        bool free = true;
-        for (std::size_t j : near) {
-          const double rr = r + p_.radius[j];
-          if ((p_.x[j] - pos).squaredNorm() < rr * rr) {
-            free = false;
-            break;
-          }
-        }
-        if (!free) continue;
-        ParticleSpec spec;
-        spec.position = pos;
-        spec.velocity = in.velocity;
-        if (in.hold_to_face) {
-          spec.velocity = Vec3::Zero();
-          spec.velocity[in.hold_axis] = in.velocity[in.hold_axis];
-        }
-        spec.radius = r;
-        spec.material = in.material;
-        add_particle(spec);
-        if (in.hold_to_face) {
-          p_.held_by.back() = static_cast<std::int32_t>(k);
-          held_.push_back(static_cast<std::int32_t>(p_.size() - 1));
-        }
-        near.push_back(p_.size() - 1);
-        const double m = rho * 4.0 / 3.0 * std::numbers::pi * r * r * r;
-        in.pending_mass -= m;
-        in.inserted_mass += m;
-        placed = true;
-      }
-      if (!placed) {
-        if (!in.warned_full) {
-          warn(fmt::format("inserter cannot place particles fast enough at t = {:.4g} s ({:.3g} kg owed): the "
-                           "insertion region is full; enlarge it or lower the mass rate",
-                           time_, in.pending_mass));
-          in.warned_full = true;
-        }
-        break;
-      }
-    }
-  }
-}
-
 std::size_t World::contact_count() const {
   std::size_t n = 0;
-  for (auto t : nl_.touch) n += t;
+  for (auto t : pair_list_.touch) n += t;
   return n;
 }
 
 std::size_t World::wall_contact_count() const {
   std::size_t n = 0;
-  for (auto t : wc_.touch) n += t;
+  for (auto t : wall_list_.touch) n += t;
   return n;
 }
 
@@ -633,23 +380,23 @@ Energy World::energy() const {
     return settings_.normal == NormalModel::hertz_mindlin ? HertzMindlin::elastic_energy(c, delta, r_eff)
                                                           : LinearSpringDashpot::elastic_energy(c, delta, r_eff);
   };
-  for (std::size_t i = 0; i + 1 < nl_.row_begin.size(); ++i)
-    for (auto s = nl_.row_begin[i]; s < nl_.row_begin[i + 1]; ++s) {
-      const auto j = static_cast<std::size_t>(nl_.nbr[static_cast<std::size_t>(s)]);
+  for (std::size_t i = 0; i + 1 < pair_list_.row_begin.size(); ++i)
+    for (auto s = pair_list_.row_begin[i]; s < pair_list_.row_begin[i + 1]; ++s) {
+      const auto j = static_cast<std::size_t>(pair_list_.neighbor[static_cast<std::size_t>(s)]);
       const double rs = p_.radius[i] + p_.radius[j];
       const double delta = rs - (p_.x[j] - p_.x[i]).norm();
       if (delta <= 0.0) continue;
       const double r_eff = p_.radius[i] * p_.radius[j] / rs;
       e.elastic += normal_energy(materials_.pair(p_.material[i], p_.material[j]), delta, r_eff);
     }
-  for (std::size_t e_i = 0; e_i < wc_.touch.size(); ++e_i) {
-    if (!wc_.touch[e_i]) continue;
+  for (std::size_t e_i = 0; e_i < wall_list_.touch.size(); ++e_i) {
+    if (!wall_list_.touch[e_i]) continue;
     std::size_t i = 0;  // owner particle
-    i = static_cast<std::size_t>(std::upper_bound(wc_.begin.begin(), wc_.begin.end(), static_cast<std::int32_t>(e_i)) -
-                                 wc_.begin.begin()) - 1;
-    const double delta = p_.radius[i] - (wc_.out_point[e_i] - p_.x[i]).norm();
+    i = static_cast<std::size_t>(std::upper_bound(wall_list_.begin.begin(), wall_list_.begin.end(), static_cast<std::int32_t>(e_i)) -
+                                 wall_list_.begin.begin()) - 1;
+    const double delta = p_.radius[i] - (wall_list_.point[e_i] - p_.x[i]).norm();
     if (delta <= 0.0) continue;
-    const Wall& w = walls_[static_cast<std::size_t>(wc_.wall[e_i])];
+    const Wall& w = walls_[static_cast<std::size_t>(wall_list_.wall[e_i])];
     e.elastic += normal_energy(materials_.pair(p_.material[i], w.material), delta, p_.radius[i]);
   }
   return e;

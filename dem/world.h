@@ -2,12 +2,8 @@
 // The World owns a DEM scene: particles, walls, materials, contacts (neighbour list with contact
 // history), sources and sinks, and advances it in time with velocity Verlet.
 //
-// Determinism: the rows of the pair list are cut into a fixed number of blocks (kForceBlocks, not the
-// thread count). Each block scatters its pair forces, row by row, into its own partial-sum buffer; a
-// particle's force is then the sum of the block buffers in block order, plus its wall contacts (in
-// list order), gravity and the body-force hook. A wall's load (force, torque, element forces) is
-// likewise the sum, in block order, of each block's sum over its particles' wall contacts. Which
-// thread computes a block changes nothing, so 1 and N threads give bit-identical results.
+// Determinism: 1 and N threads give bit-identical results; the force blocks (dem/force_blocks.h) say
+// how.
 #include <algorithm>
 #include <cstdint>
 #include <functional>
@@ -17,13 +13,20 @@
 
 #include "dem/clump_bodies.h"
 #include "dem/contact/contact_model.h"
+#include "dem/contact_history.h"
+#include "dem/force_blocks.h"
 #include "dem/insertion.h"
+#include "dem/integrator.h"
 #include "dem/material.h"
+#include "dem/neighbor_list.h"
 #include "dem/particles.h"
 #include "dem/timestep.h"
 #include "dem/types.h"
+#include "dem/wall_forces.h"
+#include "dem/wall_loads.h"
 #include "dem/walls/wall.h"
 #include "dem/walls/wall_contact.h"
+#include "dem/walls/wall_contact_list.h"
 
 namespace chutelab::dem {
 
@@ -87,73 +90,6 @@ class SimulationError : public std::runtime_error {
 using BodyForceHook = std::function<void(const Particles& particles, double time, std::size_t begin,
                                          std::size_t end, std::vector<Vec3>& force)>;
 
-// The pair loop's AVX-512 form screens the slots by their gap at the rebuild (NeighborList::gap);
-// other builds test every slot and keep no gaps.
-#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512BW__)
-#define CHUTELAB_DEM_PAIR_GAPS 1
-#else
-#define CHUTELAB_DEM_PAIR_GAPS 0
-#endif
-
-// Pairs within cut-off (half list, j > i, ascending), with per-slot contact history.
-struct NeighborList {
-  std::vector<std::int32_t> row_begin;  // size N+1
-  std::vector<std::int32_t> nbr;
-  std::vector<Vec3> shear;
-  std::vector<Vec3> roll;
-  std::vector<std::uint8_t> touch;
-  // Force blocks (derived from row_begin/nbr and the wall entries by layout_blocks): block b owns
-  // rows [block_lo[b], block_lo[b+1]) (K + 1 entries, the last N) and a partial-sum buffer covering
-  // particles [block_lo[b], block_hi[b]).
-  std::vector<std::size_t> block_lo, block_hi, block_off;
-  std::size_t blocks() const { return block_hi.size(); }
-  std::vector<std::size_t> block_first;  // first block whose buffer reaches into block b
-  std::vector<Vec3> block_f, block_t;
-  std::vector<std::int32_t> slot_row;  // row (particle i) of each slot, so the pair loop is one flat loop
-  // Per slot, a lower bound of the gap between the two surfaces at the reference positions (float,
-  // rounded down, less gap_eps): while every particle is within d of its reference position, a slot
-  // whose gap exceeds 2 d + gap_eps cannot touch (CHUTELAB_DEM_PAIR_GAPS builds only).
-  std::vector<float> gap;
-  double gap_eps = 0.0;
-  // wall_begin: the wall entries' CSR by particle (WallCandidates::begin, n + 1 entries), for the
-  // blocks' work.
-  void layout_blocks(std::size_t n, std::size_t blocks, int threads, const std::vector<std::int32_t>& wall_begin);
-  void measure_gaps(const Vec3* x_ref, const double* radius, std::size_t n, int threads);
-};
-inline constexpr std::size_t kForceBlocks = 16;
-
-// Wall elements near each particle (CSR by particle, sorted by wall then element), with history.
-struct WallCandidates {
-  std::vector<std::int32_t> begin;  // size N+1
-  std::vector<std::int32_t> wall, element;
-  std::vector<Vec3> shear, roll;
-  std::vector<Vec3> out_f, out_t, out_point;
-  std::vector<Vec3> out_wall_torque;  // the wall's torque about its load point from each entry
-  std::vector<std::uint8_t> touch;
-  // For the wall observers, when a wall is observed (else empty): what the contact saw of its
-  // particle, taken with the forces, since the particle moves on before the observers run.
-  std::vector<Vec3> obs_normal, obs_velocity;
-  std::vector<std::int32_t> owners;  // particles with at least one candidate, ascending (derived)
-  std::vector<std::int32_t> owner;   // particle of each entry (derived)
-  void index_owners() {
-    owners.clear();
-    owner.resize(wall.size());
-    for (std::size_t i = 0; i + 1 < begin.size(); ++i) {
-      if (begin[i] != begin[i + 1]) owners.push_back(static_cast<std::int32_t>(i));
-      for (auto e = begin[i]; e < begin[i + 1]; ++e) owner[static_cast<std::size_t>(e)] = static_cast<std::int32_t>(i);
-    }
-  }
-};
-
-// The history of the contacts that touch, copied out of the lists at the start of a rebuild (CSR by
-// the old particle index); kept between rebuilds only for its storage.
-struct TouchingHistory {
-  std::vector<std::int32_t> pair_begin, pair_other;
-  std::vector<Vec3> pair_shear, pair_roll;
-  std::vector<std::int32_t> wall_begin, wall_wall, wall_element;
-  std::vector<Vec3> wall_shear, wall_roll;
-};
-
 class World {
  public:
   explicit World(Settings settings);
@@ -202,12 +138,12 @@ class World {
   void mark_changed() { list_dirty_ = true; }
   // Forgets all tangential/rolling contact history (as when a state is imported without it).
   void reset_contact_history() {
-    std::fill(nl_.shear.begin(), nl_.shear.end(), Vec3::Zero());
-    std::fill(nl_.roll.begin(), nl_.roll.end(), Vec3::Zero());
-    std::fill(nl_.touch.begin(), nl_.touch.end(), std::uint8_t{0});
-    std::fill(wc_.shear.begin(), wc_.shear.end(), Vec3::Zero());
-    std::fill(wc_.roll.begin(), wc_.roll.end(), Vec3::Zero());
-    std::fill(wc_.touch.begin(), wc_.touch.end(), std::uint8_t{0});
+    std::fill(pair_list_.shear.begin(), pair_list_.shear.end(), Vec3::Zero());
+    std::fill(pair_list_.roll.begin(), pair_list_.roll.end(), Vec3::Zero());
+    std::fill(pair_list_.touch.begin(), pair_list_.touch.end(), std::uint8_t{0});
+    std::fill(wall_list_.shear.begin(), wall_list_.shear.end(), Vec3::Zero());
+    std::fill(wall_list_.roll.begin(), wall_list_.roll.end(), Vec3::Zero());
+    std::fill(wall_list_.touch.begin(), wall_list_.touch.end(), std::uint8_t{0});
   }
   const std::vector<Wall>& walls() const { return walls_; }
   Wall& wall(int i) { return walls_.at(static_cast<std::size_t>(i)); }
@@ -219,7 +155,7 @@ class World {
   Energy energy() const;
   std::int64_t rebuild_count() const { return rebuilds_; }
   std::size_t contact_count() const;      // particle-particle contacts touching now
-  std::size_t neighbor_pair_count() const { return nl_.nbr.size(); }  // pairs in the Verlet list
+  std::size_t neighbor_pair_count() const { return pair_list_.neighbor.size(); }  // pairs in the Verlet list
   std::size_t wall_contact_count() const;
   double max_speed_limit() const { return max_speed_; }
 
@@ -229,10 +165,16 @@ class World {
   void load_checkpoint(const std::string& path);
 
  private:
+  // Called on each force block's particles [lo, hi) by the thread that finished their forces.
+  using BlockCallback = std::function<void(std::size_t thread, std::size_t lo, std::size_t hi)>;
+  // The forces of the current state (dem/forces.cpp); after_block runs on each block as soon as its
+  // particles' forces are final (the integrator's closing pass, dem/integrator.h).
+  void compute_forces(const BlockCallback& after_block = nullptr);
   template <class Model>
-  void compute_forces_impl();
-  void compute_forces();
-  void compute_forces_by_model();
+  void compute_forces_impl(const BlockCallback& after_block);
+  // Block b's particles once its pair loop is done: the block buffers, wall contacts and weight, the
+  // body force, held particles, then after_block.
+  void finish_block(std::size_t b, std::size_t thread, const BlockCallback& after_block);
   void index_held();  // held_ from p_.held_by
   // The held particles with index in [lo, hi) (held_ ascends).
   std::span<const std::int32_t> held_between(std::size_t lo, std::size_t hi) const {
@@ -240,28 +182,27 @@ class World {
     const auto b = std::lower_bound(a, held_.end(), static_cast<std::int32_t>(hi));
     return {a, b};
   }
-  void rebuild();
-  void save_touching_history(int nt);
+  // Contact detection (dem/contact_detection.cpp): whether the lists must be rebuilt, and the rebuild.
   bool needs_rebuild() const;
+  void rebuild();
+  void sort_by_cell(CellGrid& grid, const std::vector<std::int32_t>& order, std::vector<std::int32_t>& map);
+  void take_reference(int threads);  // reference_ and the pair gaps from the current state
+  void scan_sinks();                 // sink_scan_ from the current state (dem/sources_and_sinks.cpp)
+  // Sources and sinks (dem/sources_and_sinks.cpp), once per step after the drift.
   void insert_and_delete();
+  bool anything_behind_sinks() const;
+  void remove_behind_sinks();
+  void release_held();
+  void insert_from(std::size_t inserter);
+  bool try_insert_sphere(std::size_t inserter, double radius, std::vector<std::size_t>& near);
   void check_state() const;
   [[noreturn]] void report_bad(std::size_t i) const;
-  // The integrator's passes over the particles (dem/world.cpp, step()).
-  double kick_and_drift(double maxd2);
-  std::size_t closing_pass(bool check, bool and_drift, double& maxd2);
-  // closing_pass() on the particles [lo, hi); lowers first_bad, raises maxd2.
-  void close_rows(std::size_t lo, std::size_t hi, bool check, bool and_drift, std::size_t& first_bad,
-                  double& maxd2);
-  // The closing pass run inside compute_forces(), block by block as each block's forces are final
-  // (step() sets it when no clump needs the forces first): one parallel region a step fewer, the
-  // particles' forces still in cache, and the time of the pass inside the cut's balance (ThreadCut).
-  struct FusedClosing {
-    bool on = false;
-    bool check = false, and_drift = false;
-    std::vector<std::size_t> first_bad;  // per thread
-    std::vector<double> maxd2;           // per thread
-  };
-  FusedClosing closing_;
+  // A Verlet pass over all particles in a parallel region of its own, each thread on the rows of its
+  // force blocks; returns the first bad particle (size() if none) and maxd2 raised by the drift.
+  std::pair<std::size_t, double> verlet_pass(const VerletPass& pass, double maxd2);
+  VerletState verlet_state() { return VerletState::of(p_, reference_.x, dt_); }
+  StateLimits state_limits() const { return {max_speed_, settings_.domain}; }
+  void advance_time();  // to the end of the step being taken: time_ and the moving walls' poses
   // Clumps (dem/world_clumps.cpp): body half kick + drift + member placement (raises maxd2 to the
   // members' displacement since the last rebuild); gather + half kick + member velocities; removal of
   // whole bodies; insertion of one body by an inserter.
@@ -269,10 +210,10 @@ class World {
   void clumps_after_forces(double dt);
   void remove_whole_clumps(std::vector<char>& gone);
   bool try_insert_clump(Inserter& in, std::vector<std::size_t>& near);
+  double wall_displacement_since_rebuild(const Wall& w) const;
   void warn(const std::string& msg);
   void report_wall_contacts() const;  // dem/wall_observers.cpp
   int thread_count() const;
-  double wall_displacement_since_rebuild(const Wall& w) const;
 
   Settings settings_;
   MaterialTable materials_;
@@ -282,54 +223,32 @@ class World {
   std::vector<Sink> sinks_;
   BodyForceHook body_force_;
   std::function<void()> load_observer_;
-  // The force blocks' shares of the wall loads (forces.cpp): per block and wall, force and torque;
-  // per block, the elements it touched with their force (found by slot element_base_[wall] + element).
-  struct ElementShare {
-    std::int32_t wall, element;
-    Vec3 f;
-  };
-  std::vector<Vec3> wall_part_f_, wall_part_t_;
-  std::vector<std::vector<ElementShare>> wall_part_e_;
-  std::vector<std::int32_t> element_base_;
-  std::vector<std::vector<std::int32_t>> element_slot_;  // per thread: slot -> index in its block's list, or -1
-  // Which force blocks each thread takes: a contiguous run, [at[t], at[t+1]). Every pass over the
-  // particles follows it (compute_forces, kick_and_drift, closing_pass), so a thread reads the state
-  // it wrote. The cut starts even and moves by a block when one thread's share took longer over the
-  // last kWindow steps (the rows' work differs, and on a VM so does the speed of the cores). Only
-  // which thread does the work moves: no number depends on it.
-  struct ThreadCut {
-    static constexpr int kWindow = 32;
-    std::vector<std::size_t> at;  // nt + 1 block indices
-    std::vector<double> busy;     // per thread: seconds in its blocks over the window
-    int steps = 0;
-    void fit(std::size_t nt, std::size_t blocks);  // even, when the thread or block count changed
-    std::pair<std::size_t, std::size_t> blocks(std::size_t t, std::size_t nt, std::size_t nblocks) const;
-    void step();
-  };
-  ThreadCut cut_;
-  // Inside a parallel region, the particles [first, second) of n that the calling thread takes: the
-  // rows of its blocks.
-  std::pair<std::size_t, std::size_t> thread_rows(std::size_t n) const;
-  struct WallFrame {  // a wall's motion at the current time, for the contacts (compute_forces)
-    Vec3 ww, surf_lin, surf_omega, surf_centre, load_point;
-    bool still, surface;
-  };
-  std::vector<WallFrame> wall_frames_;
+  ForceBlocks blocks_;
+  WallLoads wall_loads_;
+  std::vector<WallFrame> wall_frames_;      // per wall, each force evaluation (dem/wall_forces.h)
+  std::vector<std::uint8_t> wall_observed_;  // per wall, each force evaluation: has an observer
   std::vector<WallContactObserver> wall_observers_;  // by wall; empty = none observed
   ClumpBodies clumps_;
   std::int64_t next_clump_id_ = 0;
-  NeighborList nl_;
-  WallCandidates wc_;
-  TouchingHistory history_;              // scratch of rebuild()
-  std::vector<Vec3> x_ref_;              // positions at the last rebuild
-  std::vector<double> wall_time_ref_;    // wall pose times at the last rebuild
-  std::vector<std::uint8_t> wall_listed_moving_;  // per wall: listed with the whole skin (it moved then)
-  std::vector<double> sink_clearance_;   // per sink: the least (x - point) . normal at the last rebuild
-  std::vector<double> sink_reach_;       // per sink: one skin, in units of (x - point) . normal
-  std::vector<std::vector<std::int32_t>> sink_near_;  // per sink: particles within sink_reach_ then
-  std::vector<std::int32_t> index_map_;  // index at last rebuild -> current index (-1 removed)
-  std::vector<std::int32_t> scratch_;
-  std::vector<std::vector<std::int32_t>> search_buf_;  // rebuild(): each thread's rows of the pair list
+  // Contact detection (dem/contact_detection.cpp): the pair and wall lists, rebuilt together.
+  NeighborList pair_list_;
+  WallContactList wall_list_;
+  TouchingHistory history_;  // scratch of rebuild()
+  // What the lists were built from: needs_rebuild() measures the displacements since against it.
+  struct ListReference {
+    std::vector<Vec3> x;                // positions at the last rebuild
+    std::vector<std::int32_t> index_map;  // index at the last rebuild -> current index (-1 removed)
+    std::vector<double> wall_time;      // wall pose times at the last rebuild
+    std::vector<std::uint8_t> wall_listed_moving;  // per wall: listed with the whole skin (it moved then)
+  };
+  ListReference reference_;
+  // Per sink, from the last rebuild (dem/sources_and_sinks.cpp): the least (x - point) . normal, one
+  // skin in those units, and the particles within that skin.
+  struct SinkScan {
+    std::vector<double> clearance, reach;
+    std::vector<std::vector<std::int32_t>> near;
+  };
+  SinkScan sink_scan_;
   double time_ = 0.0;
   double dt_ = 0.0;
   double skin_ = 0.0;

@@ -56,7 +56,7 @@ void World::clumps_after_drift(double dt, double& maxd2) {
   clumps_.drift(dt);
   clumps_.place_members(p_);
   for (std::size_t i = 0; i < p_.size(); ++i)
-    if (p_.clump[i] >= 0) maxd2 = std::max(maxd2, (p_.x[i] - x_ref_[i]).squaredNorm());
+    if (p_.clump[i] >= 0) maxd2 = std::max(maxd2, (p_.x[i] - reference_.x[i]).squaredNorm());
 }
 
 void World::clumps_after_forces(double dt) {

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <cctype>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -44,6 +45,31 @@ std::string python_field(const std::string& field) {
   return f;
 }
 
+// The same inside a message: "use --dataset" is "use dataset=" here, for the keywords this package
+// has (a flag it has not, e.g. --dem-cache-only, is left as the command line's).
+std::string python_text(std::string text) {
+  static const char* const keywords[] = {"dataset", "setup", "condition", "effect", "models", "tolerances",
+                                         "seed", "noise-scale", "out", "alpha", "dem-quality", "dem-threads",
+                                         "dem-cache", "no-dem-cache", "belt-speed", "mass-flow", "plate-distance",
+                                         "plate-top", "stream-thickness"};
+  for (const char* k : keywords) {
+    const std::string flag = std::string("--") + k;
+    const std::string word = python_field(flag) + "=";
+    for (std::size_t at = 0; (at = text.find(flag, at)) != std::string::npos;) {
+      const std::size_t end = at + flag.size();
+      const bool whole = (at == 0 || text[at - 1] == ' ' || text[at - 1] == '(') &&
+                         (end == text.size() || !(std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '-'));
+      if (whole) {
+        text.replace(at, flag.size(), word);
+        at += word.size();
+      } else {
+        at = end;
+      }
+    }
+  }
+  return text;
+}
+
 // A whole number from Python: an int (not a bool), or a float that is whole; checked by `rule`, the
 // command line's (core/option_check.h). seed=1.5 is refused, not truncated to 1.
 double whole_number(const py::object& v, const options::NumberRule& rule) {
@@ -52,11 +78,11 @@ double whole_number(const py::object& v, const options::NumberRule& rule) {
     throw InputError("", 0, std::string(rule.flag),
                      fmt::format("must be {}, got {}", rule.describe(), std::string(py::str(py::repr(v)))));
   if (py::isinstance<py::float_>(v)) return rule.check(v.cast<double>());
-  // An int of any size: range-checked as a double first, so a huge one is refused, not wrapped.
+  // An int of any size, checked exactly by its digits (as the command line checks what is typed), so a
+  // huge one is refused, not wrapped.
   const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
   if (!i) throw py::error_already_set();
-  rule.check(PyLong_AsDouble(i.ptr()));
-  return static_cast<double>(i.cast<unsigned long long>());
+  return rule.check(std::string(py::repr(i)));
 }
 
 app::DemCli dem_cli(const std::string& quality, std::optional<int> threads, const std::string& cache,
@@ -237,8 +263,9 @@ void synthesize(const validation::Dataset& source, const std::vector<std::string
                 const py::object& seed_arg, double noise_scale, const std::filesystem::path& out) {
   // The command line's rules, before any work (core/option_check.h).
   const double seed_checked = whole_number(seed_arg, options::rules::seed);
-  const std::uint64_t seed = py::isinstance<py::float_>(seed_arg) ? static_cast<std::uint64_t>(seed_checked)
-                                                                   : seed_arg.cast<std::uint64_t>();
+  const std::uint64_t seed = py::isinstance<py::float_>(seed_arg)
+                                 ? static_cast<std::uint64_t>(seed_checked)
+                                 : py::reinterpret_steal<py::int_>(PyNumber_Index(seed_arg.ptr())).cast<std::uint64_t>();
   options::rules::noise_scale.check(noise_scale);
   if (out.empty()) throw InputError("", 0, "--out", "is empty; give a folder");
   py::gil_scoped_release free;
@@ -269,7 +296,7 @@ PYBIND11_MODULE(_chutelab, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      const InputError shown(e.file(), e.line(), python_field(e.field()), e.problem());
+      const InputError shown(e.file(), e.line(), python_field(e.field()), python_text(e.problem()));
       py::object err = py::reinterpret_borrow<py::object>(input_error)(py::str(shown.what()));
       err.attr("file") = shown.file();
       err.attr("line") = shown.line();

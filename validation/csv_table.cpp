@@ -8,6 +8,7 @@
 #include "core/csv_field.h"
 #include "core/input_error.h"
 #include "core/message.h"
+#include "core/text_file.h"
 #include "core/number.h"
 #include "core/utf8.h"
 
@@ -61,18 +62,10 @@ CsvTable CsvTable::read(const std::filesystem::path& path,
                        std::initializer_list<std::string_view> required) {
   CsvTable t;
   t.file_ = path.string();
-  require_readable_file(t.file_);
-  std::string content;
-  {
-    std::ifstream in(t.file_, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw InputError(t.file_, 0, "", "cannot be read");
-    content = std::move(ss).str();
-  }
-  // Before any line is split: a NUL would end a line early ("row has 1 fields"), UTF-16 reads as
-  // NULs, and a byte-order mark in mid-file would stick to the first cell of its line.
-  if (auto p = text_encoding_problem(content)) throw InputError(t.file_, p->line, "", p->problem);
+  // Checked before any line is split (core/text_file.h): a NUL would end a line early ("row has 1
+  // fields"), UTF-16 reads as NULs, and a byte-order mark in mid-file would stick to the first cell
+  // of its line.
+  const std::string content = read_text_file(t.file_);
   bool warned_latin1 = false;
   bool have_header = false;
   long line_no = 0;

@@ -8,9 +8,11 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <toml++/toml.h>
 
 #include "core/input_error.h"
+#include "core/text_file.h"
 #include "core/toml_file.h"
 #include "core/number.h"
 #include "core/units.h"
@@ -50,12 +52,13 @@ bool numeric(const std::string& s) { return parse_number(s).has_value(); }
 
 std::vector<DigitisedCurve> read_wpd_csv(const fs::path& path) {
   const std::string file = path.string();
-  std::ifstream in(path);
-  if (!in) throw InputError(file, 0, "", "cannot read the file");
+  std::istringstream in(read_text_file(file, std::size_t{1} << 28));
   std::vector<std::pair<long, std::vector<std::string>>> rows;
   std::string line;
-  for (long n = 1; std::getline(in, line); ++n)
+  for (long n = 1; std::getline(in, line); ++n) {
+    if (n == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a spreadsheet's byte-order mark
     if (!trim(line).empty()) rows.emplace_back(n, split(line));
+  }
   if (rows.empty()) throw InputError(file, 0, "", "no data in the file");
 
   std::size_t width = 0;

@@ -11,6 +11,7 @@
 
 #include "core/input_error.h"
 #include "core/progress.h"
+#include "core/message.h"
 #include "validation/input_uncertainty.h"
 #include "validation/campaign_runs.h"
 #include "validation/models/external_model.h"
@@ -103,7 +104,7 @@ std::optional<double> ValidationResult::combined_rms_normalised() const {
 }
 
 std::string ValidationResult::brief() const {
-  std::string s = fmt::format("{}: {} conditions x {} models", dataset_folder.empty() ? dataset_name : dataset_folder,
+  std::string s = fmt::format("{}: {} conditions x {} models", one_line(dataset_folder.empty() ? dataset_name : dataset_folder, 120),
                               predictions.size() / std::max<std::size_t>(1, models.size()),
                               models.size());
   std::vector<std::string> rms;

@@ -6,6 +6,7 @@
 
 #include "core/input_error.h"
 #include "core/number.h"
+#include "core/text_file.h"
 
 namespace chutelab::validation {
 
@@ -184,11 +185,7 @@ class Parser {
 JsonValue parse_json(const std::string& text, const std::string& file) { return Parser(text, file).document(); }
 
 JsonValue read_json(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), 0, "", "cannot read the file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_json(ss.str(), path.string());
+  return parse_json(read_text_file(path.string(), std::size_t{1} << 28), path.string());
 }
 
 }  // namespace chutelab::validation

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/input_error.h"
+#include "core/message.h"
 #include "validation/models/dem_model.h"
 #include "validation/models/external_model.h"
 #include "validation/models/liggghts_model.h"
@@ -39,17 +40,20 @@ ModelPtr make_model(const std::string& name) {
   for (const auto& [n, f] : registry())
     if (n == name) return f();
   throw InputError("", 0, "--models",
-                   fmt::format("unknown model '{}' (known: {}, external:NAME=DIR)", name,
+                   fmt::format("unknown model {} (known: {}, external:NAME=DIR)", shown(name),
                                fmt::join(model_names(), ", ")));
 }
 
 std::vector<ModelPtr> make_models(const std::vector<std::string>& names) {
   std::vector<ModelPtr> out;
   for (std::size_t i = 0; i < names.size(); ++i) {
+    // "korzen,,booth-cema": an empty item is a typo, not a gap to skip (every entry point alike).
+    if (names[i].empty())
+      throw InputError("", 0, "--models", fmt::format("model {} of the list is empty", i + 1));
     // Twice the same model would double every row and count every value twice in the statistics.
     for (std::size_t j = 0; j < i; ++j)
       if (names[j] == names[i])
-        throw InputError("", 0, "--models", fmt::format("model '{}' is listed twice", names[i]));
+        throw InputError("", 0, "--models", fmt::format("model {} is listed twice", shown(names[i])));
     out.push_back(make_model(names[i]));
   }
   return out;

@@ -2,6 +2,8 @@
 // What every contact law sees: the geometry and relative motion of one contact, and what it returns.
 // Convention: body i is a sphere; body j is a sphere or a wall. n is the unit normal from i towards j,
 // delta > 0 the overlap, v_rel the velocity of i's surface point at the contact relative to j's.
+#include <cmath>
+
 #include "dem/contact/lane_vec.h"
 #include "dem/material.h"
 #include "dem/types.h"
@@ -22,6 +24,28 @@ struct ContactKinematics {
   double m_i;
   double m_j;            // 0 means infinite (wall)
 };
+
+// The kinematics of a contact between spheres i and j from d = x_j - x_i (the pair touches, so
+// |d| > 0), their radii, contact masses, inverse moments of inertia, v_i - v_j and spins.
+CHUTELAB_INLINE ContactKinematics sphere_pair_kinematics(const LaneVec& d, double ri, double rj, double mi, double mj,
+                                                         double inv_inertia_i, double inv_inertia_j, const LaneVec& dv,
+                                                         const LaneVec& wi, const LaneVec& wj) {
+  const double dist = std::sqrt(d.squared_norm());
+  ContactKinematics k;
+  k.n = d * (1.0 / dist);
+  k.delta = ri + rj - dist;
+  k.r_i = ri;
+  k.r_j = rj;
+  k.v_rel = dv + (ri * wi + rj * wj).cross(k.n);
+  k.w_rel = wi - wj;
+  k.r_eff = ri * rj / (ri + rj);
+  k.m_eff = mi * mj / (mi + mj);
+  k.inv_inertia_i = inv_inertia_i;
+  k.inv_inertia_j = inv_inertia_j;
+  k.m_i = mi;
+  k.m_j = mj;
+  return k;
+}
 
 // The normal law's answer: signed normal force (> 0 pushes the bodies apart) and the stiffness and
 // damping coefficient the tangential spring uses at this overlap.

@@ -6,10 +6,15 @@
 #include <functional>
 #include <thread>
 #include <unistd.h>
+#include <csignal>
+#include <cerrno>
+#include <vector>
 #include <fstream>
 #include <sstream>
 
 #include <fmt/format.h>
+
+#include "core/output_folder.h"
 
 namespace chutelab::dem::station {
 namespace {
@@ -276,6 +281,14 @@ bool ResultCache::store(const std::string& key, const StationResult& r) const {
   ::gethostname(host, sizeof host - 1);
   const std::string tmp = path + fmt::format(".{}.{}.{:x}.{}.tmp", host, static_cast<long>(::getpid()),
                                              std::hash<std::thread::id>{}(std::this_thread::get_id()), counter++);
+  sweep_dead_temporaries(host);
+  // A signal while it is written removes it (core/output_folder.h); a SIGKILL's is swept above by
+  // the next store on this host.
+  register_temporary(tmp);
+  struct Unregister {
+    std::string p;
+    ~Unregister() { unregister_temporary(p); }
+  } unregister{tmp};
   {
     std::ofstream f(tmp, std::ios::binary);
     if (!f) return false;
@@ -290,6 +303,25 @@ bool ResultCache::store(const std::string& key, const StationResult& r) const {
   if (!ec) return true;
   fs::remove(tmp, ec);
   return false;
+}
+
+void ResultCache::sweep_dead_temporaries(const std::string& host) const {
+  // NAME.txt.HOST.PID.THREAD.N.tmp of a process of this host that is gone: its write never finished.
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const std::string mark = ".txt." + host + ".";
+  std::vector<fs::path> dead;
+  for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string n = it->path().filename().string();
+    const auto at = n.find(mark);
+    if (at == std::string::npos || !n.ends_with(".tmp")) continue;
+    const std::string rest = n.substr(at + mark.size());
+    char* stop = nullptr;
+    const long pid = std::strtol(rest.c_str(), &stop, 10);
+    if (stop == rest.c_str() || *stop != '.' || pid <= 0 || pid == static_cast<long>(::getpid())) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) dead.push_back(it->path());
+  }
+  for (const auto& p : dead) fs::remove(p, ec);
 }
 
 }  // namespace chutelab::dem::station

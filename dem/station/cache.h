@@ -35,6 +35,8 @@ class ResultCache {
   bool store(const std::string& key, const StationResult& r) const;
 
  private:
+  // Removes this host's temporaries whose process is gone (killed by SIGKILL while it wrote).
+  void sweep_dead_temporaries(const std::string& host) const;
   std::string dir_;
 };
 

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "core/message.h"
 #include "core/progress.h"
 
 namespace chutelab::dem::station {
@@ -17,7 +18,9 @@ std::string clock(double s) {
 
 }  // namespace
 
-ProgressPrinter::ProgressPrinter(std::string label) : label_(std::move(label)) {}
+// The label holds names from the data (a condition): shown through the one formatter, so a name
+// with a line end or a terminal escape cannot rewrite the terminal.
+ProgressPrinter::ProgressPrinter(std::string label) : label_(one_line(label, 120)) {}
 
 void ProgressPrinter::operator()(const Progress& p) {
   const double f = std::clamp(p.max_time > 0 ? p.time / p.max_time : 1.0, 0.0, 1.0);

@@ -1,5 +1,6 @@
 #include "dem/walls/wall.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -105,6 +106,26 @@ void Wall::set_time(double t) {
     }
   }
   element_force.resize(element_count(), Vec3::Zero());
+}
+
+
+double reach_from_pivot(const Wall& w) {
+  if (const auto* m = std::get_if<TriangleMesh>(&w.shape)) {
+    double r = 0.0;
+    for (const auto& v : m->vertices) r = std::max(r, (v - w.motion.pivot).norm());
+    return r;
+  }
+  if (const auto* p = std::get_if<Plane>(&w.shape)) {
+    if (!p->bounded()) return std::numeric_limits<double>::infinity();
+    return (p->point - w.motion.pivot).norm() + std::hypot(p->half_u, p->half_v);
+  }
+  const auto& c = std::get<Cylinder>(w.shape);
+  const Vec3 off = c.point - w.motion.pivot;
+  const bool about_own_axis = w.motion.omega.normalized().cross(c.axis).norm() < 1e-12 &&
+                              (off - off.dot(c.axis) * c.axis).norm() < 1e-12;
+  if (about_own_axis) return 0.0;  // the shape maps onto itself
+  if (!std::isfinite(c.axial_min) || !std::isfinite(c.axial_max)) return std::numeric_limits<double>::infinity();
+  return off.norm() + std::max(std::abs(c.axial_min), std::abs(c.axial_max)) + c.radius;
 }
 
 }  // namespace chutelab::dem

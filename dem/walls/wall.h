@@ -66,4 +66,8 @@ struct Wall {
   void set_time(double t);
 };
 
+// Largest distance of a wall's geometry from its pivot (for the displacement bound of a rotating
+// wall); +inf for an unbounded shape that the rotation does not map onto itself.
+double reach_from_pivot(const Wall& w);
+
 }  // namespace chutelab::dem

@@ -17,6 +17,7 @@ dict of lists.
 """
 
 import json as _json
+import math as _math
 import os as _os
 import tempfile as _tempfile
 
@@ -34,6 +35,49 @@ DEFAULT_DATASET = _chutelab.default_dataset
 
 def _path(p):
     return "" if p is None else _os.fspath(p)
+
+
+def _refuse(field, problem):
+    """An InputError as the library raises them (file "", line 0, the keyword as field)."""
+    e = InputError(f"{field}: {problem}")
+    e.file, e.line, e.field, e.problem = "", 0, field, problem
+    return e
+
+
+def _flag(field, value):
+    """A yes/no keyword takes True or False, not "no" (which bool() would read as True)."""
+    if not isinstance(value, bool) and type(value).__name__ != "bool_":
+        raise _refuse(field, f"must be True or False, got {value!r}")
+    return bool(value)
+
+
+def _real(field, value, optional=False):
+    """A number keyword takes a real number (int, float, NumPy scalar), not a text or a bool; the
+    library then checks that it is finite and in range, as the command line's flag."""
+    if value is None and optional:
+        return None
+    if isinstance(value, (bool, str, bytes)) or not hasattr(value, "__float__"):
+        raise _refuse(field, f"must be a number, got {value!r}")
+    return float(value)
+
+
+def _whole(field, value, optional=False):
+    """A count keyword takes a whole number: 2 or 2.0, not 1.5, "2" or True."""
+    if value is None and optional:
+        return None
+    f = None if isinstance(value, (bool, str, bytes)) or not hasattr(value, "__float__") else float(value)
+    if f is None or not _math.isfinite(f) or f != int(f):
+        raise _refuse(field, f"must be a whole number, got {value!r}")
+    return int(f)
+
+
+def _text(field, value):
+    """A text keyword (a quality, a condition) takes a str; None is the default."""
+    if value is None:
+        return ""
+    if not isinstance(value, str):
+        raise _refuse(field, f"must be a text, got {value!r}")
+    return value
 
 
 def _effect_args(effects):
@@ -55,8 +99,9 @@ def _effect_args(effects):
 
 
 def _model_list(models):
+    """"korzen,booth-cema" or a list; an empty item is passed on for the library to refuse."""
     if isinstance(models, str):
-        return [m for m in models.split(",") if m]
+        return models.split(",") if models else []
     return list(models)
 
 
@@ -67,9 +112,11 @@ def estimate(belt_speed=None, mass_flow=None, plate_distance=None, plate_top=Non
     stream_thickness in mm. dataset (a folder) or setup (a setup.toml) picks the rig (default:
     the bundled grima2010); condition starts from a row of the dataset's conditions.csv; effects
     as {"air_drag": 0.5}. Returns the object `chutelab estimate --format json` prints."""
-    text = _chutelab.estimate_json(belt_speed, mass_flow, plate_distance, plate_top,
-                                   stream_thickness, _path(dataset), _path(setup),
-                                   condition or "", _effect_args(effects))
+    text = _chutelab.estimate_json(_real("belt_speed", belt_speed, True), _real("mass_flow", mass_flow, True),
+                                   _real("plate_distance", plate_distance, True),
+                                   _real("plate_top", plate_top, True),
+                                   _real("stream_thickness", stream_thickness, True), _path(dataset),
+                                   _path(setup), _text("condition", condition), _effect_args(effects))
     return _json.loads(text)
 
 
@@ -97,7 +144,7 @@ def read_dataset(path, measurements_required=False):
     """Reads a dataset folder; raises InputError naming file, line and field on bad input.
     measurements.csv may be absent (a rig and its conditions, e.g. datasets/grima2010) unless
     measurements_required; validate() and diagnose() need it."""
-    return Dataset(_chutelab.read_dataset(_os.fspath(path), measurements_required))
+    return Dataset(_chutelab.read_dataset(_os.fspath(path), _flag("measurements_required", measurements_required)))
 
 
 def _dataset(d, measurements_required=True):
@@ -140,7 +187,9 @@ def validate(dataset, models=("korzen", "booth-cema"), effects=None, *, toleranc
     limit was exceeded."""
     d = _dataset(dataset)
     raw = _chutelab.validate(d._core, _model_list(models), _effect_args(effects), _path(tolerances),
-                             dem_quality or "", dem_threads, _path(dem_cache), bool(no_dem_cache))
+                             _text("dem_quality", dem_quality), _whole("dem_threads", dem_threads, True),
+                             _path(dem_cache),
+                             _flag("no_dem_cache", no_dem_cache))
     return Validation(raw)
 
 
@@ -170,8 +219,10 @@ def diagnose(dataset, models=("booth-cema", "korzen"), *, alpha=0.01, pairs=True
     """Ranks the candidate physical effects by how much of the models' misfit each explains, as
     `chutelab diagnose`."""
     d = _dataset(dataset)
-    raw = _chutelab.diagnose(d._core, _model_list(models), float(alpha), bool(pairs),
-                             dem_quality or "", dem_threads, _path(dem_cache), bool(no_dem_cache))
+    raw = _chutelab.diagnose(d._core, _model_list(models), _real("alpha", alpha), _flag("pairs", pairs),
+                             _text("dem_quality", dem_quality), _whole("dem_threads", dem_threads, True),
+                             _path(dem_cache),
+                             _flag("no_dem_cache", no_dem_cache))
     return Diagnosis(raw)
 
 
@@ -183,10 +234,10 @@ def synthesize(dataset=None, effects=None, *, seed=1, noise_scale=1.0, out=None)
     source = _dataset(DEFAULT_DATASET if dataset is None else dataset, measurements_required=False)
     args = _effect_args(effects)
     if out is not None:
-        _chutelab.synthesize(source._core, args, seed, float(noise_scale), _os.fspath(out))
+        _chutelab.synthesize(source._core, args, seed, _real("noise_scale", noise_scale), _os.fspath(out))
         return read_dataset(out)
     with _tempfile.TemporaryDirectory(prefix="chutelab-synthetic-") as tmp:
-        _chutelab.synthesize(source._core, args, seed, float(noise_scale), tmp)
+        _chutelab.synthesize(source._core, args, seed, _real("noise_scale", noise_scale), tmp)
         return read_dataset(tmp)
 
 

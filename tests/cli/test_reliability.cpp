@@ -190,6 +190,10 @@ BOOST_AUTO_TEST_CASE(class3_input_protection_is_the_librarys) {
   Sandbox s("protect");
   refused(s, "synthesize --dataset " + s.q(s.data) + " --out " + s.q(s.data), 2, "is the input folder");
   refused(s, "synthesize --dataset " + s.q(s.data) + " --out " + s.q(s.data / "."), 2, "is the input folder");
+  // Every command through the same writer: the designer's page and estimate's drawing too.
+  refused(s, "design --dataset " + s.q(s.data) + " --out " + s.q(s.data), 2, "is the input folder");
+  refused(s, "estimate --dataset " + s.q(s.data) + " --condition V3-41 --svg " + s.q(s.data / "conditions.csv"), 2,
+          "--svg: is an input of this run");
 }
 
 // Class 4: every catchable signal that ends the process removes the staging folder and exits
@@ -207,7 +211,7 @@ BOOST_AUTO_TEST_CASE(class4_every_signal_cleans_up) {
       // --default-signal: a background job of a script starts with some signals ignored.
       write_file(script, "env --default-signal '" + std::string(CHUTELAB_BINARY) + "' " + cmd + " >/dev/null 2>'" +
                              (s.root / "err").string() + "' &\np=$!\n"
-                             "i=0; while [ $i -lt 100 ] && ! ls -a '" + s.root.string() + "' | grep -q partial; do sleep 0.05; i=$((i+1)); done\n"
+                             "i=0; while [ $i -lt 600 ] && ! ls -a '" + s.root.string() + "' | grep -q partial; do sleep 0.05; i=$((i+1)); done\n"
                              "sleep 0.5\nkill -" + name + " $p\nwait $p\necho $? >'" + rc.string() + "'\n");
       BOOST_REQUIRE(std::system(("sh '" + script.string() + "' 2>/dev/null").c_str()) == 0);
       BOOST_TEST(std::stoi(read_file(rc)) == 128 + sig);
@@ -339,6 +343,8 @@ BOOST_AUTO_TEST_CASE(class8_every_option_is_checked) {
   refused(s, s.args("simulate") + " --condition V3-41 --max-time 1e999", 2, "--max-time: must be a finite number");
   refused(s, "estimate --belt-speed inf --mass-flow 35 --plate-distance 450", 2, "--belt-speed: must be a finite number");
   refused(s, s.args("diagnose") + " --alpha 0", 2, "--alpha: must be a finite number in [1e-06, 0.5], got '0'");
+  refused(s, s.args("validate") + " --models korzen,,booth-cema", 2, "--models: model 2 of the list is empty");
+  refused(s, s.args("validate") + " --effect air_drag=nan", 2, "--effect: 'air_drag=nan': 'nan' is not a number");
   // A whole number typed as 2.0 is 2.
   BOOST_TEST(run_chutelab(s.args("synthesize") + " --seed 2.0").exit_code == 0);
   fs::remove_all(s.out);
@@ -451,6 +457,18 @@ BOOST_AUTO_TEST_CASE(class11_messages) {
   s.replace_in("conditions.csv", "\nV3-41,", "\n\xEF\xBB\xBFV3-41,");
   refused(s, s.args("validate"), 2, "conditions.csv:5: holds a byte-order mark");
   fs::copy_file(kRig / "conditions.csv", s.data / "conditions.csv", fs::copy_options::overwrite_existing);
+  // A device named as a data file ends at once (the NUL of /dev/zero), not in an out-of-memory.
+  fs::remove(s.data / "conditions.csv");
+  fs::create_symlink("/dev/zero", s.data / "conditions.csv");
+  refused(s, s.args("validate"), 2, "conditions.csv:1: holds a NUL byte");
+  fs::remove(s.data / "conditions.csv");
+  fs::copy_file(kRig / "conditions.csv", s.data / "conditions.csv");
+  // A dataset name with a terminal escape is printed escaped.
+  s.replace_in("setup.toml", "name = \"liggghts-rig\"", "name = \"rig\\u001b[2J\"");
+  const auto named = accepted(s, s.args("validate"));
+  BOOST_TEST(named.out.find("rig\\x1b[2J: 8 conditions") != std::string::npos, named.out);
+  BOOST_TEST(named.out.find('\x1b') == std::string::npos);
+  fs::copy_file(kRig / "setup.toml", s.data / "setup.toml", fs::copy_options::overwrite_existing);
   // Invisible characters in a value are shown, not passed to the terminal.
   const auto esc = refused(s, s.args("validate") + " --models 'korzen\x1b[31m'", 2, "\\x1b[31m");
   BOOST_TEST(esc.err.find('\x1b') == std::string::npos);

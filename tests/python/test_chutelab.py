@@ -304,6 +304,20 @@ def test_arguments_are_checked_by_the_command_lines_rules(tmp_path):
     with pytest.raises(chutelab.InputError) as e:
         chutelab.validate(RIG, models=["korzen"], dem_threads=-2)
     assert e.value.field == "dem_threads"
+    # The right type, not whatever bool() or float() makes of it.
+    for call, field in ((lambda: chutelab.diagnose(RIG, pairs="no"), "pairs"),
+                        (lambda: chutelab.diagnose(RIG, alpha="0.01"), "alpha"),
+                        (lambda: chutelab.validate(RIG, dem_threads=1.5), "dem_threads"),
+                        (lambda: chutelab.validate(RIG, dem_quality=5), "dem_quality"),
+                        (lambda: chutelab.estimate(belt_speed="4", mass_flow=35, plate_distance=450), "belt_speed"),
+                        (lambda: chutelab.validate(RIG, models="korzen,,booth-cema"), "models")):
+        with pytest.raises(chutelab.InputError) as e:
+            call()
+        assert e.value.field == field, field
+    # A message names the keyword as typed here, not the command line's flag.
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.estimate(condition="V3-41", setup=os.path.join(RIG, "setup.toml"))
+    assert "use dataset=" in str(e.value) and "--dataset" not in str(e.value)
 
 
 def test_a_deep_or_huge_toml_file_is_refused_not_a_crash(tmp_path):
