@@ -115,6 +115,7 @@ void add_diagnose(CLI::App& app, Action& action) {
   with_rule(cmd->add_option("--seed", o->seed, "random seed of the self-check's replicas")->capture_default_str(),
             options::rules::seed);
   add_dem_options(*cmd, o->dem);
+  add_quiet_option(*cmd);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_diagnose(*o); }; });
 }
