@@ -75,6 +75,10 @@ struct EffectFit {
   // The expensive model's own chi^2 at a few strengths around the estimate (the recommended single
   // fit): its minimum and curvature replace the estimate and sd of the linear signature.
   std::optional<ProfileFit> profile;
+  // The profile's sd widened by this factor (> 1): the readings scatter around the real runs more
+  // than their uncertainties say (the curvature-weighted Birge ratio of the quantities that fix the
+  // strength, or the sandwich (HC3) estimate from the readings' leave-one-out pulls, the larger).
+  double profile_widened = 1.0;
   std::string label() const;              // "air_drag" or "air_drag + belt_slip"
 };
 
