@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
@@ -613,7 +614,67 @@ void profile_best(EffectFit& f, const Stage& s, int jobs) {
   if (!p.bracketed) return;
   f.estimate[0] = p.estimate;
   f.uncertainty[0] = p.uncertainty;
+  // The curvature is the quantities' sum. Where the ones that carry it scatter around the real runs
+  // more than their uncertainties say (another code's forces a few % apart, which no stated
+  // uncertainty holds), the curvature claims too much: the sd is widened by their Birge ratio,
+  // weighted by each quantity's share of the curvature.
+  const auto low = std::min_element(p.points.begin(), p.points.end(),
+                                    [](const auto& a, const auto& b) { return a.second < b.second; });
+  if (low != p.points.begin() && std::next(low) != p.points.end()) {
+    const std::array<double, 3> x = {std::prev(low)->first, low->first, std::next(low)->first};
+    std::array<std::vector<double>, 3> r;
+    for (std::size_t k = 0; k < 3; ++k) r[k] = s.cost.weighted(s.m.residuals_exact(fx, std::vector<double>{x[k]}));
+    double weight = 0.0, weighted = 0.0;
+    for (const auto& g : s.m.groups()) {
+      std::array<double, 3> c{};
+      int n = 0;
+      for (std::size_t i : g.points) {
+        if (s.cost.weights()[i] <= 0.0) continue;
+        ++n;
+        for (std::size_t k = 0; k < 3; ++k) c[k] += r[k][i] * r[k][i];
+      }
+      if (n == 0) continue;
+      const double a = ((c[2] - c[1]) / (x[2] - x[1]) - (c[1] - c[0]) / (x[1] - x[0])) / (x[2] - x[0]);
+      if (!(a > 0.0)) continue;
+      weight += a;
+      weighted += a * c[1] / n;
+    }
+    double widened = weight > 0.0 && weighted / weight > 1.0 ? std::sqrt(weighted / weight) : 1.0;
+    // And the readings' own verdict on the strength: the sandwich (HC3) variance of the real runs'
+    // slope, sum over readings of their leave-one-out shifts, which does not take the stated
+    // uncertainties on trust (a few readings that alone pull the strength by several sd widen it).
+    double jj = 0.0;
+    std::vector<double> slope(s.m.size(), 0.0);
+    for (std::size_t i = 0; i < s.m.size(); ++i) {
+      slope[i] = (r[2][i] - r[0][i]) / (x[2] - x[0]);
+      jj += slope[i] * slope[i];
+    }
+    if (jj > 0.0 && p.uncertainty > 0.0) {
+      double v = 0.0;
+      for (std::size_t i = 0; i < s.m.size(); ++i) {
+        const double h = slope[i] * slope[i] / jj;
+        if (h < 1.0) v += std::pow(slope[i] * r[1][i] / jj / (1.0 - h), 2);
+      }
+      widened = std::max(widened, std::sqrt(v) / p.uncertainty);
+    }
+    if (widened > 1.0) {
+      f.profile_widened = widened;
+      f.uncertainty[0] *= widened;
+    }
+  }
   rescore(f, p.chi2, s);
+}
+
+// The recommended explanation's residuals: from the expensive model's real runs where it was run at
+// (or, for a profile, next to) the fitted strength, else from the signatures.
+std::vector<double> best_residuals(const Stage& s, const EffectFit* best) {
+  if (!best || !best->chi2_from_signatures || !s.m.source().reruns_expensive()) return residuals_at(s.m, best);
+  std::vector<double> at = best->estimate;
+  if (best->profile && !best->profile->points.empty())
+    at = {std::min_element(best->profile->points.begin(), best->profile->points.end(),
+                           [](const auto& a, const auto& b) { return a.second < b.second; })
+              ->first};
+  return s.m.residuals_exact(infos_of(*best), at);
 }
 
 double weight_without_exclusion(const NoiseModel& nm, const Misfit& m, std::size_t i) {
@@ -701,10 +762,14 @@ std::vector<Influence> influential(const Stage& s, const EffectFit& best) {
 }
 
 // Each quantity's mean error before and after the recommended explanation, in its own units.
-std::vector<QuantityShift> shifts_of(const Stage& s, const Fx& fx, const std::vector<double>& strengths) {
+// `exact`: the explanation's residuals from real runs, where there are some (else its predictions).
+std::vector<QuantityShift> shifts_of(const Stage& s, const Fx& fx, const std::vector<double>& strengths,
+                                     const std::vector<double>& exact = {}) {
   const auto& m = s.m;
   const auto before = m.predicted({}, {});
-  const auto after = fx.empty() ? before : m.predicted(fx, strengths);
+  auto after = fx.empty() ? before : m.predicted(fx, strengths);
+  if (exact.size() == m.size())
+    for (std::size_t i = 0; i < m.size(); ++i) after[i] = m.points()[i].measured + exact[i] * m.points()[i].uncertainty;
   std::vector<QuantityShift> out;
   for (const auto& g : m.groups()) {
     QuantityShift q;
@@ -964,7 +1029,7 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
   if (best && best->effects.size() == 1 && m.source().reruns_expensive() && opt.profile_runs > 0)
     profile_best(*best, s, jobs);
   if (best) {
-    out.leftovers = leftovers_of(s, residuals_at(m, best), static_cast<double>(best->effects.size()),
+    out.leftovers = leftovers_of(s, best_residuals(s, best), static_cast<double>(best->effects.size()),
                                  best->chi2_after, drivers);
     out.goodness_of_fit = out.leftovers.empty();
     out.influential = influential(s, *best);
@@ -986,7 +1051,9 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
     out.leftovers = leftovers_of(s, r0, 0.0, s.chi2_0, drivers);
     out.goodness_of_fit = out.leftovers.empty();
   }
-  if (best) out.shifts = shifts_of(s, infos_of(*best), best->estimate);
+  if (best && best->chi2_from_signatures && m.source().reruns_expensive())
+    out.shifts = shifts_of(s, infos_of(*best), best->estimate, best_residuals(s, best));
+  else if (best) out.shifts = shifts_of(s, infos_of(*best), best->estimate);
   else if (outside) out.shifts = shifts_of(s, infos_of(*outside), {outside->unbounded->estimate});
   else out.shifts = shifts_of(s, {}, {});
   out.model_form = model_form_of(s, out.shifts);

@@ -75,6 +75,10 @@ struct EffectFit {
   // The expensive model's own chi^2 at a few strengths around the estimate (the recommended single
   // fit): its minimum and curvature replace the estimate and sd of the linear signature.
   std::optional<ProfileFit> profile;
+  // The profile's sd widened by this factor (> 1): the readings scatter around the real runs more
+  // than their uncertainties say (the curvature-weighted Birge ratio of the quantities that fix the
+  // strength, or the sandwich (HC3) estimate from the readings' leave-one-out pulls, the larger).
+  double profile_widened = 1.0;
   // Recorded inputs (effects/registry.h, Kind::record): per parameter, the plausible error of the
   // record (one sd in its unit; 0 for physics), whether the dataset stated it (else the input's
   // documented default), and the charge for the fitted offsets' implausibility, 2 ln(1 + (x/w)^2)

@@ -391,9 +391,22 @@ void describe_caveats(DiagnosisResult& r, const DiagnoseOptions& opt) {
       for (const auto& [v, c] : b->profile->points) pts.push_back(fmt::format("{:.4g}: {:.1f}", v, c));
       r.caveats.push_back(
           b->profile->bracketed
-              ? fmt::format("{}'s strength and ± come from real runs at {} strengths (chi^2 {}), a parabola through "
-                            "the lowest three: its minimum and curvature, not the signature's linear response.",
-                            b->label(), b->profile->points.size(), fmt::join(pts, ", "))
+              ? fmt::format("{}'s strength and ± come from real runs at {} strengths (chi^2 {}), {}, not the "
+                            "signature's linear response.{}",
+                            b->label(), b->profile->points.size(), fmt::join(pts, ", "),
+                            b->profile->points.size() >= 4
+                                ? fmt::format("a least-squares parabola through them all: its vertex, and an sd from "
+                                              "its curvature and the vertex's own uncertainty (the runs' chi^2 "
+                                              "scatter {:.1f} about it)",
+                                              b->profile->scatter)
+                                : std::string("a parabola through the lowest three: its minimum and curvature"),
+                            b->profile_widened > 1.0
+                                ? fmt::format(" The ± is widened {:.1f} times: the readings scatter about the real "
+                                              "runs more than their uncertainties say (the larger of the Birge ratio "
+                                              "of the quantities that fix the strength and the sandwich estimate "
+                                              "from the readings' own leave-one-out pulls).",
+                                              b->profile_widened)
+                                : "")
               : fmt::format("Real runs at {} strengths around {} (chi^2 {}) did not bracket a minimum: its strength "
                             "and ± are the signature's, which assume a linear response.",
                             b->profile->points.size(), b->label(), fmt::join(pts, ", ")));

@@ -248,6 +248,42 @@ ProfileFit profile_strength(const std::function<double(double)>& chi2_at, double
   out.chi2 = p.min;
   out.uncertainty = 1.0 / std::sqrt(p.a);
   out.bracketed = true;
+  // An expensive model's chi^2 at each strength carries its runs' own noise, so three points can
+  // draw a parabola far sharper than the profile is. With four or more, a least-squares parabola
+  // through them all: its vertex, and an sd that adds to its curvature's the vertex's own
+  // uncertainty from the points' scatter about it.
+  if (out.points.size() >= 4) {
+    const double x0 = low->first, sx = h;  // centred and scaled, for a well-conditioned fit
+    Eigen::MatrixXd X(static_cast<Eigen::Index>(out.points.size()), 3);
+    Eigen::VectorXd y(static_cast<Eigen::Index>(out.points.size()));
+    for (std::size_t i = 0; i < out.points.size(); ++i) {
+      const double t = (out.points[i].first - x0) / sx;
+      X.row(static_cast<Eigen::Index>(i)) << t * t, t, 1.0;
+      y(static_cast<Eigen::Index>(i)) = out.points[i].second;
+    }
+    const Eigen::MatrixXd XtX = X.transpose() * X;
+    const Eigen::Vector3d c = XtX.ldlt().solve(X.transpose() * y);
+    const double a = c(0) / (sx * sx);
+    if (a > 0.0) {
+      const double t_min = -c(1) / (2.0 * c(0));
+      const double v = x0 + t_min * sx;
+      if (v >= out.points.front().first && v <= out.points.back().first) {
+        const double dof = static_cast<double>(out.points.size()) - 3.0;
+        double var_v = 0.0;
+        if (dof > 0.0) {
+          const double sigma2 = (y - X * c).squaredNorm() / dof;
+          const Eigen::Matrix3d cov = sigma2 * XtX.inverse();
+          // v = x0 - sx c1 / (2 c0): its gradient in (c0, c1).
+          const Eigen::Vector3d g(sx * c(1) / (2.0 * c(0) * c(0)), -sx / (2.0 * c(0)), 0.0);
+          var_v = g.dot(cov * g);
+        }
+        out.estimate = v;
+        out.chi2 = c(2) - c(1) * c(1) / (4.0 * c(0));
+        out.uncertainty = std::sqrt(1.0 / a + var_v);
+        out.scatter = dof > 0.0 ? std::sqrt((y - X * c).squaredNorm() / dof) : 0.0;
+      }
+    }
+  }
   return out;
 }
 

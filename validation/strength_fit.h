@@ -49,6 +49,9 @@ struct ProfileFit {
   double estimate = 0.0, uncertainty = 0.0, chi2 = 0.0;  // the parabola's minimum and its value
   std::vector<std::pair<double, double>> points;          // (strength, chi^2) evaluated
   bool bracketed = false;  // the minimum lies between evaluated strengths and the curve is convex
+  // With four or more points: the rms of chi^2 about the least-squares parabola through them all
+  // (the expensive runs' own noise), whose vertex and sd are the estimate then.
+  double scatter = 0.0;
 };
 // `step` is rounded to a round number and the strengths lie on a grid of half a step from `first`
 // (itself on a grid: strength_fit.h's on_grid), so that nearby first estimates evaluate (and cache)
