@@ -97,7 +97,13 @@ TransferAnalysis analyse_transfer(const Station& recorded, const EffectList& eff
     a.load = st.stream_thickness ? load_shape_for_thickness(st.belt, *st.stream_thickness)
                                  : load_shape_for_flow(st.belt, a.operating.mass_flow, st.material.bulk_density,
                                                        a.operating.belt_speed);
-    if (memo) *memo = {a.operating, a.load, st.belt, st.material.bulk_density, st.stream_thickness};
+    if (memo) {
+      memo->operating = a.operating;
+      memo->load = a.load;
+      memo->belt = st.belt;
+      memo->bulk_density = st.material.bulk_density;
+      memo->stream_thickness = st.stream_thickness;
+    }
   }
 
   a.plate.top = {st.plate_distance, st.plate_top};

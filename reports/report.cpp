@@ -254,8 +254,7 @@ void what_is_missing(Doc& d, const Context& c) {
 
   if (const auto* best = g.best()) {
     d.h(3, "missing-physics",
-        g.convincing ? fmt::format(best->is_record() ? "The recorded input to check: {}" : "The recommended effect: {}",
-                                   best->label())
+        g.convincing ? (best->is_record() ? "The recorded input to check: " : "The recommended effect: ") + best->label()
                      : fmt::format("The best explanation, which leaves a misfit that is not noise: {}",
                                    best->label()));
     for (std::size_t i = 0; i < best->effects.size(); ++i) {

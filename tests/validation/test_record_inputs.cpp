@@ -89,7 +89,7 @@ BOOST_AUTO_TEST_CASE(each_wrong_record_is_named_and_its_error_recovered) {
   const std::vector<WrongRecord> cases = {
       {"plate_distance", 25.0, [](Station& s) { s.plate_distance += 0.025; }},
       {"plate_angle", 4.0, [](Station& s) { s.plate.angle += 4.0 * kDeg; }},
-      {"plate_top", 25.0, [](Station& s) { s.plate_top += 0.025; }},
+      {"pulley_diameter", 25.0, [](Station& s) { s.belt.pulley_diameter += 0.025; }},
       {"belt_speed", 5.0, [](Station& s) { s.belt_speed *= 1.05; }},
       {"bulk_density", 10.0, [](Station& s) { s.material.bulk_density *= 1.10; }},
       {"mass_flow_bias", 0.1, [](Station& s) { s.mass_flow *= 1.10; }},
