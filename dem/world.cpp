@@ -135,23 +135,28 @@ void World::remove_particles_if(const std::function<bool(std::size_t)>& pred) {
   list_dirty_ = true;
 }
 
+double World::source_speed() const {
+  double vmax = 0.0;
+  for (const auto& vi : p_.v) vmax = std::max(vmax, vi.norm());
+  for (const auto& in : inserters_) vmax = std::max(vmax, in.velocity.norm());
+  for (const auto& w : walls_) {
+    double vw = w.motion.velocity.norm() + w.surface.linear.norm();
+    vw += (w.motion.omega.norm() + w.surface.omega.norm()) * std::min(reach_from_pivot(w), 10.0);
+    vmax = std::max(vmax, 2.0 * vw);
+  }
+  return vmax;
+}
+
+double World::fall_speed() const {
+  const double h = settings_.domain.empty() ? 0.0 : (settings_.domain.hi - settings_.domain.lo).norm();
+  return std::sqrt(2.0 * settings_.gravity.norm() * h);
+}
+
 TimeStepEstimate World::time_step_estimate() const {
   TimeStepEstimate est;
   // Characteristic speed: free fall across the domain, plus boundary and feed speeds.
   double v = settings_.characteristic_speed;
-  if (!(v > 0.0)) {
-    double vmax = 0.0;
-    for (const auto& vi : p_.v) vmax = std::max(vmax, vi.norm());
-    for (const auto& in : inserters_) vmax = std::max(vmax, in.velocity.norm());
-    for (const auto& w : walls_) {
-      double vw = w.motion.velocity.norm() + w.surface.linear.norm();
-      vw += (w.motion.omega.norm() + w.surface.omega.norm()) * std::min(reach_from_pivot(w), 10.0);
-      vmax = std::max(vmax, 2.0 * vw);
-    }
-    const double g = settings_.gravity.norm();
-    const double h = settings_.domain.empty() ? 0.0 : (settings_.domain.hi - settings_.domain.lo).norm();
-    v = std::max(vmax + std::sqrt(2.0 * g * h), 0.1);
-  }
+  if (!(v > 0.0)) v = std::max(source_speed() + fall_speed(), 0.1);
   est.speed = v;
   // Smallest particles of each material in the scene (existing and inserted).
   std::vector<double> rmin(static_cast<std::size_t>(materials_.size()), kInf);
@@ -240,16 +245,7 @@ void World::initialise() {
   } else {
     // Nothing can move faster than its fastest source of energy allows: the fastest initial, feed or
     // boundary speed plus free fall across the whole domain. Twice that (plus 1 m/s) is "impossible".
-    double vmax = 0.0;
-    for (const auto& vi : p_.v) vmax = std::max(vmax, vi.norm());
-    for (const auto& in : inserters_) vmax = std::max(vmax, in.velocity.norm());
-    for (const auto& w : walls_) {
-      double vw = w.motion.velocity.norm() + w.surface.linear.norm();
-      vw += (w.motion.omega.norm() + w.surface.omega.norm()) * std::min(reach_from_pivot(w), 10.0);
-      vmax = std::max(vmax, 2.0 * vw);
-    }
-    const double h = (settings_.domain.hi - settings_.domain.lo).norm();
-    max_speed_ = 2.0 * (vmax + std::sqrt(2.0 * settings_.gravity.norm() * h)) + 1.0;
+    max_speed_ = 2.0 * (source_speed() + fall_speed()) + 1.0;
   }
   initialised_ = true;
   for (auto& w : walls_) w.set_time(time_);

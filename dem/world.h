@@ -196,6 +196,10 @@ class World {
   void insert_from(std::size_t inserter);
   bool try_insert_sphere(std::size_t inserter, double radius, std::vector<std::size_t>& near);
   void check_state() const;
+  // The fastest initial, feed or boundary speed, and the speed of a free fall across the domain: what
+  // the time step's impact speed and the blow-up check's speed limit are made of.
+  double source_speed() const;
+  double fall_speed() const;
   [[noreturn]] void report_bad(std::size_t i) const;
   // A Verlet pass over all particles in a parallel region of its own, each thread on the rows of its
   // force blocks; returns the first bad particle (size() if none) and maxd2 raised by the drift.
