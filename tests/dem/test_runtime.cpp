@@ -10,6 +10,7 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <unistd.h>
 
 #include "core/input_error.h"
 #include "dem/io/csv.h"
@@ -23,7 +24,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string tmp(const std::string& name) { return (fs::temp_directory_path() / ("chutelab_dem_" + name)).string(); }
+// Per process: sessions sharing the machine run the suite at the same time.
+std::string tmp(const std::string& name) {
+  return (fs::temp_directory_path() / ("chutelab_dem_" + std::to_string(::getpid()) + "_" + name)).string();
+}
 
 // Seed §3 material (polyethylene pellets, LIGGGHTS rig modulus) in a small open box.
 World pellet_box(Settings s, int n = 0) {

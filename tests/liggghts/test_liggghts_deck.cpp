@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 #include "core/input_error.h"
 #include "dem/liggghts/output.h"
@@ -26,7 +27,9 @@ liggghts::Deck tiny_deck(dem::station::RunSettings s = test::tiny_settings()) {
 bool has(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
 
 std::string temp_file(const std::string& name, const std::string& text) {
-  const auto p = std::filesystem::temp_directory_path() / ("chutelab-liggghts-" + name);
+  // Per process: sessions sharing the machine run the suite at the same time.
+  const auto p =
+      std::filesystem::temp_directory_path() / ("chutelab-liggghts-" + std::to_string(::getpid()) + "-" + name);
   std::ofstream(p) << text;
   return p.string();
 }
@@ -161,7 +164,8 @@ BOOST_AUTO_TEST_CASE(missing_liggghts_is_a_clear_error) {
   liggghts::Options o;
   o.settings = test::tiny_settings();
   o.command = "/nonexistent/liggghts";
-  o.work_dir = (std::filesystem::temp_directory_path() / "chutelab-liggghts-missing").string();
+  o.work_dir =
+      (std::filesystem::temp_directory_path() / ("chutelab-liggghts-missing-" + std::to_string(::getpid()))).string();
   try {
     liggghts::run_station(test::tiny_station(), o);
     BOOST_FAIL("no error");

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <unistd.h>
 
 #include "dem/liggghts/run.h"
 #include "dem/station/run.h"
@@ -35,8 +36,12 @@ const station::StationResult& lig() {
     liggghts::Options o;
     o.settings = test::tiny_settings();
     o.command = "mpirun -n 1 " + program();
-    o.work_dir = (std::filesystem::temp_directory_path() / "chutelab-test-liggghts-tiny").string();
-    return liggghts::run_station(test::tiny_station(), o);
+    // Per process: sessions sharing the machine run the suite at the same time.
+    o.work_dir =
+        (std::filesystem::temp_directory_path() / ("chutelab-test-liggghts-tiny-" + std::to_string(::getpid()))).string();
+    station::StationResult r = liggghts::run_station(test::tiny_station(), o);
+    std::filesystem::remove_all(o.work_dir);  // the dump is megabytes; the result holds what the tests read
+    return r;
   }();
   return r;
 }
@@ -98,7 +103,7 @@ BOOST_AUTO_TEST_CASE(version_probe_writes_no_log) {
   require_liggghts();
   namespace fs = std::filesystem;
   const fs::path here = fs::current_path();
-  const fs::path dir = fs::temp_directory_path() / "chutelab-test-liggghts-version";
+  const fs::path dir = fs::temp_directory_path() / ("chutelab-test-liggghts-version-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   fs::remove(dir / "log.liggghts");
   fs::current_path(dir);
@@ -106,4 +111,5 @@ BOOST_AUTO_TEST_CASE(version_probe_writes_no_log) {
   fs::current_path(here);
   BOOST_TEST(v.find("LIGGGHTS") != std::string::npos);
   BOOST_TEST(!fs::exists(dir / "log.liggghts"));
+  fs::remove_all(dir);
 }
