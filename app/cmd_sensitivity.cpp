@@ -165,7 +165,10 @@ int run_sensitivity(const SensitivityCli& o) {
   for (std::size_t k = 0; k < variants.size(); ++k) {
     const SensitivityVariant& v = variants[k];
     st::RunSettings s = base;
-    s.contact = v.contact == "lsd" ? st::ContactLaw::linear_spring_dashpot : st::ContactLaw::hertz_mindlin;
+    const auto law = st::parse_contact(v.contact);
+    if (!law)
+      throw InputError("", 0, "contact", fmt::format("unknown contact law '{}' (known: {})", v.contact, dem::NormalLaw::keys()));
+    s.contact = *law;
     s.particle_diameter = v.diameter;
     s.particle_shape = v.shape == "clump" ? st::ParticleShape::clump : st::ParticleShape::sphere;
     s.dt_fraction = v.dt_fraction;

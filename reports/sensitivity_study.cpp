@@ -100,8 +100,9 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& b) {
   base.diameter = base_d;
   base.dt_fraction = b.dt_fraction;
   base.rayleigh_fraction = b.rayleigh_fraction;
-  base.label = fmt::format("Hertz-Mindlin, spheres d = {} mm, dt = {} t_c (at most {} t_R), {}", mm(base_d),
-                           fraction(b.dt_fraction), fraction(b.rayleigh_fraction), modulus_text(b.modulus_scale));
+  base.label = fmt::format("{}, spheres d = {} mm, dt = {} t_c (at most {} t_R), {}", dem::NormalLaw{}.title(),
+                           mm(base_d), fraction(b.dt_fraction), fraction(b.rayleigh_fraction),
+                           modulus_text(b.modulus_scale));
   v.push_back(base);
   auto variant = [&](std::string key, std::string label, VariantGroup g) {
     SensitivityVariant x = base;
@@ -110,8 +111,9 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& b) {
     x.group = g;
     return x;
   };
-  auto lsd = variant("LSD", "linear spring-dashpot (seed Eq 8), same collision time", VariantGroup::contact);
-  lsd.contact = "lsd";
+  const auto lsd_law = dem::NormalLaw::of<dem::LinearSpringDashpot>();
+  auto lsd = variant("LSD", fmt::format("{}, same collision time", lsd_law.title()), VariantGroup::contact);
+  lsd.contact = lsd_law.key();
   v.push_back(lsd);
   // The seed's two shaped rows: its 4.4 mm clump against its 5.6 mm spheres (about the pellet's
   // size), and a clump of 5.6 mm spheres ("d increased"). Relative to this base: 4.4/5.6 d and d.

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "dem/contact/normal_laws.h"
 #include "validation/seed_findings.h"
 
 namespace chutelab::reports {
@@ -23,7 +24,7 @@ struct SensitivityVariant {
   std::string label;   // what changes, for people
   VariantGroup group = VariantGroup::base;
   // Settings of the run (SI); 0 / empty = the base's.
-  std::string contact = "hertz-mindlin";
+  std::string contact{dem::NormalLaw{}.key()};  // a registered law's key
   std::string shape = "sphere";
   double diameter = 0.0;        // m (sphere diameter, or the clump's element spheres)
   double dt_fraction = 0.1;     // of the Hertz collision time

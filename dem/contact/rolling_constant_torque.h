@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "dem/contact/kinematics.h"
+#include "dem/contact/pair_coeffs.h"
 
 namespace chutelab::dem {
 
@@ -18,7 +19,7 @@ struct RollingConstantTorque {
   static constexpr double kRestSpin = 1e-9;  // rad/s
   // Selects instead of branches, so the pair loop vectorises across contacts: an inactive contact
   // adds a zero torque.
-  CHUTELAB_INLINE static void torque(const PairCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
+  CHUTELAB_INLINE static void torque(const SharedCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
                                      LaneVec* /*history*/, double dt, LaneVec& ti, LaneVec& tj) {
     const double fn = std::max(nr.force, 0.0);
     const double w2 = k.w_rel.squared_norm();
@@ -35,7 +36,7 @@ struct RollingConstantTorque {
 
 struct NoRolling {
   static constexpr bool has_history = false;
-  CHUTELAB_INLINE static void torque(const PairCoeffs&, const NormalResult&, const ContactKinematics&, LaneVec*,
+  CHUTELAB_INLINE static void torque(const SharedCoeffs&, const NormalResult&, const ContactKinematics&, LaneVec*,
                                      double, LaneVec&, LaneVec&) {}
 };
 

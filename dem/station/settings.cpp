@@ -28,15 +28,9 @@ std::optional<Quality> parse_quality(std::string_view s) {
   return std::nullopt;
 }
 
-std::string_view name(ContactLaw c) {
-  return c == ContactLaw::hertz_mindlin ? "hertz-mindlin" : "lsd";
-}
+std::string_view name(ContactLaw c) { return c.key(); }
 
-std::optional<ContactLaw> parse_contact(std::string_view s) {
-  if (s == "hertz-mindlin") return ContactLaw::hertz_mindlin;
-  if (s == "lsd") return ContactLaw::linear_spring_dashpot;
-  return std::nullopt;
-}
+std::optional<ContactLaw> parse_contact(std::string_view s) { return NormalLaw::named(s); }
 
 std::string_view name(ParticleShape p) { return p == ParticleShape::sphere ? "sphere" : "clump"; }
 
@@ -211,7 +205,7 @@ DemTable read_dem_table(const std::string& file) {
     } else if (kv == "contact") {
       const auto v = node.value<std::string>();
       const auto c = v ? parse_contact(*v) : std::nullopt;
-      if (!c) throw InputError(file, line_of(node), key, "must be \"hertz-mindlin\" or \"lsd\"");
+      if (!c) throw InputError(file, line_of(node), key, "must be one of " + NormalLaw::keys());
       t.contact = c;
     } else if (kv == "shape") {
       const auto v = node.value<std::string>();

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "dem/contact/normal_laws.h"
 #include "dem/wear/archard.h"
 #include "dem/wear/finnie.h"
 
@@ -42,7 +43,8 @@ enum class Quality { quick, standard, paper };
 std::string_view name(Quality q);
 std::optional<Quality> parse_quality(std::string_view s);
 
-enum class ContactLaw { hertz_mindlin, linear_spring_dashpot };
+// The contact law of a run: one of the registered normal laws ([dem] contact, --contact), by its key.
+using ContactLaw = NormalLaw;
 std::string_view name(ContactLaw c);
 std::optional<ContactLaw> parse_contact(std::string_view s);
 
@@ -68,7 +70,7 @@ struct RunSettings {
   // seed used 1/10 and tested 1/20. Also capped at rayleigh_fraction of the Rayleigh time.
   double dt_fraction = 0.1;
   double rayleigh_fraction = 0.2;
-  ContactLaw contact = ContactLaw::hertz_mindlin;
+  ContactLaw contact;  // Hertz-Mindlin
   // clump: the feed inserts the seed's pellet (dem::ClumpShape::seed_pellet, the shape `chutelab
   // calibrate` uses) with spheres of diameter `particle_diameter`, in random orientations, at the
   // condition's mass flow (fewer bodies than spheres of that size: each weighs ~1.1 spheres).

@@ -89,7 +89,7 @@ BOOST_AUTO_TEST_CASE(deck_refuses_what_liggghts_cannot_run) {
   s.particle_shape = dem::station::ParticleShape::clump;
   BOOST_CHECK_THROW(tiny_deck(s), InputError);
   s = test::tiny_settings();
-  s.contact = dem::station::ContactLaw::linear_spring_dashpot;
+  s.contact = dem::NormalLaw::of<dem::LinearSpringDashpot>();
   BOOST_CHECK_THROW(tiny_deck(s), InputError);
 }
 
