@@ -65,6 +65,8 @@ struct HertzMindlin {
   }
   // Its stiffness follows from the moduli: a collision lasts what they make it last.
   static LawParameters matched_parameters(double /*restitution*/, double /*m_eff*/, double /*duration*/) { return {}; }
+  // LIGGGHTS' hertz reads the moduli, restitution and friction every deck writes: nothing more.
+  static LawParameters liggghts_pair_properties(const Coeffs&) { return {}; }
 };
 
 }  // namespace chutelab::dem

@@ -19,8 +19,12 @@ struct LawParameter {
   std::string_view key;      // its name in Interaction::law
   std::string_view unit;     // SI; "" if dimensionless
   std::string_view meaning;
-  double fallback;           // used when the interaction does not give it; NaN: required
+  double fallback;           // used when the interaction does not give it (kRequired, kOwnRule: see below)
+  // The interaction must give it (value() is NaN otherwise, which the law's check refuses).
   static constexpr double kRequired = std::numeric_limits<double>::quiet_NaN();
+  // The law derives it from its other parameters when the interaction does not give it (its meaning
+  // says how; the law reads it with get(), not value()).
+  static constexpr double kOwnRule = -std::numeric_limits<double>::infinity();
 };
 
 // The values an interaction gives, by name.

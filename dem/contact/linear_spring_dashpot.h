@@ -20,7 +20,9 @@ namespace chutelab::dem {
 struct LinearSpringDashpot {
   static constexpr std::string_view key = "lsd";
   static constexpr std::string_view title = "linear spring-dashpot (seed Eq 8)";
-  static constexpr std::string_view liggghts = "";  // LIGGGHTS' hooke takes k_n from the moduli, not as given
+  // None in LIGGGHTS: its hooke takes k_n from the moduli, and its hooke/stiffness damps by m* gamma_n
+  // (as LAMMPS' gran/hooke/history), not by a restitution.
+  static constexpr std::string_view liggghts = "";
   static constexpr bool hertz_elastic = false;
   static constexpr std::array<LawParameter, 2> parameters{{
       {"normal_stiffness", "N/m", "normal spring k_n", LawParameter::kRequired},
@@ -58,6 +60,7 @@ struct LinearSpringDashpot {
     const double w = std::numbers::pi / duration;
     return {{"normal_stiffness", m_eff * w * w / (1.0 - zeta * zeta)}};
   }
+  static LawParameters liggghts_pair_properties(const Coeffs&) { return {}; }  // no LIGGGHTS counterpart
 };
 
 }  // namespace chutelab::dem

@@ -13,9 +13,14 @@
 //   elastic_energy      the energy in the normal spring (World::energy)
 //   matched_parameters  its parameters for a collision of given restitution and duration (the
 //                       station gives every law the Hertz collision time)
+//   liggghts_pair_properties  what LIGGGHTS' model reads per type pair beyond the moduli,
+//                       restitution and friction every deck writes (property name -> value)
+// NormalContactLaw below states this contract, so a law that misses a part does not compile.
 // Registering it is its include and its place in NormalLaws below. From this list come the
 // dispatch of the contact loop (dem/contact/contact_model.h), the names the station's configuration
 // and the command line accept, the LIGGGHTS deck's model, the time step and the energy.
+#include <algorithm>
+#include <concepts>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -31,8 +36,43 @@
 
 namespace chutelab::dem {
 
+// What the engine and the tools ask of a normal law (see above).
+template <class L>
+concept NormalContactLaw = requires(const typename L::Coeffs& c, const Material& m, const Interaction& in, double x) {
+  { L::key } -> std::convertible_to<std::string_view>;
+  { L::title } -> std::convertible_to<std::string_view>;
+  { L::liggghts } -> std::convertible_to<std::string_view>;
+  { L::hertz_elastic } -> std::convertible_to<bool>;
+  requires std::same_as<typename decltype(L::parameters)::value_type, LawParameter>;
+  { L::mix(m, m, in) } -> std::same_as<typename L::Coeffs>;
+  { L::check(c) } -> std::same_as<std::string>;
+  { L::normal(c, x, x, x, x) } -> std::same_as<NormalResult>;
+  { L::collision_time(c, x, x, x) } -> std::same_as<double>;
+  { L::elastic_energy(c, x, x) } -> std::same_as<double>;
+  { L::matched_parameters(x, x, x) } -> std::same_as<LawParameters>;
+  { L::liggghts_pair_properties(c) } -> std::same_as<LawParameters>;
+};
+
+// No two laws answer to one name, and no law declares a parameter twice.
+template <class... Laws>
+constexpr bool distinct_names() {
+  const std::string_view keys[] = {Laws::key...};
+  for (std::size_t i = 0; i < sizeof...(Laws); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (keys[i] == keys[j]) return false;
+  auto own = []<class L>() {
+    for (std::size_t i = 0; i < L::parameters.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (L::parameters[i].key == L::parameters[j].key) return false;
+    return true;
+  };
+  return (own.template operator()<Laws>() && ...);
+}
+
 template <class... Laws>
 struct LawList {
+  static_assert((NormalContactLaw<Laws> && ...), "a registered law misses a part (dem/contact/normal_laws.h)");
+  static_assert(distinct_names<Laws...>(), "two laws share a key, or a law declares a parameter twice");
   static constexpr std::size_t size = sizeof...(Laws);
   // Every pair table one World may hold (one law's at a time).
   using PairTables = std::variant<std::vector<PairCoeffs<Laws>>...>;
@@ -101,6 +141,25 @@ class NormalLaw {
   bool hertz_elastic() const { return visit([]<class L>() { return L::hertz_elastic; }); }
   LawParameters matched_parameters(double restitution, double m_eff, double duration) const {
     return visit([&]<class L>() { return L::matched_parameters(restitution, m_eff, duration); });
+  }
+  // The law's LIGGGHTS properties for every pair of the table: name and row-major values (a pair the
+  // law cannot run, such as two walls that never meet, gets 0).
+  std::vector<std::pair<std::string, std::vector<double>>> liggghts_pair_properties(const MaterialTable& mt) const {
+    return visit([&]<class L>() {
+      std::vector<std::pair<std::string, std::vector<double>>> out;
+      const auto n = static_cast<std::size_t>(mt.size());
+      for (int a = 0; a < mt.size(); ++a)
+        for (int b = 0; b < mt.size(); ++b) {
+          const typename L::Coeffs c = L::mix(mt.material(a), mt.material(b), mt.interaction(a, b));
+          const bool runs = L::check(c).empty();
+          for (const auto& [name, value] : L::liggghts_pair_properties(c).values()) {
+            auto it = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == name; });
+            if (it == out.end()) it = out.insert(out.end(), {name, std::vector<double>(n * n, 0.0)});
+            it->second[static_cast<std::size_t>(a) * n + static_cast<std::size_t>(b)] = runs ? value : 0.0;
+          }
+        }
+      return out;
+    });
   }
   friend bool operator==(NormalLaw, NormalLaw) = default;
 

@@ -121,6 +121,11 @@ Deck make_deck(const Station& st, const station::Scene& sc, const station::RunSe
   for (int a = 0; a < nt; ++a)
     for (int b = 0; b < nt; ++b)
       o += " " + num(mt.interaction(a, b).rolling_friction * (a == ins.material && b == ins.material ? 2.0 : 1.0));
+  // What the law's model reads per type pair beyond the above (dem/contact/normal_laws.h).
+  for (const auto& [property, values] : s.contact.liggghts_pair_properties(mt)) {
+    o += fmt::format("\nfix m_{} all property/global {} peratomtypepair {}", property, property, nt);
+    for (double v : values) o += " " + num(v);
+  }
   o += fmt::format("\npair_style gran model {} tangential history rolling_friction cdt\npair_coeff * *\n",
                    s.contact.liggghts());
   o += fmt::format("timestep {}\n", num(sc.dt));
