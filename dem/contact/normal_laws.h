@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "dem/contact/hertz_mindlin.h"
+#include "dem/contact/hooke.h"
 #include "dem/contact/linear_spring_dashpot.h"
 #include "dem/contact/pair_coeffs.h"
 
@@ -102,7 +103,7 @@ struct LawList {
 };
 
 // The registry. Checkpoints store a law's place: append new laws at the end.
-using NormalLaws = LawList<HertzMindlin, LinearSpringDashpot>;
+using NormalLaws = LawList<HertzMindlin, LinearSpringDashpot, Hooke>;
 
 // Which registered law a scene runs.
 class NormalLaw {
