@@ -15,6 +15,7 @@
 #include "app/dem_options.h"
 #include "app/option_checks.h"
 #include "core/campaign.h"
+#include "core/progress.h"
 #include "core/input_error.h"
 #include "core/message.h"
 #include "core/option_check.h"
@@ -99,21 +100,19 @@ int run_calibrate(const CalibrateCli& o) {
                            one_line(ctx.setup.name, 80),
                            ctx.dataset)
             << std::flush;
-  const bool tty = isatty(fileno(stderr)) != 0;
   auto progress = [&](const CalibrationProgress& p) {
     if (p.done) {
       const auto& r = *p.done;
-      if (tty) std::cerr << "\r\033[K";
+      progress::status("");
       std::cout << fmt::format("[{:>2}/{}] {:<16} mu_r {:<5g} rho_s {:<5g}: bulk {:4.0f} kg/m^3, pile {:5.1f} mm, "
                                "repose {:4.1f} deg, {} grains ({:.1f} s)\n",
                                p.index, p.count, r.shape == GrainKind::sphere ? plan.sphere.label() : plan.clump.label(),
                                r.rolling_friction, r.solid_density, r.slump.bulk_density, r.slump.pile_height * 1e3,
                                r.slump.repose_angle_deg, r.slump.particles, r.slump.wall_seconds)
                 << std::flush;
-    } else if (tty) {
-      std::cerr << fmt::format("\r\033[K[{:>2}/{}] {} {:.2f}/{:.2f} s", p.index, p.count, p.slump.phase, p.slump.time,
-                               p.slump.max_time)
-                << std::flush;
+    } else {
+      progress::status(fmt::format("[{:>2}/{}] {} {:.2f}/{:.2f} s", p.index, p.count, p.slump.phase, p.slump.time,
+                                   p.slump.max_time));
     }
   };
   const CalibrationStudy study = run_calibration(ctx.setup.material, plan, progress);
@@ -174,6 +173,7 @@ void add_calibrate(CLI::App& app, Action& action) {
   with_rule(cmd->add_option("--threads", o->threads, "OpenMP threads per run")->capture_default_str(), kRigThreads);
   with_rule(cmd->add_option("--seed", o->seed, "random seed of the pour")->capture_default_str(), options::rules::seed);
   add_jobs_option(*cmd, o->jobs);
+  add_quiet_option(*cmd);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_calibrate(*o); }; });
 }

@@ -81,6 +81,7 @@ void add_diagnose(CLI::App& app, Action& action) {
                   "left free by the load average; results do not depend on it)")
       ->check(CLI::Range(0, 256));  // 0: the default (one per idle core)
   add_dem_options(*cmd, o->dem);
+  add_quiet_option(*cmd);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_diagnose(*o); }; });
 }

@@ -258,6 +258,7 @@ void add_sensitivity(CLI::App& app, Action& action) {
             options::rules::threads);
   with_rule(cmd->add_option("--seed", o->seed, "feed random seed"), options::rules::seed);
   add_jobs_option(*cmd, o->jobs);
+  add_quiet_option(*cmd);
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_sensitivity(*o); }; });
 }

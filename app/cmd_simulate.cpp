@@ -6,6 +6,7 @@
 #include <map>
 
 #include "app/commands.h"
+#include "app/dem_options.h"
 #include "app/option_checks.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
@@ -185,6 +186,7 @@ void add_simulate(CLI::App& app, Action& action) {
                                  "with uncertainties on stdout, CSV series, side view and VTK in --out.");
   cmd->add_option("--dataset", o->dataset, "dataset folder (default: the bundled grima2010 rig)");
   cmd->add_option("--condition", o->condition, "condition (row of conditions.csv)")->required();
+  add_quiet_option(*cmd);
   cmd->add_option("--quality", o->quality, "quick (tests, first looks), standard (the dataset's particles), paper (5.6 mm)");
   // The ranges of dem/station/settings.cpp's check(), so that a bad value is refused here, by the
   // flag as typed, before the dataset is read.

@@ -5,6 +5,7 @@
 #include "app/option_checks.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
+#include "core/progress.h"
 #include "dem/station/settings.h"
 #include "validation/models/dem_model.h"
 #include "validation/models/liggghts_model.h"
@@ -54,6 +55,11 @@ void add_jobs_option(CLI::App& cmd, int& jobs) {
                            "ranks share the runs instead); default: one per core left free by the load average; "
                            "results do not depend on it"),
             options::rules::jobs);
+}
+
+void add_quiet_option(CLI::App& cmd) {
+  cmd.add_flag_callback("--quiet", [] { progress::set_quiet(true); },
+                        "no progress on stderr (results, warnings and errors still print)");
 }
 
 // Independent runs side by side scale better than one run's OpenMP threads (no barriers, no shared

@@ -31,6 +31,9 @@ void add_dem_options(CLI::App& cmd, DemCli& o);
 void add_jobs_option(CLI::App& cmd, int& jobs);
 int resolve_jobs(int jobs);
 
+// --quiet: no progress lines on stderr (core/progress.h); results, warnings and errors still print.
+void add_quiet_option(CLI::App& cmd);
+
 // Configures the registry's "dem" model for a dataset folder; per-condition output (series, side
 // views, VTK) goes to `output_dir` when it is not empty.
 void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir);

@@ -1,8 +1,11 @@
 #include "core/campaign.h"
 
+#include "core/message.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <exception>
@@ -17,6 +20,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "core/progress.h"
 
 #ifdef CHUTELAB_HAVE_MPI
 #include <mpi.h>
@@ -68,6 +72,7 @@ std::string unwrap(std::string text) {
 }
 
 std::string run_one(const Job& job, const JobContext& ctx) {
+  const progress::CampaignJobScope scope;
   try {
     return ok_text(job.run(ctx));
   } catch (...) {
@@ -81,6 +86,41 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+std::string clock(double s) {
+  const long t = std::lround(std::max(0.0, s));
+  return t < 60 ? fmt::format("{} s", t) : fmt::format("{}:{:02d} min", t / 60, t % 60);
+}
+
+// One line per job that ran, a running count on the terminal's status line, and a closing line.
+struct Tally {
+  const Options& o;
+  std::size_t total, done = 0, reused = 0;
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  void show() const {
+    if (o.progress) progress::status_prefix(fmt::format("{}{}/{} runs done", prefix(o), done, total));
+  }
+  void finished(const Job& job, const std::string& out, bool was_reused, double seconds) {
+    ++done;
+    if (was_reused) ++reused;
+    if (!o.progress) return;
+    const bool ok = out.rfind("ok\n", 0) == 0;
+    if (!was_reused || !ok)
+      progress::line(fmt::format("{}[{}/{}] {} {} in {}", prefix(o), done, total, one_line(job.key, 120), ok ? "done" : "failed",
+                                 clock(seconds)));
+    show();
+  }
+  void close(const std::string& how) const {
+    if (!o.progress) return;
+    progress::clear();
+    const std::size_t ran = done - reused;
+    if (ran == 0) progress::line(fmt::format("{}{} runs, all from the cache", prefix(o), done));
+    else
+      progress::line(fmt::format("{}{} runs ({} ran{}{}) in {}{}", prefix(o), done, ran, how,
+                                 reused ? fmt::format(", {} from the cache", reused) : std::string(),
+                                 clock(seconds_since(t0)), std::string()));
+  }
+};
+
 // One process, `threads` jobs at a time, dearest first (the last job to start is a cheap one).
 std::vector<std::string> run_threads(std::span<const Job> jobs, const Options& o) {
   std::vector<std::string> out(jobs.size());
@@ -90,31 +130,26 @@ std::vector<std::string> run_threads(std::span<const Job> jobs, const Options& o
   std::atomic<std::size_t> next{0};
   std::atomic<int> idle{0};
   std::mutex print;
-  std::size_t done = 0;
-  const auto t0 = std::chrono::steady_clock::now();
+  const int n = std::min<int>(o.threads, static_cast<int>(jobs.size()));
+  Tally tally{o, jobs.size()};
+  tally.show();
   auto worker = [&] {
     for (std::size_t i; (i = next.fetch_add(1)) < order.size();) {
       const std::size_t k = order[i];
       const auto t = std::chrono::steady_clock::now();
-      out[k] = run_one(jobs[k], JobContext{false, 1, &idle});
+      bool reused = false;
+      JobContext ctx{false, 1, &idle};
+      ctx.reused = &reused;
+      out[k] = run_one(jobs[k], ctx);
       const std::lock_guard<std::mutex> lock(print);
-      ++done;
-      if (o.progress)
-        std::cerr << fmt::format("{}[{}/{}] {} done ({:.0f} s){}\n", o.label.empty() ? "" : o.label + " ", done,
-                                 jobs.size(), jobs[k].key, seconds_since(t),
-                                 out[k].rfind("ok\n", 0) == 0 ? "" : ", failed")
-                  << std::flush;
+      tally.finished(jobs[k], out[k], reused, seconds_since(t));
     }
     idle.fetch_add(1);  // no job left for this worker: its core is free for the jobs still running
   };
-  const int n = std::min<int>(o.threads, static_cast<int>(jobs.size()));
   std::vector<std::thread> pool;
   for (int t = 0; t < n; ++t) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
-  if (o.progress)
-    std::cerr << fmt::format("{}{} jobs on {} threads in {:.0f} s\n", o.label.empty() ? "" : o.label + ": ", jobs.size(), n,
-                             seconds_since(t0))
-              << std::flush;
+  tally.close(fmt::format(", {} side by side", n));
   return out;
 }
 
@@ -129,13 +164,13 @@ std::vector<std::string> run_mpi(std::span<const Job> jobs, const Options& o) {
   int mine = 0;
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     if (owner[k] != g_rank) continue;
-    if (g_rank == 0 && o.progress)
-      std::cerr << fmt::format("{}{} ({}/{}, rank 0 of {})\n", prefix(o), jobs[k].key, k + 1, jobs.size(), g_ranks)
-                << std::flush;
     const auto t = std::chrono::steady_clock::now();
     out[k] = run_one(jobs[k], JobContext{g_rank == 0, 1});
     busy += seconds_since(t);
     ++mine;
+    if (g_rank == 0 && o.progress)
+      progress::line(fmt::format("{}{} done in {} ({}/{}, rank 0 of {})", prefix(o), one_line(jobs[k].key, 120), clock(seconds_since(t)),
+                                 k + 1, jobs.size(), g_ranks));
   }
   const double local = seconds_since(t0);
   // Every result to every rank, in job order. Lengths first: a rank cannot know another's text size.
@@ -162,8 +197,8 @@ std::vector<std::string> run_mpi(std::span<const Job> jobs, const Options& o) {
     for (int r = 0; r < g_ranks; ++r)
       s += fmt::format(" rank {} {} jobs {:.0f} s;", r, all_jobs[static_cast<std::size_t>(r)],
                        all_busy[static_cast<std::size_t>(r)]);
-    s.back() = '\n';
-    std::cerr << s << std::flush;
+    s.pop_back();
+    progress::line(s);
   }
   return out;
 }
@@ -210,13 +245,20 @@ std::vector<std::string> run_campaign(std::span<const Job> jobs, const Options& 
     o.threads = t;
     wrapped = run_threads(jobs, o);
   } else {
-    // In order, each job with its own progress: today's behaviour. The first failure ends it.
+    // In order, each job with its own progress on the status line. The first failure ends it.
+    Tally tally{options, jobs.size()};
+    tally.show();
     for (const auto& j : jobs) {
-      if (options.progress)
-        std::cerr << fmt::format("{}{} ({}/{})\n", prefix(options), j.key, wrapped.size() + 1, jobs.size()) << std::flush;
-      wrapped.push_back(run_one(j, JobContext{true, 0}));
+      const auto t = std::chrono::steady_clock::now();
+      bool reused = false;
+      JobContext ctx{true, 0};
+      ctx.reused = &reused;
+      wrapped.push_back(run_one(j, ctx));
+      tally.finished(j, wrapped.back(), reused, seconds_since(t));
       if (wrapped.back().rfind("ok\n", 0) != 0) break;
     }
+    if (jobs.size() > 1) tally.close(", one at a time");
+    else if (options.progress) progress::clear();
   }
   std::vector<std::string> out;
   out.reserve(wrapped.size());

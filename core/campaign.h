@@ -34,6 +34,9 @@ struct JobContext {
   // job whose result does not depend on its thread count may take that many more, so the last
   // runs of a campaign do not leave cores idle. Null when there is no such pool (MPI ranks).
   const std::atomic<int>* idle = nullptr;
+  // The job sets it when it found its result without running (a cache): the campaign then counts
+  // it instead of printing a line for it.
+  bool* reused = nullptr;
 };
 
 struct Job {
@@ -45,7 +48,7 @@ struct Job {
 struct Options {
   int threads = 0;        // concurrent jobs in one process (one rank only); 1 = in order; 0 = set_threads()
   std::string label;      // "sensitivity", "dem": prefix of the campaign's progress lines
-  bool progress = true;   // a line per finished job when jobs run concurrently, and a summary
+  bool progress = true;   // a line per finished job that ran (core/progress.h), and a summary
 };
 
 // Results of every job, in job order, on every rank.

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
 #include <set>
 
@@ -20,12 +21,13 @@ std::string NumberRule::describe() const {
   const std::string what = whole ? "a whole number" : "a finite number";
   const bool has_lo = lo > -kNone, has_hi = hi < kNone;
   std::string range;
+  const std::string hi_shown = hi_text.empty() ? num(hi) : std::string(hi_text);
   if (has_lo && has_hi)
-    range = fmt::format(" in {}{}, {}{}", lo_open ? "(" : "[", num(lo), num(hi), hi_open ? ")" : "]");
+    range = fmt::format(" in {}{}, {}{}", lo_open ? "(" : "[", num(lo), hi_shown, hi_open ? ")" : "]");
   else if (has_lo)
     range = fmt::format(" {} {}", lo_open ? ">" : ">=", num(lo));
   else if (has_hi)
-    range = fmt::format(" {} {}", hi_open ? "<" : "<=", num(hi));
+    range = fmt::format(" {} {}", hi_open ? "<" : "<=", hi_shown);
   std::string out = what + range;
   if (!unit.empty()) out.append(" ").append(unit);
   return out;
@@ -39,6 +41,32 @@ double NumberRule::check(double v) const {
 }
 
 double NumberRule::check(std::string_view typed) const {
+  // A whole number typed as digits is checked exactly (a 64-bit seed has more digits than a
+  // double holds; 2^64 - 1 is a seed, 2^64 is not).
+  const auto fail = [&] {
+    return InputError("", 0, std::string(flag), fmt::format("must be {}, got {}", describe(), shown(typed)));
+  };
+  std::string_view digits = typed;
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  const bool negative = !digits.empty() && digits.front() == '-';
+  if (whole && !digits.empty() && digits.find_first_not_of("0123456789", negative ? 1 : 0) == std::string_view::npos &&
+      digits.size() > (negative ? 1u : 0u)) {
+    long double x = 0;
+    if (negative) {
+      long long n = 0;
+      const auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+      if (ec != std::errc() || p != digits.data() + digits.size()) throw fail();
+      x = static_cast<long double>(n);
+    } else {
+      unsigned long long n = 0;
+      const auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+      if (ec != std::errc() || p != digits.data() + digits.size()) throw fail();
+      x = static_cast<long double>(n);
+    }
+    const long double l = lo, h = hi;
+    if (!(lo_open ? x > l : x >= l) || !(hi_open ? x < h : x <= h)) throw fail();
+    return static_cast<double>(x);
+  }
   const auto v = parse_number(typed);
   if (!v || !std::isfinite(*v))
     throw InputError("", 0, std::string(flag), fmt::format("must be {}, got {}", describe(), shown(typed)));

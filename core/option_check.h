@@ -15,12 +15,17 @@ namespace chutelab::options {
 // A number an option takes: finite, within [lo, hi] (an open end excludes the bound itself), whole
 // when `whole` (1.5 is not a thread count; 2.0 is 2).
 struct NumberRule {
+  constexpr NumberRule() = default;
+  constexpr NumberRule(std::string_view f, double l, double h, bool lo_o, bool hi_o, bool w, std::string_view u = {},
+                       std::string_view h_text = {})
+      : flag(f), lo(l), hi(h), lo_open(lo_o), hi_open(hi_o), whole(w), unit(u), hi_text(h_text) {}
   std::string_view flag;
   double lo = -std::numeric_limits<double>::max();
   double hi = std::numeric_limits<double>::max();
   bool lo_open = false, hi_open = false;
   bool whole = false;
   std::string_view unit;
+  std::string_view hi_text;  // the upper bound as people write it ("2^64"), when its digits would not help
   // Returns v, or throws InputError(flag) saying what the value must be.
   double check(double v) const;
   // The same for a value as typed ("nan", "1e400", "0x10", "5mm"): shown as typed when refused.
@@ -41,7 +46,8 @@ void at_most(std::string_view flag, std::size_t n, std::size_t max, std::string_
 
 // Rules shared by the command line and the Python package.
 namespace rules {
-inline constexpr NumberRule seed{"--seed", 0.0, 18446744073709551615.0, false, false, true, ""};
+// Any 64-bit seed: [0, 2^64), exactly as a double sees it.
+inline constexpr NumberRule seed{"--seed", 0.0, 18446744073709551616.0, false, true, true, "", "2^64"};
 inline constexpr NumberRule noise_scale{"--noise-scale", 0.0, 100.0, false, false, false, ""};
 inline constexpr NumberRule alpha{"--alpha", 1e-6, 0.5, false, false, false, ""};
 // OpenMP threads of a DEM run: 0 is one per idle core.

@@ -158,7 +158,11 @@ void install_interrupt_cleanup() {
       // Holding the lock also waits for a commit in progress to finish: --out is then complete.
       std::lock_guard lock(registry_mutex());
       std::error_code ec;
-      for (const auto& p : registry()) fs::remove_all(p, ec);
+      // The other threads go on until _exit: one may be adding a file to a folder being removed
+      // (remove_all then fails with "not empty"), so each is removed until it is gone, a few times.
+      // What a thread still adds after that is swept by the next run (sweep_dead_staging()).
+      for (const auto& p : registry())
+        for (int attempt = 0; attempt < 5 && fs::exists(fs::symlink_status(p, ec)); ++attempt) fs::remove_all(p, ec);
       const char* msg = signal_message(sig);
       if (msg && !interrupts_quiet()) [[maybe_unused]] const auto n = ::write(2, msg, std::char_traits<char>::length(msg));
       ::_exit(128 + sig);

@@ -1,13 +1,11 @@
 #include "core/rig.h"
 
 #include <algorithm>
-#include <limits>
 
 #include "core/units.h"
 
 namespace chutelab {
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 using units::deg;
 using units::mm;
 

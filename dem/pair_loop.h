@@ -149,7 +149,9 @@ template <class Model>
     const typename Model::Coeffs pc = a.coeffs[static_cast<std::size_t>(pair_kind)];
     // ivdep, not omp simd: under omp simd GCC 12 turns the law's small structs into per-lane
     // arrays and gives up; with ivdep it vectorises the whole law.
+#if !defined(__clang__)  // clang (the fuzz build) does not know the pragma and would warn
 #pragma GCC ivdep
+#endif
     for (std::size_t c = 0; c < n; ++c) gather_contact<Model>(h, c, x, v, w, rad, mass, ii, sh, rl, pc, dt);
   } else {
     for (std::size_t c = 0; c < n; ++c)
@@ -223,7 +225,9 @@ template <class Model>
     const double dt = a.dt;
     // ivdep, not omp simd: under omp simd GCC 12 turns the law's small structs into per-lane
     // arrays and gives up; with ivdep it vectorises the whole law.
+#if !defined(__clang__)
 #pragma GCC ivdep
+#endif
     for (std::size_t c = 0; c < n; ++c) chunk_contact<Model>(h, c, pc, dt);
   } else {
     for (std::size_t c = 0; c < n; ++c)

@@ -78,11 +78,11 @@ double whole_number(const py::object& v, const options::NumberRule& rule) {
     throw InputError("", 0, std::string(rule.flag),
                      fmt::format("must be {}, got {}", rule.describe(), std::string(py::str(py::repr(v)))));
   if (py::isinstance<py::float_>(v)) return rule.check(v.cast<double>());
-  // An int of any size: range-checked as a double first, so a huge one is refused, not wrapped.
+  // An int of any size, checked exactly by its digits (as the command line checks what is typed), so a
+  // huge one is refused, not wrapped.
   const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
   if (!i) throw py::error_already_set();
-  rule.check(PyLong_AsDouble(i.ptr()));
-  return static_cast<double>(i.cast<unsigned long long>());
+  return rule.check(std::string(py::repr(i)));
 }
 
 app::DemCli dem_cli(const std::string& quality, std::optional<int> threads, const std::string& cache,
@@ -263,8 +263,9 @@ void synthesize(const validation::Dataset& source, const std::vector<std::string
                 const py::object& seed_arg, double noise_scale, const std::filesystem::path& out) {
   // The command line's rules, before any work (core/option_check.h).
   const double seed_checked = whole_number(seed_arg, options::rules::seed);
-  const std::uint64_t seed = py::isinstance<py::float_>(seed_arg) ? static_cast<std::uint64_t>(seed_checked)
-                                                                   : seed_arg.cast<std::uint64_t>();
+  const std::uint64_t seed = py::isinstance<py::float_>(seed_arg)
+                                 ? static_cast<std::uint64_t>(seed_checked)
+                                 : py::reinterpret_steal<py::int_>(PyNumber_Index(seed_arg.ptr())).cast<std::uint64_t>();
   options::rules::noise_scale.check(noise_scale);
   if (out.empty()) throw InputError("", 0, "--out", "is empty; give a folder");
   py::gil_scoped_release free;

@@ -201,6 +201,7 @@ std::string table_html(const Table& t) {
     for (const auto& cell : row) {
       std::string cls = cell.left ? "left" : "num";
       if (cell.fail) cls += " fail";
+      else if (cell.beyond) cls += " beyond";
       std::string body = cell.html.empty() ? esc(cell.text) : cell.html;
       if (cell.strong) body = "<strong>" + body + "</strong>";
       if (cell.fail) body += fmt::format(" <span class=\"mark\">{}</span>", kFailMark);
@@ -224,7 +225,7 @@ std::string table_markdown(const Table& t) {
   o += "\n|";
   for (const auto& c : t.columns) o += c.left ? "---|" : "---:|";
   o += "\n";
-  std::vector<std::string> failures;
+  bool any_fail = false, any_beyond = false;
   for (const auto& row : t.rows) {
     o += "|";
     for (std::size_t k = 0; k < row.size(); ++k) {
@@ -232,25 +233,26 @@ std::string table_markdown(const Table& t) {
       std::string body = md_esc(cell.text);
       if (cell.fail) {
         body = fmt::format("**{} {}**", body, kFailMark);
-        const auto& col = t.columns[std::min(k, t.columns.size() - 1)];
-        failures.push_back(fmt::format(
-            "{} {}, {}: {}", kFailMark, md_esc(row.front().text),
-            md_esc(col.group.empty() || !col.group_in_markdown ? col.text : col.group + " " + col.text),
-            md_esc(cell.tip)));
+        any_fail = true;
       } else if (cell.strong) {
         body = fmt::format("**{}**", body);
+      }
+      if (cell.beyond && !cell.fail) {
+        body += std::string(" ") + std::string(kBeyondMark);
+        any_beyond = true;
       }
       o += fmt::format(" {} |", body);
     }
     o += "\n";
   }
   o += "\n";
-  if (!failures.empty()) {
-    o += "Outside tolerance:\n\n";
-    for (const auto& f : failures) o += "- " + f + "\n";
-    o += "\n";
-  }
   for (const auto& n : t.notes) o += md_esc(n) + "\n\n";
+  if (any_fail)
+    o += fmt::format("{} = outside tolerance; every such value, with its limit, is listed under \"Outside "
+                     "tolerance\".\n\n",
+                     kFailMark);
+  if (any_beyond)
+    o += fmt::format("{} = the value is more than 2 u_val from the measurement (|E/u_val| > 2).\n\n", kBeyondMark);
   return o;
 }
 

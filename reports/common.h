@@ -97,6 +97,7 @@ struct Cell {
   std::string tip{};    // HTML title / Markdown footnote (e.g. the tolerance limit)
   bool left = false;    // text column (numbers are right-aligned)
   bool strong = false;
+  bool beyond = false;  // |E/u_val| > 2: more than the stated uncertainties explain (highlighted)
 };
 
 struct Column {
@@ -129,6 +130,7 @@ std::optional<Table> merge_before_after(const Table& before, const Table& after,
 
 inline constexpr std::string_view kDash = "\u2014";   // no value
 inline constexpr std::string_view kFailMark = "\u2717";  // outside tolerance
+inline constexpr std::string_view kBeyondMark = "!";      // |E/u_val| > 2 (report.md)
 
 // ---- Sections' building blocks (one file each) ------------------------------------------------
 

@@ -11,7 +11,7 @@ namespace chutelab::reports {
 
 namespace {
 const char* kTable6 =
-    "Sensitivity (seed Table 6): LSD vs Hertz-Mindlin, sphere vs two-sphere clump, dt = t_c/10 vs t_c/20 and "
+    "Sensitivity (the reference study's Table 6): LSD vs Hertz-Mindlin, sphere vs two-sphere clump, dt = t_c/10 vs t_c/20 and "
     "shear modulus x10 or /10 change the mean plate force little; larger particles give a similar mean force "
     "with larger fluctuations.";
 const char* kMeanClaim = "contact model, shape, time step and G change the mean R by no more than the limit";
@@ -53,7 +53,7 @@ validation::SeedFinding sensitivity_finding(const SensitivityStudy* s, std::stri
                                                     fmt::join(fl, ", "), v.size_mean_spread,
                                                     all_sizes ? std::string()
                                                               : fmt::format("; not run: {} (so not decided over the "
-                                                                            "seed's sizes)", fmt::join(out, ", ")))
+                                                                            "reference study's sizes)", fmt::join(out, ", ")))
                                       : "fewer than two particle sizes ran"});
     f.claims.back().undecided = v.size_tested && v.fluctuation_grows && !all_sizes;
   }
@@ -64,7 +64,7 @@ validation::SeedFinding sensitivity_finding(const SensitivityStudy* s, std::stri
 Table findings_table(const std::vector<validation::SeedFinding>& findings) {
   Table t;
   t.id = "seed-findings";
-  t.caption = "The seed's qualitative findings (Grima and Wypych 2010), checked on this dataset";
+  t.caption = "The reference study's qualitative findings (Grima and Wypych 2010), checked on this dataset";
   t.columns = {{"", "#", "", true}, {"", "finding", "", true}, {"", "verdict", "", true},
                {"", "claim", "", true}, {"", "holds", "", true}, {"", "evidence", "", true}};
   for (const auto& f : findings) {

@@ -167,7 +167,7 @@ std::string rms_bar_chart(const Context& c, const validation::ValidationResult& 
 
   std::vector<LegendEntry> legend{{LegendEntry::Kind::box, "models as they are", std::string(kBefore)},
                                   {LegendEntry::Kind::box, "with effects (model colour)", c.colour(pairs.front().model)},
-                                  {LegendEntry::Kind::line, "noise level (E/u RMS = 1)", "#444", "5 3"}};
+                                  {LegendEntry::Kind::line, "noise level (RMS E/u_val = 1)", "#444", "5 3"}};
   const double W = 620.0;
   const double lh = legend_height(W - 100, legend);
   Frame f{78.0, 30.0 + lh + 10.0, W - 78.0 - 16.0, 220.0};
@@ -177,7 +177,7 @@ std::string rms_bar_chart(const Context& c, const validation::ValidationResult& 
   svg.legend(f.left, 28.0, W - 100, legend);
   Ticks yt = log ? log_ticks(std::min(lo, 1.0) * 0.9, hi * 1.1) : nice_ticks(0.0, std::max(hi, 1.0) * 1.08, 6);
   const Scale y{log ? yt.lo : 0.0, yt.hi, f.bottom(), f.top, log};
-  svg.y_axis(f, y, yt, log ? "RMS E/u (–), log scale" : "RMS E/u (–)");
+  svg.y_axis(f, y, yt, log ? "RMS E/u_val (–), log scale" : "RMS E/u_val (–)");
   svg.line(f.left, f.bottom(), f.right(), f.bottom(), "stroke=\"#444\"");
   svg.line(f.left, y(1.0), f.right(), y(1.0), "stroke=\"#444\" stroke-dasharray=\"5 3\"");
   const double gw = f.width / static_cast<double>(pairs.size());
@@ -191,7 +191,7 @@ std::string rms_bar_chart(const Context& c, const validation::ValidationResult& 
       }
       const double yv = y(std::max(*v, log ? yt.lo : 0.0));
       svg.rect(x, yv, bw, f.bottom() - yv, fmt::format("fill=\"{}\" class=\"bar\"", colour),
-               fmt::format("{} {}: RMS E/u = {:.3g}", pairs[i].model, what, *v));
+               fmt::format("{} {}: RMS E/u_val = {:.3g}", pairs[i].model, what, *v));
       svg.text(x + bw / 2, yv - 4, fixed(*v, *v >= 100 ? 0 : 2), "middle", "font-size=\"11\"");
     };
     bar(pairs[i].b, cx - bw - 2, kBefore, "as they are");

@@ -1,5 +1,5 @@
-// Normalised errors E/u per condition and quantity, with the band that measurement noise explains
-// (|E/u| <= 2), so a reader sees which model fails where, and whether the failure follows belt
+// Normalised errors E/u_val per condition and quantity, with the band the stated uncertainties
+// explain (|E/u_val| <= 2), so a reader sees which model fails where, and whether the failure follows belt
 // speed or mass flow (conditions run left to right in that order). The trend table puts a number
 // on the second question.
 #include <algorithm>
@@ -87,7 +87,7 @@ std::vector<Point> points_of(const Context& c, const validation::ValidationResul
       const auto& cmp = *x->cmp;
       std::string tip = fmt::format("{}, {}, {}", cmp.condition, cmp.model, qn.symbol);
       if (cmp.boundary) tip += fmt::format(" at x = {:.0f} mm", cmp.x * 1e3);
-      tip += fmt::format(": E/u = {:+.2f} (E = {:+.3g} {})", x->z, cmp.error() * qn.scale, qn.unit);
+      tip += fmt::format(": E/u_val = {:+.2f} (E = {:+.3g} {})", x->z, cmp.error() * qn.scale, qn.unit);
       if (x->fail) tip += "; outside tolerance: " + cmp.verdict.limit;
       if (raw.size() > kDrawnPerCondition)
         tip += fmt::format(" (one of {} values here, {} drawn; all in errors.csv)", raw.size(), kDrawnPerCondition);
@@ -180,7 +180,7 @@ std::string residual_chart(const Context& c, const validation::ValidationResult&
   const auto& models = sc.models;
   std::vector<LegendEntry> legend;
   for (const auto& m : models) legend.push_back({LegendEntry::Kind::marker, m, c.colour(m), "", c.shape(m), true});
-  legend.push_back({LegendEntry::Kind::box, "|E/u| ≤ 2 (measurement noise)", std::string(kBandColour)});
+  legend.push_back({LegendEntry::Kind::box, "|E/u_val| ≤ 2 (within the uncertainties)", std::string(kBandColour)});
   if (sc.beyond)
     legend.push_back({LegendEntry::Kind::marker, fmt::format("beyond ±{:.0f}: drawn at the edge, value printed", L),
                       "#666", "", Shape::triangle_up, false});
@@ -197,8 +197,8 @@ std::string residual_chart(const Context& c, const validation::ValidationResult&
   const std::size_t rows = (panels.size() + cols - 1) / cols;
   const double H = head + ph * static_cast<double>(rows) + 6.0;
   Svg svg(W, H, "plot residual-chart", id, "Normalised errors per condition and quantity");
-  svg.title(W < 900.0 ? "Normalised error E/u per condition and quantity"
-                      : "Normalised error E/u per condition and quantity (E = predicted − measured, u = 1 sd of the measurement)");
+  svg.title(W < 900.0 ? "Normalised error E/u_val per condition and quantity"
+                      : "Normalised error E/u_val per condition and quantity (E = predicted − measured, u_val = V&V 20 uncertainty)");
   svg.legend(20.0, 28.0, W - 40, legend);
 
   const Ticks yt = inner_ticks(-L, L, L > 5 ? 5 : 7);
@@ -213,7 +213,7 @@ std::string residual_chart(const Context& c, const validation::ValidationResult&
     svg.markup(f.left, oy + 16, fmt::format("{} — {} ({})", symbol_svg(p.qn.symbol), esc(p.qn.label), esc(p.qn.unit)),
                "start", "font-size=\"12\" font-weight=\"600\"");
     svg.rect(f.left, y(2.0), f.width, y(-2.0) - y(2.0), fmt::format("fill=\"{}\"", kBandColour));
-    svg.y_axis(f, y, yt, "E/u (–)");
+    svg.y_axis(f, y, yt, "E/u_val (–)");
     svg.line(f.left, y(0.0), f.right(), y(0.0), "stroke=\"#777\" stroke-width=\"1\"");
     svg.rect(f.left, f.top, f.width, f.height, "fill=\"none\" stroke=\"#444\"");
     if (p.points.empty())
@@ -283,7 +283,7 @@ std::string residual_change_chart(const Context& c, const validation::Validation
   for (const auto& m : sc.models) legend.push_back({LegendEntry::Kind::marker, m, c.colour(m), "", c.shape(m), true});
   legend.push_back({LegendEntry::Kind::marker, "hollow: models as they are", "#555", "", Shape::circle, false});
   legend.push_back({LegendEntry::Kind::marker, "filled: with effects", "#555", "", Shape::circle, true});
-  legend.push_back({LegendEntry::Kind::box, "|E/u| ≤ 2", std::string(kBandColour)});
+  legend.push_back({LegendEntry::Kind::box, "|E/u_val| ≤ 2", std::string(kBandColour)});
   if (sc.beyond)
     legend.push_back({LegendEntry::Kind::marker, fmt::format("beyond ±{:.0f}: at the edge", L), "#666", "",
                       Shape::triangle_up, false});
@@ -297,7 +297,7 @@ std::string residual_change_chart(const Context& c, const validation::Validation
   const std::size_t rows = (sc.quantities.size() + cols - 1) / cols;
   const double H = head + ph * static_cast<double>(rows) + 24.0;
   Svg svg(W, H, "plot residual-change-chart", id, "Normalised errors before and after adding the effects");
-  svg.title("Normalised error E/u per condition: as the models are (hollow) and with the effects (filled)");
+  svg.title("Normalised error E/u_val per condition: as the models are (hollow) and with the effects (filled)");
   svg.legend(20.0, 28.0, W - 40, legend);
 
   const Ticks yt = inner_ticks(-L, L, 5);
@@ -315,7 +315,7 @@ std::string residual_change_chart(const Context& c, const validation::Validation
     svg.markup(f.left, oy + 13, fmt::format("{} — {}", symbol_svg(qn.symbol), esc(shorten(qn.label, 34))), "start",
                "font-size=\"11\" font-weight=\"600\"");
     svg.rect(f.left, y(2.0), f.width, y(-2.0) - y(2.0), fmt::format("fill=\"{}\"", kBandColour));
-    svg.y_axis(f, y, yt, "E/u (–)");
+    svg.y_axis(f, y, yt, "E/u_val (–)");
     svg.line(f.left, y(0.0), f.right(), y(0.0), "stroke=\"#777\" stroke-width=\"1\"");
     svg.rect(f.left, f.top, f.width, f.height, "fill=\"none\" stroke=\"#444\"");
     condition_labels(svg, c, f, 1, 9.0);
@@ -334,7 +334,7 @@ std::string residual_change_chart(const Context& c, const validation::Validation
         const auto it = z_after.find(key(cmp));
         std::string tip = fmt::format("{}, {}, {}", cmp.condition, m, qn.symbol);
         if (cmp.boundary) tip += fmt::format(" at x = {:.0f} mm", cmp.x * 1e3);
-        tip += fmt::format(": E/u {:+.2f}", *zb);
+        tip += fmt::format(": E/u_val {:+.2f}", *zb);
         if (it != z_after.end()) tip += fmt::format(" → {:+.2f} with effects", it->second);
         const double yb = at(y, f, *zb);
         if (it != z_after.end()) {
@@ -362,7 +362,7 @@ Table trend_table(const Context& c, const validation::ValidationResult& r, std::
   t.columns = {{"", "model", "", true},
                {"", "quantity", "", true},
                {"", "n", "", false},
-               {"", "mean E/u", "mean <i>E</i>/<i>u</i>", false},
+               {"", "mean E/u_val", "mean <i>E</i>/<i>u</i><sub>val</sub>", false},
                {"", "r (belt speed)", "", false},
                {"", "r (mass flow)", "", false},
                {"", "reading", "", true}};
@@ -395,7 +395,7 @@ Table trend_table(const Context& c, const validation::ValidationResult& r, std::
         if (!rr || std::abs(*rr) < kStrong || z.size() < 4) return;
         if (ra && std::abs(*ra) >= 0.5)
           reading.push_back(fmt::format("misfit {} with {}", *ra > 0 ? "grows" : "shrinks", driver));
-        else reading.push_back(fmt::format("E/u {} with {}", *rr > 0 ? "rises" : "falls", driver));
+        else reading.push_back(fmt::format("E/u_val {} with {}", *rr > 0 ? "rises" : "falls", driver));
       };
       trend(rv, av, "belt speed");
       trend(rf, af, "mass flow");
@@ -421,8 +421,8 @@ Table trend_table(const Context& c, const validation::ValidationResult& r, std::
       v.push_back(row.station->belt_speed);
       f.push_back(row.station->mass_flow);
     }
-  t.notes.push_back(fmt::format("r = Pearson correlation of E/u with the operating variable over the "
-                                "compared values; |r| ≥ {:.1f} is named, as growing or shrinking when |E/u| follows it too "
+  t.notes.push_back(fmt::format("r = Pearson correlation of E/u_val with the operating variable over the "
+                                "compared values; |r| ≥ {:.1f} is named, as growing or shrinking when |E/u_val| follows it too "
                                 "(a hint with few conditions, not a test).",
                                 kStrong));
   if (const auto rvf = pearson(v, f); rvf && std::abs(*rvf) > 0.5)

@@ -9,7 +9,10 @@
 #include <stdexcept>
 
 #include "reports/common.h"
+#include "reports/plain_summary.h"
 #include "reports/studies.h"
+#include "validation/failed_values.h"
+#include "validation/quantity_misfit.h"
 
 namespace chutelab::reports {
 namespace {
@@ -18,7 +21,7 @@ using validation::ValidationResult;
 
 // Both renderers walk the same list of blocks.
 struct Block {
-  enum class Kind { heading, paragraph, list, table, figure, verdict, definition, pair } kind{};
+  enum class Kind { heading, paragraph, list, table, figure, verdict, warning, definition, pair } kind{};
   int level = 2;                    // headings
   std::string id{};                 // headings: anchor
   std::string text{};               // plain text (headings, paragraphs, verdict, definition term)
@@ -30,6 +33,7 @@ struct Block {
   // pair: the same blocks for the models as they are and with effects, which report.html shows
   // side by side; `merged` is what report.md shows instead (empty: the two one after the other).
   std::vector<Block> before{}, after{}, merged{};
+  bool folded = false;              // level-2 headings: report.html shows the section closed
 };
 
 // report.md cannot put two tables side by side: a pair becomes one table per table with before and
@@ -96,6 +100,14 @@ class Doc {
     blocks.push_back(std::move(b));
   }
   void verdict(std::string text) { blocks.push_back({Block::Kind::verdict, 0, {}, std::move(text)}); }
+  void warning(std::string text) {
+    if (!text.empty()) blocks.push_back({Block::Kind::warning, 0, {}, std::move(text)});
+  }
+  // A section whose detail the reader opens when wanted (report.html: a closed <details>).
+  void folded_h2(std::string id, std::string text) {
+    h(2, std::move(id), std::move(text));
+    blocks.back().folded = true;
+  }
   // `id`: the HTML element holding both columns.
   void pair(std::string id, Doc before, Doc after, const std::string& after_title) {
     Block b{Block::Kind::pair};
@@ -130,12 +142,55 @@ std::vector<Variant> variants(const ReportInput& in) {
   return v;
 }
 
-// Before/after block: what was added, its physics, and how far the misfit fell.
-// `described`: effects whose physics the page already shows (the recommended one).
-void before_after(Doc& d, const Context& c, int level, const std::vector<std::string>& described = {}) {
+// What the effects change, quantity by quantity, in the quantity's unit or in per cent: the mean
+// error and the worst one, before and after.
+Table change_in_words(const validation::Dataset& d, const ValidationResult& before, const ValidationResult& after) {
+  Table t;
+  t.id = "change-in-words";
+  t.caption = "What the effects change: mean and worst error per quantity";
+  t.columns = {{"", "quantity", "", true},      {"", "judged by", "", true},   {"", "mean error before", "", false},
+               {"", "mean error after", "", false}, {"", "worst before", "", true}, {"", "worst after", "", true}};
+  const auto after_all = validation::quantity_misfits(after);
+  for (const auto& b : validation::quantity_misfits(before)) {
+    const auto a = validation::find_misfit(after_all, b.quantity);
+    auto worst = [&](const validation::QuantityMisfit& m) {
+      Cell c{fmt::format("{} at {}", validation::signed_amount(m, m.worst_error), condition_words(d, m.worst_condition)),
+             "", false, "", true};
+      c.beyond = std::abs(m.worst_normalised) > 2.0;
+      return c;
+    };
+    Cell mb{validation::signed_amount(b, b.mean_error)}, ma{a ? validation::signed_amount(*a, a->mean_error)
+                                                               : std::string(kDash)};
+    mb.beyond = b.beyond_noise;
+    ma.beyond = a && a->beyond_noise;
+    t.rows.push_back({{b.label + (b.quantity.starts_with("trajectory_") ? "" : " " + b.symbol), "", false, "", true},
+                      {b.model, "", false, "", true},
+                      mb,
+                      ma,
+                      worst(b),
+                      a ? worst(*a) : Cell{std::string(kDash)}});
+  }
+  t.notes.push_back("Error = predicted − measured, in per cent of the measured value for forces and speeds and in mm "
+                    "for heights; each value judged by the first model that predicts it. Highlighted: more than the "
+                    "stated uncertainties explain (a mean beyond the noise, a value beyond 2 u_val).");
+  return t;
+}
+
+// Before/after: what was added, its physics, every E/u_val before and after, and how far the
+// misfit fell. `described`: effects whose physics the page already shows (the recommended one).
+void before_after(Doc& d, const Context& c, const std::vector<std::string>& described = {}) {
   const ReportInput& in = c.in;
   if (!in.with_effects) return;
-  d.h(level, "before-after", "Before and after adding the effects");
+  std::vector<std::string> names;
+  for (const auto& e : in.effects) names.push_back(e.name);
+  d.h(2, "before-after",
+      names.empty() ? std::string("Before and after adding the effects")
+                    : fmt::format("Before and after adding {}", fmt::join(names, " and ")));
+  const std::string change = residual_change_chart(c, *in.baseline, *in.with_effects, "resid-change");
+  if (!change.empty())
+    d.figure(change, "Each compared value's E/u_val as the models are (hollow) and with the effects (filled), "
+                     "joined by a line.");
+  d.table(change_in_words(*in.dataset, *in.baseline, *in.with_effects));
   d.table(effects_table(in.effects));
   for (const auto& e : in.effects) {
     if (std::find(described.begin(), described.end(), e.name) != described.end()) continue;
@@ -146,12 +201,8 @@ void before_after(Doc& d, const Context& c, int level, const std::vector<std::st
   d.table(rms_change_table(c, *in.baseline, *in.with_effects));
   const std::string chart = rms_bar_chart(c, *in.baseline, *in.with_effects, "rms-before-after");
   if (!chart.empty())
-    d.figure(chart, "RMS normalised error per model (all compared values), before and after; the dashed line "
-                    "is what measurement noise alone gives.");
-  const std::string change = residual_change_chart(c, *in.baseline, *in.with_effects, "resid-change");
-  if (!change.empty())
-    d.figure(change, "Each compared value's E/u as the models are (hollow) and with the effects (filled), joined "
-                     "by a line; the full charts are side by side under \u201cWhere each model fails\u201d.");
+    d.figure(chart, "RMS E/u_val per model (all compared values), before and after; the dashed line is what the "
+                    "stated uncertainties alone give.");
 }
 
 // A section drawn once per variant. Without effects, just the models as they are; with effects a
@@ -172,17 +223,16 @@ void per_variant(Doc& d, const std::vector<Variant>& vs, const std::string& sect
   d.pair(section + "-pair", std::move(before), std::move(after), vs[1].title);
 }
 
+// The diagnosis's evidence: which candidate explains the misfit, how well, and what else could.
+// Its verdict heads the report and its "where the models fail" sentences sit under the residual
+// chart; this section holds the rest of DiagnosisResult.
 void what_is_missing(Doc& d, const Context& c) {
   const auto& g = *c.in.diagnosis;
-  d.h(2, "missing", "What is missing");
-  d.verdict(g.verdict);
+  d.h(2, "missing", "What is missing: the candidate effects");
   d.p(fmt::format("Models: {}; {} data with uncertainties ({} without, left out of χ²); χ² of the models as "
                   "they are: {:.1f} (chance of this much from noise alone: p = {:.2g}).",
                   fmt::join(g.models, ", "), g.n_data, g.n_without_uncertainty, g.chi2_baseline,
                   g.baseline_p_value));
-  d.h(3, "missing-failures", "Where the models fail");
-  if (g.failure_summary.empty()) d.p("Every quantity is within about two uncertainties of its measurement.");
-  d.list(g.failure_summary);
   d.h(3, "missing-ranking", "Which effect explains the misfit");
   const std::string chart = ranking_chart(g, "ranking-chart");
   if (!chart.empty())
@@ -222,7 +272,6 @@ void what_is_missing(Doc& d, const Context& c) {
     d.p("No candidate effect is significant: none of the library's effects explains the misfit better than "
         "chance would.");
   }
-  before_after(d, c, 3, g.best() ? g.best()->effects : std::vector<std::string>{});
   if (!g.indistinguishable.empty() || !g.discriminators.empty()) {
     d.h(3, "missing-alternatives", "Alternatives the data cannot tell apart");
     if (!g.indistinguishable.empty())
@@ -235,86 +284,142 @@ void what_is_missing(Doc& d, const Context& c) {
   }
 }
 
+// Every value outside its tolerance, with the limit in the quantity's unit.
+Table failure_table(const validation::ValidationResult& r) {
+  Table t;
+  t.id = "failures-table";
+  t.caption = "Values outside tolerance";
+  t.key_columns = 3;
+  t.columns = {{"", "condition", "", true}, {"", "model", "", true},     {"", "quantity", "", true},
+               {"", "measured", "", false}, {"", "predicted", "", false}, {"", "error", "", false},
+               {"", "allowed error (limit)", "", true}};
+  for (const auto& f : validation::failed_values(r))
+    t.rows.push_back({{f.condition, "", false, "", true},
+                      {f.model, "", false, "", true},
+                      {f.quantity, "", false, "", true},
+                      {f.measured},
+                      {f.predicted},
+                      {f.error},
+                      {f.limit, "", false, "", true}});
+  t.notes.push_back("Error = predicted − measured, in the quantity's unit and in per cent of the measured value; the "
+                    "limit is the largest error the tolerance allows for that value.");
+  return t;
+}
+
 Doc assemble(const ReportInput& in) {
   if (!in.dataset || !in.baseline) throw std::invalid_argument("report: dataset and baseline are required");
   const Context c = make_context(in);
   const auto vs = variants(in);
+  const ValidationResult& last = in.with_effects ? *in.with_effects : *in.baseline;
   Doc d;
 
-  // ---- Header: what was compared (no date: the report is a function of its inputs) ----
-  std::vector<std::string> meta;
+  // ---- The story first: what was compared, the verdict in words, and the warning if any ----
+  // (No date: the report is a function of its inputs.)
+  const std::string folder =
+      in.baseline->dataset_folder.empty() ? in.baseline->dataset_name : in.baseline->dataset_folder;
+  d.h(1, "top", "chutelab validation report: " + folder);
   {
-    const std::string folder = in.dataset->dir.filename().string();
-    meta.push_back("Dataset: " + in.baseline->dataset_name +
-                   (folder.empty() || folder == in.baseline->dataset_name ? std::string() : " (folder " + folder + ")"));
+    std::vector<std::string> meta;
+    meta.push_back(fmt::format("Dataset: {}{}; {} conditions, {} measured values, {} trajectory points", folder,
+                               folder == in.baseline->dataset_name ? std::string()
+                                                                   : " (rig " + in.baseline->dataset_name + ")",
+                               c.conditions.size() + c.conditions_left_out, in.dataset->measurements.size(),
+                               in.dataset->trajectory.size()));
+    meta.push_back(fmt::format("Models: {}; effects: {}", fmt::join(in.baseline->models, ", "),
+                               in.with_effects ? effects_label(*in.with_effects) : std::string("none")));
+    if (last.acceptance_checked)
+      meta.push_back(last.acceptance_failed
+                         ? fmt::format("Acceptance: FAILED, {} of {} checked values outside tolerance (marked ✗)",
+                                       last.failed_count(), last.checked_count())
+                         : fmt::format("Acceptance: passed, {} values checked", last.checked_count()));
+    else
+      meta.push_back("Acceptance: no tolerances set");
+    if (c.conditions_left_out > 0)
+      meta.push_back(fmt::format("Shown: the {} conditions of largest misfit (largest |E/u_val|) in every "
+                                 "per-condition table and chart; {} more are in predictions.csv and errors.csv and in "
+                                 "every summary statistic",
+                                 c.conditions.size(), c.conditions_left_out));
+    d.list(meta);
   }
-  if (!in.dataset->setup.source.empty()) meta.push_back("Source: " + in.dataset->setup.source);
-  meta.push_back(fmt::format("Conditions: {}; measured values: {}; trajectory points: {}", c.conditions.size(),
-                             in.dataset->measurements.size(), in.dataset->trajectory.size()));
-  if (c.conditions_left_out > 0)
-    meta.push_back(fmt::format("Shown: the {} conditions of largest misfit (largest |E/u|) in every per-condition table "
-                               "and chart; {} more are in predictions.csv and errors.csv and in every summary statistic",
-                               c.conditions.size(), c.conditions_left_out));
-  meta.push_back(fmt::format("Models: {}", fmt::join(in.baseline->models, ", ")));
-  meta.push_back("Effects: " + (in.with_effects ? effects_label(*in.with_effects) : std::string("none")));
-  if (in.baseline->acceptance_checked || (in.with_effects && in.with_effects->acceptance_checked)) {
-    const auto& last = in.with_effects ? *in.with_effects : *in.baseline;
-    meta.push_back(std::string("Acceptance: ") + (last.acceptance_failed ? "FAILED (values outside tolerance are marked ✗)"
-                                                                          : "passed (every checked value within tolerance)"));
-    for (const auto& p : last.acceptance_problems) meta.push_back("Acceptance problem: " + p);
+  std::string words;
+  for (const auto& sentence : in_short(in)) words += (words.empty() ? "" : " ") + sentence;
+  if (in.diagnosis) {
+    d.verdict(in.diagnosis->verdict);
+    d.p(words);
   } else {
-    meta.push_back("Acceptance: no tolerances set");
+    d.verdict(words);
   }
-  d.h(1, "top", "chutelab validation report: " + in.baseline->dataset_name);
-  d.list(meta);
-  if (in.diagnosis) d.verdict(in.diagnosis->verdict);  // the headline; details under "What is missing"
-  if (!in.notes.empty()) {
-    d.h(2, "notes", "Notes");
-    d.list(in.notes);
+  d.warning(effect_choice_warning(in));
+
+  // ---- Where the models fail: the models as they are, every E/u_val ----
+  d.h(2, "residuals", "Where the models fail");
+  {
+    const std::string chart = residual_chart(c, *in.baseline, "resid-base", 980.0);
+    if (chart.empty()) d.p("No compared value has a stated uncertainty: no normalised error to show.");
+    else
+      d.figure(chart, "E/u_val per condition and quantity for the models as they are, conditions ordered by belt "
+                      "speed, then mass flow: inside the shaded band (|E/u_val| ≤ 2) the difference is what the "
+                      "stated uncertainties explain; outside it the model misses something.");
+    if (in.diagnosis) {
+      if (in.diagnosis->failure_summary.empty())
+        d.p("Every quantity is within about two uncertainties of its measurement.");
+      d.list(in.diagnosis->failure_summary);
+    } else {
+      std::vector<std::string> lines;
+      for (auto l : misfit_lines(in, 12)) lines.push_back(l.erase(0, l.find_first_not_of(' ')));
+      d.list(lines);
+    }
   }
 
-  // ---- Summary ----
-  d.h(2, "summary", "Summary");
+  // ---- Values outside tolerance (the CI's question) ----
+  if (last.acceptance_checked && (last.acceptance_failed || !last.acceptance_problems.empty())) {
+    d.h(2, "failures", "Outside tolerance");
+    const Table failed = failure_table(last);
+    if (failed.rows.empty()) d.p("No value is outside its limits; acceptance failed for the reasons below.");
+    d.table(failed);
+    std::vector<std::string> problems;
+    for (const auto& p : last.acceptance_problems) problems.push_back("Acceptance problem: " + p);
+    d.list(problems);
+  }
+
+  // ---- What an added effect changes, then the diagnosis's evidence ----
+  before_after(d, c, in.diagnosis && in.diagnosis->best() ? in.diagnosis->best()->effects : std::vector<std::string>{});
+  if (in.diagnosis) what_is_missing(d, c);
+
+  // ---- The detail ----
+  d.h(2, "summary", "Summary per model and quantity");
   {
     std::vector<std::string> lines;
     for (const auto& v : vs)
       for (const auto& m : v.result->models)
         if (auto z = v.result->overall_rms_normalised(m))
-          lines.push_back(fmt::format("{} — {}: RMS normalised error {:.2f} over all compared values{}", v.title, m, *z,
-                                      *z > 2.0 ? " (more than measurement noise explains)" : ""));
+          lines.push_back(fmt::format("{} — {}: RMS E/u_val {:.2f} over all compared values{}", v.title, m, *z,
+                                      *z > 2.0 ? " (more than the stated uncertainties explain)" : ""));
     d.list(lines);
   }
   per_variant(d, vs, "summary", [&](Doc& x, const Variant& v, const ValidationResult*) {
     x.table(summary_table(*v.result, "summary-table-" + v.suffix));
   });
 
-  // ---- V&V 20: the parts of the validation uncertainty ----
-  d.h(2, "vv20", "Validation uncertainty (V&V 20)");
-  d.list(vv20_not_estimated(*in.dataset, *in.baseline));
-  d.table(vv20_table(c, *in.baseline, "vv20-table"));
-
-  if (in.diagnosis) what_is_missing(d, c);
-  else if (in.with_effects) before_after(d, c, 2);
-
-  // ---- Seed Table 4 and Fig. 6 ----
+  // ---- Reference study Table 4 and Fig. 6 ----
   d.h(2, "forces", "Plate forces");
   per_variant(d, vs, "forces", [&](Doc& x, const Variant& v, const ValidationResult* other) {
     x.table(force_table(c, *v.result, "table4-" + v.suffix));
     const std::string chart =
         force_bar_chart(c, *v.result, "bars-" + v.suffix, other ? kPairChartWidth : 960.0, other);
     if (!chart.empty())
-      x.figure(chart, "Resultant plate force R per condition (cf. seed Fig. 6); error bars: ±1 sd of the "
-                      "measurement.");
+      x.figure(chart, "Resultant plate force R per condition (cf. the reference study's Fig. 6); error bars: ±1 sd "
+                      "of the measurement.");
     else x.p("Neither measured nor predicted: the resultant force R.");
   });
 
-  // ---- Seed Table 5 ----
+  // ---- Reference study Table 5 ----
   d.h(2, "velocities", "Stream velocities and impact point");
   per_variant(d, vs, "velocities", [&](Doc& x, const Variant& v, const ValidationResult*) {
     x.table(velocity_table(c, *v.result, "table5-" + v.suffix));
   });
 
-  // ---- Seed Fig. 7 ----
+  // ---- Reference study Fig. 7 ----
   d.h(2, "trajectories", "Stream trajectories");
   d.p("Each panel: the head pulley at the origin, the plate face, each model's streamlines, the measured stream "
       "points (± 1 sd) and the measured and predicted impact points on the plate face. Equal scales on both "
@@ -323,21 +428,18 @@ Doc assemble(const ReportInput& in) {
       "measured one with its ± 1 sd.");
   per_variant(d, vs, "trajectories", [&](Doc& x, const Variant& v, const ValidationResult* other) {
     x.figure(trajectory_grid(c, *v.result, "traj-" + v.suffix, other ? kPairChartWidth : 980.0),
-             "Stream trajectories per condition (cf. seed Fig. 7)");
+             "Stream trajectories per condition (cf. the reference study's Fig. 7)");
   });
 
-  // ---- Residuals ----
-  d.h(2, "residuals", "Where each model fails");
-  d.p("Normalised error E/u per condition and quantity, conditions ordered by belt speed, then mass flow. "
-      "Inside the shaded band (|E/u| ≤ 2) the difference is what measurement noise gives; outside it the model "
-      "misses something.");
-  per_variant(d, vs, "residuals", [&](Doc& x, const Variant& v, const ValidationResult* other) {
-    const std::string chart =
-        residual_chart(c, *v.result, "resid-" + v.suffix, other ? kPairChartWidth : 980.0, other);
-    if (chart.empty()) x.p("No compared value has a stated uncertainty: no normalised error to show.");
-    else x.figure(chart, other ? "Normalised error E/u per condition and quantity (E = predicted − measured, u = 1 sd "
-                                 "of the measurement); both columns on one scale."
-                               : "");
+  // ---- Residual trends (and, with effects, both residual charts on one scale) ----
+  d.h(2, "trends", in.with_effects ? "Residuals before and after, and their trends" : "Residual trends");
+  per_variant(d, vs, "trends", [&](Doc& x, const Variant& v, const ValidationResult* other) {
+    if (other) {
+      const std::string chart = residual_chart(c, *v.result, "resid-" + v.suffix + "-pair", kPairChartWidth, other);
+      if (!chart.empty())
+        x.figure(chart, "E/u_val per condition and quantity (E = predicted − measured, u_val = V&V 20 validation "
+                        "uncertainty); both columns on one scale.");
+    }
     x.table(trend_table(c, *v.result, "trends-" + v.suffix));
   });
 
@@ -358,14 +460,18 @@ Doc assemble(const ReportInput& in) {
   }
 
   if (in.findings && !in.findings->empty()) {
-    d.h(2, "findings", "The seed's findings");
+    d.h(2, "findings", "The reference study's findings");
     d.table(findings_table(*in.findings));
   }
 
   // ---- Provenance of the numbers ----
-  const Table notes = model_notes_table(c, in.with_effects ? *in.with_effects : *in.baseline, "model-notes");
-  if (!notes.rows.empty()) {
+  const Table notes = model_notes_table(c, last, "model-notes");
+  if (!notes.rows.empty() || !in.notes.empty() || !in.dataset->setup.source.empty()) {
     d.h(2, "provenance", "How the numbers were obtained");
+    std::vector<std::string> lines;
+    if (!in.dataset->setup.source.empty()) lines.push_back("Dataset source: " + in.dataset->setup.source);
+    for (const auto& n : in.notes) lines.push_back(n);
+    d.list(lines);
     d.table(notes);
   }
   // ---- Studies run beside the validation (reports/studies.h) ----
@@ -375,6 +481,20 @@ Doc assemble(const ReportInput& in) {
     for (const auto& p : s.paragraphs) d.p(p);
     d.table(s.table);
     if (!s.chart_svg.empty()) d.figure(s.chart_svg, s.caption);
+  }
+
+  // ---- Appendix: V&V 20, the parts of the validation uncertainty ----
+  d.folded_h2("vv20", "Appendix: validation uncertainty (V&V 20)");
+  d.p("E = S − D (prediction minus data); u_val = sqrt(u_D² + u_num² + u_input²), the measurement's, the model's "
+      "numerical and the inputs' standard uncertainties combined; |E|/u_val ≤ 2 is agreement within them.");
+  d.list(vv20_not_estimated(*in.dataset, *in.baseline));
+  if (!in.with_effects) {
+    d.table(vv20_table(c, *in.baseline, "vv20-table"));
+  } else {
+    d.h(3, "vv20-base", "The models as they are");
+    d.table(vv20_table(c, *in.baseline, "vv20-table"));
+    d.h(3, "vv20-effects", "With effects: " + effects_label(*in.with_effects));
+    d.table(vv20_table(c, *in.with_effects, "vv20-table-effects"));
   }
   return d;
 }
@@ -393,16 +513,20 @@ nav.toc { font-size: 13px; margin: 10px 0 0; }
 nav.toc a { margin-right: 14px; color: #0b5394; text-decoration: none; }
 .meta { list-style: none; padding: 0; margin: 0 0 8px; color: var(--muted); }
 .verdict { font-weight: 600; font-size: 15px; border-left: 4px solid #D55E00; padding: 8px 12px; background: #fff4ec; }
+.warning { border-left: 4px solid #b00020; padding: 6px 12px; background: #fdecee; }
+details.fold > summary { cursor: pointer; list-style-position: outside; }
+details.fold > summary h2 { display: inline-block; width: calc(100% - 24px); }
 dl.effect { margin: 8px 0; } dl.effect dt { font-weight: 600; } dl.effect dd { margin: 2px 0 8px 18px; }
 .table-wrap { overflow-x: auto; margin: 8px 0; }
 table.data { border-collapse: collapse; font-size: 12.5px; font-variant-numeric: tabular-nums; }
 table.data caption { text-align: left; font-weight: 600; padding: 2px 0 6px; }
-table.data th, table.data td { padding: 3px 6px; border-bottom: 1px solid var(--rule); white-space: nowrap; }
+table.data th, table.data td { padding: 3px 5px; border-bottom: 1px solid var(--rule); white-space: nowrap; }
 table.data th { background: #f1f1f1; font-weight: 600; text-align: right; vertical-align: bottom; white-space: normal; }
 table.data tr.group th { text-align: center; border-bottom: 1px solid #999; background: #e7e7e7; }
 table.data td.num { text-align: right; }
 table.data td.left, table.data th.left { text-align: left; white-space: normal; }
 table.data td.fail { background: var(--fail); color: var(--failink); }
+table.data td.beyond { background: #fff1c9; }
 table.data td .mark { font-weight: 700; }
 table.data td .u { color: var(--muted); font-size: 11px; }
 .table-note { font-size: 12px; color: var(--muted); margin: 2px 0 8px; }
@@ -429,15 +553,25 @@ svg.plot text { font-family: inherit; fill: #1b1b1b; }
 .before-after table.data td:first-child { position: sticky; left: 0; background: #fff; }
 .before-after table.data th:first-child { position: sticky; left: 0; }
 @media (max-width: 1199px) { .before-after { display: block; width: auto; margin-left: 0; } }
+@media (max-width: 1799px) { .before-after.wide { display: block; } }
+/* A narrow window still shows Table 5 whole: smaller cells rather than a scroll bar. */
+@media (max-width: 999px) {
+  table.data, .before-after table.data { font-size: 11px; }
+  table.data th, table.data td, .before-after table.data th, .before-after table.data td { padding: 2px 3px; }
+}
 footer { margin-top: 40px; font-size: 12px; color: var(--muted); }
 @media print {
   .before-after { display: block; width: auto; margin-left: 0; }
   body { font-size: 11px; } main { max-width: none; padding: 0; }
   nav.toc { display: none; }
   h2 { break-after: avoid; } figure, .table-wrap, svg.plot { break-inside: avoid; }
-  table.data td.fail { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
+  table.data td.fail, table.data td.beyond { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
 }
 )";
+
+// Columns of a table that still fit one column of a before/after pair on a 1400 px window
+// (report.html's cells are 50-65 px wide at the pair's font size).
+constexpr std::size_t kColumnsInHalf = 11;
 
 // Every block but the page's own headings (levels 1 and 2, which open the header and the sections).
 std::string block_html(const Block& b, bool in_header) {
@@ -446,6 +580,7 @@ std::string block_html(const Block& b, bool in_header) {
     case Block::Kind::heading: o += fmt::format("<h{0} id=\"{1}\">{2}</h{0}>\n", b.level, esc(b.id), esc(b.text)); break;
     case Block::Kind::paragraph: o += fmt::format("<p>{}</p>\n", esc(b.text)); break;
     case Block::Kind::verdict: o += fmt::format("<p class=\"verdict\">{}</p>\n", esc(b.text)); break;
+    case Block::Kind::warning: o += fmt::format("<p class=\"warning\">{}</p>\n", esc(b.text)); break;
     case Block::Kind::list:
       o += in_header ? "<ul class=\"meta\">\n" : "<ul>\n";
       for (const auto& i : b.items) o += fmt::format("<li>{}</li>\n", esc(i));
@@ -463,8 +598,15 @@ std::string block_html(const Block& b, bool in_header) {
         o += "</figure>\n";
       }
       break;
-    case Block::Kind::pair:
-      o += fmt::format("<div class=\"before-after\" id=\"{}\">\n", esc(b.id));
+    case Block::Kind::pair: {
+      // A table of many columns does not fit half of a 1400 px window: such a pair stacks its two
+      // columns until the window is wide enough for them side by side.
+      std::size_t columns = 0;
+      for (const auto* side : {&b.before, &b.after})
+        for (const auto& x : *side)
+          if (x.kind == Block::Kind::table) columns = std::max(columns, x.table.columns.size());
+      o += fmt::format("<div class=\"before-after{}\" id=\"{}\">\n", columns > kColumnsInHalf ? " wide" : "",
+                       esc(b.id));
       for (const auto* side : {&b.before, &b.after}) {
         o += fmt::format("<div class=\"ba-col ba-{}\">\n", side == &b.before ? "before" : "after");
         for (const auto& x : *side) o += block_html(x, false);
@@ -472,6 +614,7 @@ std::string block_html(const Block& b, bool in_header) {
       }
       o += "</div>\n";
       break;
+    }
   }
   return o;
 }
@@ -480,23 +623,29 @@ std::string render_html(const Doc& d, const ReportInput& in) {
   std::string o = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                   "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
   o += fmt::format("<title>chutelab validation: {}</title>\n<style>{}</style>\n</head>\n<body>\n<main>\n",
-                   esc(in.baseline->dataset_name), kCss);
+                   esc(in.baseline->dataset_folder.empty() ? in.baseline->dataset_name : in.baseline->dataset_folder),
+                   kCss);
   // Contents from the level-2 headings.
   std::string toc;
   for (const auto& b : d.blocks)
     if (b.kind == Block::Kind::heading && b.level == 2)
       toc += fmt::format("<a href=\"#{}\">{}</a>", esc(b.id), esc(b.text));
   bool toc_done = false;
-  bool in_section = false;
+  bool in_section = false, in_fold = false;
   for (const auto& b : d.blocks) {
     if (b.kind == Block::Kind::heading && b.level == 2) {
       if (!toc_done) {
         o += fmt::format("<nav class=\"toc\">{}</nav>\n</header>\n", toc);
         toc_done = true;
       }
+      if (in_fold) o += "</details>\n";
       if (in_section) o += "</section>\n";
-      o += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n", esc(b.id), esc(b.text));
+      if (b.folded)
+        o += fmt::format("<section id=\"{}\">\n<details class=\"fold\"><summary><h2>{}</h2></summary>\n", esc(b.id),
+                         esc(b.text));
+      else o += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n", esc(b.id), esc(b.text));
       in_section = true;
+      in_fold = b.folded;
     } else if (b.kind == Block::Kind::heading && b.level == 1) {
       o += fmt::format("<header>\n<h1 id=\"{}\">{}</h1>\n", esc(b.id), esc(b.text));
     } else {
@@ -504,9 +653,11 @@ std::string render_html(const Doc& d, const ReportInput& in) {
     }
   }
   if (!toc_done) o += "</header>\n";
+  if (in_fold) o += "</details>\n";
   if (in_section) o += "</section>\n";
-  o += "<footer>Written by chutelab. E = predicted − measured (ASME V&amp;V 20 sign); u = one standard "
-       "deviation of the measurement. Values outside tolerance: red, marked ✗, the limit in the tooltip."
+  o += "<footer>Written by chutelab. E = predicted − measured (ASME V&amp;V 20 sign); u_val = the validation "
+       "uncertainty of V&amp;V 20 (measurement, numerical and input uncertainties combined). Values outside "
+       "tolerance: red, marked ✗, the limit in the tooltip; values more than 2 u_val off: amber."
        "</footer>\n</main>\n</body>\n</html>\n";
   return o;
 }
@@ -520,6 +671,7 @@ std::string blocks_markdown(const std::vector<Block>& blocks) {
         break;
       case Block::Kind::paragraph: o += md_esc(b.text) + "\n\n"; break;
       case Block::Kind::verdict: o += "**" + md_esc(b.text) + "**\n\n"; break;
+      case Block::Kind::warning: o += "**Warning:** " + md_esc(b.text) + "\n\n"; break;
       case Block::Kind::list:
         for (const auto& i : b.items) o += "- " + md_esc(i) + "\n";
         o += "\n";

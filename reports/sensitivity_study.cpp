@@ -71,7 +71,7 @@ std::vector<std::string> run_notes(const SensitivityStudy& s) {
   if (!s.sizes_left_out.empty()) {
     std::vector<std::string> d;
     for (double x : s.sizes_left_out) d.push_back(mm(x) + " mm");
-    notes.push_back(fmt::format("not run: spheres of {}, of the seed's sizes (at quick quality the default leaves 5.6 mm "
+    notes.push_back(fmt::format("not run: spheres of {}, of the reference study's sizes (at quick quality the default leaves 5.6 mm "
                                 "out: that one run costs more than the rest of the study's ~10 min); give --sizes to run "
                                 "them", fmt::join(d, ", ")));
   }
@@ -120,11 +120,11 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& b) {
   auto clump = variant("clump", "", VariantGroup::shape);
   clump.shape = "clump";
   clump.diameter = base_d * 4.4 / 5.6;
-  clump.label = fmt::format("two-sphere clump (Fig. 4c), spheres d = {} mm (the seed's 4.4 vs 5.6 mm)", mm(clump.diameter));
+  clump.label = fmt::format("two-sphere clump (Fig. 4c), spheres d = {} mm (the reference study's 4.4 vs 5.6 mm)", mm(clump.diameter));
   v.push_back(clump);
   auto clump_d = variant("clump-d", "", VariantGroup::shape);
   clump_d.shape = "clump";
-  clump_d.label = fmt::format("two-sphere clump, spheres d = {} mm = the base's (the seed's \"shaped d = 5.6 mm, d "
+  clump_d.label = fmt::format("two-sphere clump, spheres d = {} mm = the base's (the reference study's \"shaped d = 5.6 mm, d "
                               "increased\")", mm(base_d));
   v.push_back(clump_d);
   auto dt = variant("dt/20", fmt::format("dt = {} t_c (at most {} t_R): half the base step", fraction(b.dt_fraction / 2),
@@ -227,11 +227,11 @@ void evaluate(SensitivityStudy& s) {
       v.mean_tested ? fmt::format("contact model, shape, time step and shear modulus change it by at most {:+.1f} % ({}; "
                                   "limit ±{:g} %) — {}",
                                   v.worst_change, v.worst_variant, s.limit_percent,
-                                  v.mean_insensitive ? "small, as in the seed" : "larger than the seed found")
+                                  v.mean_insensitive ? "small, as in the reference study" : "larger than the reference study found")
                     : std::string("no contact/shape/dt/G variant ran");
   const std::string size_part =
       v.size_tested ? fmt::format("{} — {}", fmt::join(fl, ", "),
-                                  v.fluctuation_grows ? "it grows with d, as in the seed" : "it does not grow steadily with d")
+                                  v.fluctuation_grows ? "it grows with d, as in the reference study" : "it does not grow steadily with d")
                     : std::string("fewer than two sizes ran");
   v.text = fmt::format(
       "{}. Mean resultant plate force against the base: {}. Fluctuation (standard deviation of the sampled R) with "
@@ -391,7 +391,7 @@ std::string sensitivity_timing_csv(const SensitivityStudy& s) {
 }
 
 std::string sensitivity_md(const SensitivityStudy& s) {
-  std::string md = "# Sensitivity of the plate force (seed Table 6)\n\n";
+  std::string md = "# Sensitivity of the plate force (the reference study's Table 6)\n\n";
   md += fmt::format("Dataset {}, condition `{}` (V_b = {:g} m/s, {:.1f} t/h), quality `{}`; {} DEM runs.\n\n",
                     dataset_text(s, true), md_esc(s.condition), s.belt_speed, s.mass_flow * 3.6,
                     s.quality, s.rows.size());
@@ -493,7 +493,7 @@ std::string sensitivity_html(const SensitivityStudy& s) {
 
   // Page: verdict, chart, table (the Markdown's table rendered), notes.
   const std::string md = sensitivity_md(s);
-  std::string body = "<h1>Sensitivity of the plate force (seed Table 6)</h1>\n";
+  std::string body = "<h1>Sensitivity of the plate force (the reference study's Table 6)</h1>\n";
   body += fmt::format("<p>Dataset {}, condition <code>{}</code> (V<sub>b</sub> = {:g} m/s, {:.1f} t/h), "
                       "quality <code>{}</code>; {} DEM runs.</p>\n",
                       esc(dataset_text(s, false)), esc(s.condition), s.belt_speed, s.mass_flow * 3.6, esc(s.quality), n);

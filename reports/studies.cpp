@@ -83,7 +83,7 @@ StudySection calibration_section(const fs::path& csv_file, std::string_view suff
   const std::vector<CalibrationPoint> pts = read_calibration_csv(csv_file);
   StudySection s;
   s.id = fmt::format("calibration{}", suffix);
-  s.title = "Calibration (seed Table 3)";
+  s.title = "Calibration (the reference study's Table 3)";
   double seconds = 0.0;
   const CalibrationPoint* best = nullptr;
   for (const auto& p : pts) {
@@ -91,8 +91,8 @@ StudySection calibration_section(const fs::path& csv_file, std::string_view suff
     if (p.closest) best = &p;
   }
   s.paragraphs.push_back(fmt::format(
-      "Swing-arm slump tests (seed Fig. 5) over particle-particle rolling friction, solid density and particle "
-      "shape, from {} ({} tests{}). Loose-poured bulk density and pile height as the seed's Table 3.",
+      "Swing-arm slump tests (the reference study's Fig. 5) over particle-particle rolling friction, solid density and particle "
+      "shape, from {} ({} tests{}). Loose-poured bulk density and pile height as the reference study's Table 3.",
       csv_file.string(), pts.size(), std::isfinite(seconds) ? fmt::format(", {:.0f} s of DEM", seconds) : std::string()));
   for (auto& p : provenance_paragraphs("calibration", pts.front().dataset, pts.front().quality, validated))
     s.paragraphs.push_back(std::move(p));
@@ -135,7 +135,7 @@ StudySection sensitivity_section(const fs::path& csv_file, std::string_view suff
   const SensitivityStudy st = read_sensitivity_csv(csv_file);
   StudySection s;
   s.id = fmt::format("sensitivity{}", suffix);
-  s.title = "Sensitivity (seed Table 6)";
+  s.title = "Sensitivity (the reference study's Table 6)";
   s.verdict = st.verdict.text;
   s.paragraphs.push_back(fmt::format(
       "The transfer-station DEM at condition {} (V_b = {:g} m/s, {:.1f} t/h, {} quality) with one modelling shortcut "

@@ -15,7 +15,7 @@ namespace chutelab::reports {
 
 struct StudySection {
   std::string id;                    // anchor, unique in the page
-  std::string title;                 // "Calibration (seed Table 3)"
+  std::string title;                 // "Calibration (the reference study's Table 3)"
   std::string verdict;               // highlighted conclusion ("" = none)
   std::vector<std::string> paragraphs;
   Table table;

@@ -1,6 +1,7 @@
 #include "reports/svg.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -30,12 +31,31 @@ std::string md_esc(std::string_view raw) {
   const std::string s = to_utf8(raw);
   std::string o;
   o.reserve(s.size());
-  for (char c : s) {
+  auto next_is = [&](std::size_t k, auto pred) {
+    return k + 1 < s.size() && pred(static_cast<unsigned char>(s[k + 1]));
+  };
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const char c = s[k];
     switch (c) {
-      // Markdown renderers pass inline HTML through: neutralise it as entities.
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
+      // Markdown renderers pass inline HTML and entities through. A backslash escapes the few
+      // places where they could start (a tag, an entity, a quote at the start), so the file reads
+      // as text, without entities: "|E/u| > 2" stays as it is.
+      case '<':
+        if (next_is(k, [](unsigned char n) { return std::isalpha(n) || n == '/' || n == '!' || n == '?'; })) o += '\\';
+        o += c;
+        break;
+      case '&': {
+        // An entity is & then # or a name, then ';': "V&V" and "R & D" stay as they are.
+        std::size_t e = k + 1;
+        while (e < s.size() && (std::isalnum(static_cast<unsigned char>(s[e])) || s[e] == '#')) ++e;
+        if (e > k + 1 && e < s.size() && s[e] == ';') o += '\\';
+        o += c;
+        break;
+      }
+      case '>':
+        if (k == 0) o += '\\';
+        o += c;
+        break;
       // Table cell separator and emphasis/link/code syntax.
       case '|': case '\\': case '*': case '_': case '`': case '[': case ']':
         o += '\\';

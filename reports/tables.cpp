@@ -108,7 +108,10 @@ Col measured_col(const Context& c, Quantity q, int dec, std::string group, bool 
 void annotate(Cell& cell, const validation::Comparison* cmp, const QuantityName& qn) {
   if (!cmp || !cmp->predicted) return;
   std::string tip = fmt::format("error {:+.3g} {}", cmp->error() * qn.scale, qn.unit);
-  if (auto z = cmp->normalised_error()) tip += fmt::format(", E/u {:+.2f}", *z);
+  if (auto z = cmp->normalised_error()) {
+    tip += fmt::format(", E/u_val {:+.2f}", *z);
+    cell.beyond = std::abs(*z) > 2.0;
+  }
   if (cmp->verdict.checked && !cmp->verdict.passed) {
     cell.fail = true;
     tip = fmt::format("outside tolerance: {} ({})", cmp->verdict.limit, tip);
@@ -206,7 +209,7 @@ Table force_table(const Context& c, const ValidationResult& r, std::string_view 
   for (const auto& m : models)
     if (compared(r, m, Quantity::resultant_force))
       cols.push_back(error_col(look, Quantity::resultant_force, m, ErrorKind::relative_percent, "error of R (%)"));
-  Table t = build(id, "Plate forces: measured and predicted (cf. seed Table 4)", c, cols);
+  Table t = build(id, "Plate forces: measured and predicted (cf. the reference study's Table 4)", c, cols);
   if (!left_out.empty())
     t.notes.push_back(fmt::format("Not shown: {} (predicts none of {}).", fmt::join(left_out, ", "), symbols(qs)));
   t.notes.push_back(fmt::format("Measured values ± one standard deviation. {} = not predicted or not "
@@ -257,7 +260,7 @@ Table velocity_table(const Context& c, const ValidationResult& r, std::string_vi
                                quantity_decimals(c, r, Quantity::impact_point_y)));
       cols.back().head.group_html = "error of y<sub>R</sub> (mm)";
     }
-  Table t = build(id, "Stream velocities and impact point: measured and predicted (cf. seed Table 5)", c, cols);
+  Table t = build(id, "Stream velocities and impact point: measured and predicted (cf. the reference study's Table 5)", c, cols);
   for (const auto& m : r.models)
     for (Quantity q : qs)
       if (!model_predicts(r, m, q))
@@ -278,7 +281,7 @@ Table summary_table(const ValidationResult& r, std::string_view id) {
                {"", "quantity", "", true},
                {"", "n", "", false},
                {"", "RMS error", "", false},
-               {"", "RMS E/u", "RMS <i>E</i>/<i>u</i>", false},
+               {"", "RMS E/u_val", "RMS <i>E</i>/<i>u</i><sub>val</sub>", false},
                {"", "worst |relative error| (%)", "", false},
                {"", "within tolerance", "", false}};
   for (const auto& s : r.summary) {
@@ -300,8 +303,8 @@ Table summary_table(const ValidationResult& r, std::string_view id) {
     row.push_back(tol);
     t.rows.push_back(std::move(row));
   }
-  t.notes.push_back("E = predicted − measured, u = the measurement's standard deviation; |E/u| > 2 is "
-                    "more than the measurement's noise explains.");
+  t.notes.push_back("E = predicted − measured, u_val = the V&V 20 validation uncertainty (the measurement's, the "
+                    "model's numerical and the inputs' combined); |E/u_val| > 2 is more than they explain.");
   if (!r.acceptance_checked) t.notes.push_back("No tolerances were set, so no value was checked for acceptance.");
   return t;
 }
@@ -338,7 +341,7 @@ Table rms_change_table(const Context& c, const ValidationResult& before, const V
           s.rms_normalised_error, a, false);
     }
   }
-  t.notes.push_back("RMS of E/u over every compared value with an uncertainty; 1 is what measurement noise alone gives.");
+  t.notes.push_back("RMS of E/u_val over every compared value with an uncertainty; 1 is what the stated uncertainties alone give.");
   return t;
 }
 

@@ -1,10 +1,36 @@
 #include "validation/campaign_runs.h"
 
+#include <algorithm>
+#include <fmt/format.h>
 #include <set>
 
 #include "core/input_error.h"
+#include "core/progress.h"
 
 namespace chutelab::validation {
+namespace {
+
+// Why there are more runs than conditions: said once, before they start.
+void explain(const std::vector<ModelJob>& jobs, const RunModelsOptions& options) {
+  std::size_t main_runs = 0;
+  std::vector<std::string> rungs;
+  for (const auto& j : jobs) {
+    if (j.ladder_rung.empty()) {
+      ++main_runs;
+      continue;
+    }
+    if (std::find(rungs.begin(), rungs.end(), j.ladder_rung) == rungs.end()) rungs.push_back(j.ladder_rung);
+  }
+  const std::string head = options.label.empty() ? std::string() : options.label + ": ";
+  if (rungs.empty() || main_runs == 0) return;
+  if (rungs.size() > 4) rungs.resize(4);
+  progress::line(fmt::format(
+      "{}{} model runs: {} predictions, and {} more at coarser settings ({}) whose differences estimate the "
+      "discretisation uncertainty u_num of each prediction (ASME V&V 20; --dem-ladder off leaves them out)",
+      head, jobs.size(), main_runs, jobs.size() - main_runs, fmt::join(rungs, "; ")));
+}
+
+}  // namespace
 
 void run_models(std::span<const ModelRun> runs, const RunModelsOptions& options) {
   std::vector<ModelJob> jobs;
@@ -28,6 +54,7 @@ void run_models(std::span<const ModelRun> runs, const RunModelsOptions& options)
     }
   }
   if (jobs.empty()) return;
+  explain(jobs, options);
   std::vector<campaign::Job> work;
   for (const auto& j : jobs) work.push_back(j.job);
   campaign::Options o;

@@ -10,12 +10,25 @@
 #include <unordered_map>
 
 #include "core/input_error.h"
+#include "core/progress.h"
 #include "core/message.h"
 #include "validation/input_uncertainty.h"
 #include "validation/campaign_runs.h"
 #include "validation/models/external_model.h"
 
 namespace chutelab::validation {
+namespace {
+
+// "datasets/hidden-effect/" -> "hidden-effect": the name the user typed, for titles.
+std::string folder_name(const std::filesystem::path& dir) {
+  std::filesystem::path p = dir.lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();
+  if (p.empty() || p == ".") p = std::filesystem::absolute(dir).lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();
+  return p.filename().string();
+}
+
+}  // namespace
 
 namespace {
 // A metric that cannot be computed (0/0, x/0, x/1e-320 = inf, a NaN from a model) is no number:
@@ -29,8 +42,15 @@ std::optional<double> Comparison::relative_error() const {
 }
 
 std::optional<double> Comparison::normalised_error() const {
-  if (!predicted || !uncertainty) return std::nullopt;
-  return finite(error() / *uncertainty);
+  const auto u = validation_uncertainty();
+  if (!u || !(*u > 0.0)) return std::nullopt;
+  return finite(error() / *u);
+}
+
+std::string Comparison::unit() const {
+  if (q) return std::string(info(*q).unit);
+  if (boundary) return "mm";
+  return quantity.substr(quantity.rfind('_') + 1);  // plate map: "plate_pressure_Pa" -> "Pa"
 }
 
 std::optional<double> Comparison::validation_uncertainty() const {
@@ -41,9 +61,9 @@ std::optional<double> Comparison::validation_uncertainty() const {
 }
 
 std::optional<double> Comparison::vv20_ratio() const {
-  const auto u = validation_uncertainty();
-  if (!u || *u <= 0.0) return std::nullopt;
-  return finite(std::abs(error()) / *u);
+  const auto z = normalised_error();
+  if (!z) return std::nullopt;
+  return std::abs(*z);
 }
 
 const ConditionResult* ValidationResult::prediction(const std::string& condition,
@@ -73,7 +93,7 @@ std::optional<double> ValidationResult::combined_rms_normalised() const {
   };
   std::map<std::tuple<std::string, std::string, double>, const Comparison*> chosen;
   for (const auto& c : comparisons) {
-    if (!c.predicted || !c.uncertainty) continue;
+    if (!c.normalised_error()) continue;
     auto& slot = chosen[{c.condition, c.quantity, c.x}];
     if (!slot || rank(c.model) < rank(slot->model)) slot = &c;
   }
@@ -84,18 +104,33 @@ std::optional<double> ValidationResult::combined_rms_normalised() const {
 }
 
 std::string ValidationResult::brief() const {
-  std::string s = fmt::format("{}: {} conditions x {} models", one_line(dataset_name, 120),
+  std::string s = fmt::format("{}: {} conditions x {} model{}", one_line(dataset_folder.empty() ? dataset_name : dataset_folder, 120),
                               predictions.size() / std::max<std::size_t>(1, models.size()),
-                              models.size());
+                              models.size(), models.size() == 1 ? "" : "s");
+  std::vector<std::string> rms;
   for (const auto& m : models)
-    if (auto z = overall_rms_normalised(m)) s += fmt::format("; {} RMS normalised error {:.2f}", m, *z);
+    if (auto z = overall_rms_normalised(m)) rms.push_back(fmt::format("{} {:.2f}", m, *z));
   if (models.size() > 1)
-    if (auto z = combined_rms_normalised()) s += fmt::format("; combined {:.2f}", *z);
-  if (acceptance_checked) s += acceptance_failed ? "; ACCEPTANCE FAILED" : "; acceptance passed";
+    if (auto z = combined_rms_normalised()) rms.push_back(fmt::format("combined {:.2f}", *z));
+  if (!rms.empty()) s += fmt::format("; RMS E/u_val {}", fmt::join(rms, ", "));
+  if (acceptance_checked)
+    s += acceptance_failed ? fmt::format("; ACCEPTANCE FAILED ({} of {} checked values outside tolerance)",
+                                         failed_count(), checked_count())
+                           : fmt::format("; acceptance passed ({} values checked)", checked_count());
   if (!acceptance_problems.empty())
     s += fmt::format(" ({}{})", acceptance_problems.front(),
                      acceptance_problems.size() > 1 ? fmt::format("; and {} more", acceptance_problems.size() - 1) : "");
   return s;
+}
+
+int ValidationResult::failed_count() const {
+  return static_cast<int>(std::count_if(comparisons.begin(), comparisons.end(),
+                                        [](const Comparison& c) { return c.verdict.checked && !c.verdict.passed; }));
+}
+
+int ValidationResult::checked_count() const {
+  return static_cast<int>(
+      std::count_if(comparisons.begin(), comparisons.end(), [](const Comparison& c) { return c.verdict.checked; }));
 }
 
 std::vector<PlateQuery> plate_queries(const Dataset& d, const std::string& condition) {
@@ -135,35 +170,50 @@ void apply_measurement_effects(const analytical::EffectList& effects, std::span<
 
 namespace {
 
+// A number as an engineer reads it: 3 significant digits, no exponent in the usual range.
+std::string plain(double v) { return fmt::format("{:.3g}", v); }
+
 void check_tolerance(Comparison& c, const Tolerances& tol) {
   const Tolerance* t = tol.find(c.model, c.quantity);
   if (!t || !c.predicted) return;
   c.verdict.checked = true;
-  auto fail = [&](std::string why) {
-    if (c.verdict.passed) c.verdict.limit = std::move(why);
+  auto fail = [&](std::string kind, double actual, double allowed, std::string why) {
+    if (c.verdict.passed) {
+      c.verdict.limit = std::move(why);
+      c.verdict.kind = std::move(kind);
+      c.verdict.actual = actual;
+      c.verdict.allowed = allowed;
+    }
     c.verdict.passed = false;
   };
   // A limit whose metric cannot be computed is not met: a measured 0 against a relative limit has no
   // relative error, and "within" would be a check that cannot fail.
-  if (!std::isfinite(c.measured) || !std::isfinite(*c.predicted)) fail("value not finite: nothing to compare");
+  if (!std::isfinite(c.measured) || !std::isfinite(*c.predicted))
+    fail("", 0.0, 0.0, "value not finite: nothing to compare");
   if (t->relative) {
     if (auto r = c.relative_error(); !r)
-      fail(c.measured == 0.0 ? "relative error undefined: the measured value is 0 (use an absolute limit)"
+      fail("", 0.0, *t->relative,
+           c.measured == 0.0 ? "relative error undefined: the measured value is 0 (use an absolute limit)"
                              : "relative error not finite (measured value too close to 0; use an absolute limit)");
     else if (std::abs(*r) > *t->relative)
-      fail(fmt::format("|rel| {:.3f} > {:.3f}", std::abs(*r), *t->relative));
+      fail("relative", std::abs(*r), *t->relative,
+           fmt::format("relative error {:.1f} % > {} %", 100.0 * std::abs(*r), plain(100.0 * *t->relative)));
   }
   if (t->normalised) {
     // Without a stated uncertainty a normalised limit cannot be met: that is a failure to show,
     // not a pass to assume.
-    if (auto z = c.normalised_error(); !z) fail("no uncertainty for a normalised limit");
+    if (auto z = c.normalised_error(); !z)
+      fail("normalised", 0.0, *t->normalised, "no uncertainty, so |E|/u_val cannot be checked");
     else if (std::abs(*z) > *t->normalised)
-      fail(fmt::format("|z| {:.2f} > {:.2f}", std::abs(*z), *t->normalised));
+      fail("normalised", std::abs(*z), *t->normalised,
+           fmt::format("|E|/u_val {:.2f} > {}", std::abs(*z), plain(*t->normalised)));
   }
   if (t->absolute) {
     const double e = std::abs(c.error() * c.scale);
-    if (!std::isfinite(e)) fail("error not finite");
-    else if (e > *t->absolute) fail(fmt::format("|err| {:.3g} > {:.3g}", e, *t->absolute));
+    if (!std::isfinite(e)) fail("", 0.0, *t->absolute, "error not finite");
+    else if (e > *t->absolute)
+      fail("absolute", e, *t->absolute,
+           fmt::format("error {} {} > {} {}", plain(e), c.unit(), plain(*t->absolute), c.unit()));
   }
 }
 
@@ -172,7 +222,8 @@ void check_tolerance(Comparison& c, const Tolerances& tol) {
 ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
                           const ValidateOptions& options) {
   ValidationResult r;
-  r.dataset_name = d.setup.name.empty() ? d.dir.filename().string() : d.setup.name;
+  r.dataset_folder = folder_name(d.dir);
+  r.dataset_name = d.setup.name.empty() ? r.dataset_folder : d.setup.name;
   for (const auto& m : models) r.models.push_back(m->name());
   r.effects = options.effect_labels;
 
@@ -196,7 +247,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
   for (std::size_t i = 0; i < d.stations.size(); ++i) {
     const Station& st = d.stations[i];
     if (progress && (i + 1) % 1000 == 0)
-      std::cerr << fmt::format("validate: {}/{} conditions\n", i + 1, d.stations.size());
+      progress::line(fmt::format("validate: {}/{} conditions", i + 1, d.stations.size()));
     static const std::vector<TrajectoryQuery> none;
     static const std::vector<PlateQuery> no_plate;
     const auto qit = queries_of.find(st.condition);

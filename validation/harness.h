@@ -38,9 +38,12 @@ struct Comparison {
   const std::optional<double>& u_num_stat() const { return prediction_uncertainty; }
   double error() const { return *predicted - measured; }  // E = S - D
   std::optional<double> relative_error() const;
-  std::optional<double> normalised_error() const;   // E / u_D
+  // E / u_val: the one "normalised error" of chutelab (V&V 20). Absent without a prediction or
+  // when u_val is unknown or zero. |E/u_val| > 2 is more than the stated uncertainties explain.
+  std::optional<double> normalised_error() const;
   std::optional<double> validation_uncertainty() const;  // u_val; absent when no part is known
-  std::optional<double> vv20_ratio() const;          // |E| / u_val
+  std::optional<double> vv20_ratio() const;          // |E| / u_val, the same number unsigned
+  std::string unit() const;      // boundary unit of the quantity ("N", "m/s", "mm", "Pa", ...)
   ToleranceVerdict verdict;      // filled when a tolerance applies
 };
 
@@ -60,7 +63,8 @@ struct ConditionResult {
 };
 
 struct ValidationResult {
-  std::string dataset_name;
+  std::string dataset_name;              // setup.toml `name` (the folder's name without one)
+  std::string dataset_folder;            // the folder the user gave, by its last name: what titles say
   std::vector<std::string> models;
   std::vector<std::string> effects;      // "name=value" as applied
   std::vector<ConditionResult> predictions;
@@ -74,13 +78,17 @@ struct ValidationResult {
   std::vector<std::string> acceptance_problems;
 
   const ConditionResult* prediction(const std::string& condition, const std::string& model) const;
-  // RMS of the normalised error over every comparison of a model that has an uncertainty.
+  // RMS of E/u_val over every comparison of a model that has an uncertainty.
   std::optional<double> overall_rms_normalised(const std::string& model) const;
   // The models used together as the seed's hybrid: each measured value is judged by the first
   // model, in registry order (booth-cema, korzen, ...), that predicts it. This is the figure the
   // diagnosis works on.
   std::optional<double> combined_rms_normalised() const;
-  std::string brief() const;  // one line for a terminal
+  // One line for a terminal: the folder, the counts and the RMS E/u_val per model and combined.
+  std::string brief() const;
+  // How many checked values are outside their tolerance.
+  int failed_count() const;
+  int checked_count() const;
 };
 
 struct ValidateOptions {

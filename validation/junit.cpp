@@ -41,8 +41,8 @@ std::string unit_of(const Comparison& c) {
 
 std::string describe(const Tolerance& t, const std::string& unit) {
   std::vector<std::string> parts;
-  if (t.relative) parts.push_back(fmt::format("|relative error| <= {}", csv_number(*t.relative)));
-  if (t.normalised) parts.push_back(fmt::format("|E/u| <= {}", csv_number(*t.normalised)));
+  if (t.relative) parts.push_back(fmt::format("|relative error| <= {} %", csv_number(100.0 * *t.relative)));
+  if (t.normalised) parts.push_back(fmt::format("|E|/u_val <= {}", csv_number(*t.normalised)));
   if (t.absolute) parts.push_back(fmt::format("|error| <= {} {}", csv_number(*t.absolute), unit));
   return fmt::format("{}", fmt::join(parts, " and "));
 }
@@ -61,9 +61,9 @@ std::string detail(const Comparison& c) {
   o += fmt::format(", predicted {}", value(*c.predicted, c.scale, u));
   if (c.prediction_uncertainty) o += fmt::format(" (u_num {})", value(*c.prediction_uncertainty, c.scale, u));
   o += fmt::format(", error {}", value(c.error(), c.scale, u));
-  if (auto rel = c.relative_error()) o += fmt::format(", relative error {}", csv_number(*rel));
-  if (auto z = c.normalised_error()) o += fmt::format(", E/u {}", csv_number(*z));
-  if (c.verdict.checked) o += c.verdict.passed ? ": within" : fmt::format(": FAILED, {}", c.verdict.limit);
+  if (auto rel = c.relative_error()) o += fmt::format(", relative error {:+.2f} %", 100.0 * *rel);
+  if (auto z = c.normalised_error()) o += fmt::format(", E/u_val {:+.2f}", *z);
+  if (c.verdict.checked) o += c.verdict.passed ? ": within tolerance" : fmt::format(": FAILED, {}", c.verdict.limit);
   return o;
 }
 
@@ -96,7 +96,8 @@ std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSum
   }
 
   JunitSummary sum;
-  const std::string dataset = xml_escape(r.dataset_name);
+  // The folder the user gave, as the report's title and validate's first line name it.
+  const std::string dataset = xml_escape(r.dataset_folder.empty() ? r.dataset_name : r.dataset_folder);
   std::string body;
   for (auto& s : suites) {
     std::string cases;

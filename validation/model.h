@@ -103,6 +103,9 @@ struct ModelPrediction {
 // and effects uses it instead of running (validation/campaign_runs.h).
 struct ModelJob {
   std::string id;  // identity of the run (e.g. its cache key): equal ids are one run
+  // Not empty for a run made only to estimate the prediction's discretisation uncertainty (one
+  // rung of a ladder, validation/gci.h): what differs, e.g. "2 dt", "17.0 mm particles".
+  std::string ladder_rung;
   campaign::Job job;
   std::function<void(const std::string&)> accept;
 };

@@ -1,9 +1,9 @@
 #pragma once
-// The seed's qualitative findings (Grima & Wypych 2010; list in ../shared/reference/README.md),
-// checked on a validation result rather than asserted: each is split into the claims a dataset can
-// test, each claim is decided from the numbers with a stated criterion, and a finding is
-// "reproduced" only when every testable claim holds. Claims need particular models (korzen,
-// booth-cema, dem) and measured quantities; what a dataset cannot test is said, not guessed.
+// The reference study's qualitative findings (Grima & Wypych 2010, as its results and conclusions state
+// them), checked on a validation result rather than asserted: each is split into the claims a dataset can
+// test, each claim is decided from the numbers with a stated criterion, and a finding is "reproduced" only
+// when every testable claim holds. Claims need particular models (korzen, booth-cema, dem) and measured
+// quantities; what a dataset cannot test is said, not guessed.
 #include <string>
 #include <vector>
 

@@ -1,6 +1,8 @@
 #pragma once
 // Acceptance tolerances (tolerances.toml): per model and quantity, the largest allowed |relative|,
-// |normalised| and/or |absolute| error of any single comparison. A "*" table applies to every model
+// |normalised| and/or |absolute| error of any single comparison. "normalised" is |E| / u_val, the
+// ratio of ASME V&V 20 (validation/harness.h), so a model with a large numerical uncertainty is
+// not failed for a difference its own uncertainty covers. A "*" table applies to every model
 // that has no table of its own for that quantity.
 //
 //   [korzen]
@@ -28,7 +30,12 @@ struct Tolerance {
 struct ToleranceVerdict {
   bool checked = false;
   bool passed = true;
-  std::string limit;  // which limit failed, for the report, e.g. "|rel| 0.21 > 0.15"
+  // The first limit that failed, in words with the quantity's unit, e.g. "relative error 21.0 % >
+  // 15 %", "error 12.3 mm > 10 mm", "|E|/u_val 3.19 > 2".
+  std::string limit;
+  std::string kind;           // "relative", "absolute" or "normalised" (empty while passed)
+  double actual = 0.0;        // |relative error| (fraction), |E| (boundary unit) or |E|/u_val
+  double allowed = 0.0;       // the limit in the same unit
 };
 
 class Tolerances {

@@ -1,7 +1,7 @@
 #pragma once
 // Hooke with mass-proportional damping, the law of LAMMPS' pair_style gran/hooke/history (and of its
-// bench/in.chute; Silbert, Ertas, Grest, Halsey, Levine & Plimpton, Phys. Rev. E 64, 051302, 2001;
-// LIGGGHTS: model hooke/stiffness):
+// chute benchmark, in.chute; Silbert, Ertas, Grest, Halsey, Levine & Plimpton, Phys. Rev. E 64,
+// 051302, 2001; LIGGGHTS: model hooke/stiffness):
 //   normal:     F_n = k_n delta + m* gamma_n d(delta)/dt
 //   tangential: spring k_t (the tangential part's history), damping m* gamma_t
 // k_n, k_t in N/m and gamma_n, gamma_t in 1/s are given per material pair (LAMMPS' defaults: k_t =

@@ -19,7 +19,7 @@ namespace chutelab::dem {
 
 struct LinearSpringDashpot {
   static constexpr std::string_view key = "lsd";
-  static constexpr std::string_view title = "linear spring-dashpot (seed Eq 8)";
+  static constexpr std::string_view title = "linear spring-dashpot (the reference study's Eq 8)";
   // None in LIGGGHTS: its hooke takes k_n from the moduli, and its hooke/stiffness damps by m* gamma_n
   // (as LAMMPS' gran/hooke/history), not by a restitution.
   static constexpr std::string_view liggghts = "";

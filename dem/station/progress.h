@@ -1,7 +1,8 @@
 #pragma once
-// Progress of a DEM run on stderr: a bar with percentage and an estimate of the time left when
-// stderr is a terminal; otherwise a quiet line every quarter (logs stay short). The time left is an
-// upper bound: the run stops earlier once the plate force is steady.
+// Progress of a DEM run (core/progress.h): on a terminal a bar with percentage and an estimate of
+// the time left on the status line, rewritten in place; one line when the run ends (left to the
+// campaign when the run is one of its jobs); nothing with --quiet. The time left is an upper
+// bound: the run stops earlier once the plate force is steady.
 #include <string>
 
 #include "dem/station/run.h"
@@ -15,8 +16,6 @@ class ProgressPrinter {
 
  private:
   std::string label_;
-  bool tty_;
-  int last_quarter_ = -1;
 };
 
 }  // namespace chutelab::dem::station

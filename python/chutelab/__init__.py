@@ -144,7 +144,7 @@ def read_dataset(path, measurements_required=False):
     """Reads a dataset folder; raises InputError naming file, line and field on bad input.
     measurements.csv may be absent (a rig and its conditions, e.g. datasets/grima2010) unless
     measurements_required; validate() and diagnose() need it."""
-    return Dataset(_chutelab.read_dataset(_os.fspath(path), measurements_required))
+    return Dataset(_chutelab.read_dataset(_os.fspath(path), _flag("measurements_required", measurements_required)))
 
 
 def _dataset(d, measurements_required=True):

@@ -62,8 +62,8 @@ BOOST_AUTO_TEST_CASE(sensitivity_runs_a_subset_end_to_end) {
   BOOST_TEST(html.find("<section id=\"sensitivity\">") != std::string::npos);
   BOOST_TEST(html.find("id=\"calibration-chart\"") != std::string::npos);
   BOOST_TEST(html.find("id=\"sensitivity-chart\"") != std::string::npos);
-  BOOST_TEST(md.find("## Calibration (seed Table 3)") != std::string::npos);
-  BOOST_TEST(md.find("## Sensitivity (seed Table 6)") != std::string::npos);
+  BOOST_TEST(md.find("## Calibration (the reference study's Table 3)") != std::string::npos);
+  BOOST_TEST(md.find("## Sensitivity (the reference study's Table 6)") != std::string::npos);
   BOOST_TEST(md.find("| **sphere d=5.6mm ◀ closest** | **0.2** |") != std::string::npos);
   BOOST_TEST(md.find("| G/10 |") != std::string::npos);
   BOOST_TEST(md.find("NOT FULLY TESTED") != std::string::npos);
@@ -77,7 +77,7 @@ BOOST_AUTO_TEST_CASE(sensitivity_runs_a_subset_end_to_end) {
 BOOST_AUTO_TEST_CASE(sensitivity_bad_input_is_one_line_and_exit_2) {
   const fs::path out = fresh_dir("sensitivity-bad");
   const std::string ds = "--dataset '" + tiny_dataset().string() + "' ";
-  for (const std::string args : {ds + "--condition nope", ds + "--condition T3 --only LSD,cube",
+  for (const std::string& args : {ds + "--condition nope", ds + "--condition T3 --only LSD,cube",
                                  ds + "--condition T3 --sizes 9,abc", ds + "--condition T3 --sizes -5",
                                  ds + "--condition T3 --quality fast", std::string("--dataset /nonexistent")}) {
     const RunResult r = run_chutelab("sensitivity " + args + " --out '" + (out / "x").string() + "'");

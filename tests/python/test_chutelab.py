@@ -152,7 +152,7 @@ def test_tolerances_and_acceptance(tmp_path):
     assert v.acceptance_checked and v.acceptance_failed
     checked = v.errors[v.errors.tolerance != ""]
     assert set(checked.quantity) == {"shear_force_N"} and len(checked) == 8
-    assert all(t.startswith("fail: |rel|") for t in checked.tolerance)
+    assert all(t.startswith("fail: relative error ") and t.endswith(" % > 15 %") for t in checked.tolerance)
 
 
 def test_the_dem_through_python_gives_the_command_lines_numbers(tmp_path):
@@ -200,7 +200,10 @@ def test_an_effect_fitted_in_python_lowers_the_error_as_validate_effect_fit_does
     after = chutelab.validate(HIDDEN, effects={"air_drag": "fit"})
     r = cli("validate", "--dataset", HIDDEN, "--effect", "air_drag=fit", "--out", str(tmp_path / "v"))
     lines = r.stdout.splitlines()
-    assert lines[0] == "before: " + before.brief and lines[1] == "after:  " + after.brief
+    assert lines[0] == "before: " + before.brief
+    after_line = next(line for line in lines if line.startswith("after:"))
+    # The after: line names the effect and its value in words, then the same summary as Python's.
+    assert after_line.startswith("after:  + air drag (drag coefficient 0.") and after_line.endswith(after.brief)
     assert re.fullmatch(r"air_drag=0\.\d+ \(fitted\)", after.effects[0])
     assert after.combined_rms_normalised_error < 0.5 * before.combined_rms_normalised_error
     assert_same_table(after.errors, read_csv(tmp_path / "v" / "errors.csv"))
@@ -242,12 +245,12 @@ def test_tables_without_pandas_or_numpy(blocked, kind):
     assert r.stdout.split() == ["dict", kind, first.condition, repr(float(first.value))]
 
 
-# ---- the README's example -------------------------------------------------------------------------
+# ---- the researcher guide's example----------------------------------------------------------------------
 
-def test_the_readme_example_runs(tmp_path):
-    readme = open(os.path.join(SOURCE, "README.md"), encoding="utf-8").read()
+def test_the_guide_example_runs(tmp_path):
+    readme = open(os.path.join(SOURCE, "docs", "guide-researcher.md"), encoding="utf-8").read()
     m = re.search(r"<!-- python example -->\s*```python\n(.*?)```", readme, re.S)
-    assert m, "README.md has no python example block"
+    assert m, "docs/guide-researcher.md has no python example block"
     os.symlink(os.path.join(SOURCE, "datasets"), tmp_path / "datasets")
     cwd = os.getcwd()
     out = io.StringIO()
@@ -255,7 +258,7 @@ def test_the_readme_example_runs(tmp_path):
         os.chdir(tmp_path)
         import contextlib
         with contextlib.redirect_stdout(out):
-            exec(compile(m.group(1), "README.md", "exec"), {})
+            exec(compile(m.group(1), "docs/guide-researcher.md", "exec"), {})
     finally:
         os.chdir(cwd)
     assert (tmp_path / "residuals.png").stat().st_size > 10000

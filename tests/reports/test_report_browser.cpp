@@ -113,13 +113,47 @@ constexpr std::string_view kChecker = R"(<script>
       var c = columns(id);
       if (c && !(c[1].top >= c[0].bottom - 1)) bad.push('#' + id + ' not stacked');
     });
+    // The story's order: each selector's first element after the previous one's.
+    var prev = null;
+    expect.order.forEach(function (sel) {
+      var el = document.querySelector(sel);
+      if (!el) { bad.push('order: nothing matches ' + sel); return; }
+      if (prev && !(prev.el.compareDocumentPosition(el) & Node.DOCUMENT_POSITION_FOLLOWING))
+        bad.push('order: ' + sel + ' comes before ' + prev.sel);
+      prev = {el: el, sel: sel};
+    });
+    // The first chart under the verdict, its title and first row of panels on the first screen.
+    var measured = '';
+    if (expect.first_screen) {
+      var verdict = document.querySelector('.verdict'), chart = document.querySelector('svg.plot');
+      if (!verdict || !chart) bad.push('first screen: no verdict or no chart');
+      else {
+        var vr = verdict.getBoundingClientRect(), cr = chart.getBoundingClientRect();
+        measured = ' [first chart #' + chart.id + ' at ' + Math.round(cr.top) + '-' + Math.round(cr.bottom) +
+                   ' px, verdict ends at ' + Math.round(vr.bottom) + ' px, window ' + window.innerHeight + ' px]';
+        if (cr.top < vr.bottom - 1) bad.push('first screen: the first chart is above the verdict');
+        if (cr.top + Math.min(cr.height, expect.first_screen) > window.innerHeight)
+          bad.push('first screen: the first chart starts at ' + Math.round(cr.top) + ' px, so its first ' +
+                   expect.first_screen + ' px are not on a ' + window.innerHeight + ' px screen');
+      }
+    }
+    // Folded sections opened, no table is wider than its box (no horizontal scroll inside the page).
+    if (expect.tables_fit) {
+      document.querySelectorAll('details').forEach(function (d) { d.open = true; });
+      document.querySelectorAll('.table-wrap').forEach(function (w) {
+        if (w.scrollWidth > w.clientWidth + 1) {
+          var t = w.querySelector('table');
+          bad.push('table wider than its box: #' + (t && t.id ? t.id : '?') + ' ' + w.scrollWidth + ' > ' + w.clientWidth + ' px');
+        }
+      });
+    }
     if (document.documentElement.scrollWidth > window.innerWidth + 1)
       bad.push('page wider than the window: ' + document.documentElement.scrollWidth + ' > ' + window.innerWidth);
     var fetched = performance.getEntriesByType('resource');
     for (var j = 0; j < fetched.length; ++j) bad.push('page fetched ' + fetched[j].name);
     var out = document.createElement('pre');
     out.id = 'chutelab-check';
-    out.textContent = (bad.length ? 'FAIL: ' + bad.join(' | ') : 'PASS') + ' [svgs=' + svgs.length + ']';
+    out.textContent = (bad.length ? 'FAIL: ' + bad.join(' | ') : 'PASS') + ' [svgs=' + svgs.length + ']' + measured;
     document.body.appendChild(out);
   }
   if (document.readyState === 'complete') check(); else window.addEventListener('load', check);
@@ -131,6 +165,9 @@ struct Expectations {
   std::vector<std::string> ids;
   std::vector<std::pair<std::string, int>> counts, at_least;
   std::vector<std::string> side_by_side, stacked;  // ids of before/after pairs
+  std::vector<std::string> order;                   // CSS selectors in document order
+  int first_screen = 0;      // > 0: the first chart starts under the verdict with this much of it on screen
+  bool tables_fit = false;   // no table wider than its box, folded sections opened
   std::string js() const {
     auto quote = [](const std::string& s) { return "'" + s + "'"; };
     std::string o = "{sections: [";
@@ -143,7 +180,9 @@ struct Expectations {
     for (const auto& id : side_by_side) o += quote(id) + ",";
     o += "], stacked: [";
     for (const auto& id : stacked) o += quote(id) + ",";
-    return o + "]}";
+    o += "], order: [";
+    for (const auto& sel : order) o += quote(sel) + ",";
+    return o + fmt::format("], first_screen: {}, tables_fit: {}}}", first_screen, tables_fit ? "true" : "false");
   }
 };
 
@@ -221,16 +260,22 @@ BOOST_AUTO_TEST_CASE(reference_rig_report_renders_in_chromium) {
 
   const int n = static_cast<int>(d.stations.size());
   Expectations e;
-  e.ids = {"summary", "forces", "velocities", "trajectories", "residuals", "table4-base", "table5-base",
-           "bars-base", "traj-base", "resid-base", "trends-base"};
+  e.ids = {"summary", "forces", "velocities", "trajectories", "residuals", "failures", "failures-table",
+           "table4-base", "table5-base", "bars-base", "traj-base", "resid-base", "trends-base", "vv20"};
   e.counts = {{"#traj-base .trajectory-panel", n},
               {"#resid-base .residual-panel", quantities_with_normalised_error(r)},
               {"#table4-base tbody tr", n},
               {"#table5-base tbody tr", n},
               {"#bars-base rect.bar", 2 * n},  // measured and korzen (booth-cema predicts no R)
               {"#missing", 0}};
-  e.at_least = {{"#table4-base td.fail", 1}, {"#table5-base td.fail", 1}, {"#traj-base polyline", 4 * n}};
-  const std::string verdict = browse(dir, html, e);
+  e.at_least = {{"#table4-base td.fail", 1}, {"#table5-base td.fail", 1}, {"#traj-base polyline", 4 * n},
+                {"#failures-table tbody tr", r.failed_count()}, {"#table5-base td.beyond", 1}};
+  // The story first: verdict, where the models fail, what failed acceptance, then the detail.
+  e.order = {"h1", ".verdict", "#resid-base", "#failures", "#summary", "#forces", "#velocities", "#trajectories",
+             "#trends", "#vv20"};
+  e.first_screen = 250;
+  e.tables_fit = true;
+  const std::string verdict = browse(dir, html, e, 1400);
   finish(dir, verdict, since(t0));
 }
 
@@ -277,24 +322,34 @@ BOOST_AUTO_TEST_CASE(diagnosis_and_before_after_report_renders_in_chromium) {
   Expectations e;
   e.ids = {"summary", "missing", "before-after", "ranking-chart", "rms-before-after", "forces", "velocities",
            "trajectories", "residuals", "table4-base", "table4-effects", "table5-effects", "bars-effects",
-           "resid-effects", "trends-effects"};
+           "resid-base", "resid-effects-pair", "trends-effects", "vv20-table", "vv20-table-effects"};
   e.counts = {{"#traj-base .trajectory-panel", n},
               {"#traj-effects .trajectory-panel", n},
               {"#resid-base .residual-panel", quantities_with_normalised_error(before)},
-              {"#resid-effects .residual-panel", quantities_with_normalised_error(after)},
+              {"#resid-effects-pair .residual-panel", quantities_with_normalised_error(after)},
               {"#ranking-chart rect.bar", static_cast<int>(g.singles.size() + g.pairs.size())},
               {"#rms-before-after rect.bar", 4},
-              {"#residuals-pair .residual-chart", 2},
-              {"#missing #resid-change .residual-change-panel", quantities_with_normalised_error(before)}};
-  e.at_least = {{"#missing li", 1}, {"#ranking tbody tr", 1}};
+              {"#trends-pair .residual-chart", 2},
+              {"#before-after #resid-change .residual-change-panel", quantities_with_normalised_error(before)},
+              {"#failures", 0}};
+  e.at_least = {{"#residuals li", 1}, {"#ranking tbody tr", 1}};
+  // Verdict, where the models fail, the effect's before and after, the diagnosis, then the detail.
+  e.order = {"h1", ".verdict", "#resid-base", "#before-after", "#resid-change", "#missing", "#summary", "#forces",
+             "#trends", "#vv20"};
+  e.first_screen = 250;
+  e.tables_fit = true;
   const std::vector<std::string> pairs = {"summary-pair", "forces-pair", "velocities-pair", "trajectories-pair",
-                                          "residuals-pair"};
-  e.side_by_side = pairs;
-  const std::string verdict = browse(dir, html, e);
+                                          "trends-pair"};
+  // At 1400 px the pairs lie side by side, except Table 5's, whose many columns do not fit half the
+  // window: it stacks instead of scrolling.
+  e.side_by_side = {"summary-pair", "forces-pair", "trajectories-pair", "trends-pair"};
+  e.stacked = {"velocities-pair"};
+  const std::string verdict = browse(dir, html, e, 1400);
   // A narrow window: the same page, every pair one column under the other.
   Expectations narrow = e;
   narrow.side_by_side.clear();
   narrow.stacked = pairs;
+  narrow.first_screen = 0;
   const std::string narrow_verdict = browse(dir / "narrow", html, narrow, 900);
   BOOST_TEST(narrow_verdict.starts_with("PASS"), "900 px window: " << narrow_verdict);
   finish(dir, verdict, since(t0));
@@ -309,18 +364,26 @@ BOOST_AUTO_TEST_CASE(checker_catches_a_broken_page) {
       "<svg id=\"empty\" width=\"0\" height=\"0\"></svg>"
       "<svg id=\"spill\" class=\"plot\" width=\"100\" height=\"50\" viewBox=\"0 0 100 50\">"
       "<rect width=\"10\" height=\"10\"/><text x=\"90\" y=\"20\">far too long a label</text></svg>"
+      "<p class=\"verdict\">the verdict, below its chart</p>"
+      "<div class=\"table-wrap\" style=\"width: 100px; overflow-x: auto\"><table id=\"wide\" style=\"width: 500px\">"
+      "<tr><td>x</td></tr></table></div>"
       "<div class=\"before-after\" id=\"pair\"><div class=\"ba-col\">a</div><div class=\"ba-col\">b</div></div>"
       "<div style=\"width: 3000px\">wide</div>"
       "<script>undefined_function();</script></body></html>\n";
   Expectations e;
   e.ids = {"summary"};
   e.side_by_side = {"pair"};
+  e.order = {"#pair", "#spill"};
+  e.first_screen = 10;
+  e.tables_fit = true;
   const std::string verdict = browse(dir, html, e);
   BOOST_TEST_MESSAGE("verdict on the broken page: " << verdict);
   BOOST_TEST(verdict.starts_with("FAIL"), verdict);
   for (const char* problem : {"script error", "svg with an empty box: empty", "text outside its picture",
                               "missing element #summary", "plot without a title: spill", "#pair not side by side",
-                              "page wider than the window"})
+                              "page wider than the window", "order: #spill comes before #pair",
+                              "first screen: the first chart is above the verdict",
+                              "table wider than its box: #wide"})
     BOOST_TEST(verdict.find(problem) != std::string::npos, problem);
   fs::remove_all(dir);
 }

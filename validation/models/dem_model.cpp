@@ -217,11 +217,12 @@ class DemModel final : public Model {
     const st::RunSettings settings = st::resolve(table, over);
     const DemEffectInputs fx = dem_effect_inputs(station, effects);
     std::vector<ModelJob> out;
-    if (auto j = job_for(station, fx, settings, table, false)) out.push_back(std::move(*j));
+    if (auto j = job_for(station, fx, settings, table, false, "")) out.push_back(std::move(*j));
     if (request.discretisation && c_.ladder)
       for (const Ladder& l : ladders(station, settings))
         for (const auto& rung : l.coarser)
-          if (auto j = job_for(station, fx, rung.second, table, true)) out.push_back(std::move(*j));
+          if (auto j = job_for(station, fx, rung.second, table, true, rung_words(l.what, rung.second)))
+            out.push_back(std::move(*j));
     return out;
   }
 
@@ -229,8 +230,14 @@ class DemModel final : public Model {
   // One run as a campaign job; none when this process already holds its result. A ladder run that
   // cannot be made (its coarser particles do not fit the rig) is not the command's failure: its
   // job returns no result, and the prediction notes that the part is missing (add_ladder).
+  // What a ladder run is, for progress lines: "2 dt", "17.0 mm particles".
+  static std::string rung_words(const std::string& what, const st::RunSettings& s) {
+    if (what == "time-step") return "2 dt";
+    return fmt::format("{:.1f} mm particles", s.particle_diameter * 1e3);
+  }
+
   std::optional<ModelJob> job_for(const Station& station, const DemEffectInputs& fx, const st::RunSettings& settings,
-                                  const st::DemTable& table, bool optional_run) const {
+                                  const st::DemTable& table, bool optional_run, const std::string& rung) const {
     const std::string key = dem_cache_key(fx, settings, table);
     {
       const std::lock_guard<std::mutex> lock(ready_mutex());
@@ -238,7 +245,9 @@ class DemModel final : public Model {
     }
     ModelJob j;
     j.id = key;
-    j.job.key = fmt::format("dem {}", station.condition);
+    j.ladder_rung = rung;
+    j.job.key = rung.empty() ? fmt::format("dem {}", station.condition)
+                             : fmt::format("dem {} ({}, for u_num)", station.condition, rung);
     // Particles in the rig scale with the feed over d^3 and steps with 1/dt ~ 1/d: enough to put
     // the dear runs first; the numbers are never compared with a clock.
     const double d = settings.particle_diameter > 0.0 ? settings.particle_diameter : fx.station.material.particle_diameter;
@@ -255,6 +264,7 @@ class DemModel final : public Model {
       }
       try {
         const st::StationResult r = run_or_load(station, fx, s, table, &from_cache, nullptr);
+        if (from_cache && ctx.reused) *ctx.reused = true;
         return result_text(r, from_cache);
       } catch (const InputError&) {
         if (!optional_run || c_.cache_only) throw;

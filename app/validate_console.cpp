@@ -1,0 +1,77 @@
+#include "app/validate_console.h"
+
+#include <cctype>
+#include <fmt/format.h>
+
+#include "reports/plain_summary.h"
+#include "validation/failed_values.h"
+
+namespace chutelab::app {
+namespace {
+
+// A unit after its number ("8.0 %", "4 m/s,"): kept on the number's line, where a reader looks for it.
+bool is_unit(const std::string& word) {
+  const std::string bare = word.substr(0, word.find_last_not_of(",.;:)") + 1);
+  for (const char* u : {"%", "mm", "m/s", "t/h", "N", "m", "s", "kg", "kg/m³"})
+    if (bare == u) return true;
+  return false;
+}
+
+// Words to lines of at most `width` characters, each after the first indented.
+std::string wrap(const std::string& text, std::size_t width, const std::string& first, const std::string& indent) {
+  std::vector<std::string> words;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = std::min(text.find(' ', at), text.size());
+    std::string word = text.substr(at, end - at);
+    at = end + 1;
+    if (word.empty()) continue;
+    if (!words.empty() && is_unit(word) && std::isdigit(static_cast<unsigned char>(words.back().back())))
+      words.back() += " " + word;
+    else
+      words.push_back(std::move(word));
+  }
+  std::string out, line = first;
+  bool empty = true;
+  for (const auto& word : words) {
+    if (!empty && line.size() + 1 + word.size() > width) {
+      out += line + "\n";
+      line = indent;
+      empty = true;
+    }
+    line += (empty ? "" : " ") + word;
+    empty = false;
+  }
+  return out + line + "\n";
+}
+
+}  // namespace
+
+std::string validate_console(const reports::ReportInput& in, bool added_missing, const std::string& report_path) {
+  std::string o;
+  const bool after = in.with_effects != nullptr;
+  o += (after ? "before: " : "") + in.baseline->brief() + "\n";
+  if (!after)
+    for (const auto& l : reports::misfit_lines(in, 5)) o += l + "\n";
+  if (in.diagnosis) o += wrap(in.diagnosis->verdict, 110, "missing: ", "         ");
+  if (after) {
+    std::vector<std::string> added;
+    for (const auto& e : in.effects) added.push_back(reports::effect_words(e, true));
+    o += fmt::format("after:  + {}: {}\n", fmt::join(added, " + "), in.with_effects->brief());
+    for (const auto& l : reports::misfit_lines(in, 5)) o += l + "\n";
+  } else if (added_missing) {
+    o += "after:  nothing added: no candidate effect explains the misfit significantly\n";
+  }
+  if (const auto w = reports::effect_choice_warning(in); !w.empty()) o += wrap(w, 110, "note: ", "      ");
+  const auto& last = after ? *in.with_effects : *in.baseline;
+  o += validation::failure_table_text(last, 40);
+  std::string words;
+  for (const auto& s : reports::in_short(in)) words += (words.empty() ? "" : " ") + s;
+  if (!words.empty()) {
+    o += '\n';
+    o += wrap(words, 100, "In short: ", "");
+  }
+  o += fmt::format("report: {}\n", report_path);
+  return o;
+}
+
+}  // namespace chutelab::app
