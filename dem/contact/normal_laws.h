@@ -153,10 +153,11 @@ class NormalLaw {
         for (int b = 0; b < mt.size(); ++b) {
           const typename L::Coeffs c = L::mix(mt.material(a), mt.material(b), mt.interaction(a, b));
           const bool runs = L::check(c).empty();
-          for (const auto& [name, value] : L::liggghts_pair_properties(c).values()) {
-            auto it = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == name; });
-            if (it == out.end()) it = out.insert(out.end(), {name, std::vector<double>(n * n, 0.0)});
-            it->second[static_cast<std::size_t>(a) * n + static_cast<std::size_t>(b)] = runs ? value : 0.0;
+          const LawParameters properties = L::liggghts_pair_properties(c);  // the loop reads into it
+          for (const auto& property : properties.values()) {
+            auto it = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == property.first; });
+            if (it == out.end()) it = out.insert(out.end(), {property.first, std::vector<double>(n * n, 0.0)});
+            it->second[static_cast<std::size_t>(a) * n + static_cast<std::size_t>(b)] = runs ? property.second : 0.0;
           }
         }
       return out;
