@@ -158,8 +158,9 @@ int run_validate(const ValidateCli& o) {
   }
   std::cout << validate_console(report, o.add_missing, (fs::path(o.out) / "report.html").string());
   if (!o.junit.empty()) {
-    std::cout << fmt::format("junit: {} ({} test cases, {} failed, {} skipped)\n", o.junit, junit.tests,
-                             junit.failures, junit.skipped);
+    std::cout << fmt::format("junit: {} ({} test case{}, {} failed, {} skipped{})\n", o.junit, junit.tests,
+                             junit.tests == 1 ? "" : "s", junit.failures, junit.skipped,
+                             junit.errors ? fmt::format(", {} error: nothing was checked", junit.errors) : "");
     // The file says so too (an error test case), so a CI view never shows it green; the exit code
     // is the acceptance's own, as without --junit.
     if (junit.nothing_checked())
