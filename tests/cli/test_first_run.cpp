@@ -61,7 +61,7 @@ BOOST_AUTO_TEST_CASE(the_main_job_shows_the_loop_in_a_few_lines) {
   // The analytical models print no progress: stderr stays empty.
   BOOST_TEST(r.err.empty(), r.err);
   const auto lines = lines_of(r.out);
-  // scripts/run.sh adds two lines (the build, the command): at most 30 in all (issue 34).
+  // scripts/run.sh adds two lines (the build, the command): at most 30 in all: a first run a newcomer reads.
   BOOST_TEST(lines.size() + 2 <= 30u);
   // before, what is missing, after with the effect named and its fitted value, the report last.
   BOOST_TEST(lines.front().starts_with("before: hidden-effect: 8 conditions x 2 models; RMS E/u_val"));
