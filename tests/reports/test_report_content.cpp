@@ -357,7 +357,7 @@ BOOST_FIXTURE_TEST_CASE(no_pairs_without_effects, Fixture) {
 }
 
 // A point cloud (a DEM's particles) is dots coloured on one scale shared by every panel, never a
-// polyline through 3000 particles; the seed's findings appear when given.
+// polyline through 3000 particles; the reference study's findings appear when given.
 BOOST_FIXTURE_TEST_CASE(point_clouds_are_dots_with_a_colour_bar, Fixture) {
   validation::Curve cloud{"particles", {}, validation::Curve::Kind::points, {}, "speed (m/s)"};
   for (int i = 0; i < 50; ++i) {
