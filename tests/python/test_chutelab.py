@@ -185,7 +185,7 @@ def test_diagnose_finds_the_hidden_effect_as_the_command_line_does(tmp_path):
     assert r.returncode == 0, r.stderr
     assert d.verdict == r.stdout.splitlines()[0]
     assert d.markdown == (tmp_path / "d" / "diagnosis.md").read_text()
-    text = ("effect", "parameter", "significant")
+    text = ("effect", "parameter", "significant", "signature", "wants_outside_range", "beaten_outside_range_by")
     if (d.ranking["rank"] == "pair").any():
         text += ("rank", "estimate", "uncertainty")
     assert_same_table(d.ranking, read_csv(tmp_path / "d" / "diagnosis.csv", text=text), text=text)
@@ -193,6 +193,20 @@ def test_diagnose_finds_the_hidden_effect_as_the_command_line_does(tmp_path):
     assert d.best == "air_drag" and d.ranking.effect[0] == "air_drag"
     assert d.any_significant
     assert {"model", "quantity", "driver", "correlation"} <= set(d.patterns.columns)
+    # The verdict as numbers: its code and the fitted strength with its uncertainty.
+    assert d.verdict_code == "missing_effect"
+    fit = d.best_fit["air_drag"]
+    assert abs(fit["value"] - 0.7) < 3 * fit["uncertainty"]
+    assert d.outliers == [] and d.model_form == []
+
+
+def test_diagnose_self_check_gives_rates_for_the_design():
+    d = chutelab.diagnose(HIDDEN, self_check=4, seed=6400)
+    sc = d.self_check
+    assert sc["null_replicas"] == 4 and sc["effect_replicas"] == 4
+    assert sc["truth"] == ["air_drag"]
+    assert 0 <= sc["false_alarms"] <= 4 and 0 <= sc["covered"] <= 4
+    assert "False alarms" in sc["markdown"]
 
 
 def test_an_effect_fitted_in_python_lowers_the_error_as_validate_effect_fit_does(tmp_path):
