@@ -4,6 +4,7 @@
 // PATH); without it every case exits with status 77, which ctest reports as skipped.
 #define BOOST_TEST_MODULE liggghts_station
 #include <boost/test/unit_test.hpp>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -35,7 +36,9 @@ const station::StationResult& lig() {
     liggghts::Options o;
     o.settings = test::tiny_settings();
     o.command = "mpirun -n 1 " + program();
-    o.work_dir = (std::filesystem::temp_directory_path() / "chutelab-test-liggghts-tiny").string();
+    // One folder per process: suites of other checkouts on the same machine run this test too.
+    o.work_dir = (std::filesystem::temp_directory_path() / ("chutelab-test-liggghts-tiny-" + std::to_string(::getpid())))
+                     .string();
     return liggghts::run_station(test::tiny_station(), o);
   }();
   return r;
@@ -98,7 +101,7 @@ BOOST_AUTO_TEST_CASE(version_probe_writes_no_log) {
   require_liggghts();
   namespace fs = std::filesystem;
   const fs::path here = fs::current_path();
-  const fs::path dir = fs::temp_directory_path() / "chutelab-test-liggghts-version";
+  const fs::path dir = fs::temp_directory_path() / ("chutelab-test-liggghts-version-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   fs::remove(dir / "log.liggghts");
   fs::current_path(dir);
