@@ -13,6 +13,7 @@
 #include "core/input_error.h"
 #include "core/output_folder.h"
 #include "validation/diagnosis.h"
+#include "validation/self_check.h"
 #include "validation/output_files.h"
 
 namespace chutelab::app {
@@ -23,6 +24,8 @@ struct DiagnoseCli {
   double alpha = 0.01;
   bool no_pairs = false;
   int jobs = 0;
+  int self_check = 0;
+  std::uint64_t seed = 1;
   DemCli dem;
 };
 
@@ -34,7 +37,7 @@ int run_diagnose(const DiagnoseCli& o) {
   for (auto& p : model_inputs(o.models)) inputs.push_back(std::move(p));
   OutputFolder out(o.out, inputs);
   own_validate_outputs(out);
-  check_entries(out, {"diagnosis.csv", "diagnosis.md"});
+  check_entries(out, {"diagnosis.csv", "diagnosis.md", "self_check.md", "self_check.csv"});
   const auto names = split_list(o.models);
   validation::DiagnoseOptions opt;
   opt.alpha = o.alpha;
@@ -52,11 +55,35 @@ int run_diagnose(const DiagnoseCli& o) {
   const auto models = validation::make_models(names);
   if (models.empty()) throw InputError("", 0, "--models", "no model given");
   const auto r = validation::diagnose(d, models, opt);
-  const std::string md = validation::diagnosis_markdown(r);
+  std::optional<validation::SelfCheckResult> sc;
+  if (o.self_check > 0) {
+    validation::SelfCheckOptions so;
+    so.replicas = o.self_check;
+    so.seed = o.seed;
+    so.diagnose = opt;
+    so.diagnose.progress = false;
+    sc = validation::self_check(d, r, so);
+  }
+  std::string md = validation::diagnosis_markdown(r);
+  if (sc) md += "\n" + validation::self_check_markdown(*sc, opt.alpha);
   out.write("diagnosis.csv", validation::diagnosis_csv(r));
   out.write("diagnosis.md", md);
+  if (sc) {
+    out.write("self_check.md", validation::self_check_markdown(*sc, opt.alpha));
+    out.write("self_check.csv", validation::self_check_csv(*sc));
+  }
   out.commit();
   std::cout << r.verdict << "\n";
+  for (const auto& f : r.findings) std::cout << "- " << f << "\n";
+  if (sc) {
+    std::cout << fmt::format("self-check ({} replicas of this design): {} false alarm{} among effect-free replicas",
+                             sc->null_replicas, sc->false_alarms, sc->false_alarms == 1 ? "" : "s");
+    if (!sc->truth.empty())
+      std::cout << fmt::format("; with the fitted explanation it was named in {} of {} and its ± 2 sd held the truth "
+                               "in {} of {}",
+                               sc->named, sc->effect_replicas, sc->covered, sc->effect_replicas);
+    std::cout << ".\n";
+  }
   std::cout << fmt::format("diagnosis: {}\n", (fs::path(o.out) / "diagnosis.md").string());
   return 0;
 }
@@ -80,6 +107,13 @@ void add_diagnose(CLI::App& app, Action& action) {
                   "expensive (DEM) runs side by side, and threads of the analytical fits (default: one per core "
                   "left free by the load average; results do not depend on it)")
       ->check(CLI::Range(0, 256));  // 0: the default (one per idle core)
+  with_rule(cmd->add_option("--self-check", o->self_check,
+                            "also diagnose N replicas of this dataset's design (the analytical models with the "
+                            "fitted explanation, or none, plus noise of the stated size): this rig's false-alarm "
+                            "rate, power and the coverage of the printed ±"),
+            options::rules::self_check);
+  with_rule(cmd->add_option("--seed", o->seed, "random seed of the self-check's replicas")->capture_default_str(),
+            options::rules::seed);
   add_dem_options(*cmd, o->dem);
   add_quiet_option(*cmd);
   cmd->add_option("--out", o->out, "output folder")->required();

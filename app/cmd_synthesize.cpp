@@ -17,7 +17,9 @@ struct SynthesizeCli {
   std::string dataset, out;
   std::vector<std::string> effects;
   std::uint64_t seed = 1;
-  double noise_scale = 1.0;
+  double noise_scale = 1.0, noise_factor = 1.0;
+  int outliers = 0;
+  bool out_of_range = false;
 };
 
 int run_synthesize(const SynthesizeCli& o) {
@@ -27,11 +29,14 @@ int run_synthesize(const SynthesizeCli& o) {
   // Checked before any work (and again, the same way, where the dataset is written).
   { OutputFolder check(o.out, dataset_inputs(dir)); }
   std::vector<effects::EffectSetting> settings;
-  for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false));
+  for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false, o.out_of_range));
   validation::SynthesizeOptions opt;
   opt.effects = effects::instantiate(settings);
   opt.seed = o.seed;
   opt.noise_scale = o.noise_scale;
+  opt.noise_factor = o.noise_factor;
+  opt.outliers = o.outliers;
+  opt.out_of_range = o.out_of_range;
   std::vector<validation::ModelPtr> models;
   for (const auto& n : validation::model_names()) {
     auto m = validation::make_model(n);
@@ -54,6 +59,16 @@ void add_synthesize(CLI::App& app, Action& action) {
   with_rule(cmd->add_option("--seed", o->seed, "random seed")->capture_default_str(), options::rules::seed);
   with_rule(cmd->add_option("--noise-scale", o->noise_scale, "multiplies every uncertainty")->capture_default_str(),
             options::rules::noise_scale);
+  with_rule(cmd->add_option("--noise-factor", o->noise_factor,
+                            "the real scatter in stated uncertainties (2: the stated uncertainties are half the truth)")
+                ->capture_default_str(),
+            options::rules::noise_factor);
+  with_rule(cmd->add_option("--outliers", o->outliers,
+                            "gross reading errors (8-15 stated uncertainties) among the measurements")
+                ->capture_default_str(),
+            options::rules::outliers);
+  cmd->add_flag("--allow-out-of-range", o->out_of_range,
+                "accept effect strengths outside their physical range (test data only; the README says so)");
   cmd->add_option("--out", o->out, "output folder")->required();
   cmd->callback([o, &action] { action = [o] { return run_synthesize(*o); }; });
 }

@@ -57,7 +57,7 @@ int run_validate(const ValidateCli& o) {
   const auto dataset = validation::read_dataset(dir);
   // Read before any model runs: a bad study file ends the command before anything is written.
   const auto studies = reports::read_studies({o.studies.begin(), o.studies.end()}, dataset.setup.name);
-  std::optional<reports::SensitivityStudy> sensitivity;  // the seed's finding 6, when one was run
+  std::optional<reports::SensitivityStudy> sensitivity;  // the reference study's finding 6, when one was run
   for (const auto& s : o.studies) {
     const fs::path f = fs::is_directory(s) ? fs::path(s) / "sensitivity.csv" : fs::path(s);
     if (f.filename() == "sensitivity.csv" && fs::exists(f)) sensitivity = reports::read_sensitivity_csv(f);

@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
-#include "validation/effect_fit.h"
+#include "validation/strength_fit.h"
 
 namespace chutelab::app {
 

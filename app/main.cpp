@@ -114,7 +114,7 @@ std::vector<std::filesystem::path> model_inputs(const std::string& models) {
 
 void own_validate_outputs(OutputFolder& out) {
   out.owns({"predictions.csv", "errors.csv", "summary.csv", "report.md", "report.html", "diagnosis.csv",
-            "diagnosis.md", "dem"});
+            "diagnosis.md", "self_check.md", "self_check.csv", "dem"});
 }
 
 void check_entries(const OutputFolder& out, std::initializer_list<const char*> files) {

@@ -54,6 +54,11 @@ inline constexpr NumberRule alpha{"--alpha", 1e-6, 0.5, false, false, false, ""}
 inline constexpr NumberRule dem_threads{"--dem-threads", 0.0, 256.0, false, false, true, ""};
 inline constexpr NumberRule threads{"--threads", 0.0, 256.0, false, false, true, ""};
 inline constexpr NumberRule jobs{"--jobs", 1.0, 256.0, false, false, true, ""};
+// synthesize: the real scatter in stated uncertainties, and gross reading errors.
+inline constexpr NumberRule noise_factor{"--noise-factor", 0.0, 100.0, false, false, false, ""};
+inline constexpr NumberRule outliers{"--outliers", 0.0, 100000.0, false, false, true, ""};
+// diagnose: replicas of the dataset's design (each about as long as the diagnosis itself).
+inline constexpr NumberRule self_check{"--self-check", 0.0, 100000.0, false, false, true, ""};
 }  // namespace rules
 
 }  // namespace chutelab::options

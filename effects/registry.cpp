@@ -30,7 +30,14 @@ const EffectInfo* find(const std::string& name) {
   return nullptr;
 }
 
-EffectSetting parse_setting(const std::string& text, bool allow_fit) {
+Range extended_range(const EffectInfo& e) {
+  const double span = e.upper - e.lower;
+  return {e.lower - span, e.upper + span};
+}
+
+bool in_physical_range(const EffectInfo& e, double strength) { return strength >= e.lower && strength <= e.upper; }
+
+EffectSetting parse_setting(const std::string& text, bool allow_fit, bool outside_range) {
   const auto eq = text.find('=');
   const std::string name = text.substr(0, eq);
   const EffectInfo* info = find(name);
@@ -55,10 +62,17 @@ EffectSetting parse_setting(const std::string& text, bool allow_fit) {
   const double v = parsed.value_or(0.0);
   if (!parsed || !std::isfinite(v))
     throw InputError("", 0, "--effect", fmt::format("'{}': '{}' is not a number", text, value));
-  if (v < info->lower || v > info->upper)
+  if (outside_range) {
+    const Range r = extended_range(*info);
+    if (v < r.lower || v > r.upper)
+      throw InputError("", 0, "--effect",
+                       fmt::format("'{}': {} must lie in [{}, {}] {} (its physical range [{}, {}] widened by its span on each side)",
+                                   text, info->parameter, r.lower, r.upper, info->unit, info->lower, info->upper));
+  } else if (!in_physical_range(*info, v)) {
     throw InputError("", 0, "--effect",
                      fmt::format("'{}': {} must lie in its physical range [{}, {}] {}", text,
                                  info->parameter, info->lower, info->upper, info->unit));
+  }
   return {info, v};
 }
 

@@ -28,6 +28,16 @@ struct EffectInfo {
   std::string check = {};
 };
 
+// How far a fit may go past the physical range when it asks what strength the data want, whatever
+// physics allows (a negative drag coefficient: particles faster than ballistic): the physical range
+// widened by its own span on each side. The effects' formulas stay defined there; where the
+// analytical chain has no answer, a trial gives a large misfit, as inside the range.
+struct Range {
+  double lower = 0.0, upper = 0.0;
+};
+Range extended_range(const EffectInfo& e);
+bool in_physical_range(const EffectInfo& e, double strength);
+
 // All registered effects, sorted by name.
 const std::vector<EffectInfo>& library();
 const EffectInfo* find(const std::string& name);
@@ -42,7 +52,9 @@ struct EffectSetting {
   const EffectInfo* info = nullptr;
   std::optional<double> value;  // absent: fit to the data
 };
-EffectSetting parse_setting(const std::string& text, bool allow_fit);
+// `outside_range`: strengths beyond the physical range (within extended_range) are accepted: only
+// to make test data that break physics on purpose.
+EffectSetting parse_setting(const std::string& text, bool allow_fit, bool outside_range = false);
 analytical::EffectList instantiate(const std::vector<EffectSetting>& fixed);
 
 }  // namespace chutelab::effects

@@ -25,6 +25,7 @@
 #include "validation/harness.h"
 #include "validation/model.h"
 #include "validation/output_files.h"
+#include "validation/self_check.h"
 #include "validation/synthesize.h"
 #include "validation/tolerances.h"
 
@@ -50,7 +51,7 @@ std::string python_field(const std::string& field) {
 std::string python_text(std::string text) {
   static const char* const keywords[] = {"dataset", "setup", "condition", "effect", "models", "tolerances",
                                          "seed", "noise-scale", "out", "alpha", "dem-quality", "dem-threads",
-                                         "dem-cache", "no-dem-cache", "belt-speed", "mass-flow", "plate-distance",
+                                         "dem-cache", "no-dem-cache", "self-check", "belt-speed", "mass-flow", "plate-distance",
                                          "plate-top", "stream-thickness"};
   for (const char* k : keywords) {
     const std::string flag = std::string("--") + k;
@@ -210,10 +211,70 @@ py::dict validate(const validation::Dataset& d, const std::vector<std::string>& 
   return r;
 }
 
+const char* verdict_name(validation::Verdict v) {
+  switch (v) {
+    case validation::Verdict::no_data: return "no_data";
+    case validation::Verdict::consistent: return "consistent";
+    case validation::Verdict::missing_effect: return "missing_effect";
+    case validation::Verdict::partial_explanation: return "partial_explanation";
+    case validation::Verdict::out_of_range: return "out_of_range";
+    case validation::Verdict::outside_library: return "outside_library";
+  }
+  return "";
+}
+
+// The numbers behind the verdict, as plain Python values.
+void diagnosis_numbers(const validation::DiagnosisResult& x, py::dict& r) {
+  r["verdict_code"] = verdict_name(x.verdict_code);
+  r["goodness_of_fit"] = x.goodness_of_fit;
+  r["thin_data"] = x.thin_data;
+  r["findings"] = x.findings;
+  r["wants_outside"] = x.wants_outside;
+  py::list outliers;
+  for (const auto& o : x.outliers) {
+    py::dict d;
+    d["condition"] = o.condition, d["quantity"] = o.quantity, d["file"] = o.where.file, d["line"] = o.where.line;
+    d["measured"] = o.measured, d["predicted"] = o.predicted, d["deviation"] = o.deviation;
+    d["relative"] = o.relative;
+    outliers.append(d);
+  }
+  r["outliers"] = outliers;
+  py::list model_form;
+  for (const auto& m : x.model_form) {
+    py::dict d;
+    d["quantity"] = m.quantity, d["model"] = m.model, d["n"] = m.n, d["discrepancy"] = m.tau;
+    d["mean_error"] = m.mean_error, d["mean_relative_error"] = m.mean_relative;
+    model_form.append(d);
+  }
+  r["model_form"] = model_form;
+  py::dict scale;
+  scale["factor"] = x.scale.factor, scale["dof"] = x.scale.dof, scale["applied"] = x.scale.applied;
+  scale["too_large"] = x.scale.too_large, scale["p_high"] = x.scale.p_high, scale["p_low"] = x.scale.p_low;
+  r["uncertainty_scale"] = scale;
+  if (const auto* b = x.best()) {
+    py::dict fit;
+    for (std::size_t i = 0; i < b->effects.size(); ++i) {
+      py::dict e;
+      e["value"] = b->estimate[i];
+      e["uncertainty"] = b->uncertainty[i];
+      fit[py::str(b->effects[i])] = e;
+    }
+    r["best_fit"] = fit;
+  } else {
+    r["best_fit"] = py::none();
+  }
+}
+
 py::dict diagnose(const validation::Dataset& d, const std::vector<std::string>& model_names, double alpha,
                   bool pairs, const std::string& dem_quality, std::optional<int> dem_threads,
-                  const std::string& dem_cache, bool no_dem_cache) {
+                  const std::string& dem_cache, bool no_dem_cache, const py::object& self_check_arg,
+                  const py::object& seed_arg) {
   std::optional<validation::DiagnosisResult> res;
+  std::optional<validation::SelfCheckResult> sc;
+  const int self_check = static_cast<int>(whole_number(self_check_arg, options::rules::self_check));
+  const double seed_checked = whole_number(seed_arg, options::rules::seed);
+  const std::uint64_t seed = py::isinstance<py::float_>(seed_arg) ? static_cast<std::uint64_t>(seed_checked)
+                                                                   : seed_arg.cast<std::uint64_t>();
   {
     py::gil_scoped_release free;
     app::configure_dem_model(dem_cli(dem_quality, dem_threads, dem_cache, no_dem_cache), d.dir.string(), "");
@@ -224,9 +285,29 @@ py::dict diagnose(const validation::Dataset& d, const std::vector<std::string>& 
     opt.alpha = alpha;
     opt.pairs = pairs;
     res = validation::diagnose(d, models, opt);
+    if (self_check > 0) {
+      validation::SelfCheckOptions so;
+      so.replicas = self_check;
+      so.seed = seed;
+      so.diagnose = opt;
+      sc = validation::self_check(d, *res, so);
+    }
   }
   const auto& x = *res;
   py::dict r;
+  diagnosis_numbers(x, r);
+  if (sc) {
+    py::dict c;
+    c["null_replicas"] = sc->null_replicas, c["false_alarms"] = sc->false_alarms;
+    c["false_alarm_rate"] = sc->false_alarm_rate(), c["false_alarm_upper"] = sc->false_alarm_upper;
+    c["truth"] = sc->truth, c["truth_strength"] = sc->truth_strength;
+    c["effect_replicas"] = sc->effect_replicas, c["named"] = sc->named, c["named_other"] = sc->named_other;
+    c["covered"] = sc->covered, c["power"] = sc->power(), c["coverage"] = sc->coverage();
+    c["markdown"] = validation::self_check_markdown(*sc, alpha);
+    r["self_check"] = c;
+  } else {
+    r["self_check"] = py::none();
+  }
   r["ranking"] = validation::diagnosis_csv(x);
   r["markdown"] = validation::diagnosis_markdown(x);
   r["verdict"] = x.verdict;
@@ -352,7 +433,8 @@ PYBIND11_MODULE(_chutelab, m) {
         py::arg("tolerances"), py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"),
         py::arg("no_dem_cache"));
   m.def("diagnose", &diagnose, py::arg("dataset"), py::arg("models"), py::arg("alpha"), py::arg("pairs"),
-        py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"), py::arg("no_dem_cache"));
+        py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"), py::arg("no_dem_cache"),
+        py::arg("self_check"), py::arg("seed"));
   m.def("synthesize", &synthesize, py::arg("source"), py::arg("effects"), py::arg("seed"),
         py::arg("noise_scale"), py::arg("out"));
 

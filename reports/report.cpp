@@ -233,6 +233,10 @@ void what_is_missing(Doc& d, const Context& c) {
                   "they are: {:.1f} (chance of this much from noise alone: p = {:.2g}).",
                   fmt::join(g.models, ", "), g.n_data, g.n_without_uncertainty, g.chi2_baseline,
                   g.baseline_p_value));
+  if (!g.findings.empty()) {
+    d.h(3, "missing-data", "What the data say about themselves");
+    d.list(g.findings);
+  }
   d.h(3, "missing-ranking", "Which effect explains the misfit");
   const std::string chart = ranking_chart(g, "ranking-chart");
   if (!chart.empty())
@@ -243,7 +247,7 @@ void what_is_missing(Doc& d, const Context& c) {
   if (const auto* best = g.best()) {
     d.h(3, "missing-physics",
         g.convincing ? fmt::format("The recommended effect: {}", best->label())
-                     : fmt::format("The best candidate, which does not explain the misfit well: {}",
+                     : fmt::format("The best explanation, which leaves a misfit that is not noise: {}",
                                    best->label()));
     for (std::size_t i = 0; i < best->effects.size(); ++i) {
       const auto& nm = best->effects[i];
@@ -268,6 +272,9 @@ void what_is_missing(Doc& d, const Context& c) {
       if (!e->source.empty()) body += " Source: " + e->source + ".";
       d.definition(nm, body);
     }
+  } else if (g.verdict_code == validation::Verdict::out_of_range) {
+    d.p("No candidate effect is named: the data want an effect at a strength outside its physical range (the "
+        "verdict above), and no effect inside its range explains them as well.");
   } else {
     d.p("No candidate effect is significant: none of the library's effects explains the misfit better than "
         "chance would.");

@@ -1,19 +1,24 @@
 #include "validation/diagnosis.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
-#include <iostream>
 #include <gsl/gsl_cdf.h>
+#include <iostream>
 #include <map>
 #include <set>
 #include <thread>
 
 #include "analytical/transfer_station.h"
 #include "core/campaign.h"
-#include "validation/effect_fit.h"
-#include "validation/output_files.h"
+#include "core/input_error.h"
+#include "effects/registry.h"
+#include "validation/misfit.h"
+#include "validation/noise_model.h"
+#include "validation/strength_fit.h"
 
 namespace chutelab::validation {
 
@@ -21,39 +26,660 @@ std::string EffectFit::label() const { return fmt::format("{}", fmt::join(effect
 
 const EffectFit* DiagnosisResult::best() const {
   if (!any_significant) return nullptr;
-  if (!pairs.empty()) return &pairs.front();
-  return singles.empty() ? nullptr : &singles.front();
+  const EffectFit* b = !pairs.empty() ? &pairs.front() : singles.empty() ? nullptr : &singles.front();
+  return b && b->beaten_outside_range_by.empty() ? b : nullptr;
+}
+
+void check(const DiagnoseOptions& o) {
+  auto need = [](bool ok, const char* field, const std::string& what) {
+    if (!ok) throw InputError("", 0, field, what);
+  };
+  need(o.alpha > 0.0 && o.alpha <= 0.5, "alpha", fmt::format("must lie in (0, 0.5], got {}", o.alpha));
+  need(std::isfinite(o.pair_margin_bic) && o.pair_margin_bic >= 0.0, "pair_margin_bic",
+       fmt::format("must be finite and >= 0, got {}", o.pair_margin_bic));
+  need(std::isfinite(o.tie_margin_bic) && o.tie_margin_bic >= 0.0, "tie_margin_bic",
+       fmt::format("must be finite and >= 0, got {}", o.tie_margin_bic));
+  need(o.proportional_cosine > 0.0 && o.proportional_cosine <= 1.0, "proportional_cosine",
+       fmt::format("must lie in (0, 1], got {}", o.proportional_cosine));
+  need(o.max_outlier_share >= 0.0 && o.max_outlier_share <= 0.5, "max_outlier_share",
+       fmt::format("must lie in [0, 0.5], got {}", o.max_outlier_share));
+  need(o.jobs >= 0 && o.jobs <= 4096, "jobs", fmt::format("must lie in [0, 4096], got {}", o.jobs));
+  need(o.confirm >= 0 && o.confirm <= 64, "confirm", fmt::format("must lie in [0, 64], got {}", o.confirm));
+  need(o.profile_runs == 0 || (o.profile_runs >= 3 && o.profile_runs <= 12), "profile_runs",
+       fmt::format("must be 0 or lie in [3, 12], got {}", o.profile_runs));
 }
 
 namespace {
 
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  const std::size_t n = a.size();
-  double ma = 0, mb = 0;
-  for (std::size_t i = 0; i < n; ++i) ma += a[i], mb += b[i];
-  ma /= n, mb /= n;
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    sab += (a[i] - ma) * (b[i] - mb);
-    saa += (a[i] - ma) * (a[i] - ma);
-    sbb += (b[i] - mb) * (b[i] - mb);
-  }
-  return (saa > 0 && sbb > 0) ? sab / std::sqrt(saa * sbb) : 0.0;
+using Fx = std::vector<const effects::EffectInfo*>;
+
+Fx infos_of(const EffectFit& f) {
+  Fx v;
+  for (const auto& n : f.effects) v.push_back(effects::find(n));
+  return v;
 }
 
-std::string quantity_words(const std::string& q) {
-  if (auto parsed = parse_quantity(q)) return fmt::format("{} ({})", info(*parsed).label, info(*parsed).symbol);
-  if (q.rfind("trajectory_", 0) == 0) {
-    const std::string b = q.substr(11, q.find("_y_mm") - 11);
-    return fmt::format("{} stream limit", b == "centre" ? "centre of the" : b);
+// A step of the diagnosis under one noise model: the cost fits minimise and the tests' yardsticks.
+struct Stage {
+  const Misfit& m;
+  const DiagnoseOptions& opt;
+  NoiseModel nm;
+  Cost cost;
+  double chi2_0 = 0.0;  // the models as they are
+  double n = 0.0;       // points that count
+  std::size_t candidates = 0;
+
+  Stage(const Misfit& misfit, const DiagnoseOptions& o, NoiseModel noise)
+      : m(misfit), opt(o), nm(std::move(noise)), cost(misfit, nm.weights(misfit)) {
+    chi2_0 = cost.chi2({}, {});
+    n = static_cast<double>(cost.size());
+    candidates = effects::library().size();
   }
-  return q;
+  double dof(double k) const { return std::max(1.0, n - k); }
+  // The chance of a fall of chi^2 this large from k more strengths: a likelihood ratio against the
+  // stated uncertainties, or an F test against the scatter itself once they were widened.
+  double p_improvement(double drop, double k, double after) const {
+    drop = std::max(0.0, drop);
+    if (nm.scale > 1.0) return gsl_cdf_fdist_Q((drop / k) / std::max(after / dof(k), 1e-300), k, dof(k));
+    return gsl_cdf_chisq_Q(drop, k);
+  }
+};
+
+void score(EffectFit& e, double chi2, const Stage& s) {
+  const double k = static_cast<double>(e.effects.size());
+  e.chi2_before = s.chi2_0;
+  e.chi2_after = chi2;
+  e.delta_bic = (chi2 + k * std::log(std::max(s.n, 2.0))) - s.chi2_0;
+  // The misfit beyond noise: what is left counts as noise up to its degrees of freedom.
+  const double floor = std::min(chi2, s.dof(k));
+  e.explained_fraction = s.chi2_0 - floor > 0.0 ? std::clamp((s.chi2_0 - chi2) / (s.chi2_0 - floor), 0.0, 1.0) : 0.0;
+  e.p_value = s.p_improvement(s.chi2_0 - chi2, k, chi2);
+}
+
+EffectFit make_fit(const Fx& fx, const StrengthFit& f, const Stage& s) {
+  EffectFit e;
+  for (const auto* i : fx) {
+    e.effects.push_back(i->name);
+    e.parameters.push_back(i->unit.empty() ? i->parameter : fmt::format("{}_{}", i->parameter, i->unit));
+  }
+  e.estimate = f.estimate;
+  e.uncertainty = f.uncertainty;
+  e.status = f.status;
+  e.at_bound = f.at_bound;
+  score(e, f.chi2, s);
+  return e;
+}
+
+// A fit's chi^2 replaced by the one real runs at its strengths give, and what follows from it.
+void rescore(EffectFit& e, double chi2, const Stage& s) {
+  if (!e.chi2_from_signatures) e.chi2_from_signatures = e.chi2_after;
+  score(e, chi2, s);
+}
+
+std::string signature_words(PredictionSource::Signature s) {
+  switch (s) {
+    case PredictionSource::Signature::own_runs: return "own runs";
+    case PredictionSource::Signature::cheap_models: return "analytical only";
+    case PredictionSource::Signature::none: return "exact (measurement)";
+  }
+  return "";
+}
+
+// Where a long run is and how long it has taken so far.
+struct Progress {
+  bool on = false;
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  void operator()(const std::string& what, std::size_t k, std::size_t of) const {
+    if (!on) return;
+    const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - started;
+    std::cerr << fmt::format("diagnose: fitting {} ({}/{}, {:.0f} s so far)\n", what, k, of, spent.count());
+  }
+};
+
+// Every single candidate fitted inside its physical range, judged (Bonferroni over the candidates)
+// and ranked by chi^2.
+std::vector<EffectFit> fit_singles(const Stage& s, const Progress& progress) {
+  const auto& lib = effects::library();
+  std::vector<EffectFit> out;
+  for (const auto& e : lib) {
+    progress(e.name, static_cast<std::size_t>(&e - lib.data()) + 1, lib.size());
+    const Fx fx = {&e};
+    EffectFit f = make_fit(fx, fit_strengths(s.cost, fx), s);
+    if (s.m.source().has_expensive()) f.signature = signature_words(s.m.source().signature(e));
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+void judge_singles(std::vector<EffectFit>& singles, const Stage& s) {
+  const double k = static_cast<double>(singles.size());
+  for (auto& f : singles) {
+    f.p_adjusted = std::min(1.0, f.p_value * k);
+    f.significant = f.p_adjusted < s.opt.alpha;
+  }
+  std::stable_sort(singles.begin(), singles.end(), [](const auto& a, const auto& b) { return a.chi2_after < b.chi2_after; });
+  for (std::size_t i = 0; i < singles.size(); ++i) singles[i].rank = static_cast<int>(i) + 1;
+}
+
+const EffectFit* leader(const std::vector<EffectFit>& singles) {
+  return !singles.empty() && singles.front().significant ? &singles.front() : nullptr;
+}
+
+std::vector<double> residuals_at(const Misfit& m, const EffectFit* f) {
+  if (!f) return m.residuals({}, {});
+  return m.residuals(infos_of(*f), f->estimate);
+}
+
+// An expensive model that runs with effects ranks by signatures, which are differences carried
+// along a response: close to the data they can misorder candidates whose real runs differ. So the
+// leading significant candidates are run for real at their fitted strengths, and the ranking is
+// the runs'. Nothing is run when nothing is significant.
+void confirm_leaders(std::vector<EffectFit>& singles, const Stage& s, int jobs) {
+  int confirmed = 0;
+  for (auto& f : singles) {
+    if (confirmed >= s.opt.confirm || !f.significant) break;
+    const Fx fx = infos_of(f);
+    // A measurement effect acts on the expensive model's output exactly: a run would add nothing.
+    if (s.m.source().signature(*fx[0]) == PredictionSource::Signature::none) continue;
+    f.estimate[0] = on_grid(f.estimate[0], f.uncertainty[0]);
+    s.m.source().prepare_exact(fx, f.estimate, jobs);
+    rescore(f, s.cost.chi2_of(s.m.residuals_exact(fx, f.estimate)), s);
+    ++confirmed;
+  }
+  judge_singles(singles, s);
+}
+
+// A single at an edge of its physical range refitted over its extended range, when the misfit
+// falls past the edge: what the data want whatever physics allows.
+void fit_outside(std::vector<EffectFit>& singles, const Stage& s) {
+  const double limit = s.opt.alpha / static_cast<double>(singles.size());
+  for (auto& f : singles) {
+    if (f.at_bound.empty() || !f.at_bound[0]) continue;
+    const auto* e = effects::find(f.effects[0]);
+    const double span = e->upper - e->lower;
+    const bool low = f.estimate[0] <= e->lower + 1e-3 * span;
+    const double past = low ? e->lower - 0.05 * span : e->upper + 0.05 * span;
+    const Fx fx = {e};
+    const double at_edge = f.chi2_from_signatures ? *f.chi2_from_signatures : f.chi2_after;
+    if (s.cost.chi2(fx, std::vector<double>{past}) >= at_edge) continue;
+    const auto u = fit_strengths(s.cost, fx, {StrengthRange::extended, {{past}}});
+    UnboundedFit ub{u.estimate[0], u.uncertainty[0], u.chi2, false};
+    const double sd = std::isfinite(ub.uncertainty) ? ub.uncertainty : 0.0;
+    const bool outside = ub.estimate + 2.0 * sd < e->lower || ub.estimate - 2.0 * sd > e->upper;
+    ub.wants_outside = outside && s.p_improvement(at_edge - ub.chi2, 1.0, ub.chi2) < limit;
+    f.unbounded = ub;
+  }
+}
+
+// The candidate whose fit outside its range explains the data best, if any wants to go there.
+const EffectFit* best_outside(const std::vector<EffectFit>& singles) {
+  const EffectFit* best = nullptr;
+  for (const auto& f : singles)
+    if (f.unbounded && f.unbounded->wants_outside && (!best || f.unbounded->chi2 < best->unbounded->chi2)) best = &f;
+  return best;
+}
+
+// An in-range explanation may not be named when a fit outside the range explains the data clearly
+// better: that candidate was clipped, and a mimic would take its place.
+void veto_by_outside(std::vector<EffectFit>& fits, const EffectFit* outside, const Stage& s) {
+  if (!outside) return;
+  const double ln_n = std::log(std::max(s.n, 2.0));
+  const double bic_out = outside->unbounded->chi2 + ln_n;
+  // Only the leader is at stake (the list is ranked; the others could not be named anyway).
+  for (auto& f : fits) {
+    const double bic = f.chi2_after + static_cast<double>(f.effects.size()) * ln_n;
+    if (bic_out < bic - s.opt.tie_margin_bic) f.beaten_outside_range_by = outside->effects[0];
+    break;
+  }
+}
+
+// Is what an explanation leaves noise? Per quantity (outside discrepancies): its excess scatter, its
+// bias and its trend with an operating variable, Bonferroni over quantities and tests; and, while
+// the uncertainties stand as stated, the whole chi^2.
+std::vector<Leftover> leftovers_of(const Stage& s, const std::vector<double>& r, double k, double chi2,
+                                   const Drivers& drivers) {
+  std::vector<Leftover> out;
+  const auto scatter = group_scatter(s.m, s.nm, r, drivers);
+  // Half the family's alpha (the other half flags discrepant quantities, validation/noise_model.h),
+  // shared among the quantities' three tests and the whole chi^2.
+  const double alpha = 0.5 * s.opt.alpha;
+  const double tests = 3.0 * static_cast<double>(std::max<std::size_t>(1, scatter.size())) + 1.0;
+  for (const auto& g : scatter) {
+    if (g.n == 0 || s.nm.discrepancy[g.group] > 0.0) continue;
+    const double p_trend = std::min(1.0, g.p_trend * static_cast<double>(drivers.names.size()));
+    const double p = std::min({g.p_excess, g.p_bias, p_trend});
+    if (p * tests >= alpha) continue;
+    const auto& grp = s.m.groups()[g.group];
+    Leftover l;
+    l.quantity = grp.quantity;
+    l.model = s.m.models()[grp.model]->name();
+    l.n = g.n;
+    l.p = p;
+    l.pattern = p == g.p_bias ? "bias" : p == g.p_excess ? "scatter" : g.trend_driver;
+    out.push_back(l);
+  }
+  if (out.empty() && s.nm.scale <= 1.0 && gsl_cdf_chisq_Q(chi2, s.dof(k)) * tests < alpha) {
+    Leftover l;
+    l.quantity = "all";
+    l.n = static_cast<int>(s.n);
+    l.p = gsl_cdf_chisq_Q(chi2, s.dof(k));
+    l.pattern = "scatter";
+    out.push_back(l);
+  }
+  return out;
+}
+
+// Pairs, sought when the best single leaves a misfit that is not noise. A pair must beat that
+// single: its extra parameter is tested against it (likelihood ratio, one degree of freedom),
+// Bonferroni over all pairs, and by a clear BIC margin.
+// `jobs` 0: no expensive confirmation (while the noise model settles).
+std::vector<EffectFit> fit_pairs(const Stage& s, const std::vector<EffectFit>& singles, const Progress& progress,
+                                 int jobs) {
+  const auto& lib = effects::library();
+  const EffectFit& top = singles.front();
+  std::map<std::string, double> single_estimate;
+  for (const auto& f : singles) single_estimate[f.effects[0]] = f.estimate[0];
+  const double npairs = static_cast<double>(lib.size() * (lib.size() - 1) / 2);
+  auto test_pair = [&](EffectFit& f) {
+    f.p_value = s.p_improvement(top.chi2_after - f.chi2_after, 1.0, f.chi2_after);
+    f.p_adjusted = std::min(1.0, f.p_value * npairs);
+    f.significant = f.p_adjusted < s.opt.alpha && f.delta_bic < top.delta_bic - s.opt.pair_margin_bic;
+  };
+  std::vector<EffectFit> out;
+  std::size_t tried = 0;
+  for (std::size_t i = 0; i < lib.size(); ++i)
+    for (std::size_t j = i + 1; j < lib.size(); ++j) {
+      progress(fmt::format("the pair {} + {}", lib[i].name, lib[j].name), ++tried, static_cast<std::size_t>(npairs));
+      const Fx fx = {&lib[i], &lib[j]};
+      const std::vector<std::vector<double>> starts = {{single_estimate[lib[i].name], lib[j].neutral},
+                                                       {lib[i].neutral, single_estimate[lib[j].name]},
+                                                       {single_estimate[lib[i].name], single_estimate[lib[j].name]}};
+      EffectFit f = make_fit(fx, fit_strengths(s.cost, fx, {StrengthRange::physical, starts}), s);
+      if (s.m.source().has_expensive())
+        f.signature = signature_words(s.m.source().signature(lib[i])) + " + " +
+                      signature_words(s.m.source().signature(lib[j]));
+      test_pair(f);
+      if (f.significant) out.push_back(f);
+    }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.chi2_after < b.chi2_after; });
+  if (jobs > 0 && s.m.source().reruns_expensive() && !out.empty()) {
+    // Only a pair whose real runs still beat the best single by the same tests is kept.
+    EffectFit f = out.front();
+    const Fx fx = infos_of(f);
+    for (std::size_t i = 0; i < f.estimate.size(); ++i) f.estimate[i] = on_grid(f.estimate[i], f.uncertainty[i]);
+    s.m.source().prepare_exact(fx, f.estimate, jobs);
+    rescore(f, s.cost.chi2_of(s.m.residuals_exact(fx, f.estimate)), s);
+    test_pair(f);
+    out.clear();
+    if (f.significant) out.push_back(f);
+  }
+  return out;
+}
+
+// Where each effect of an explanation finds its evidence: the fall of chi^2 from the explanation
+// with that effect switched off to the explanation. When nine tenths of it come from one quantity
+// and the effect makes another quantity significantly worse (at the family's alpha), it fixes one
+// quantity at the expense of the rest: it stands in for an error in how the models predict that
+// quantity. (An effect whose evidence lies in one quantity but fits the rest is not suspect.)
+struct Evidence {
+  std::size_t effect = 0;      // index into the explanation's effects
+  std::size_t group = 0;
+  double share = 0.0;
+  std::vector<double> before;  // residuals (unweighted) with the effect switched off
+};
+
+std::optional<Evidence> concentrated(const Stage& s, const Fx& fx, const std::vector<double>& v) {
+  const auto r1 = s.cost.weighted(s.m.residuals(fx, v));
+  for (std::size_t j = 0; j < fx.size(); ++j) {
+    Evidence e;
+    e.effect = j;
+    auto off = v;
+    off[j] = fx[j]->neutral;
+    e.before = s.m.residuals(fx, off);
+    const auto r0 = s.cost.weighted(e.before);
+    std::vector<double> fall(s.m.groups().size(), 0.0);
+    double total = 0.0;
+    for (std::size_t i = 0; i < r0.size(); ++i) fall[s.m.points()[i].group] += r0[i] * r0[i] - r1[i] * r1[i];
+    for (double f : fall) total += std::max(0.0, f);
+    e.group = static_cast<std::size_t>(std::max_element(fall.begin(), fall.end()) - fall.begin());
+    e.share = total > 0.0 ? fall[e.group] / total : 0.0;
+    double worse = 0.0;
+    for (double f : fall) worse += std::max(0.0, -f);
+    if (total > 0.0 && e.share >= 0.9 && worse > gsl_cdf_chisq_Qinv(s.opt.alpha, 1.0)) return e;
+  }
+  return std::nullopt;
+}
+
+// The explanations under one noise model: every single inside its range, those at an edge also
+// outside it, and pairs when the best single leaves a misfit that is not noise.
+struct Explanations {
+  std::vector<EffectFit> singles, pairs;
+  const EffectFit* outside = nullptr;  // in singles: the best fit outside a range that the data want
+  // The leading explanation (lowest BIC among the significant ones, a fit outside a range included).
+  Fx fx;
+  std::vector<double> strengths;
+  double chi2 = 0.0;
+  bool any = false;
+};
+
+Explanations explain(const Stage& s, const Drivers& drivers, const Progress& progress, int jobs, bool confirm) {
+  Explanations x;
+  x.singles = fit_singles(s, progress);
+  judge_singles(x.singles, s);
+  if (confirm && s.m.source().reruns_expensive()) confirm_leaders(x.singles, s, jobs);
+  fit_outside(x.singles, s);
+  x.outside = best_outside(x.singles);
+  veto_by_outside(x.singles, x.outside, s);
+  const double ln_n = std::log(std::max(s.n, 2.0));
+  double bic = INFINITY;
+  auto consider = [&](const Fx& fx, const std::vector<double>& v, double chi2) {
+    if (chi2 + static_cast<double>(fx.size()) * ln_n >= bic) return;
+    bic = chi2 + static_cast<double>(fx.size()) * ln_n;
+    x.fx = fx, x.strengths = v, x.chi2 = chi2, x.any = true;
+  };
+  if (const EffectFit* top = leader(x.singles); top && top->beaten_outside_range_by.empty())
+    consider(infos_of(*top), top->estimate, top->chi2_after);
+  if (x.outside) consider(infos_of(*x.outside), {x.outside->unbounded->estimate}, x.outside->unbounded->chi2);
+  if (x.any && s.opt.pairs && x.singles.front().significant) {
+    // A second effect is sought where the rest lies in several quantities. Where it lies in one
+    // alone, a model-form error of that quantity is the simpler reading: the noise model gives it a
+    // discrepancy first, so that an effect fitted to one quantity's error is not named.
+    const auto r = s.m.residuals(x.fx, x.strengths);
+    const auto left = leftovers_of(s, r, static_cast<double>(x.fx.size()), x.chi2, drivers);
+    const bool one_quantity = left.size() == 1 && left.front().quantity != "all";
+    if (!left.empty() && !one_quantity) {
+      x.pairs = fit_pairs(s, x.singles, progress, confirm ? jobs : 0);
+      veto_by_outside(x.pairs, x.outside, s);
+      std::erase_if(x.pairs, [](const EffectFit& f) { return !f.beaten_outside_range_by.empty(); });
+      if (!x.pairs.empty()) consider(infos_of(x.pairs.front()), x.pairs.front().estimate, x.pairs.front().chi2_after);
+    }
+  }
+  return x;
+}
+
+// The explanations and the noise model that agree with each other: explain, take the leading
+// explanation's residuals, leave out one outlier or re-assess the noise, until nothing changes.
+struct Settled {
+  NoiseModel nm;
+  ScaleEstimate scale;
+  int rounds = 0;
+  bool settled = false;
+};
+
+Settled settle(const Misfit& m, const DiagnoseOptions& opt, const Drivers& drivers, const Progress& progress) {
+  Settled out;
+  out.nm = NoiseModel::stated(m);
+  std::set<std::string> measured;
+  for (const auto& g : m.groups()) measured.insert(g.quantity);
+  const std::size_t quantities = measured.size();
+  const int max_rounds = 4 + static_cast<int>(opt.max_outlier_share * static_cast<double>(m.size()));
+  for (out.rounds = 1; out.rounds <= max_rounds; ++out.rounds) {
+    const Stage s(m, opt, out.nm);
+    const Explanations x = explain(s, drivers, out.rounds == 1 ? progress : Progress{}, 0, false);
+    const auto r = x.any ? m.residuals(x.fx, x.strengths) : m.residuals({}, {});
+    if (const auto o = find_outlier(m, out.nm, r, opt.alpha, opt.max_outlier_share)) {
+      out.nm.excluded[*o] = 1;
+      continue;
+    }
+    // An effect that fixes one quantity at the expense of the others (where others are measured):
+    // an error in how the models predict that quantity is the simpler reading, so it gets a
+    // discrepancy and the fits are repeated.
+    if (x.any && quantities >= 2)
+      if (const auto e = concentrated(s, x.fx, x.strengths); e && out.nm.discrepancy[e->group] == 0.0) {
+        const double tau = discrepancy_for(m, m.groups()[e->group], e->before, out.nm.excluded, out.nm.scale);
+        if (tau > 0.0) {
+          out.nm.discrepancy[e->group] = tau;
+          continue;
+        }
+      }
+    NoiseModel next = assess_noise(m, out.nm, r, static_cast<int>(x.fx.size()), opt.alpha, &out.scale);
+    if (next.settled_with(out.nm)) {
+      out.settled = true;
+      return out;
+    }
+    out.nm = std::move(next);
+  }
+  out.rounds = max_rounds;
+  return out;
+}
+
+// The expensive model's own chi^2 at a few strengths around a single's estimate: the estimate and sd
+// from its curvature, not from the linear signature.
+void profile_best(EffectFit& f, const Stage& s, int jobs) {
+  const auto* e = effects::find(f.effects[0]);
+  if (s.m.source().signature(*e) == PredictionSource::Signature::none) return;  // applied exactly already
+  const Fx fx = {e};
+  auto chi2_at = [&](double v) {
+    const std::vector<double> at = {v};
+    s.m.source().prepare_exact(fx, at, jobs);
+    return s.cost.chi2_of(s.m.residuals_exact(fx, at));
+  };
+  const double span = e->upper - e->lower;
+  const double sd = std::isfinite(f.uncertainty[0]) ? f.uncertainty[0] : span;
+  const double step = std::clamp(2.0 * sd, 0.01 * span, 0.25 * span);
+  // The confirming run at the estimate is the profile's first point.
+  std::vector<std::pair<double, double>> known;
+  if (f.chi2_from_signatures) known.emplace_back(f.estimate[0], f.chi2_after);
+  ProfileFit p = profile_strength(chi2_at, f.estimate[0], step, e->lower, e->upper, s.opt.profile_runs, known);
+  f.profile = p;
+  if (!p.bracketed) return;
+  f.estimate[0] = p.estimate;
+  f.uncertainty[0] = p.uncertainty;
+  // The curvature is the quantities' sum. Where the ones that carry it scatter around the real runs
+  // more than their uncertainties say (another code's forces a few % apart, which no stated
+  // uncertainty holds), the curvature claims too much: the sd is widened by their Birge ratio,
+  // weighted by each quantity's share of the curvature.
+  const auto low = std::min_element(p.points.begin(), p.points.end(),
+                                    [](const auto& a, const auto& b) { return a.second < b.second; });
+  if (low != p.points.begin() && std::next(low) != p.points.end()) {
+    const std::array<double, 3> x = {std::prev(low)->first, low->first, std::next(low)->first};
+    std::array<std::vector<double>, 3> r;
+    for (std::size_t k = 0; k < 3; ++k) r[k] = s.cost.weighted(s.m.residuals_exact(fx, std::vector<double>{x[k]}));
+    double weight = 0.0, weighted = 0.0;
+    for (const auto& g : s.m.groups()) {
+      std::array<double, 3> c{};
+      int n = 0;
+      for (std::size_t i : g.points) {
+        if (s.cost.weights()[i] <= 0.0) continue;
+        ++n;
+        for (std::size_t k = 0; k < 3; ++k) c[k] += r[k][i] * r[k][i];
+      }
+      if (n == 0) continue;
+      const double a = ((c[2] - c[1]) / (x[2] - x[1]) - (c[1] - c[0]) / (x[1] - x[0])) / (x[2] - x[0]);
+      if (!(a > 0.0)) continue;
+      weight += a;
+      weighted += a * c[1] / n;
+    }
+    double widened = weight > 0.0 && weighted / weight > 1.0 ? std::sqrt(weighted / weight) : 1.0;
+    // And the readings' own verdict on the strength: the sandwich (HC3) variance of the real runs'
+    // slope, sum over readings of their leave-one-out shifts, which does not take the stated
+    // uncertainties on trust (a few readings that alone pull the strength by several sd widen it).
+    double jj = 0.0;
+    std::vector<double> slope(s.m.size(), 0.0);
+    for (std::size_t i = 0; i < s.m.size(); ++i) {
+      slope[i] = (r[2][i] - r[0][i]) / (x[2] - x[0]);
+      jj += slope[i] * slope[i];
+    }
+    if (jj > 0.0 && p.uncertainty > 0.0) {
+      double v = 0.0;
+      for (std::size_t i = 0; i < s.m.size(); ++i) {
+        const double h = slope[i] * slope[i] / jj;
+        if (h < 1.0) v += std::pow(slope[i] * r[1][i] / jj / (1.0 - h), 2);
+      }
+      widened = std::max(widened, std::sqrt(v) / p.uncertainty);
+    }
+    if (widened > 1.0) {
+      f.profile_widened = widened;
+      f.uncertainty[0] *= widened;
+    }
+  }
+  rescore(f, p.chi2, s);
+}
+
+// The recommended explanation's residuals: from the expensive model's real runs where it was run at
+// (or, for a profile, next to) the fitted strength, else from the signatures.
+std::vector<double> best_residuals(const Stage& s, const EffectFit* best) {
+  if (!best || !best->chi2_from_signatures || !s.m.source().reruns_expensive()) return residuals_at(s.m, best);
+  std::vector<double> at = best->estimate;
+  if (best->profile && !best->profile->points.empty())
+    at = {std::min_element(best->profile->points.begin(), best->profile->points.end(),
+                           [](const auto& a, const auto& b) { return a.second < b.second; })
+              ->first};
+  return s.m.residuals_exact(infos_of(*best), at);
+}
+
+double weight_without_exclusion(const NoiseModel& nm, const Misfit& m, std::size_t i) {
+  const auto& p = m.points()[i];
+  return 1.0 / std::sqrt(nm.scale * nm.scale + std::pow(nm.discrepancy[p.group] / p.uncertainty, 2));
+}
+
+double to_boundary(const MisfitPoint& p) { return p.q ? info(*p.q).to_boundary : 1e3; }
+
+std::vector<Outlier> name_outliers(const Stage& s, const EffectFit* best, const std::vector<EffectFit>& singles) {
+  std::vector<Outlier> out;
+  const auto& m = s.m;
+  const auto r = residuals_at(m, best);
+  const auto pred = best ? m.predicted(infos_of(*best), best->estimate) : m.predicted({}, {});
+  std::vector<std::vector<double>> others;
+  others.push_back(m.residuals({}, {}));
+  for (const auto& f : singles) others.push_back(m.residuals(infos_of(f), f.estimate));
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (!s.nm.excluded[i]) continue;
+    const auto& p = m.points()[i];
+    const double w = weight_without_exclusion(s.nm, m, i);
+    Outlier o;
+    o.condition = m.dataset().stations[p.condition].condition;
+    o.quantity = p.quantity;
+    o.where = p.where;
+    o.measured = p.measured * to_boundary(p);
+    o.predicted = pred[i].value_or(0.0) * to_boundary(p);
+    o.deviation = -r[i] * w;
+    o.relative = pred[i] && *pred[i] != 0.0 ? (p.measured - *pred[i]) / std::abs(*pred[i]) : 0.0;
+    o.closest = INFINITY;
+    for (const auto& other : others) o.closest = std::min(o.closest, std::abs(other[i]) * w);
+    out.push_back(o);
+  }
+  return out;
+}
+
+// Readings that alone move a fitted strength by more than one sd: a linear leave-one-out estimate
+// picks the few worth a real refit.
+std::vector<Influence> influential(const Stage& s, const EffectFit& best) {
+  const auto& m = s.m;
+  const Fx fx = infos_of(best);
+  const std::size_t k = fx.size();
+  Eigen::MatrixXd J(m.size(), k);
+  const auto r0 = s.cost.residuals(fx, best.estimate);
+  for (std::size_t j = 0; j < k; ++j) {
+    const double h = 1e-4 * (fx[j]->upper - fx[j]->lower);
+    auto at = best.estimate;
+    at[j] += h;
+    const auto r1 = s.cost.residuals(fx, at);
+    for (std::size_t i = 0; i < m.size(); ++i) J(i, j) = (r1[i] - r0[i]) / h;
+  }
+  const Eigen::MatrixXd JtJ = J.transpose() * J;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
+  if (!lu.isInvertible()) return {};
+  const Eigen::MatrixXd C = lu.inverse();
+  std::vector<std::pair<double, std::size_t>> suspects;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (s.cost.weights()[i] == 0.0) continue;
+    const Eigen::VectorXd Ji = J.row(static_cast<Eigen::Index>(i)).transpose();
+    const double h = Ji.dot(C * Ji);
+    if (h >= 1.0) continue;
+    const Eigen::VectorXd shift = C * Ji * r0[i] / (1.0 - h);
+    double worst = 0.0;
+    for (std::size_t j = 0; j < k; ++j)
+      if (std::isfinite(best.uncertainty[j]) && best.uncertainty[j] > 0.0)
+        worst = std::max(worst, std::abs(shift(static_cast<Eigen::Index>(j))) / best.uncertainty[j]);
+    if (worst > 0.5) suspects.emplace_back(worst, i);
+  }
+  std::sort(suspects.rbegin(), suspects.rend());
+  std::vector<Influence> out;
+  for (std::size_t n = 0; n < suspects.size() && n < 5; ++n) {
+    const std::size_t i = suspects[n].second;
+    auto w = s.cost.weights();
+    w[i] = 0.0;
+    const auto refit = fit_strengths(Cost(m, w), fx, {StrengthRange::physical, {best.estimate}});
+    for (std::size_t j = 0; j < k; ++j) {
+      if (!(std::isfinite(best.uncertainty[j]) && best.uncertainty[j] > 0.0)) continue;
+      const double shift = (refit.estimate[j] - best.estimate[j]) / best.uncertainty[j];
+      if (std::abs(shift) <= 1.0) continue;
+      const auto& p = m.points()[i];
+      out.push_back({m.dataset().stations[p.condition].condition, p.quantity, p.where, best.parameters[j], shift});
+    }
+  }
+  return out;
+}
+
+// Each quantity's mean error before and after the recommended explanation, in its own units.
+// `exact`: the explanation's residuals from real runs, where there are some (else its predictions).
+std::vector<QuantityShift> shifts_of(const Stage& s, const Fx& fx, const std::vector<double>& strengths,
+                                     const std::vector<double>& exact = {}) {
+  const auto& m = s.m;
+  const auto before = m.predicted({}, {});
+  auto after = fx.empty() ? before : m.predicted(fx, strengths);
+  if (exact.size() == m.size())
+    for (std::size_t i = 0; i < m.size(); ++i) after[i] = m.points()[i].measured + exact[i] * m.points()[i].uncertainty;
+  std::vector<QuantityShift> out;
+  for (const auto& g : m.groups()) {
+    QuantityShift q;
+    q.quantity = g.quantity;
+    const auto& p0 = m.points()[g.points.front()];
+    if (p0.q) {
+      q.symbol = info(*p0.q).symbol;
+      q.label = info(*p0.q).label;
+      q.unit = info(*p0.q).unit;
+      q.relative = *p0.q != Quantity::impact_point_y;
+    } else {
+      q.symbol = g.quantity;
+      q.label = fmt::format("{} stream limit", g.quantity.substr(11, g.quantity.find("_y_mm") - 11));
+      q.unit = "mm";
+    }
+    for (std::size_t i : g.points) {
+      if (s.nm.excluded[i]) continue;
+      const auto& p = m.points()[i];
+      const double scale = to_boundary(p);
+      q.before += (before[i].value_or(0.0) - p.measured) * scale;
+      q.after += (after[i].value_or(0.0) - p.measured) * scale;
+      if (p.measured != 0.0) {
+        q.before_relative += (before[i].value_or(0.0) - p.measured) / std::abs(p.measured);
+        q.after_relative += (after[i].value_or(0.0) - p.measured) / std::abs(p.measured);
+      }
+      ++q.n;
+    }
+    if (q.n == 0) continue;
+    q.before /= q.n, q.after /= q.n, q.before_relative /= q.n, q.after_relative /= q.n;
+    out.push_back(q);
+  }
+  return out;
+}
+
+std::vector<Discrepancy> model_form_of(const Stage& s, const std::vector<QuantityShift>& shifts) {
+  std::vector<Discrepancy> out;
+  for (std::size_t g = 0; g < s.m.groups().size(); ++g) {
+    if (s.nm.discrepancy[g] <= 0.0) continue;
+    const auto& grp = s.m.groups()[g];
+    Discrepancy d;
+    d.quantity = grp.quantity;
+    d.model = s.m.models()[grp.model]->name();
+    d.tau = s.nm.discrepancy[g] * to_boundary(s.m.points()[grp.points.front()]);
+    for (const auto& q : shifts)
+      if (q.quantity == grp.quantity) d.n = q.n, d.mean_error = q.after, d.mean_relative = q.after_relative;
+    out.push_back(d);
+  }
+  return out;
+}
+
+void fill_leftovers(std::vector<Leftover>& left, const std::vector<QuantityShift>& shifts) {
+  for (auto& l : left)
+    for (const auto& q : shifts)
+      if (q.quantity == l.quantity) l.mean_error = q.after, l.mean_relative = q.after_relative;
 }
 
 // Residual patterns: for each quantity, the normalised residuals of the models as they are,
 // against the operating variables an engineer would suspect.
-std::vector<ResidualPattern> residual_patterns(const Misfit& m, const std::vector<double>& r,
-                                               std::vector<std::string>& sentences) {
+std::vector<ResidualPattern> residual_patterns(const Misfit& m, const std::vector<double>& r) {
   const Dataset& d = m.dataset();
   std::vector<double> speed, flow, tflight, drop;
   for (const auto& st : d.stations) {
@@ -68,21 +694,13 @@ std::vector<ResidualPattern> residual_patterns(const Misfit& m, const std::vecto
       drop.push_back(0.0);
     }
   }
-  std::map<std::pair<std::size_t, std::string>, std::vector<std::size_t>> groups;
-  for (std::size_t i = 0; i < m.size(); ++i)
-    groups[{m.points()[i].model, m.points()[i].quantity}].push_back(i);
-
   std::vector<ResidualPattern> out;
-  for (const auto& [key, idx] : groups) {
-    const auto& [model, quantity] = key;
+  for (const auto& g : m.groups()) {
     std::vector<double> z, s, f, t, h;
-    for (std::size_t i : idx) {
+    for (std::size_t i : g.points) {
       const auto c = m.points()[i].condition;
       z.push_back(r[i]);
-      s.push_back(speed[c]);
-      f.push_back(flow[c]);
-      t.push_back(tflight[c]);
-      h.push_back(drop[c]);
+      s.push_back(speed[c]), f.push_back(flow[c]), t.push_back(tflight[c]), h.push_back(drop[c]);
     }
     const int n = static_cast<int>(z.size());
     double mean = 0, ss = 0;
@@ -94,149 +712,31 @@ std::vector<ResidualPattern> residual_patterns(const Misfit& m, const std::vecto
     const bool bias = std::abs(mean) > 3.0 / std::sqrt(n);
     const std::vector<std::pair<std::string, const std::vector<double>*>> drivers = {
         {"belt speed", &s}, {"mass flow", &f}, {"flight time", &t}, {"drop height", &h}};
-    std::string strongest;
-    double strongest_r = 0.0;
     for (const auto& [dn, dv] : drivers) {
       ResidualPattern p;
-      p.model = m.models()[model]->name();
-      p.quantity = quantity;
+      p.model = m.models()[g.model]->name();
+      p.quantity = g.quantity;
       p.driver = dn;
       p.n = n;
       p.mean_normalised = mean;
       p.rms_normalised = rms;
-      p.correlation = n >= 3 ? pearson(z, *dv) : 0.0;
+      double ma = 0, mb = 0;
+      for (int i = 0; i < n; ++i) ma += z[i], mb += (*dv)[i];
+      ma /= n, mb /= n;
+      double sab = 0, saa = 0, sbb = 0;
+      for (int i = 0; i < n; ++i)
+        sab += (z[i] - ma) * ((*dv)[i] - mb), saa += (z[i] - ma) * (z[i] - ma), sbb += ((*dv)[i] - mb) * ((*dv)[i] - mb);
+      p.correlation = n >= 3 && saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
       p.notable = bias || (rms > 2.0 && std::abs(p.correlation) >= 0.7);
-      if (std::abs(p.correlation) > std::abs(strongest_r)) strongest_r = p.correlation, strongest = dn;
       out.push_back(p);
     }
-    if (rms <= 2.0 && !bias) continue;
-    std::string sentence = fmt::format("{}: {} ", quantity_words(quantity), m.models()[model]->name());
-    if (bias)
-      sentence += fmt::format("{} it by {:.1f} standard deviations on average", mean > 0 ? "over-predicts" : "under-predicts",
-                              std::abs(mean));
-    else
-      sentence += fmt::format("misses it by {:.1f} standard deviations (RMS) without a steady bias", rms);
-    if (n >= 3 && std::abs(strongest_r) >= 0.7) {
-      // Residual = prediction - measurement: a positive trend means over-prediction grows.
-      const bool grows = (strongest_r > 0) == (mean >= 0);
-      sentence += fmt::format("; the misfit {} with {} (r = {:+.2f})",
-                              grows ? "grows" : "shrinks", strongest, strongest_r);
-    }
-    sentences.push_back(sentence + ".");
   }
   return out;
 }
 
-// Where the chi^2 of the models as they are comes from, by quantity, largest first (top three).
-std::string largest_misfit(const Misfit& m, const std::vector<double>& r) {
-  std::map<std::string, double> share;
-  double total = 0.0;
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    share[quantity_words(m.points()[i].quantity)] += r[i] * r[i];
-    total += r[i] * r[i];
-  }
-  std::vector<std::pair<double, std::string>> sorted;
-  for (const auto& [q, c] : share) sorted.emplace_back(c, q);
-  std::sort(sorted.rbegin(), sorted.rend());
-  std::vector<std::string> parts;
-  for (std::size_t i = 0; i < sorted.size() && i < 3; ++i)
-    parts.push_back(fmt::format("{} ({:.0f} % of chi^2)", sorted[i].second, 100 * sorted[i].first / total));
-  return fmt::format("{}", fmt::join(parts, ", "));
-}
-
-// chi^2 after a fit of n data and what follows from it: BIC change, share of the excess misfit
-// (chi^2 - n) removed, and the likelihood-ratio p-value against chi2_before.
-void score(EffectFit& e, double chi2, double n) {
-  const double k = static_cast<double>(e.effects.size());
-  e.chi2_after = chi2;
-  e.delta_bic = (chi2 + k * std::log(n)) - e.chi2_before;
-  const double excess = e.chi2_before - n;
-  e.explained_fraction = excess > 0 ? std::clamp((e.chi2_before - chi2) / excess, 0.0, 1.0) : 0.0;
-  e.p_value = gsl_cdf_chisq_Q(std::max(0.0, e.chi2_before - chi2), k);
-}
-
-EffectFit make_fit(const Misfit& m, std::vector<const effects::EffectInfo*> fx, const StrengthFit& f,
-                   double chi2_before) {
-  EffectFit e;
-  for (const auto* i : fx) {
-    e.effects.push_back(i->name);
-    e.parameters.push_back(i->unit.empty() ? i->parameter : fmt::format("{}_{}", i->parameter, i->unit));
-  }
-  e.estimate = f.estimate;
-  e.uncertainty = f.uncertainty;
-  e.chi2_before = chi2_before;
-  score(e, f.chi2, static_cast<double>(m.size()));
-  return e;
-}
-
-// A fit's chi^2 replaced by the one real runs at its strengths give, and what follows from it.
-void rescore(EffectFit& e, double chi2, double n) {
-  e.chi2_from_signatures = e.chi2_after;
-  score(e, chi2, n);
-}
-
-std::vector<const effects::EffectInfo*> infos_of(const EffectFit& f) {
-  std::vector<const effects::EffectInfo*> v;
-  for (const auto& n : f.effects) v.push_back(effects::find(n));
-  return v;
-}
-
-// Which measurement tells two fitted explanations apart: the quantity and condition where their
-// predictions differ most, in units of the uncertainty such a measurement has in this dataset.
-std::string discriminator(const Misfit& m, const EffectFit& a, const EffectFit& b) {
-  const auto ia = infos_of(a), ib = infos_of(b);
-  const auto pa = m.predict_all(ia, a.estimate), pb = m.predict_all(ib, b.estimate);
-  // Typical uncertainty per quantity from the dataset; where a quantity is not measured, 2 % of
-  // its size (forces) or 0.05 m/s or 3 mm, the resolution of the seed's instruments.
-  std::map<Quantity, double> typical;
-  for (const auto& meas : m.dataset().measurements)
-    if (meas.uncertainty) typical[meas.quantity] = std::max(typical[meas.quantity], *meas.uncertainty);
-  double best = 0.0;
-  std::string text;
-  for (std::size_t c = 0; c < pa.size(); ++c)
-    for (std::size_t k = 0; k < pa[c].size(); ++k)
-      for (Quantity q : kAllQuantities) {
-        const auto& va = pa[c][k].values[q];
-        const auto& vb = pb[c][k].values[q];
-        if (!va || !vb) continue;
-        double u = typical.count(q) ? typical[q] : 0.0;
-        if (u <= 0.0)
-          u = (q == Quantity::impact_point_y) ? 3e-3
-              : (q == Quantity::impact_velocity || q == Quantity::exit_velocity)
-                  ? 0.05
-                  : std::max(0.02 * std::abs(*va), 0.1);
-        const double sep = std::abs(*va - *vb) / u;
-        if (sep > best) {
-          best = sep;
-          const double s = info(q).to_boundary;
-          text = fmt::format("{} at {} ({}): {} predicts {:.3g} {}, {} predicts {:.3g} {} ({:.1f} "
-                             "uncertainties apart){}",
-                             name(q), m.dataset().stations[c].condition, m.models()[k]->name(),
-                             a.label(), *va * s, info(q).unit, b.label(), *vb * s, info(q).unit, sep,
-                             typical.count(q) ? "" : "; not measured in this dataset");
-        }
-      }
-  if (best < 1.0)
-    return fmt::format("{} and {}: no quantity in chutelab's vocabulary separates them by even one "
-                       "uncertainty at these conditions; test other belt speeds or drop heights",
-                       a.label(), b.label());
-  return fmt::format("{} vs {}: measure {}", a.label(), b.label(), text);
-}
-
-std::string signature_words(Misfit::Signature s) {
-  switch (s) {
-    case Misfit::Signature::own_runs: return "own runs";
-    case Misfit::Signature::cheap_models: return "analytical only";
-    case Misfit::Signature::none: return "exact (measurement)";
-  }
-  return "";
-}
-
 // The change a fitted candidate makes to every normalised residual.
 std::vector<double> fitted_change(const Misfit& m, const EffectFit& f, const std::vector<double>& r0) {
-  std::vector<const effects::EffectInfo*> fx;
-  for (const auto& n : f.effects) fx.push_back(effects::find(n));
-  auto r = m.residuals(fx, f.estimate);
+  auto r = m.residuals(infos_of(f), f.estimate);
   for (std::size_t i = 0; i < r.size(); ++i) r[i] -= r0[i];
   return r;
 }
@@ -247,367 +747,177 @@ double cosine(const std::vector<double>& a, const std::vector<double>& b) {
   return aa > 0 && bb > 0 ? ab / std::sqrt(aa * bb) : 0.0;
 }
 
-// What would tell two candidates apart that these data cannot: quantities of the vocabulary this
-// dataset does not measure on which their fitted predictions differ, and each effect's own check.
-std::string separating_measurement(const Misfit& m, const EffectFit& a, const EffectFit& b) {
-  std::set<Quantity> measured;
-  for (const auto& meas : m.dataset().measurements) measured.insert(meas.quantity);
-  const auto pa = m.predict_all(infos_of(a), a.estimate), pb = m.predict_all(infos_of(b), b.estimate);
-  std::map<Quantity, double> largest;  // largest relative difference over the conditions
+// Which measurement tells two fitted explanations apart: the quantity and condition where their
+// predictions differ most, in units of the uncertainty such a measurement has in this dataset
+// (where a quantity is not measured, 2 % of a force, 0.05 m/s or 3 mm, the resolution of the
+// reference study's instruments). With `unmeasured_only`, the quantities this dataset lacks.
+std::vector<Discriminator> discriminators(const Misfit& m, const EffectFit& a, const EffectFit& b, bool unmeasured_only) {
+  const auto pa = m.source().predict(infos_of(a), a.estimate), pb = m.source().predict(infos_of(b), b.estimate);
+  std::map<Quantity, double> typical;
+  for (const auto& meas : m.dataset().measurements)
+    if (meas.uncertainty) typical[meas.quantity] = std::max(typical[meas.quantity], *meas.uncertainty);
+  std::map<Quantity, Discriminator> best;
   for (std::size_t c = 0; c < pa.size(); ++c)
     for (std::size_t k = 0; k < pa[c].size(); ++k)
       for (Quantity q : kAllQuantities) {
-        if (measured.count(q)) continue;
         const auto &va = pa[c][k].values[q], &vb = pb[c][k].values[q];
-        if (!va || !vb) continue;
-        const double scale = std::max({std::abs(*va), std::abs(*vb), 1e-12});
-        largest[q] = std::max(largest[q], std::abs(*va - *vb) / scale);
+        const bool measured = typical.count(q) > 0;
+        if (!va || !vb || (unmeasured_only && measured)) continue;
+        double u = measured ? typical[q] : 0.0;
+        if (u <= 0.0)
+          u = q == Quantity::impact_point_y ? 3e-3
+              : (q == Quantity::impact_velocity || q == Quantity::exit_velocity) ? 0.05
+                                                                                  : std::max(0.02 * std::abs(*va), 0.1);
+        const double sep = std::abs(*va - *vb) / u;
+        auto& d = best[q];
+        if (sep <= d.separation) continue;
+        const double sc = info(q).to_boundary;
+        d = {a.label(), b.label(), std::string(name(q)), m.dataset().stations[c].condition, m.models()[k]->name(),
+             std::string(info(q).unit), *va * sc, *vb * sc, sep, measured};
       }
-  std::vector<std::string> ways;
-  for (const auto& [q, rel] : largest)
-    if (rel > 0.01) ways.push_back(fmt::format("{} (not measured here; they differ by up to {:.0f} %)", name(q), 100 * rel));
-  for (const auto* f : {&a, &b})
-    for (const auto& n : f->effects)
-      if (const auto* i = effects::find(n); i && !i->check.empty()) ways.push_back(fmt::format("for {}: {}", n, i->check));
-  if (ways.empty()) return "no quantity in chutelab's vocabulary separates them: test other belt speeds or drop heights";
-  return fmt::format("{}", fmt::join(ways, "; "));
+  std::vector<Discriminator> out;
+  for (const auto& [q, d] : best)
+    if (d.separation > 0.0) out.push_back(d);
+  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.separation > y.separation; });
+  return out;
+}
+
+// Candidates about as good as the best, and those that move the data in proportion to it.
+void ties_of(DiagnosisResult& out, const Stage& s, const std::vector<double>& r0) {
+  const EffectFit& top = out.singles.front();
+  const auto d_top = fitted_change(s.m, top, r0);
+  for (std::size_t i = 1; i < out.singles.size(); ++i) {
+    const auto& f = out.singles[i];
+    if (!f.significant) continue;
+    const bool tie = f.delta_bic - top.delta_bic < s.opt.tie_margin_bic;
+    // Proportional: the data cannot tell them apart, whatever the ranking.
+    const bool proportional = std::abs(cosine(d_top, fitted_change(s.m, f, r0))) >= s.opt.proportional_cosine &&
+                              f.chi2_after - top.chi2_after <= std::max(4.0, 0.05 * top.chi2_after);
+    if (!tie && !proportional) continue;
+    auto d = discriminators(s.m, top, f, proportional);
+    if (d.empty()) d.push_back({top.label(), f.label(), "", "", "", "", 0, 0, 0, false});
+    d.front().measured_here = !proportional && d.front().measured_here;
+    if (proportional) d.front().model = "proportional";
+    if (tie) out.indistinguishable.push_back(f.label());
+    out.ties.push_back(d.front());
+    for (std::size_t j = 1; j < d.size() && proportional; ++j) {
+      d[j].model = "proportional";
+      out.ties.push_back(d[j]);
+    }
+  }
+}
+
+Verdict verdict_of(const DiagnosisResult& out, const EffectFit* best, const EffectFit* outside) {
+  if (out.n_data == 0) return Verdict::no_data;
+  if (best) {
+    bool edge = false;
+    for (bool b : best->at_bound) edge = edge || b;
+    return out.goodness_of_fit && !edge ? Verdict::missing_effect : Verdict::partial_explanation;
+  }
+  if (outside) return Verdict::out_of_range;
+  // The scale, where applied, accounts for scatter without structure; outliers are left out.
+  return !out.leftovers.empty() || !out.model_form.empty() ? Verdict::outside_library : Verdict::consistent;
+}
+
+int jobs_of(const DiagnoseOptions& opt) {
+  return opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 }  // namespace
 
-DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
-                         const DiagnoseOptions& opt) {
+DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, const DiagnoseOptions& opt) {
+  check(opt);
   DiagnosisResult out;
   out.dataset = d.setup.name.empty() ? d.dir.filename().string() : d.setup.name;
   for (const auto& m : models) out.models.push_back(m->name());
-  const int jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int jobs = jobs_of(opt);
   // Every MPI rank fits the same candidates (their results must agree on every rank), so the
   // threads of one rank are its share of the cores.
-  const Misfit m(d, models, {}, std::max(1, jobs / campaign::ranks()));
+  const Misfit m(std::make_shared<const PredictionSource>(d, models, analytical::EffectList{},
+                                                          std::max(1, jobs / campaign::ranks())));
   out.n_data = static_cast<int>(m.size());
   out.n_without_uncertainty = m.left_out();
+  std::set<std::size_t> conditions;
+  std::set<std::string> quantities;
+  for (const auto& p : m.points()) conditions.insert(p.condition), quantities.insert(p.quantity);
+  out.n_conditions = static_cast<int>(conditions.size());
+  out.n_quantities = static_cast<int>(quantities.size());
   const auto r0 = m.residuals({}, {});
   for (double x : r0) out.chi2_baseline += x * x;
   out.baseline_p_value = m.size() ? gsl_cdf_chisq_Q(out.chi2_baseline, static_cast<double>(m.size())) : 1.0;
-  out.patterns = residual_patterns(m, r0, out.failure_summary);
+  out.patterns = residual_patterns(m, r0);
+  out.used_surrogate = m.source().has_expensive();
+  for (const auto& mm : models)
+    if (mm->expensive() && !mm->runs_with_effects()) out.exported_models.emplace_back(mm->name(), mm->description());
   if (m.size() == 0) {
-    out.verdict = "No measurement has an uncertainty, so nothing can be judged: state uncertainties "
-                  "in measurements.csv.";
+    out.verdict_code = Verdict::no_data;
+    describe(out, opt);
     return out;
   }
-
-  const auto& lib = effects::library();
-  if (m.has_expensive()) {
+  if (m.source().has_expensive()) {
     // An expensive baseline's own response to every candidate it can represent: one probe run per
     // candidate and condition, side by side (they are independent).
-    std::vector<const effects::EffectInfo*> all;
-    for (const auto& e : lib) all.push_back(&e);
-    m.prepare_signatures(all, jobs);
+    Fx all;
+    for (const auto& e : effects::library()) all.push_back(&e);
+    m.source().prepare_signatures(all, jobs);
   }
-  const bool progress = opt.progress && d.stations.size() >= 500;
-  const auto started = std::chrono::steady_clock::now();
-  // Where a long run is and how long it has taken so far: singles, then pairs, each of a known count.
-  auto report = [&](const std::string& what, std::size_t k, std::size_t of) {
-    if (!progress) return;
-    const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - started;
-    std::cerr << fmt::format("diagnose: fitting {} ({}/{}, {:.0f} s so far)\n", what, k, of, spent.count());
-  };
-  for (const auto& e : lib) {
-    report(e.name, static_cast<std::size_t>(&e - lib.data()) + 1, lib.size());
-    const std::vector<const effects::EffectInfo*> fx = {&e};
-    EffectFit f = make_fit(m, fx, fit_strengths(m, fx), out.chi2_baseline);
-    if (m.has_expensive()) f.signature = signature_words(m.signature(e));
-    out.singles.push_back(std::move(f));
+  Progress progress{opt.progress && d.stations.size() >= 500};
+  const Drivers drivers = drivers_of(m);
+  const Settled settled = settle(m, opt, drivers, progress);
+  const Stage s(m, opt, settled.nm);
+  out.noise_rounds = settled.rounds;
+  Explanations x = explain(s, drivers, Progress{}, jobs, true);
+  out.singles = std::move(x.singles);
+  out.pairs = std::move(x.pairs);
+  const EffectFit* outside = nullptr;
+  for (const auto& f : out.singles)
+    if (f.unbounded && f.unbounded->wants_outside) {
+      out.wants_outside.push_back(f.effects[0]);
+      if (!outside || f.unbounded->chi2 < outside->unbounded->chi2) outside = &f;
+    }
+  out.any_significant = leader(out.singles) != nullptr;
+  EffectFit* best = const_cast<EffectFit*>(out.best());
+  if (best && best->effects.size() == 1 && m.source().reruns_expensive() && opt.profile_runs > 0)
+    profile_best(*best, s, jobs);
+  if (best) {
+    out.leftovers = leftovers_of(s, best_residuals(s, best), static_cast<double>(best->effects.size()),
+                                 best->chi2_after, drivers);
+    out.goodness_of_fit = out.leftovers.empty();
+    out.influential = influential(s, *best);
+    if (const auto e = concentrated(s, infos_of(*best), best->estimate)) {
+      const auto& g = m.groups()[e->group];
+      out.concentrated = Concentration{best->effects[e->effect], g.quantity, m.models()[g.model]->name(), e->share};
+    }
+    if (best->profile) {
+      // Its real runs are the profile's points.
+      double lowest = INFINITY;
+      for (const auto& [v, c] : best->profile->points) lowest = std::min(lowest, c);
+      out.confirmed_chi2 = lowest;
+    } else if (m.source().reruns_expensive()) {
+      const Fx fx = infos_of(*best);
+      m.source().prepare_exact(fx, best->estimate, jobs);
+      out.confirmed_chi2 = s.cost.chi2_of(m.residuals_exact(fx, best->estimate));
+    }
+  } else if (!outside) {
+    out.leftovers = leftovers_of(s, r0, 0.0, s.chi2_0, drivers);
+    out.goodness_of_fit = out.leftovers.empty();
   }
-  // Control the family-wise false-alarm rate over every single candidate tried (Bonferroni).
-  const double k = static_cast<double>(out.singles.size());
-  auto judge = [&] {
-    for (auto& s : out.singles) {
-      s.p_adjusted = std::min(1.0, s.p_value * k);
-      s.significant = s.p_adjusted < opt.alpha;
-    }
-    std::stable_sort(out.singles.begin(), out.singles.end(),
-                     [](const auto& a, const auto& b) { return a.chi2_after < b.chi2_after; });
-  };
-  judge();
-  // An expensive model that runs with effects ranks by signatures, which are differences carried
-  // along a response (Misfit): close to the data they can misorder candidates whose real runs
-  // differ. So the leading significant candidates are run for real at their fitted strengths, and
-  // the ranking is the runs'. Nothing is run when nothing is significant.
-  bool runs_with_effects = false;
-  for (const auto& mm : models) runs_with_effects = runs_with_effects || (mm->expensive() && mm->runs_with_effects());
-  const double n_data = static_cast<double>(m.size());
-  if (runs_with_effects) {
-    int confirmed = 0;
-    for (auto& s : out.singles) {
-      if (confirmed >= opt.confirm || !s.significant) break;
-      const auto fx = infos_of(s);
-      m.prepare_exact(fx, s.estimate, jobs);
-      rescore(s, m.chi2_exact(fx, s.estimate), n_data);
-      ++confirmed;
-    }
-    judge();
-  }
-  for (std::size_t i = 0; i < out.singles.size(); ++i) out.singles[i].rank = static_cast<int>(i) + 1;
-  out.any_significant = !out.singles.empty() && out.singles.front().significant;
-
-  // A pair is sought only when the best single leaves more misfit than noise would (chi^2 of its
-  // n - 1 degrees of freedom at the same false-alarm rate): a second effect cannot be told from
-  // noise once the first explains the data.
-  const bool misfit_left = !out.singles.empty() &&
-                           gsl_cdf_chisq_Q(out.singles.front().chi2_after, std::max(1.0, n_data - 1.0)) < opt.alpha;
-  if (opt.pairs && out.any_significant && misfit_left) {
-    // A pair must beat the best single effect: its extra parameter is tested against that single
-    // (likelihood ratio, one degree of freedom), Bonferroni over all pairs, and by a clear BIC margin.
-    const EffectFit& top = out.singles.front();
-    std::map<std::string, double> single_estimate;
-    for (const auto& s : out.singles) single_estimate[s.effects[0]] = s.estimate[0];
-    const double npairs = k * (k - 1) / 2;
-    auto test_pair = [&](EffectFit& f) {
-      f.p_value = gsl_cdf_chisq_Q(std::max(0.0, top.chi2_after - f.chi2_after), 1.0);
-      f.p_adjusted = std::min(1.0, f.p_value * npairs);
-      f.significant = f.p_adjusted < opt.alpha && f.delta_bic < top.delta_bic - opt.pair_margin_bic;
-    };
-    std::size_t tried = 0;
-    for (std::size_t i = 0; i < lib.size(); ++i)
-      for (std::size_t j = i + 1; j < lib.size(); ++j) {
-        report(fmt::format("the pair {} + {}", lib[i].name, lib[j].name), ++tried, lib.size() * (lib.size() - 1) / 2);
-        const std::vector<const effects::EffectInfo*> fx = {&lib[i], &lib[j]};
-        const std::vector<std::vector<double>> starts = {
-            {single_estimate[lib[i].name], lib[j].neutral},
-            {lib[i].neutral, single_estimate[lib[j].name]},
-            {single_estimate[lib[i].name], single_estimate[lib[j].name]}};
-        EffectFit f = make_fit(m, fx, fit_strengths(m, fx, starts), out.chi2_baseline);
-        if (m.has_expensive())
-          f.signature = signature_words(m.signature(lib[i])) + " + " + signature_words(m.signature(lib[j]));
-        test_pair(f);
-        if (f.significant) out.pairs.push_back(f);
-      }
-    std::stable_sort(out.pairs.begin(), out.pairs.end(),
-                     [](const auto& a, const auto& b) { return a.chi2_after < b.chi2_after; });
-    if (runs_with_effects && !out.pairs.empty()) {
-      // Only a pair whose real runs still beat the best single by the same tests is kept.
-      EffectFit f = out.pairs.front();
-      const auto fx = infos_of(f);
-      m.prepare_exact(fx, f.estimate, jobs);
-      rescore(f, m.chi2_exact(fx, f.estimate), n_data);
-      test_pair(f);
-      out.pairs.clear();
-      if (f.significant) out.pairs.push_back(f);
-    }
-  }
-
-  if (out.any_significant) {
-    const EffectFit& top = out.singles.front();
-    for (std::size_t i = 1; i < out.singles.size(); ++i) {
-      const auto& s = out.singles[i];
-      if (s.significant && s.delta_bic - top.delta_bic < opt.tie_margin_bic) {
-        out.indistinguishable.push_back(s.label());
-        out.discriminators.push_back(discriminator(m, top, s));
-      }
-    }
-    // Candidates that move the measured quantities in proportion to the best one explain the data
-    // equally well at their own strengths: the data cannot tell them apart, whatever the ranking.
-    {
-      const auto d_top = fitted_change(m, top, r0);
-      for (std::size_t i = 1; i < out.singles.size(); ++i) {
-        const auto& s = out.singles[i];
-        if (!s.significant) continue;
-        if (std::abs(cosine(d_top, fitted_change(m, s, r0))) < opt.proportional_cosine) continue;
-        if (s.chi2_after - top.chi2_after > std::max(4.0, 0.05 * top.chi2_after)) continue;
-        out.proportional.push_back(fmt::format("{} and {} move every measured quantity in proportion (these data "
-                                               "cannot tell them apart); to separate them, measure {}",
-                                               top.label(), s.label(), separating_measurement(m, top, s)));
-      }
-    }
-    const EffectFit& b = *out.best();
-    std::string est;
-    for (std::size_t i = 0; i < b.effects.size(); ++i) {
-      const auto* info = effects::find(b.effects[i]);
-      est += fmt::format("{}{} = {:.4g} ± {:.2g}{}", i ? ", " : "", info->parameter, b.estimate[i],
-                         b.uncertainty[i], info->unit.empty() ? "" : " " + info->unit);
-    }
-    bool at_bound = false;
-    for (std::size_t i = 0; i < b.effects.size(); ++i) {
-      const auto* info = effects::find(b.effects[i]);
-      const double span = info->upper - info->lower;
-      at_bound = at_bound || b.estimate[i] <= info->lower + 1e-3 * span ||
-                 b.estimate[i] >= info->upper - 1e-3 * span;
-    }
-    out.convincing = b.explained_fraction >= 0.7 && !at_bound;
-    if (out.convincing) {
-      out.verdict = fmt::format(
-          "Missing effect: {} ({}). It lowers chi^2 from {:.1f} to {:.1f} for {} data, explains {:.0f} % "
-          "of the excess misfit, delta BIC {:.1f}{}.",
-          b.label(), est, b.chi2_before, b.chi2_after, out.n_data, 100 * b.explained_fraction, b.delta_bic,
-          out.indistinguishable.empty()
-              ? ""
-              : fmt::format("; about as good: {}", fmt::join(out.indistinguishable, ", ")));
-      for (const auto& p : out.proportional) out.verdict += " But " + p + ".";
-    } else {
-      out.verdict = fmt::format(
-          "No effect in the library explains the misfit well: the best candidate, {} ({}), removes "
-          "only {:.0f} % of the excess misfit{}. Most of the failure lies elsewhere: {}.",
-          b.label(), est, 100 * b.explained_fraction,
-          at_bound ? " and needs a strength at the edge of its physical range" : "", largest_misfit(m, r0));
-    }
-  } else if (out.baseline_p_value < opt.alpha) {
-    out.verdict = fmt::format(
-        "The models miss the data (chi^2 = {:.1f} for {} data, p = {:.2g}) but no effect in the "
-        "library explains it significantly: look outside the library (geometry, inputs, model form).",
-        out.chi2_baseline, out.n_data, out.baseline_p_value);
-  } else {
-    out.verdict = fmt::format(
-        "No significant missing effect: the models explain the data within the stated uncertainties "
-        "(chi^2 = {:.1f} for {} data, p = {:.2g}).",
-        out.chi2_baseline, out.n_data, out.baseline_p_value);
-  }
-  out.used_surrogate = m.has_expensive();
-  if (out.used_surrogate) {
-    std::vector<std::string> slow, slow_none, fixed;
-    for (const auto& mm : models)
-      if (mm->expensive()) (mm->runs_with_effects() ? slow : fixed).push_back(mm->name());
-    for (const auto& mm : models)
-      if (mm->expensive() && !mm->runs_with_effects())
-        out.caveats.push_back(fmt::format(
-            "{} is another code's exported results ({}): chutelab cannot re-run it, so every {} prediction with a "
-            "candidate effect is its result plus the analytical models' response to the effect (DESIGN.md §5), "
-            "including the recommended fit's, which no run confirms.",
-            mm->name(), mm->description(), mm->name()));
-    std::vector<std::string> own, cheap;
-    for (const auto& e : lib)
-      (m.signature(e) == Misfit::Signature::own_runs ? own : m.signature(e) == Misfit::Signature::cheap_models ? cheap
-                                                                                                           : slow_none)
-          .push_back(e.name);
-    if (!own.empty() && !slow.empty())
-      out.caveats.push_back(fmt::format(
-          "{}'s response to {} comes from its own runs, one per condition with the effect at a probe strength "
-          "(twice its typical value) and the baseline's seed, carried to other strengths along the analytical "
-          "models' response.",
-          fmt::join(slow, ", "), fmt::join(own, ", ")));
-    if (!cheap.empty() && !slow.empty())
-      out.caveats.push_back(fmt::format(
-          "{} cannot represent {}: their signatures are the analytical models' response applied as a difference "
-          "(DESIGN.md §5), marked \"analytical only\" in the ranking.",
-          fmt::join(slow, ", "), fmt::join(cheap, ", ")));
-    std::vector<std::string> rerun;
-    for (const auto* list : {&out.singles, &out.pairs})
-      for (const auto& f : *list)
-        if (f.chi2_from_signatures)
-          rerun.push_back(fmt::format("{} (chi^2 {:.1f} from the runs, {:.1f} from the signatures)", f.label(),
-                                      f.chi2_after, *f.chi2_from_signatures));
-    if (!rerun.empty() && !slow.empty())
-      out.caveats.push_back(fmt::format(
-          "The leading candidates were run with {} at their fitted strengths, and they are ranked by those runs: {}.",
-          fmt::join(slow, ", "), fmt::join(rerun, "; ")));
-    if (const EffectFit* b = out.best(); b && !slow.empty()) {
-      const auto fx = infos_of(*b);
-      m.prepare_exact(fx, b->estimate, jobs);
-      out.confirmed_chi2 = m.chi2_exact(fx, b->estimate);
-      if (!b->chi2_from_signatures)
-        out.caveats.push_back(fmt::format(
-            "Confirmed by running {} with {} on: chi^2 = {:.1f} (the estimate from differences was {:.1f}).",
-            fmt::join(slow, ", "), b->label(), *out.confirmed_chi2, b->chi2_after));
-    }
-  }
-  if (const EffectFit* b = out.best()) {
-    for (std::size_t i = 0; i < b->effects.size(); ++i) {
-      const auto* info = effects::find(b->effects[i]);
-      const double span = info->upper - info->lower;
-      if (b->estimate[i] <= info->lower + 1e-3 * span || b->estimate[i] >= info->upper - 1e-3 * span)
-        out.caveats.push_back(fmt::format(
-            "{} sits at the edge of its physical range ({} = {:.4g} {}): the data ask for more than "
-            "this effect can physically give, so it is probably standing in for something else.",
-            b->effects[i], info->parameter, b->estimate[i], info->unit));
-    }
-    const double left = b->chi2_after - (out.n_data - static_cast<double>(b->effects.size()));
-    if (b->explained_fraction < 0.7 && left > 0)
-      out.caveats.push_back(fmt::format(
-          "The best explanation removes only {:.0f} % of the excess misfit (chi^2 {:.1f} remains for "
-          "{} data): a large part of the failure lies outside the library - look at the quantities "
-          "with the largest residuals above, and at how they were measured.",
-          100 * b->explained_fraction, b->chi2_after, out.n_data));
-  }
-  out.caveats.push_back(fmt::format(
-      "Significance: likelihood-ratio test per candidate, Bonferroni-corrected over the {} "
-      "candidates tried (family-wise false-alarm rate {:.0f} %).",
-      out.singles.size(), 100 * opt.alpha));
-  out.caveats.push_back("Only the effects in chutelab's library were tried; a misfit they cannot "
-                        "explain points to physics outside it.");
-  if (out.n_without_uncertainty > 0)
-    out.caveats.push_back(fmt::format("{} measured values had no uncertainty or no prediction and were "
-                                      "left out of chi^2.",
-                                      out.n_without_uncertainty));
+  if (best && best->chi2_from_signatures && m.source().reruns_expensive())
+    out.shifts = shifts_of(s, infos_of(*best), best->estimate, best_residuals(s, best));
+  else if (best) out.shifts = shifts_of(s, infos_of(*best), best->estimate);
+  else if (outside) out.shifts = shifts_of(s, infos_of(*outside), {outside->unbounded->estimate});
+  else out.shifts = shifts_of(s, {}, {});
+  out.model_form = model_form_of(s, out.shifts);
+  fill_leftovers(out.leftovers, out.shifts);
+  out.outliers = name_outliers(s, best, out.singles);
+  out.scale = {settled.scale.factor, settled.scale.dof, settled.scale.p_high, settled.scale.p_low,
+               s.nm.scale > 1.0, settled.scale.p_low < opt.alpha};
+  if (out.any_significant && out.singles.front().beaten_outside_range_by.empty()) ties_of(out, s, r0);
+  out.thin_data = out.n_conditions < 3 || out.n_quantities < 2 || out.n_data < 10;
+  out.verdict_code = verdict_of(out, best, outside);
+  out.convincing = out.verdict_code == Verdict::missing_effect;
+  describe(out, opt);
   return out;
-}
-
-std::string diagnosis_csv(const DiagnosisResult& r) {
-  std::string o =
-      "rank,effect,parameter,estimate,uncertainty,chi2_before,chi2_after,delta_bic,"
-      "explained_fraction,significant,p_value,p_adjusted,signature\n";
-  auto row = [&](const EffectFit& f, const std::string& rank) {
-    std::vector<std::string> est, unc;
-    for (double v : f.estimate) est.push_back(csv_number(v));
-    for (double v : f.uncertainty) unc.push_back(std::isfinite(v) ? csv_number(v) : "inf");
-    o += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", rank, fmt::join(f.effects, "+"),
-                     fmt::join(f.parameters, "+"), fmt::join(est, "+"), fmt::join(unc, "+"),
-                     csv_number(f.chi2_before), csv_number(f.chi2_after), csv_number(f.delta_bic),
-                     csv_number(f.explained_fraction), f.significant ? "yes" : "no",
-                     csv_number(f.p_value), csv_number(f.p_adjusted), f.signature);
-  };
-  for (const auto& f : r.singles) row(f, std::to_string(f.rank));
-  for (const auto& f : r.pairs) row(f, "pair");
-  return o;
-}
-
-std::string diagnosis_markdown(const DiagnosisResult& r) {
-  std::string o = fmt::format("# chutelab diagnosis: {}\n\n", r.dataset);
-  o += fmt::format("**{}**\n\n", r.verdict);
-  o += fmt::format("Models: {}; each measured value is compared with the first of them that predicts "
-                   "it. {} data with uncertainties; chi^2 of the models as they are: {:.1f} (p = {:.2g}).\n\n",
-                   fmt::join(r.models, ", "), r.n_data, r.chi2_baseline, r.baseline_p_value);
-  o += "## Where the models fail\n\n";
-  if (r.failure_summary.empty()) o += "Every quantity is within about two uncertainties of its measurement.\n";
-  for (const auto& s : r.failure_summary) o += "- " + s + "\n";
-  o += "\n| model | quantity | n | mean E/u | RMS E/u | r(belt speed) | r(mass flow) | r(flight time) | r(drop height) |\n";
-  o += "|---|---|---|---|---|---|---|---|---|\n";
-  for (std::size_t i = 0; i + 3 < r.patterns.size(); i += 4) {
-    const auto& p = r.patterns[i];
-    o += fmt::format("| {} | {} | {} | {:+.2f} | {:.2f} | {:+.2f} | {:+.2f} | {:+.2f} | {:+.2f} |\n", p.model,
-                     p.quantity, p.n, p.mean_normalised, p.rms_normalised, r.patterns[i].correlation,
-                     r.patterns[i + 1].correlation, r.patterns[i + 2].correlation,
-                     r.patterns[i + 3].correlation);
-  }
-  o += "\n## Candidate effects, ranked\n\n";
-  const bool sig = r.used_surrogate;
-  o += fmt::format("| rank | effect | estimate ± sd | chi^2 after | delta BIC | explained | p (adjusted) | significant |{}\n",
-                   sig ? " signature |" : "");
-  o += fmt::format("|---|---|---|---|---|---|---|---|{}\n", sig ? "---|" : "");
-  auto est = [](const EffectFit& f) {
-    std::vector<std::string> v;
-    for (std::size_t i = 0; i < f.estimate.size(); ++i)
-      v.push_back(fmt::format("{} = {:.4g} ± {}", f.parameters[i], f.estimate[i],
-                              std::isfinite(f.uncertainty[i]) ? fmt::format("{:.2g}", f.uncertainty[i])
-                                                              : std::string("unconstrained")));
-    return fmt::format("{}", fmt::join(v, "; "));
-  };
-  for (const auto& f : r.singles)
-    o += fmt::format("| {} | {} | {} | {:.1f} | {:.1f} | {:.0f} % | {:.2g} | {} |{}\n", f.rank, f.label(), est(f),
-                     f.chi2_after, f.delta_bic, 100 * f.explained_fraction, f.p_adjusted,
-                     f.significant ? "yes" : "no", sig ? " " + f.signature + " |" : "");
-  if (!r.pairs.empty()) {
-    o += "\nPairs that beat every single effect by a clear margin:\n\n";
-    for (const auto& f : r.pairs)
-      o += fmt::format("- {} ({}): chi^2 {:.1f}, delta BIC {:.1f}\n", f.label(), est(f), f.chi2_after, f.delta_bic);
-  }
-  if (!r.indistinguishable.empty() || !r.proportional.empty()) {
-    o += "\n## Indistinguishable alternatives\n\n";
-    for (const auto& s : r.proportional) o += "- " + s + "\n";
-    for (const auto& s : r.discriminators) o += "- " + s + "\n";
-  }
-  o += "\n## Caveats\n\n";
-  for (const auto& c : r.caveats) o += "- " + c + "\n";
-  return o;
 }
 
 }  // namespace chutelab::validation

@@ -1,13 +1,25 @@
 #pragma once
 // Which physical effect is missing? For each candidate effect (and each pair), fit its strength to
-// all measurements and trajectory points weighted by their uncertainties, and judge whether the
-// improvement is more than chance across all the candidates tried.
+// all measurements and trajectory points weighted by their uncertainties, judge whether the
+// improvement is more than chance across all the candidates tried, and whether what the best
+// explanation leaves is noise. The statistics do not take the data's assumptions on trust: readings
+// no explanation reaches are named and left out, a quantity no model explains gets a discrepancy of
+// its own, uncertainties that the scatter shows too small are widened, and a candidate the data want
+// outside its physical range is fitted there too, so that a clipped true effect cannot hand the
+// verdict to a mimic.
+//
+// Shape: diagnose() (this file's .cpp) runs the statistics on a cost function
+// (validation/misfit.h) over a source of predictions that owns the runs
+// (validation/prediction_source.h), with fits from validation/strength_fit.h and the noise
+// assessment of validation/noise_model.h. Its result is numbers and codes; the sentences are
+// rendered from it by validation/diagnosis_words.cpp.
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "validation/dataset.h"
 #include "validation/model.h"
+#include "validation/strength_fit.h"
 
 namespace chutelab::validation {
 
@@ -23,26 +35,136 @@ struct ResidualPattern {
   bool notable = false;          // bias or trend beyond what noise gives
 };
 
+// A candidate refitted over its extended range (effects/registry.h) when its fit inside the
+// physical range sits at a bound: what strength the data want whatever physics allows.
+struct UnboundedFit {
+  double estimate = 0.0, uncertainty = 0.0;  // boundary units, one sd
+  double chi2 = 0.0;
+  // Outside the physical range by more than two sd, and significantly better than the bounded fit
+  // (likelihood ratio at the family's alpha).
+  bool wants_outside = false;
+};
+
 struct EffectFit {
   std::vector<std::string> effects;       // one name, or two for a pair
   std::vector<std::string> parameters;    // parameter names with units
   std::vector<double> estimate;           // boundary units of each parameter
-  std::vector<double> uncertainty;        // one standard deviation, from the fit's covariance
-  double chi2_before = 0.0;
+  std::vector<double> uncertainty;        // one sd: from the fit's covariance under the noise model, or a profile
+  double chi2_before = 0.0;               // of the models as they are, under the noise model
   double chi2_after = 0.0;
   double delta_bic = 0.0;                 // BIC(with effect) - BIC(baseline); < 0 is better
-  double explained_fraction = 0.0;        // share of the excess misfit (chi2 - dof) removed
-  double p_value = 1.0;                   // likelihood-ratio test, before the look-elsewhere step
+  // Share of the misfit beyond noise that the fit removes: (chi2_before - chi2_after) /
+  // (chi2_before - min(chi2_after, dof)); 1 when what is left is no more than noise.
+  double explained_fraction = 0.0;
+  double p_value = 1.0;                   // likelihood-ratio (or F) test, before the look-elsewhere step
   double p_adjusted = 1.0;                // after controlling for the number of candidates tried
   bool significant = false;
   int rank = 0;                           // 1 = best single effect
+  FitStatus status = FitStatus::converged;
+  std::vector<bool> at_bound;             // per parameter: at an edge of its physical range
+  std::optional<UnboundedFit> unbounded;  // singles at a bound only
+  // Another candidate's fit outside its physical range explains the data clearly better (by the
+  // tie margin in BIC): this one may not be named as the missing effect.
+  std::string beaten_outside_range_by;
   // With an expensive baseline: where its response to the effect came from ("own runs", "analytical
   // only": it cannot represent the effect, "exact": a measurement effect applied to its output).
   std::string signature;
   // With an expensive baseline that runs with effects: chi^2 from the signatures, when a real run at
   // the fitted strength replaced it in chi2_after (and in what follows from it).
   std::optional<double> chi2_from_signatures;
+  // The expensive model's own chi^2 at a few strengths around the estimate (the recommended single
+  // fit): its minimum and curvature replace the estimate and sd of the linear signature.
+  std::optional<ProfileFit> profile;
+  // The profile's sd widened by this factor (> 1): the readings scatter around the real runs more
+  // than their uncertainties say (the curvature-weighted Birge ratio of the quantities that fix the
+  // strength, or the sandwich (HC3) estimate from the readings' leave-one-out pulls, the larger).
+  double profile_widened = 1.0;
   std::string label() const;              // "air_drag" or "air_drag + belt_slip"
+};
+
+// The verdict as a code (the sentences are rendered from the whole result).
+enum class Verdict {
+  no_data,              // no measured value has an uncertainty
+  consistent,           // the models explain the data within the uncertainties
+  missing_effect,       // a library effect (or pair) explains the misfit and leaves only noise
+  partial_explanation,  // the best explanation is real but leaves a misfit that is not noise, or needs an edge of its range
+  out_of_range,         // the data want an effect at a strength outside its physical range
+  outside_library,      // the models miss the data and no library effect explains it
+};
+
+// A reading no explanation reaches: left out of every fit and named.
+struct Outlier {
+  std::string condition, quantity;        // quantity: boundary name
+  SourceLine where;
+  double measured = 0.0;                  // boundary units
+  double predicted = 0.0;                 // by the recommended explanation (or the models as they are)
+  double deviation = 0.0;                 // standardised: (measured - predicted) / (its scatter)
+  double relative = 0.0;                  // (measured - predicted) / |predicted|
+  double closest = 0.0;                   // smallest |deviation| under any candidate fitted
+};
+
+// A reading that alone moves a fitted strength by more than one sd (leave-one-out refit).
+struct Influence {
+  std::string condition, quantity;
+  SourceLine where;
+  std::string parameter;                  // of the recommended explanation
+  double shift_sd = 0.0;                  // signed: the strength without the reading minus with it, in sd
+};
+
+// A quantity (as one model predicts it) that no explanation reaches: a discrepancy variance
+// tau^2 added to its points' u^2, so that it cannot hide an effect seen in the other quantities.
+struct Discrepancy {
+  std::string quantity, model;
+  int n = 0;
+  double tau = 0.0;                       // boundary units
+  double mean_error = 0.0;                // mean E = S - D under the recommended explanation, boundary units
+  double mean_relative = 0.0;             // mean E / |D| (forces and speeds)
+};
+
+// What the scatter left by the best explanation says about the stated uncertainties (outside
+// quantities with a discrepancy and outliers).
+struct ScaleFinding {
+  double factor = 1.0;                    // sqrt(chi^2 / dof): the real scatter over the stated
+  int dof = 0;
+  double p_high = 1.0, p_low = 1.0;       // chance of a chi^2 this large / this small with honest uncertainties
+  bool applied = false;                   // significantly too small: every u widened by `factor` (a Birge ratio)
+  bool too_large = false;                 // significantly too large (the uncertainties are not narrowed)
+};
+
+// A quantity where what the best explanation leaves is not noise.
+struct Leftover {
+  std::string quantity, model;
+  int n = 0;
+  double mean_error = 0.0;                // boundary units
+  double mean_relative = 0.0;
+  double p = 1.0;                         // the smallest p of its bias, excess and trend tests (before Bonferroni)
+  std::string pattern;                    // "bias", "scatter", or the driver it trends with
+};
+
+// One quantity's misfit in the engineer's units: the mean error of the models as they are and with
+// the recommended explanation.
+struct QuantityShift {
+  std::string quantity, symbol, label, unit;
+  int n = 0;
+  double before = 0.0, after = 0.0;       // mean E = S - D, boundary units
+  double before_relative = 0.0, after_relative = 0.0;  // mean E / |D|
+  bool relative = false;                  // forces and speeds: said in %, positions in mm
+};
+
+// Two explanations and the measurement that separates them most.
+struct Discriminator {
+  std::string a, b;                       // labels
+  std::string quantity, condition, model, unit;
+  double value_a = 0.0, value_b = 0.0;    // boundary units
+  double separation = 0.0;                // in uncertainties of such a measurement here
+  bool measured_here = true;
+};
+
+// Where a named effect's evidence lies, when it lies in one quantity: a model-form error of that
+// quantity would look the same.
+struct Concentration {
+  std::string effect, quantity, model;
+  double share = 0.0;                     // of the effect's fall of chi^2
 };
 
 struct DiagnosisResult {
@@ -50,29 +172,46 @@ struct DiagnosisResult {
   std::vector<std::string> models;
   int n_data = 0;                         // measurements + trajectory points with uncertainty
   int n_without_uncertainty = 0;          // left out of chi^2
-  double chi2_baseline = 0.0;
+  int n_conditions = 0, n_quantities = 0; // what the design spans
+  double chi2_baseline = 0.0;             // as stated (before the noise model)
   double baseline_p_value = 1.0;          // chance of a chi^2 this large from noise alone
   std::vector<ResidualPattern> patterns;
-  std::vector<std::string> failure_summary;    // sentences for an engineer
   std::vector<EffectFit> singles;         // ranked, best first
   std::vector<EffectFit> pairs;           // only pairs that beat every single by a clear margin
   bool any_significant = false;
-  bool convincing = false;                // the best fit explains >= 70 % and is inside its range
+
+  // The codes and numbers of the verdict.
+  Verdict verdict_code = Verdict::no_data;
+  bool convincing = false;                // verdict_code == missing_effect
+  bool goodness_of_fit = true;            // what the recommended explanation leaves is noise
+  std::vector<Outlier> outliers;
+  std::vector<Influence> influential;
+  std::vector<Discrepancy> model_form;
+  ScaleFinding scale;
+  std::vector<Leftover> leftovers;        // where the rest is not noise
+  std::vector<QuantityShift> shifts;      // the recommended explanation in units
+  std::vector<std::string> wants_outside; // candidates whose data want a strength outside the range
+  bool thin_data = false;                 // too few conditions or quantities to tell candidates apart
+  int noise_rounds = 0;                   // fits run before the noise model settled
+  std::vector<Discriminator> ties;        // about as good as the best, and what would separate them
+  std::optional<Concentration> concentrated;  // the recommended effect rests on one quantity
+
+  // Sentences for an engineer, rendered from the above (validation/diagnosis_words.cpp).
+  std::string verdict;                    // the headline
+  std::vector<std::string> failure_summary;    // where the models as they are fail
+  std::vector<std::string> findings;           // readings to check, quantities no model explains, the uncertainties
   std::vector<std::string> indistinguishable;  // effects about as good as the best
   std::vector<std::string> discriminators;     // which measurement would tell them apart
   std::vector<std::string> proportional;       // candidates that move the data in proportion to the best
   std::vector<std::string> caveats;
-  std::string verdict;                    // one sentence
   // With an expensive model (DEM) the ranking uses the cheap models' signatures as differences
   // (DESIGN.md §5); the recommended fit is then re-run with the expensive model for real.
   bool used_surrogate = false;
+  // Expensive models that cannot be re-run with an effect (another code's exported results): name, description.
+  std::vector<std::pair<std::string, std::string>> exported_models;
   std::optional<double> confirmed_chi2;   // chi^2 of the recommended fit from real runs
-  const EffectFit* best() const;          // the recommended fit (single or pair), if significant
+  const EffectFit* best() const;          // the recommended fit (single or pair), if significant and not beaten
 };
-
-}  // namespace chutelab::validation
-
-namespace chutelab::validation {
 
 struct DiagnoseOptions {
   double alpha = 0.01;           // family-wise false-alarm rate over all candidates
@@ -82,19 +221,31 @@ struct DiagnoseOptions {
   // Two candidates whose fitted changes of the normalised residuals are this parallel (|cos|) move
   // the measured quantities in proportion: these data cannot tell them apart.
   double proportional_cosine = 0.98;
+  // Readings left out as outliers, at most this share of the data (more is not a few bad readings
+  // but a misfit).
+  double max_outlier_share = 0.05;
   // Expensive runs side by side, and threads predicting the conditions of the analytical fits
   // (0 = one per core, shared among MPI ranks).
   int jobs = 0;
   // With an expensive baseline: how many of the leading significant single candidates are re-run
   // at their fitted strengths before the ranking is final (the best pair is always re-run).
   int confirm = 3;
+  // With an expensive baseline that runs with effects: real runs at up to this many strengths
+  // around the recommended single fit give its estimate and sd (0: keep the signature's).
+  int profile_runs = 6;
   // One line per fit on stderr (which, of how many, time so far) for datasets of 500 conditions or more.
   bool progress = false;
 };
 
+// Throws InputError (field = the option's name) for an option out of its range, before any work.
+void check(const DiagnoseOptions& options);
+
 DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models,
                          const DiagnoseOptions& options = {});
 
+// validation/diagnosis_words.cpp: the sentences of a result (fills its verdict, summaries and
+// caveats), and its files.
+void describe(DiagnosisResult& r, const DiagnoseOptions& options);
 std::string diagnosis_csv(const DiagnosisResult& r);
 std::string diagnosis_markdown(const DiagnosisResult& r);
 

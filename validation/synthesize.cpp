@@ -6,8 +6,10 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <map>
+#include <span>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "core/input_error.h"
 #include "core/utf8.h"
@@ -92,6 +94,56 @@ std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
+// Every model's prediction of one condition with the hidden effects, measurement effects applied:
+// each value comes from the first model (in the order given) that predicts it.
+std::vector<ConditionResult> truth_of(const Dataset& src, std::size_t i, const Station& st,
+                                      const std::vector<ModelPtr>& models, const analytical::EffectList& effects,
+                                      std::span<const TrajectoryQuery> queries) {
+  std::vector<ConditionResult> same;
+  try {
+    for (const auto& m : models) same.push_back({st.condition, m->name(), m->predict(st, effects, {queries, false})});
+  } catch (const InputError& e) {
+    if (i < src.station_lines.size()) throw e.located(src.station_lines[i].file, src.station_lines[i].line);
+    throw;
+  }
+  apply_measurement_effects(effects, same);
+  return same;
+}
+
+std::optional<double> first_value(const std::vector<ConditionResult>& same, Quantity q) {
+  for (const auto& s : same)
+    if (s.prediction.values[q]) return s.prediction.values[q];
+  return std::nullopt;
+}
+
+std::optional<double> first_point(const std::vector<ConditionResult>& same, std::size_t k) {
+  for (const auto& s : same)
+    if (k < s.prediction.trajectory.size() && s.prediction.trajectory[k]) return s.prediction.trajectory[k];
+  return std::nullopt;
+}
+
+// One measured value as drawn: its reading and the standard deviation its gross error is scaled by.
+struct Drawn {
+  Quantity q;
+  double value = 0.0;  // SI
+  double sigma = 0.0;  // SI, the stated size of its noise
+};
+
+// Gross reading errors on `count` of the drawn values, from a stream of their own (so the other
+// readings stay those of the seed): 8 to 15 stated uncertainties off, either way, never below zero
+// for a magnitude. Each value is hit at most once.
+void add_outliers(std::vector<Drawn*>& values, int count, std::uint64_t seed) {
+  NormalStream pick(seed ^ 0xA5A5A5A5DEADBEEFull);
+  for (int k = 0; k < count && !values.empty(); ++k) {
+    const auto at = std::min(values.size() - 1, static_cast<std::size_t>(pick.uniform() * values.size()));
+    Drawn& d = *values[at];
+    const double size = (8.0 + 7.0 * pick.uniform()) * d.sigma;
+    const double sign = pick.uniform() < 0.5 ? -1.0 : 1.0;
+    d.value += (info(d.q).magnitude && d.value - size < 0.0) ? size : sign * size;
+    values.erase(values.begin() + static_cast<std::ptrdiff_t>(at));
+  }
+}
+
 }  // namespace
 
 std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPtr>& models,
@@ -101,7 +153,13 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
   for (const auto& m : src.measurements)
     if (m.uncertainty) given_u[{m.condition, m.quantity}] = *m.uncertainty;
 
-  std::string meas = "condition,quantity,value,uncertainty\n";
+  // Measurements are drawn for every condition first and written after the outliers are placed.
+  struct Row {
+    std::size_t station;
+    bool given;
+    Drawn d;
+  };
+  std::vector<Row> rows;
   std::string traj = "condition,boundary,x_mm,y_mm,uncertainty_mm\n";
   for (std::size_t i = 0; i < src.stations.size(); ++i) {
     const Station& st = src.stations[i];
@@ -115,19 +173,9 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
           queries.push_back({b, x});
           traj_u.push_back(2e-3);
         }
-    std::vector<ConditionResult> same;
-    try {
-      for (const auto& m : models)
-        same.push_back({st.condition, m->name(), m->predict(st, opt.effects, {queries, false})});
-    } catch (const InputError& e) {
-      throw e.located(src.station_lines[i].file, src.station_lines[i].line);
-    }
-    apply_measurement_effects(opt.effects, same);
-
+    const auto same = truth_of(src, i, st, models, opt.effects, queries);
     for (Quantity q : kAllQuantities) {
-      std::optional<double> truth;
-      for (const auto& s : same)
-        if (!truth && s.prediction.values[q]) truth = s.prediction.values[q];
+      const auto truth = first_value(same, q);
       if (!truth) continue;
       // The noise follows the true value (a load cell's error scales with the load it carries),
       // but the stated uncertainty is computed from the reading, as a lab computes it: one
@@ -137,27 +185,34 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       const bool given = it != given_u.end();
       if (info(q).optional && !given) continue;  // a rig not instrumented for it
       const double sigma = (given ? it->second : default_uncertainty(q, *truth)) * opt.noise_scale;
-      const double s = info(q).to_boundary;
-      const std::string value = fmt::format("{:.4f}", reading(q, *truth, sigma, noise) * s);
-      double written = 0.0;  // what the reader will see: the uncertainty is a function of it alone
-      std::from_chars(value.data(), value.data() + value.size(), written);
-      written /= s;
-      const std::string u = two_significant(
-          (given ? it->second : default_uncertainty(q, written)) * opt.noise_scale * s);
-      meas += fmt::format("{},{},{},{}\n", csv_field(st.condition), name(q), value, u);
+      rows.push_back({i, given, {q, reading(q, *truth, sigma * opt.noise_factor, noise), sigma}});
     }
     for (std::size_t k = 0; k < queries.size(); ++k) {
-      std::optional<double> truth;
-      for (const auto& s : same)
-        if (!truth && k < s.prediction.trajectory.size() && s.prediction.trajectory[k])
-          truth = s.prediction.trajectory[k];
+      const auto truth = first_point(same, k);
       if (!truth) continue;
       const double u = traj_u[k] * opt.noise_scale;
       traj += fmt::format("{},{},{:.1f},{:.3f},{:.3f}\n", csv_field(st.condition), name(queries[k].boundary),
-                          queries[k].x * 1e3, (*truth + u * noise.next()) * 1e3, u * 1e3);
+                          queries[k].x * 1e3, (*truth + u * opt.noise_factor * noise.next()) * 1e3, u * 1e3);
     }
   }
-  const std::string readme = fmt::format(
+  std::vector<Drawn*> candidates;
+  for (auto& r : rows) candidates.push_back(&r.d);
+  add_outliers(candidates, opt.outliers, opt.seed);
+
+  std::string meas = "condition,quantity,value,uncertainty\n";
+  for (const auto& r : rows) {
+    const Station& st = src.stations[r.station];
+    const Quantity q = r.d.q;
+    const double s = info(q).to_boundary;
+    const std::string value = fmt::format("{:.4f}", r.d.value * s);
+    double written = 0.0;  // what the reader will see: the uncertainty is a function of it alone
+    std::from_chars(value.data(), value.data() + value.size(), written);
+    written /= s;
+    const std::string u = two_significant(
+        (r.given ? given_u.at({st.condition, q}) : default_uncertainty(q, written)) * opt.noise_scale * s);
+    meas += fmt::format("{},{},{},{}\n", csv_field(st.condition), name(q), value, u);
+  }
+  std::string readme = fmt::format(
       "# Synthetic dataset\n\n"
       "Made by `chutelab synthesize` from the rig and conditions of `{}` (copied unchanged, in UTF-8,\n"
       "as `setup.toml` and `conditions.csv`), random seed {}. `measurements.csv` and `trajectory.csv` hold\n"
@@ -167,6 +222,16 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       "figures). What else went into the generating model is deliberately not recorded here, so\n"
       "the dataset can serve as a blind test of `chutelab diagnose`.\n",
       src.setup.name.empty() ? src.dir.filename().string() : src.setup.name, opt.seed);
+  // What makes the data break the diagnosis's assumptions on purpose is said (not which effect).
+  if (opt.noise_factor != 1.0)
+    readme += fmt::format("\nThe real scatter is {:g} times the stated uncertainties: the uncertainties are stated "
+                          "{}.\n", opt.noise_factor, opt.noise_factor > 1.0 ? "too small" : "too large");
+  if (opt.outliers > 0)
+    readme += fmt::format("\n{} reading{} carr{} a gross error of 8 to 15 stated uncertainties (which is not said).\n",
+                          opt.outliers, opt.outliers == 1 ? "" : "s", opt.outliers == 1 ? "ies" : "y");
+  if (opt.out_of_range)
+    readme += "\nFOR TESTING ONLY: the hidden physics may include strengths outside their physical range "
+              "(no real rig behaves so).\n";
   // Copied as read, but in UTF-8 like the files written beside them: a Latin-1 conditions.csv
   // would otherwise make one dataset of two encodings.
   return {{"setup.toml", to_utf8(slurp(src.dir / "setup.toml"))},
@@ -174,6 +239,57 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
           {"measurements.csv", meas},
           {"trajectory.csv", traj},
           {"README.md", readme}};
+}
+
+Dataset replica(const Dataset& design, const std::vector<ModelPtr>& models, const SynthesizeOptions& opt,
+                const std::vector<Station>* truth) {
+  NormalStream noise(opt.seed);
+  Dataset out = design;
+  out.station_index = std::make_shared<Dataset::StationIndex>();
+  out.measurements.clear();
+  out.trajectory.clear();
+  std::vector<Drawn*> candidates;
+  std::vector<Drawn> drawn;
+  drawn.reserve(design.measurements.size());
+  std::vector<const Measurement*> source;
+  // Each condition's rows, found once: a replica stays linear in the size of the design.
+  std::unordered_map<std::string, std::vector<const Measurement*>> measured;
+  std::unordered_map<std::string, std::vector<const TrajectoryPoint*>> points;
+  for (const auto& m : design.measurements) measured[m.condition].push_back(&m);
+  for (const auto& p : design.trajectory) points[p.condition].push_back(&p);
+  for (std::size_t i = 0; i < design.stations.size(); ++i) {
+    const Station& st = design.stations[i];
+    std::vector<TrajectoryQuery> queries;
+    for (const auto* p : points[st.condition]) queries.push_back({p->boundary, p->x});
+    const auto same = truth_of(design, i, truth ? (*truth)[i] : st, models, opt.effects, queries);
+    for (const auto* mp : measured[st.condition]) {
+      const Measurement& m = *mp;
+      if (!m.uncertainty) continue;
+      const auto t = first_value(same, m.quantity);
+      if (!t) continue;
+      const double sigma = *m.uncertainty * opt.noise_scale;
+      drawn.push_back({m.quantity, reading(m.quantity, *t, sigma * opt.noise_factor, noise), sigma});
+      source.push_back(&m);
+    }
+    for (std::size_t k = 0; k < points[st.condition].size(); ++k) {
+      const TrajectoryPoint& p = *points[st.condition][k];
+      const auto t = first_point(same, k);
+      if (!t || !p.uncertainty) continue;
+      TrajectoryPoint r = p;
+      r.uncertainty = *p.uncertainty * opt.noise_scale;
+      r.y = *t + *r.uncertainty * opt.noise_factor * noise.next();
+      out.trajectory.push_back(r);
+    }
+  }
+  for (auto& d : drawn) candidates.push_back(&d);
+  add_outliers(candidates, opt.outliers, opt.seed);
+  for (std::size_t j = 0; j < drawn.size(); ++j) {
+    Measurement m = *source[j];
+    m.value = drawn[j].value;
+    m.uncertainty = drawn[j].sigma;
+    out.measurements.push_back(m);
+  }
+  return out;
 }
 
 }  // namespace chutelab::validation

@@ -14,7 +14,17 @@ namespace chutelab::validation {
 struct SynthesizeOptions {
   analytical::EffectList effects;
   std::uint64_t seed = 1;
-  double noise_scale = 1.0;  // multiplies every uncertainty
+  double noise_scale = 1.0;  // multiplies every uncertainty, stated and real
+  // The real scatter in units of the stated uncertainty: 2 makes data whose stated uncertainties
+  // are half the truth (the stated values do not change).
+  double noise_factor = 1.0;
+  // Gross reading errors (a transcription slip, a stuck cell): this many readings, chosen at random
+  // among the measurements, are off by 8 to 15 stated uncertainties. They come from a stream of
+  // their own, so the other readings are those of the same seed without them.
+  int outliers = 0;
+  // The hidden effects include strengths outside their physical range (for testing only): the
+  // dataset's README says so.
+  bool out_of_range = false;
 };
 
 // Uncertainties: those of the source dataset's measurements where it has them; otherwise 2 % of
@@ -27,18 +37,27 @@ struct SynthesizeOptions {
 std::vector<OutputFile> synthesize(const Dataset& source, const std::vector<ModelPtr>& models,
                                    const SynthesizeOptions& options);
 
+// A replica of a dataset's own design in memory: the same conditions, the same measured values and
+// trajectory points with their stated uncertainties, read anew from the models with these effects
+// plus noise (the diagnosis's self-check, and tests). `truth` (optional, parallel to the design's
+// stations) is what the rig really was when it differs from its record (a plate further than
+// drawn): the readings come from it, the replica keeps the record. Values without a stated
+// uncertainty are dropped (nothing could judge them).
+Dataset replica(const Dataset& design, const std::vector<ModelPtr>& models, const SynthesizeOptions& options,
+                const std::vector<Station>* truth = nullptr);
+
 // Deterministic standard normal deviates from a 64-bit seed (the same on every platform, unlike
 // std::normal_distribution).
 class NormalStream {
  public:
   explicit NormalStream(std::uint64_t seed);
   double next();
+  double uniform();  // in (0, 1)
 
  private:
   std::uint64_t state_;
   bool has_spare_ = false;
   double spare_ = 0.0;
-  double uniform();
 };
 
 }  // namespace chutelab::validation

@@ -1,7 +1,7 @@
 #pragma once
-// Hertz normal force with Mindlin no-slip tangential stiffness (seed §3, Eq 9; EDEM's default model).
+// Hertz normal force with Mindlin no-slip tangential stiffness (reference study §3, Eq 9; EDEM's default model).
 //   normal:     F_n = 4/3 E* sqrt(R*) delta^{3/2} + 2 sqrt(5/6) beta sqrt(S_n m*) d(delta)/dt,
-//               S_n = 2 E* sqrt(R* delta)  (so the damping term scales as delta^{1/4}, seed Eq 9)
+//               S_n = 2 E* sqrt(R* delta)  (so the damping term scales as delta^{1/4}, reference study Eq 9)
 //   tangential: S_t = 8 G* sqrt(R* delta), damping 2 sqrt(5/6) beta sqrt(S_t m*)
 // beta = -ln e / sqrt(ln^2 e + pi^2) (dem/contact/damping_restitution.h). The tensile tail of the
 // damped force at the end of the contact is kept (as in EDEM and LIGGGHTS): with it the realised

@@ -1,5 +1,5 @@
 #pragma once
-// Linear spring-dashpot (seed Eq 8): F_n = k_n delta + D_n d(delta)/dt with D_n = 2 zeta sqrt(k_n m*),
+// Linear spring-dashpot (reference study Eq 8): F_n = k_n delta + D_n d(delta)/dt with D_n = 2 zeta sqrt(k_n m*),
 // zeta = -ln e / sqrt(ln^2 e + pi^2), which is the exact restitution of the damped linear oscillator
 // when the contact ends at delta = 0 (tensile tail kept). Tangential spring k_t = ratio * k_n with the
 // same damping ratio.

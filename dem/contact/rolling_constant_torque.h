@@ -1,5 +1,5 @@
 #pragma once
-// Coulomb-like rolling friction of seed Eq 10: a constant directional torque
+// Coulomb-like rolling friction of reference study Eq 10: a constant directional torque
 //   T_R,i = -mu_r F_n R_i w_rel/|w_rel|,   T_R,j = +mu_r F_n R_j w_rel/|w_rel|,
 // with w_rel = w_i - w_j (w_i alone against a non-rotating wall, which is Eq 10 as printed; the
 // relative form gives no torque to two spheres rotating together). A constant torque would reverse

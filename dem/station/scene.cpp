@@ -149,7 +149,7 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
                   Vec3(x_hi, y_top, z_half)};
   ws.normal = s.contact;
   ws.tangential = TangentialModel::coulomb_history;
-  // Constant directional torque (seed Eq 10), as LIGGGHTS' `rolling_friction cdt` of the rig.
+  // Constant directional torque (reference study Eq 10), as LIGGGHTS' `rolling_friction cdt` of the rig.
   ws.rolling = RollingModel::constant_torque;
   ws.skin = s.skin_fraction * r;
   ws.threads = effective_threads(s.threads);
@@ -194,7 +194,7 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     return in;
   };
   const double mu_plate = fx.plate_friction ? std::max(0.0, *fx.plate_friction) : mat.friction_plate;
-  // The engine's rolling torque has the lever R_i (seed Eq 10); LIGGGHTS' cdt uses R_i R_j/(R_i + R_j),
+  // The engine's rolling torque has the lever R_i (reference study Eq 10); LIGGGHTS' cdt uses R_i R_j/(R_i + R_j),
   // which for the station's equal spheres is the same law with half the coefficient.
   const double mu_r_pp = mat.rolling_friction_particle * (s.rolling_lever_effective ? 0.5 : 1.0);
   mt.set_interaction(mp, mp, interaction(mat.friction_particle, mu_r_pp, mat.restitution_particle));
@@ -218,7 +218,7 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
                                      fx.belt_adhesive_stress, s.contact.title()));
     }
   }
-  // Side panels: their own friction (acrylic in the seed), the plate's restitution.
+  // Side panels: their own friction (acrylic in the reference study), the plate's restitution.
   mt.set_interaction(mp, mside, interaction(mat.friction_side, mat.rolling_friction_wall, mat.restitution_plate));
 
   const Vec3 zhat = Vec3::UnitZ();
@@ -354,7 +354,7 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     in.radius_min = in.radius_max = r;
     in.material = mp;
     if (s.particle_shape == ParticleShape::clump) {
-      // The seed's pellet (Fig. 4c), the same definition `chutelab calibrate` uses
+      // The reference study's pellet (Fig. 4c), the same definition `chutelab calibrate` uses
       // (rigs::Grain::seed_clump); the inserter scales it so that its spheres have diameter d and
       // turns each body at random. It owes the feed mass, not a count, so the mass flow is kept.
       in.clump_shape = w.add_clump_shape(ClumpShape::seed_pellet());

@@ -203,11 +203,18 @@ class Diagnosis:
         # A pair's row joins its two values with "+" (as diagnosis.csv does), which leaves rank,
         # estimate and uncertainty as text when the ranking holds a pair.
         self.ranking = _table(_parse_csv(raw["ranking"]),
-                              text_columns=("effect", "parameter", "significant"))
+                              text_columns=("effect", "parameter", "significant", "signature",
+                                            "wants_outside_range", "beaten_outside_range_by"))
         self.patterns = _table(raw["patterns"], text_columns=("model", "quantity", "driver"))
+        # verdict_code: "consistent", "missing_effect", "partial_explanation", "out_of_range",
+        # "outside_library" or "no_data"; best_fit: {effect: {"value", "uncertainty"}} or None;
+        # outliers, model_form: lists of dicts; uncertainty_scale: what the scatter says of the
+        # stated uncertainties; self_check: the replicas' rates (diagnose(..., self_check=N)).
         for key in ("markdown", "verdict", "models", "n_data", "n_without_uncertainty",
                     "chi2_baseline", "baseline_p_value", "any_significant", "convincing", "best",
-                    "failure_summary", "indistinguishable", "discriminators", "caveats"):
+                    "failure_summary", "indistinguishable", "discriminators", "caveats",
+                    "verdict_code", "goodness_of_fit", "thin_data", "findings", "wants_outside",
+                    "outliers", "model_form", "uncertainty_scale", "best_fit", "self_check"):
             setattr(self, key, raw[key])
 
     def __repr__(self):
@@ -215,14 +222,15 @@ class Diagnosis:
 
 
 def diagnose(dataset, models=("booth-cema", "korzen"), *, alpha=0.01, pairs=True, dem_quality="",
-             dem_threads=None, dem_cache=None, no_dem_cache=False):
+             dem_threads=None, dem_cache=None, no_dem_cache=False, self_check=0, seed=1):
     """Ranks the candidate physical effects by how much of the models' misfit each explains, as
-    `chutelab diagnose`."""
+    `chutelab diagnose`; self_check=N also diagnoses N replicas of the dataset's design (as
+    `--self-check N`, replicas from `seed` on)."""
     d = _dataset(dataset)
     raw = _chutelab.diagnose(d._core, _model_list(models), _real("alpha", alpha), _flag("pairs", pairs),
                              _text("dem_quality", dem_quality), _whole("dem_threads", dem_threads, True),
                              _path(dem_cache),
-                             _flag("no_dem_cache", no_dem_cache))
+                             _flag("no_dem_cache", no_dem_cache), self_check, seed)
     return Diagnosis(raw)
 
 

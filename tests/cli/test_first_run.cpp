@@ -61,7 +61,7 @@ BOOST_AUTO_TEST_CASE(the_main_job_shows_the_loop_in_a_few_lines) {
   // The analytical models print no progress: stderr stays empty.
   BOOST_TEST(r.err.empty(), r.err);
   const auto lines = lines_of(r.out);
-  // scripts/run.sh adds two lines (the build, the command): at most 30 in all (issue 34).
+  // scripts/run.sh adds two lines (the build, the command): at most 30 in all: a first run a newcomer reads.
   BOOST_TEST(lines.size() + 2 <= 30u);
   // before, what is missing, after with the effect named and its fitted value, the report last.
   BOOST_TEST(lines.front().starts_with("before: hidden-effect: 8 conditions x 2 models; RMS E/u_val"));
@@ -69,7 +69,11 @@ BOOST_AUTO_TEST_CASE(the_main_job_shows_the_loop_in_a_few_lines) {
   BOOST_TEST(line_starting(lines, "after:  + air drag (drag coefficient 0.").find(", fitted): hidden-effect: ") !=
              std::string::npos);
   BOOST_TEST(lines.back() == "report: " + (out / "report.html").string());
-  BOOST_TEST(fs::exists(out / "report.html"));
+  // The report is titled by the folder the user gave, not by setup.toml's name (grima2010, the rig).
+  const std::string md = read_file(out / "report.md");
+  BOOST_TEST(md.starts_with("# chutelab validation report: hidden-effect\n"), md.substr(0, 200));
+  BOOST_TEST(read_file(out / "report.html").find("<title>chutelab validation: hidden-effect</title>") !=
+             std::string::npos);
   // Every quantity line speaks in per cent or mm, before -> after.
   int quantity_lines = 0;
   for (const auto& l : lines)

@@ -113,8 +113,8 @@ BOOST_AUTO_TEST_CASE(elastic_normal_impact_matches_hertz_theory) {
   }
 }
 
-// Chung & Ooi test 3: normal impact with restitution 0.3-0.9, for Hertz-Mindlin (seed Eq 9 with the
-// sqrt(5/6) damping) and the linear spring-dashpot (seed Eq 8). Tolerance 1 % (issue 4); both damping
+// Chung & Ooi test 3: normal impact with restitution 0.3-0.9, for Hertz-Mindlin (reference study Eq 9 with the
+// sqrt(5/6) damping) and the linear spring-dashpot (reference study Eq 8). Tolerance 1 % (issue 4); both damping
 // laws reproduce e exactly in continuous time, so what remains is the time-step error (dt = t_c/200).
 BOOST_AUTO_TEST_CASE(restitution_is_reproduced_for_both_models) {
   for (NormalLaw model : {NormalLaw::of<HertzMindlin>(), NormalLaw::of<LinearSpringDashpot>()})
@@ -127,7 +127,7 @@ BOOST_AUTO_TEST_CASE(restitution_is_reproduced_for_both_models) {
       }
 }
 
-// Hertz damping gives a speed-independent restitution (the delta^{1/4} factor of seed Eq 9); check
+// Hertz damping gives a speed-independent restitution (the delta^{1/4} factor of reference study Eq 9); check
 // over two decades of impact speed. Tolerance 1 % as above.
 BOOST_AUTO_TEST_CASE(hertz_restitution_is_independent_of_impact_speed) {
   for (double v : {0.05, 0.5, 5.0}) {

@@ -29,7 +29,7 @@ std::string tmp(const std::string& name) {
   return (fs::temp_directory_path() / ("chutelab_dem_" + std::to_string(::getpid()) + "_" + name)).string();
 }
 
-// Seed §3 material (polyethylene pellets, LIGGGHTS rig modulus) in a small open box.
+// The reference study's §3 material (polyethylene pellets, LIGGGHTS rig modulus) in a small open box.
 World pellet_box(Settings s, int n = 0) {
   s.gravity = Vec3(0, 0, -9.81);
   if (s.domain.empty()) s.domain = Box{Vec3(-0.1, -0.1, -0.1), Vec3(0.2, 0.2, 0.5)};
@@ -61,7 +61,7 @@ World pellet_box(Settings s, int n = 0) {
 
 }  // namespace
 
-// Rayleigh time and seed Eq 11 against hand-computed values for the 9 mm pellets of the seed's
+// Rayleigh time and reference study Eq 11 against hand-computed values for the 9 mm pellets of the reference study's
 // LIGGGHTS rig (E = 2.5e7 Pa, nu = 0.38, rho = 1000, 1 m/s); the default dt is 1/10 of the collision
 // time or 0.2 of the Rayleigh time, whichever is smaller. Exact formulas: 1e-12 relative.
 BOOST_AUTO_TEST_CASE(time_step_estimates) {
@@ -71,7 +71,7 @@ BOOST_AUTO_TEST_CASE(time_step_estimates) {
   const double m = sphere_mass(R, rho), es = E / (2 * (1 - nu * nu));
   const double tc = 2.87 * std::pow((m / 2) * (m / 2) / (R / 2 * es * es * 1.0), 0.2);
   BOOST_TEST(std::abs(hertz_collision_time(m / 2, R / 2, es, 1.0) / tc - 1) < 1e-12);
-  BOOST_TEST(tc > 4e-4);  // ~0.43 ms: the seed's dt = 3e-5 s is ~1/14 of it
+  BOOST_TEST(tc > 4e-4);  // ~0.43 ms: the reference study's dt = 3e-5 s is ~1/14 of it
   Settings s;
   s.characteristic_speed = 1.0;
   World w = pellet_box(s, 10);

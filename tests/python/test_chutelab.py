@@ -185,7 +185,7 @@ def test_diagnose_finds_the_hidden_effect_as_the_command_line_does(tmp_path):
     assert r.returncode == 0, r.stderr
     assert d.verdict == r.stdout.splitlines()[0]
     assert d.markdown == (tmp_path / "d" / "diagnosis.md").read_text()
-    text = ("effect", "parameter", "significant")
+    text = ("effect", "parameter", "significant", "signature", "wants_outside_range", "beaten_outside_range_by")
     if (d.ranking["rank"] == "pair").any():
         text += ("rank", "estimate", "uncertainty")
     assert_same_table(d.ranking, read_csv(tmp_path / "d" / "diagnosis.csv", text=text), text=text)
@@ -193,6 +193,20 @@ def test_diagnose_finds_the_hidden_effect_as_the_command_line_does(tmp_path):
     assert d.best == "air_drag" and d.ranking.effect[0] == "air_drag"
     assert d.any_significant
     assert {"model", "quantity", "driver", "correlation"} <= set(d.patterns.columns)
+    # The verdict as numbers: its code and the fitted strength with its uncertainty.
+    assert d.verdict_code == "missing_effect"
+    fit = d.best_fit["air_drag"]
+    assert abs(fit["value"] - 0.7) < 3 * fit["uncertainty"]
+    assert d.outliers == [] and d.model_form == []
+
+
+def test_diagnose_self_check_gives_rates_for_the_design():
+    d = chutelab.diagnose(HIDDEN, self_check=4, seed=6400)
+    sc = d.self_check
+    assert sc["null_replicas"] == 4 and sc["effect_replicas"] == 4
+    assert sc["truth"] == ["air_drag"]
+    assert 0 <= sc["false_alarms"] <= 4 and 0 <= sc["covered"] <= 4
+    assert "False alarms" in sc["markdown"]
 
 
 def test_an_effect_fitted_in_python_lowers_the_error_as_validate_effect_fit_does(tmp_path):
@@ -320,17 +334,46 @@ def test_arguments_are_checked_by_the_command_lines_rules(tmp_path):
     assert "use dataset=" in str(e.value) and "--dataset" not in str(e.value)
 
 
+def _tree(root):
+    """Every file under root, relative path -> bytes (folders as None)."""
+    out = {}
+    for d, dirs, files in os.walk(root):
+        for n in dirs:
+            out[os.path.relpath(os.path.join(d, n), root)] = None
+        for n in files:
+            out[os.path.relpath(os.path.join(d, n), root)] = open(os.path.join(d, n), "rb").read()
+    return out
+
+
 def test_a_deep_or_huge_toml_file_is_refused_not_a_crash(tmp_path):
+    # Every TOML reader the package reaches (setup.toml, whose [dem] table validate reads again, and a
+    # tolerances file): refused as InputError naming file and line; nothing changed or written.
     ds = tmp_path / "rig"
     shutil.copytree(RIG, ds)
     setup = (ds / "setup.toml").read_text()
-    for deep in ("a" + ".a" * 49999 + " = 1\n", "x = " + "[" * 100000 + "]" * 100000 + "\n"):
+    deep_cases = ("a" + ".a" * 49999 + " = 1\n", "x = " + "[" * 100000 + "]" * 100000 + "\n",
+                  "[" + "a." * 40000 + "b]\n", "x = " + "{a=" * 20000 + "1" + "}" * 20000 + "\n")
+    for deep in deep_cases:
         (ds / "setup.toml").write_text(deep + setup)
-        with pytest.raises(chutelab.InputError) as e:
-            chutelab.read_dataset(ds)
-        assert e.value.file == str(ds / "setup.toml") and e.value.line == 1 and "levels deep" in str(e.value)
-    tol = tmp_path / "tol.toml"
-    tol.write_text("[" + "a." * 40000 + "b]\n")
+        before = _tree(tmp_path)
+        for call in (lambda: chutelab.read_dataset(ds), lambda: chutelab.validate(ds, models=["korzen"]),
+                     lambda: chutelab.synthesize(ds, out=tmp_path / "out")):
+            with pytest.raises(chutelab.InputError) as e:
+                call()
+            assert e.value.file == str(ds / "setup.toml") and e.value.line == 1 and "levels deep" in str(e.value)
+            assert _tree(tmp_path) == before
+    (ds / "setup.toml").write_text(setup + "# padding padding padding padding padding padding\n" * 25000)
+    before = _tree(tmp_path)
     with pytest.raises(chutelab.InputError) as e:
-        chutelab.validate(RIG, tolerances=tol)
-    assert e.value.file == str(tol) and "levels deep" in str(e.value)
+        chutelab.read_dataset(ds)
+    assert e.value.file == str(ds / "setup.toml") and "is larger than 1 MiB" in str(e.value)
+    assert _tree(tmp_path) == before
+    (ds / "setup.toml").write_text(setup)
+    tol = tmp_path / "tol.toml"
+    for deep in deep_cases:
+        tol.write_text(deep)
+        before = _tree(tmp_path)
+        with pytest.raises(chutelab.InputError) as e:
+            chutelab.validate(ds, models=["korzen"], tolerances=tol)
+        assert e.value.file == str(tol) and e.value.line == 1 and "levels deep" in str(e.value)
+        assert _tree(tmp_path) == before

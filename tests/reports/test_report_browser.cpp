@@ -19,7 +19,7 @@
 #include "effects/registry.h"
 #include "reports/report.h"
 #include "validation/diagnosis.h"
-#include "validation/effect_fit.h"
+#include "validation/strength_fit.h"
 #include "validation/harness.h"
 #include "validation/synthesize.h"
 #include "validation/tolerances.h"

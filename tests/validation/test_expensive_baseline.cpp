@@ -55,6 +55,7 @@ BOOST_AUTO_TEST_CASE(expensive_model_runs_once_per_condition_plus_confirmation) 
   DiagnoseOptions one;
   one.pairs = false;
   one.confirm = 1;  // the leader alone is re-run before the ranking is final
+  one.profile_runs = 0;  // the strength from the signature (the profile has a test of its own below)
   const auto r = diagnose(d, {slow}, one);
   const int n = static_cast<int>(d.stations.size());
   BOOST_TEST(calls.load() == 2 * n);  // one baseline run + one confirming run per condition
@@ -120,6 +121,7 @@ BOOST_AUTO_TEST_CASE(expensive_model_gives_its_own_signature) {
   calls = 0;
   DiagnoseOptions opt;
   opt.pairs = false;
+  opt.profile_runs = 0;  // the strength from the own signature alone (the profile is tested below)
   const auto r = diagnose(d, {own}, opt);
   const int n = static_cast<int>(d.stations.size());
   // Baseline and one probe per condition, then one run per condition for each leading significant
@@ -170,4 +172,90 @@ BOOST_AUTO_TEST_CASE(gain_and_flow_bias_are_indistinguishable) {
   BOOST_TEST(r.verdict.find("cannot tell them apart") != std::string::npos, r.verdict);
   BOOST_TEST(r.verdict.find("static calibration") != std::string::npos, r.verdict);
   BOOST_TEST(r.verdict.find("stream_mass_flow_tph") != std::string::npos, r.verdict);
+}
+
+namespace {
+
+// Air drag as a code whose own physics makes it grow faster than the coefficient: the deceleration
+// a becomes a (1 + a / (2 m/s^2)), quadratic in C_d.
+class AmplifiedDrag final : public analytical::Effect {
+ public:
+  explicit AmplifiedDrag(std::shared_ptr<const analytical::Effect> inner) : inner_(std::move(inner)) {}
+  std::string name() const override { return inner_->name(); }
+  bool has_flight_force() const override { return inner_->has_flight_force(); }
+  Eigen::Vector2d flight_acceleration(const Eigen::Vector2d& v, const analytical::FlightContext& c) const override {
+    const Eigen::Vector2d a = inner_->flight_acceleration(v, c);
+    return a * (1.0 + a.norm() / 2.0);
+  }
+
+ private:
+  std::shared_ptr<const analytical::Effect> inner_;
+};
+
+// An expensive stand-in (Booth/CEMA and Korzen underneath) that represents air drag itself with that
+// response: a signature from one probe run carried along the analytical shape misses the strength,
+// and the profile of real runs must bring the estimate and its ± back over the truth.
+class NonlinearModel final : public Model {
+ public:
+  explicit NonlinearModel(std::atomic<int>& calls)
+      : booth_(make_model("booth-cema")), korzen_(make_model("korzen")), calls_(calls) {}
+  std::string name() const override { return "nonlinear"; }
+  std::string description() const override { return "expensive stand-in with a non-linear response to drag"; }
+  bool expensive() const override { return true; }
+  bool represents(const Station&, const analytical::EffectList& fixed,
+                  const analytical::EffectList& with) const override {
+    return with.size() > fixed.size() && with.back()->name() == "air_drag";
+  }
+  ModelPrediction predict(const Station& st, const analytical::EffectList& fx,
+                          const PredictRequest& req) const override {
+    ++calls_;
+    analytical::EffectList own;
+    for (const auto& e : fx) own.push_back(e->name() == "air_drag" ? std::make_shared<AmplifiedDrag>(e) : e);
+    auto p = korzen_->predict(st, own, req);
+    const auto b = booth_->predict(st, own, req);
+    for (Quantity q : kAllQuantities)
+      if (!p.values[q]) p.values[q] = b.values[q];
+    p.trajectory = b.trajectory;
+    return p;
+  }
+
+ private:
+  ModelPtr booth_, korzen_;
+  std::atomic<int>& calls_;
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(expensive_strength_and_its_uncertainty_come_from_a_profile_of_real_runs) {
+  std::atomic<int> calls{0};
+  auto model = std::make_shared<NonlinearModel>(calls);
+  const auto rig = read_dataset(CHUTELAB_SOURCE_DIR "/datasets/grima2010", MeasurementsRequired::no);
+  const double truth = 0.3;
+  SynthesizeOptions so;
+  so.effects = {chutelab::effects::find("air_drag")->make(truth)};
+  so.seed = 6193;
+  so.noise_scale = 0.5;
+  const auto dir = test::fresh_dir("nonlinear-profile");
+  write_outputs(dir, synthesize(rig, {model}, so));
+  const auto d = read_dataset(dir);
+  DiagnoseOptions opt;
+  opt.pairs = false;
+  calls = 0;
+  const auto r = diagnose(d, {model}, opt);
+  BOOST_REQUIRE_MESSAGE(r.best(), r.verdict);
+  const EffectFit* b = r.best();
+  BOOST_REQUIRE_MESSAGE(b->label() == "air_drag", r.verdict);
+  BOOST_TEST(b->signature == "own runs");
+  BOOST_REQUIRE(b->profile.has_value());
+  BOOST_TEST(b->profile->bracketed);
+  BOOST_TEST(b->profile->points.size() >= 3u);
+  BOOST_TEST(b->chi2_from_signatures.has_value());
+  // The signature from the probe at C_d 1.2 (where the model's response is three times the
+  // analytical one) puts the strength far too low; the profile's minimum and curvature cover it.
+  BOOST_TEST(std::abs(b->estimate[0] - truth) <= 2.0 * b->uncertainty[0], b->estimate[0] << " ± " << b->uncertainty[0]);
+  BOOST_TEST(std::isfinite(b->uncertainty[0]));
+  // Every run is a whole set of conditions: baseline, probes, confirmations, the profile's strengths.
+  const int n = static_cast<int>(d.stations.size());
+  BOOST_TEST(calls.load() % n == 0);
+  BOOST_TEST(calls.load() / n <= 2 + opt.confirm + opt.profile_runs + 1);
 }

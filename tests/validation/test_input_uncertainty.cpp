@@ -12,7 +12,7 @@
 #include "core/input_error.h"
 #include "core/units.h"
 #include "validation/dataset.h"
-#include "validation/effect_fit.h"
+#include "validation/strength_fit.h"
 #include "validation/harness.h"
 #include "validation/input_uncertainty.h"
 #include "validation/output_files.h"

@@ -1,0 +1,100 @@
+#pragma once
+// The models' misfit to a dataset as a function of candidate effect strengths: the cost function
+// of the diagnosis and of `--effect NAME=fit`. Each measured value (quantities and trajectory points
+// with a stated uncertainty) is compared with the first model, in the order given, that predicts
+// it: with the default order booth-cema,korzen the trajectory, impact point and V_p come from
+// Booth/CEMA and the forces and V_a from Korzen, the reference study's hybrid. The misfit is a pure
+// function of the strengths: the predictions and their runs come from a PredictionSource.
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "effects/registry.h"
+#include "validation/dataset.h"
+#include "validation/model.h"
+#include "validation/prediction_source.h"
+
+namespace chutelab::validation {
+
+struct MisfitPoint {
+  std::size_t condition = 0;     // index into the dataset's stations
+  std::string quantity;          // boundary name (trajectory points: trajectory_<b>_y_mm)
+  std::optional<Quantity> q;
+  std::size_t query = 0;         // trajectory query index within the condition
+  std::size_t model = 0;         // index of the model that predicts it
+  std::size_t group = 0;         // index into Misfit::groups(): one per model and quantity
+  double measured = 0.0, uncertainty = 0.0;  // SI; u_val of V&V 20 (u_D, u_num, u_input)
+  double stated = 0.0;           // SI, u_D alone: what the dataset states for the reading
+  SourceLine where;              // the reading's line in the dataset
+};
+
+// The points of one quantity as predicted by one model (the unit a discrepancy is fitted for).
+struct MisfitGroup {
+  std::string quantity;          // boundary name
+  std::size_t model = 0;
+  std::vector<std::size_t> points;
+};
+
+class Misfit {
+ public:
+  // Points the baseline (fixed effects only) cannot predict, or without uncertainty, are left out.
+  explicit Misfit(std::shared_ptr<const PredictionSource> source);
+  // The same over a source of its own.
+  Misfit(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed = {}, int threads = 1);
+
+  std::size_t size() const { return points_.size(); }
+  const std::vector<MisfitPoint>& points() const { return points_; }
+  const std::vector<MisfitGroup>& groups() const { return groups_; }
+  int left_out() const { return left_out_; }
+  const Dataset& dataset() const { return source_->dataset(); }
+  const std::vector<ModelPtr>& models() const { return source_->models(); }
+  const PredictionSource& source() const { return *source_; }
+
+  // (prediction - measurement) / uncertainty for every point, expensive models by their
+  // signatures. A strength at which a model cannot handle a condition (the stream misses the
+  // plate, ...) gives a large misfit, not an error.
+  std::vector<double> residuals(std::span<const effects::EffectInfo* const> fx,
+                                std::span<const double> strengths) const;
+  // The same from real runs of the expensive models (PredictionSource::prepare_exact runs them).
+  std::vector<double> residuals_exact(std::span<const effects::EffectInfo* const> fx,
+                                      std::span<const double> strengths) const;
+  std::vector<double> residuals_of(const Predictions& predictions) const;
+  double chi2(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
+  // Each point's predicted value (SI) with these effects; absent where the models cannot say.
+  std::vector<std::optional<double>> predicted(std::span<const effects::EffectInfo* const> fx,
+                                               std::span<const double> strengths) const;
+
+  // The misfit of a model that predicts nothing useful: large but finite, so that a minimiser can
+  // still step back.
+  static constexpr double kInfeasible = 1e3;
+
+ private:
+  std::shared_ptr<const PredictionSource> source_;
+  std::vector<MisfitPoint> points_;
+  std::vector<MisfitGroup> groups_;
+  int left_out_ = 0;
+};
+
+// What a fit minimises: the misfit's residuals, each multiplied by a weight (1 / the factor its
+// uncertainty is widened by; 0 leaves the point out). Empty weights: every point counts as stated.
+class Cost {
+ public:
+  explicit Cost(const Misfit& m, std::vector<double> weights = {});
+  const Misfit& misfit() const { return *m_; }
+  const std::vector<double>& weights() const { return w_; }
+  std::size_t rows() const { return m_->size(); }
+  std::size_t size() const { return counted_; }  // points that count
+  std::vector<double> residuals(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
+  std::vector<double> weighted(std::vector<double> residuals) const;
+  double chi2(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
+  double chi2_of(const std::vector<double>& residuals) const;  // unweighted residuals in, weighted chi^2 out
+
+ private:
+  const Misfit* m_;
+  std::vector<double> w_;
+  std::size_t counted_ = 0;
+};
+
+}  // namespace chutelab::validation

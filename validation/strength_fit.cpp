@@ -1,0 +1,290 @@
+#include "validation/strength_fit.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multifit_nlinear.h>
+#include <limits>
+#include <map>
+
+namespace chutelab::validation {
+namespace {
+
+// Bounds by a logistic map: p = lo + (hi - lo) / (1 + e^-u) keeps every trial inside the range.
+double to_p(double u, double lo, double hi) { return lo + (hi - lo) / (1.0 + std::exp(-u)); }
+double to_u(double p, double lo, double hi) {
+  const double f = std::clamp((p - lo) / (hi - lo), 1e-9, 1.0 - 1e-9);
+  return std::log(f / (1.0 - f));
+}
+
+struct Bounds {
+  std::vector<double> lo, hi;
+};
+
+Bounds bounds_of(std::span<const effects::EffectInfo* const> fx, StrengthRange range) {
+  Bounds b;
+  for (const auto* e : fx) {
+    const auto r = range == StrengthRange::physical ? effects::Range{e->lower, e->upper} : effects::extended_range(*e);
+    b.lo.push_back(r.lower);
+    b.hi.push_back(r.upper);
+  }
+  return b;
+}
+
+struct GslContext {
+  const Cost* cost;
+  std::span<const effects::EffectInfo* const> fx;
+  const Bounds* b;
+};
+
+int gsl_residuals(const gsl_vector* u, void* params, gsl_vector* f) {
+  const auto* ctx = static_cast<GslContext*>(params);
+  std::vector<double> p(ctx->fx.size());
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = to_p(gsl_vector_get(u, i), ctx->b->lo[i], ctx->b->hi[i]);
+  const auto r = ctx->cost->residuals(ctx->fx, p);
+  for (std::size_t i = 0; i < r.size(); ++i) gsl_vector_set(f, i, r[i]);
+  return GSL_SUCCESS;
+}
+
+// Grid over the range, finer for one parameter than for two.
+void grid_scan(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
+               std::vector<double>& best, double& best_chi2) {
+  const int n = fx.size() == 1 ? 40 : 5;
+  std::vector<double> p(fx.size());
+  std::vector<int> idx(fx.size(), 0);
+  while (true) {
+    for (std::size_t i = 0; i < fx.size(); ++i) p[i] = b.lo[i] + (b.hi[i] - b.lo[i]) * idx[i] / n;
+    const double c = cost.chi2(fx, p);
+    if (c < best_chi2) {
+      best_chi2 = c;
+      best = p;
+    }
+    std::size_t k = 0;
+    while (k < idx.size() && ++idx[k] > n) idx[k++] = 0;
+    if (k == idx.size()) break;
+  }
+}
+
+// Trust-region refinement from `best`; returns the status and updates best where it improved.
+FitStatus refine(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
+                 std::vector<double>& best, double& best_chi2) {
+  const std::size_t k = fx.size();
+  GslContext ctx{&cost, fx, &b};
+  gsl_multifit_nlinear_fdf fdf{};
+  fdf.f = gsl_residuals;
+  fdf.df = nullptr;  // forward-difference Jacobian
+  fdf.n = cost.rows();
+  fdf.p = k;
+  fdf.params = &ctx;
+  gsl_multifit_nlinear_parameters par = gsl_multifit_nlinear_default_parameters();
+  gsl_multifit_nlinear_workspace* w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &par, cost.rows(), k);
+  gsl_vector* u = gsl_vector_alloc(k);
+  for (std::size_t i = 0; i < k; ++i) gsl_vector_set(u, i, to_u(best[i], b.lo[i], b.hi[i]));
+  int info = 0;
+  gsl_multifit_nlinear_init(u, &fdf, w);
+  const int status = gsl_multifit_nlinear_driver(100, 1e-10, 1e-10, 1e-12, nullptr, nullptr, &info, w);
+  std::vector<double> p(k);
+  for (std::size_t i = 0; i < k; ++i) p[i] = to_p(gsl_vector_get(w->x, i), b.lo[i], b.hi[i]);
+  gsl_vector_free(u);
+  gsl_multifit_nlinear_free(w);
+  const double c = cost.chi2(fx, p);
+  if (c <= best_chi2) {
+    best_chi2 = c;
+    best = p;
+  }
+  return status == GSL_SUCCESS ? FitStatus::converged : FitStatus::stopped;
+}
+
+// Uncertainty in the parameters' own units: central differences of the weighted residuals give J,
+// and the covariance of a weighted least-squares estimate is (J^T J)^-1.
+std::vector<double> covariance_sd(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
+                                  const std::vector<double>& best) {
+  const std::size_t k = fx.size();
+  Eigen::MatrixXd J(cost.rows(), k);
+  for (std::size_t j = 0; j < k; ++j) {
+    const double h = 1e-4 * (fx[j]->upper - fx[j]->lower);
+    std::vector<double> lo = best, hi = best;
+    lo[j] = std::max(b.lo[j], best[j] - h);
+    hi[j] = std::min(b.hi[j], best[j] + h);
+    const auto rl = cost.residuals(fx, lo), rh = cost.residuals(fx, hi);
+    for (std::size_t i = 0; i < cost.rows(); ++i) J(i, j) = (rh[i] - rl[i]) / (hi[j] - lo[j]);
+  }
+  const Eigen::MatrixXd JtJ = J.transpose() * J;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
+  std::vector<double> sd(k, std::numeric_limits<double>::infinity());
+  if (lu.isInvertible() && lu.rcond() > 1e-12) {
+    const Eigen::MatrixXd cov = lu.inverse();
+    for (std::size_t j = 0; j < k; ++j) sd[j] = std::sqrt(std::max(0.0, cov(j, j)));
+  }
+  return sd;
+}
+
+}  // namespace
+
+StrengthFit fit_strengths(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const FitOptions& opt) {
+  gsl_set_error_handler_off();
+  const std::size_t k = fx.size();
+  const Bounds b = bounds_of(fx, opt.range);
+  StrengthFit out;
+  std::vector<double> best(k);
+  for (std::size_t i = 0; i < k; ++i) best[i] = fx[i]->neutral;
+  double best_chi2 = cost.chi2(fx, best);
+  for (const auto& s : opt.starts)
+    if (s.size() == k) {
+      std::vector<double> p(k);
+      for (std::size_t i = 0; i < k; ++i) p[i] = std::clamp(s[i], b.lo[i], b.hi[i]);
+      if (const double c = cost.chi2(fx, p); c < best_chi2) {
+        best_chi2 = c;
+        best = p;
+      }
+    }
+  grid_scan(cost, fx, b, best, best_chi2);
+  if (cost.size() > k) out.status = refine(cost, fx, b, best, best_chi2);
+  out.estimate = best;
+  out.chi2 = best_chi2;
+  out.uncertainty = covariance_sd(cost, fx, b, best);
+  for (std::size_t i = 0; i < k; ++i) {
+    const double span = b.hi[i] - b.lo[i];
+    out.at_bound.push_back(best[i] <= b.lo[i] + 1e-3 * span || best[i] >= b.hi[i] - 1e-3 * span);
+  }
+  return out;
+}
+
+StrengthFit fit_strengths(const Misfit& m, std::span<const effects::EffectInfo* const> fx,
+                          const std::vector<std::vector<double>>& starts) {
+  return fit_strengths(Cost(m), fx, FitOptions{StrengthRange::physical, starts});
+}
+
+double round_number(double x) {
+  if (!(x > 0.0) || !std::isfinite(x)) return x;
+  const double mag = std::pow(10.0, std::floor(std::log10(x)));
+  const double f = x / mag;
+  return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * mag;
+}
+
+double on_grid(double value, double sd) {
+  if (!(sd > 0.0) || !std::isfinite(sd)) return value;
+  const double step = std::pow(10.0, std::floor(std::log10(sd / 4.0)));
+  return std::round(value / step) * step;
+}
+
+namespace {
+
+// The parabola through three (strength, chi^2) points: chi^2 ~ a (s - vertex)^2 + min.
+struct Parabola {
+  double a = 0.0, vertex = 0.0, min = 0.0;
+};
+Parabola through(std::pair<double, double> p0, std::pair<double, double> p1, std::pair<double, double> p2) {
+  const auto [x0, y0] = p0;
+  const auto [x1, y1] = p1;
+  const auto [x2, y2] = p2;
+  const double d01 = (y1 - y0) / (x1 - x0), d12 = (y2 - y1) / (x2 - x1);
+  Parabola p;
+  p.a = (d12 - d01) / (x2 - x0);
+  if (!(p.a > 0.0)) return p;
+  const double b = d01 - p.a * (x0 + x1);
+  p.vertex = -b / (2.0 * p.a);
+  p.min = y1 - p.a * std::pow(x1 - p.vertex, 2);
+  return p;
+}
+
+}  // namespace
+
+ProfileFit profile_strength(const std::function<double(double)>& chi2_at, double first, double step, double lower,
+                            double upper, int budget, const std::vector<std::pair<double, double>>& known) {
+  ProfileFit out;
+  // The step as a round number (1, 2 or 5 times a power of ten), strengths on its half-grid.
+  const double h = std::min(std::max(round_number(std::abs(step)), 1e-12), (upper - lower) / 2.0);
+  const double grid = h / 2.0;
+  std::map<double, double> seen(known.begin(), known.end());
+  auto snap = [&](double s) { return std::clamp(first + std::round((s - first) / grid) * grid, lower, upper); };
+  auto at = [&](double s) {
+    s = snap(s);
+    if (seen.count(s)) return false;
+    seen.emplace(s, chi2_at(s));
+    --budget;
+    return true;
+  };
+  auto lowest = [&] {
+    return std::min_element(seen.begin(), seen.end(), [](auto& a, auto& b) { return a.second < b.second; });
+  };
+  const double centre = first - lower < h ? snap(lower + h) : upper - first < h ? snap(upper - h) : first;
+  at(centre - h);
+  at(centre);
+  at(centre + h);
+  // Successive parabolic steps: jump to the vertex of the parabola through the lowest point and its
+  // two neighbours (inside), or through the three points at the end it sits on (outward, at most
+  // eight steps; one step where the vertex is the end itself, to bracket it); walk two steps
+  // outward where the three are not convex; stop when the next strength was seen.
+  while (budget > 0) {
+    const auto low = lowest();
+    const bool at_low_end = low == seen.begin(), at_high_end = std::next(low) == seen.end();
+    double next;
+    if (!at_low_end && !at_high_end) {
+      const Parabola p = through(*std::prev(low), *low, *std::next(low));
+      if (!(p.a > 0.0)) break;
+      next = std::clamp(p.vertex, low->first - 4.0 * h, low->first + 4.0 * h);
+    } else if (seen.size() >= 3) {
+      const double out_dir = at_low_end ? -1.0 : 1.0;
+      const auto a = at_low_end ? low : std::prev(low, 2);
+      const Parabola p = through(*a, *std::next(a), *std::next(a, 2));
+      next = p.a > 0.0 ? std::clamp(p.vertex, low->first - 8.0 * h, low->first + 8.0 * h) : low->first + 2.0 * out_dir * h;
+      if (snap(next) == low->first) next = low->first + out_dir * h;
+    } else {
+      break;
+    }
+    if (!at(next)) break;
+  }
+  for (const auto& p : seen) out.points.push_back(p);
+  const auto low = lowest();
+  out.estimate = low->first;
+  out.chi2 = low->second;
+  out.uncertainty = std::numeric_limits<double>::infinity();
+  if (low == seen.begin() || std::next(low) == seen.end()) return out;
+  const Parabola p = through(*std::prev(low), *low, *std::next(low));
+  if (!(p.a > 0.0)) return out;
+  out.estimate = std::clamp(p.vertex, std::prev(low)->first, std::next(low)->first);
+  out.chi2 = p.min;
+  out.uncertainty = 1.0 / std::sqrt(p.a);
+  out.bracketed = true;
+  // An expensive model's chi^2 at each strength carries its runs' own noise, so three points can
+  // draw a parabola far sharper than the profile is. With four or more, a least-squares parabola
+  // through them all: its vertex, and an sd that adds to its curvature's the vertex's own
+  // uncertainty from the points' scatter about it.
+  if (out.points.size() >= 4) {
+    const double x0 = low->first, sx = h;  // centred and scaled, for a well-conditioned fit
+    Eigen::MatrixXd X(static_cast<Eigen::Index>(out.points.size()), 3);
+    Eigen::VectorXd y(static_cast<Eigen::Index>(out.points.size()));
+    for (std::size_t i = 0; i < out.points.size(); ++i) {
+      const double t = (out.points[i].first - x0) / sx;
+      X.row(static_cast<Eigen::Index>(i)) << t * t, t, 1.0;
+      y(static_cast<Eigen::Index>(i)) = out.points[i].second;
+    }
+    const Eigen::MatrixXd XtX = X.transpose() * X;
+    const Eigen::Vector3d c = XtX.ldlt().solve(X.transpose() * y);
+    const double a = c(0) / (sx * sx);
+    if (a > 0.0) {
+      const double t_min = -c(1) / (2.0 * c(0));
+      const double v = x0 + t_min * sx;
+      if (v >= out.points.front().first && v <= out.points.back().first) {
+        const double dof = static_cast<double>(out.points.size()) - 3.0;
+        double var_v = 0.0;
+        if (dof > 0.0) {
+          const double sigma2 = (y - X * c).squaredNorm() / dof;
+          const Eigen::Matrix3d cov = sigma2 * XtX.inverse();
+          // v = x0 - sx c1 / (2 c0): its gradient in (c0, c1).
+          const Eigen::Vector3d g(sx * c(1) / (2.0 * c(0) * c(0)), -sx / (2.0 * c(0)), 0.0);
+          var_v = g.dot(cov * g);
+        }
+        out.estimate = v;
+        out.chi2 = c(2) - c(1) * c(1) / (4.0 * c(0));
+        out.uncertainty = std::sqrt(1.0 / a + var_v);
+        out.scatter = dof > 0.0 ? std::sqrt((y - X * c).squaredNorm() / dof) : 0.0;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace chutelab::validation
