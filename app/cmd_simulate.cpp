@@ -197,7 +197,7 @@ void add_simulate(CLI::App& app, Action& action) {
   with_rule(cmd->add_option("--dt-fraction", o->dt_fraction, "time step as a fraction of the Hertz collision time"),
             options::NumberRule{"", 0.0, 0.5, true, false, false, ""});
   cmd->add_option("--contact", o->contact, "contact law: one of " + dem::NormalLaw::keys());
-  cmd->add_option("--shape", o->shape, "sphere, or clump (the seed's two-sphere pellet, Fig. 4c; --diameter-mm is its spheres')");
+  cmd->add_option("--shape", o->shape, "sphere, or clump (the reference study's two-sphere pellet, Fig. 4c; --diameter-mm is its spheres')");
   with_rule(cmd->add_option("--threads", o->threads, "OpenMP threads (results do not depend on it)"),
             options::rules::threads);
   with_rule(cmd->add_option("--seed", o->seed, "seed of the particle feed"), options::rules::seed);

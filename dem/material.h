@@ -1,5 +1,5 @@
 #pragma once
-// Materials and what the user states for each pair of them (seed §3, Table 1). The contact laws
+// Materials and what the user states for each pair of them (reference study §3, Table 1). The contact laws
 // derive their per-pair coefficients from these (dem/contact/pair_coeffs.h).
 #include <cstdint>
 #include <string>
@@ -19,7 +19,7 @@ struct Material {
 // What the user states for one pair of materials.
 struct Interaction {
   double friction = 0.0;          // Coulomb sliding coefficient mu
-  double rolling_friction = 0.0;  // mu_r of seed Eq 10 (dimensionless)
+  double rolling_friction = 0.0;  // mu_r of reference study Eq 10 (dimensionless)
   double restitution = 1.0;       // normal coefficient of restitution e, 0 < e <= 1
   // Optional cohesion (simplified JKR): attractive force = energy density * contact area.
   double cohesion_energy_density = 0.0;  // J/m^3

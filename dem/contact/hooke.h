@@ -5,7 +5,7 @@
 //   normal:     F_n = k_n delta + m* gamma_n d(delta)/dt
 //   tangential: spring k_t (the tangential part's history), damping m* gamma_t
 // k_n, k_t in N/m and gamma_n, gamma_t in 1/s are given per material pair (LAMMPS' defaults: k_t =
-// 2/7 k_n, gamma_t = gamma_n / 2). Unlike the linear spring-dashpot (seed Eq 8), whose damping is set
+// 2/7 k_n, gamma_t = gamma_n / 2). Unlike the linear spring-dashpot (reference study Eq 8), whose damping is set
 // per pair from a restitution, here the damping rate is fixed, so the restitution depends on the
 // effective mass: with w0^2 = k_n / m* and zeta = gamma_n / (2 w0) < 1, a binary collision (tensile
 // tail kept, as LAMMPS does without limit_damping) lasts pi / (w0 sqrt(1 - zeta^2)) and rebounds with

@@ -12,7 +12,7 @@ namespace chutelab::dem {
 // The coefficients of the tangential, rolling and cohesion parts.
 struct SharedCoeffs {
   double friction = 0.0;          // Coulomb sliding coefficient
-  double rolling_friction = 0.0;  // mu_r (seed Eq 10)
+  double rolling_friction = 0.0;  // mu_r (reference study Eq 10)
   double rolling_damping_ratio = 0.0;
   double cohesion = 0.0;          // J/m^3 (sJKR)
 };
