@@ -12,7 +12,7 @@ namespace chutelab::analytical {
 // The plate face as a line: hinged at its top edge (x = Z, y = plate_top), tilted by beta from the
 // vertical with the top leaning towards the pulley for beta > 0. Its inward normal (the direction
 // in which the stream pushes it) is (cos beta, sin beta), so a stream arriving at alpha_p below the
-// horizontal meets it at alpha_p + beta from the normal, as in seed Eqs 1-7.
+// horizontal meets it at alpha_p + beta from the normal, as in reference study Eqs 1-7.
 struct PlateLine {
   Eigen::Vector2d top = Eigen::Vector2d::Zero();
   double angle = 0.0;

@@ -3,7 +3,7 @@
 // Booth's outer streamlines (lower limit e = 0, upper limit e = h_b; a stream_spread effect turns
 // them apart, so it widens the band), as wide as the load on the belt (the chord W: Booth's flight
 // has no lateral force, so the stream keeps its loaded width), clipped to the plate. Korzen's normal
-// force R_n (seed Eq 5) and shear force R_s (Eq 6/7) spread evenly over that band give the mean
+// force R_n (reference study Eq 5) and shear force R_s (Eq 6/7) spread evenly over that band give the mean
 // pressure and shear stress a designer compares with a DEM or pressure-film map. The even spread is
 // the simplest reading that conserves the force; the real profile peaks near the centroid's hit.
 #include "analytical/transfer_station.h"

@@ -41,7 +41,7 @@ KorzenResult korzen_impact(const KorzenInput& in) {
     r.outflow_area = area;
   }
 
-  // Eq 5. Rebounding particles return part of the normal momentum (0 in the seed's model); they
+  // Eq 5. Rebounding particles return part of the normal momentum (0 in the reference study's model); they
   // leave the plate rather than slide on it, so the shear below sees only the arriving flux.
   const double arriving_normal_force = in.mass_flow * r.normal_speed;
   r.normal_force = arriving_normal_force * (1.0 + in.rebound);

@@ -1,7 +1,7 @@
 #pragma once
-// Korzen (1988) impact-plate model as used by the seed (Grima & Wypych 2010, Eqs 1-7).
+// Korzen (1988) impact-plate model as used by the reference study (Grima & Wypych 2010, Eqs 1-7).
 //
-// How we read the seed's garbled equations (its PDF text lost the symbols; see DESIGN.md §1):
+// How we read the reference study's garbled equations (its PDF text lost the symbols; see DESIGN.md §1):
 //  - Eqs 1-2 give the speed at impact, V_p^2 = V_d^2 + 2 g s for a drop s (energy, no air drag);
 //    here V_p and its angle alpha_p come from the Booth trajectory at the plate instead, which is
 //    the same thing without drag and stays right when an effect adds forces in flight.
@@ -14,7 +14,7 @@
 //  - Eq 5: R_n = m_s V_pn. Eq 6: R_s = m_s V_pt - rho_bl A_a V_a^2. Eq 7: R_s = mu_pw R_n, used
 //    when Eq 4 has no solution.
 // With continuity rho_bl A_a V_a = m_s, so Eq 6 reduces to m_s (V_pt - V_a) = mu_pw R_n as well:
-// in this reading R_s / R_n = mu_pw at every condition, which is the seed's stated finding 2.
+// in this reading R_s / R_n = mu_pw at every condition, which is the reference study's stated finding 2.
 #include <optional>
 #include <string_view>
 
@@ -27,7 +27,7 @@ struct KorzenInput {
   double impact_angle = 0.0;   // alpha_p, rad below the horizontal
   double plate_angle = 0.0;    // beta, rad from the vertical
   double friction = 0.0;       // mu_pw
-  double rebound = 0.0;        // fraction of normal momentum returned (0 = the seed's model)
+  double rebound = 0.0;        // fraction of normal momentum returned (0 = the reference study's model)
 };
 
 enum class ShearEquation { eq6, eq7 };

@@ -32,7 +32,7 @@ const CalibrationRow& chosen(const CalibrationStudy& s) {
   return s.rows.at(s.closest >= 0 ? static_cast<std::size_t>(s.closest) : 0);
 }
 
-// Plain-language trends of the sweep, computed from the rows (what the seed's §5 reads off Table 3).
+// Plain-language trends of the sweep, computed from the rows (what the reference study's §5 reads off Table 3).
 std::vector<std::string> findings(const CalibrationStudy& s) {
   std::vector<std::string> out;
   for (GrainKind k : s.plan.shapes)
@@ -65,9 +65,9 @@ std::vector<std::string> findings(const CalibrationStudy& s) {
         }
     if (n > 0)
       out.push_back(fmt::format("Mean solid fraction (bulk / solid density): spheres {:.3f}, clumps {:.3f} — the "
-                                "shaped particles pack {} (seed §5: \"the smaller shaped particles pack more "
+                                "shaped particles pack {} (reference study §5: \"the smaller shaped particles pack more "
                                 "efficiently ... and achieve a higher loose-poured bulk density\").",
-                                sum_s / n, sum_c / n, sum_c > sum_s ? "more densely, as in the seed" : "less densely, unlike the seed"));
+                                sum_s / n, sum_c / n, sum_c > sum_s ? "more densely, as in the reference study" : "less densely, unlike the reference study"));
   }
   // Density at equal shape and rolling friction: pile height sensitivity.
   if (s.plan.density.size() >= 2) {
@@ -94,7 +94,7 @@ std::string targets_text(const CalibrationStudy& s) {
 std::string rig_text(const CalibrationStudy& s) {
   const auto& st = s.plan.settings;
   return fmt::format(
-      "Swing-arm slump tester (seed Fig. 5): {:.0f} mm I.D. split tube on a bed of glued grains of the same "
+      "Swing-arm slump tester (reference study Fig. 5): {:.0f} mm I.D. split tube on a bed of glued grains of the same "
       "material filling a {:.0f} mm pipe; sample poured to about {:.0f} mm, settled (no grain faster than {:g} m/s), "
       "tube halves moved apart at {:g} m/s; Young's modulus x {:g} (a shorter run; the seed found mean flow "
       "results insensitive to G x10 and /10). Bulk density: mass per volume of the settled column's core; angle of "
@@ -184,7 +184,7 @@ std::string incline_csv(const CalibrationStudy& s) {
 }
 
 std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& s) {
-  std::string md = "# Slump-test calibration (seed Table 3)\n\n";
+  std::string md = "# Slump-test calibration (reference study Table 3)\n\n";
   md += fmt::format("Dataset `{}` (`{}`), quality `{}`; {} slump tests (run times: calibration-timing.csv).\n\n",
                     reports::md_esc(c.setup.name), reports::md_esc(c.dataset), c.quality, s.rows.size());
   md += rig_text(s) + "\n\n";
@@ -192,7 +192,7 @@ std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& 
                     c.setup.material.friction_particle, c.setup.material.restitution_particle,
                     c.setup.material.youngs_modulus / 1e6, c.setup.material.poisson_ratio);
   md += fmt::format("Target (measured): {}.\n\n", targets_text(s));
-  md += "## Table 3 (the seed's layout)\n\n";
+  md += "## Table 3 (the reference study's layout)\n\n";
   md += table3_md(s);
   md += "\n## Every slump test\n\n";
   md += "| particle | rolling friction mu_r | solid density (kg/m^3) | bulk density (kg/m^3) | pile height (mm) | "
@@ -221,7 +221,7 @@ std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& 
   if (!s.incline.empty()) {
     md += "\n## Inclined-plane rig (particle-wall rolling friction)\n\n";
     md += "A sphere of the scaled size on the plate material, tilted in steps (bisection to 0.05 deg); onset = the "
-          "first angle at which it accelerates down the slope. Seed Eq 10 (constant rolling torque mu_r F_n R) with "
+          "first angle at which it accelerates down the slope. The reference study's Eq 10 (constant rolling torque mu_r F_n R) with "
           "Coulomb friction predicts tan(theta) = min(mu_r, mu_s): rolling when mu_r < mu_s, sliding otherwise.\n\n";
     md += "| mu_r (wall) | mu_s (wall) | onset, DEM (deg) | Eq 10 (deg) | motion | predicted |\n|---:|---:|---:|---:|---|---|\n";
     for (const auto& r : s.incline)
@@ -235,7 +235,7 @@ std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& 
                     s.closest >= 0 ? "Closest to the target, written to" : "No target given; the first row is written to",
                     grain_label(s, ch.shape), ch.rolling_friction, ch.solid_density);
   md += "```toml\n" + material_toml(c, s) + "```\n";
-  md += "\nThe seed's own Table 3 values are not legible in the available text, so no comparison with its numbers is "
+  md += "\nThe reference study's own Table 3 values are not legible in the available text, so no comparison with its numbers is "
         "made; its findings are checked in the list above.\n";
   return md;
 }

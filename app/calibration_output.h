@@ -1,5 +1,5 @@
 #pragma once
-// What `chutelab calibrate` writes: the seed's Table 3 as CSV and Markdown, a self-contained HTML page
+// What `chutelab calibrate` writes: the reference study's Table 3 as CSV and Markdown, a self-contained HTML page
 // with the sweep drawn, and the chosen material as a [material] block for a dataset's setup.toml.
 #include <string>
 
@@ -19,7 +19,7 @@ struct CalibrationContext {
 // Wall-clock time of each slump test (differs run to run, so it stays out of the study's files).
 std::string calibration_timing_csv(const dem::rigs::CalibrationStudy& s);
 std::string calibration_csv(const CalibrationContext& c, const dem::rigs::CalibrationStudy& s);
-// The seed's Table 3 layout: a row per rolling friction x solid density, bulk density and pile height
+// The reference study's Table 3 layout: a row per rolling friction x solid density, bulk density and pile height
 // per particle shape side by side, the target as the last row (Markdown).
 std::string table3_md(const dem::rigs::CalibrationStudy& s);
 std::string incline_csv(const dem::rigs::CalibrationStudy& s);

@@ -1,4 +1,4 @@
-// `chutelab calibrate`: the seed's slump-test calibration (§5, Table 3) as one command: sweeps the
+// `chutelab calibrate`: the reference study's slump-test calibration (§5, Table 3) as one command: sweeps the
 // particle-particle rolling friction, the solid density and the particle shape over the swing-arm
 // slump tester, prints and writes Table 3, marks the combination closest to the measured bulk density
 // (and pile height), and writes it as a [material] block.
@@ -149,7 +149,7 @@ void add_calibrate(CLI::App& app, Action& action) {
   auto o = std::make_shared<CalibrateCli>();
   auto* cmd = app.add_subcommand(
       "calibrate",
-      "Slump-test calibration (seed §5, Table 3): rolling friction x solid density x shape over the swing-arm "
+      "Slump-test calibration (reference study §5, Table 3): rolling friction x solid density x shape over the swing-arm "
       "slump tester; writes calibration.csv/.md/.html, incline.csv and material.toml to --out.");
   cmd->add_option("--dataset", o->dataset, "dataset whose [material] to calibrate (default: bundled grima2010)");
   cmd->add_option("--quality", o->quality, "quick (~500 spheres, soft) or standard")
@@ -157,7 +157,7 @@ void add_calibrate(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--rolling", o->rolling, "particle-particle rolling friction coefficients")->capture_default_str();
   cmd->add_option("--density", o->density, "solid densities, kg/m^3")->capture_default_str();
-  cmd->add_option("--shape", o->shape, "particle shapes: sphere (seed Fig. 4b), clump (2 overlapping spheres, Fig. 4c)")
+  cmd->add_option("--shape", o->shape, "particle shapes: sphere (reference study Fig. 4b), clump (2 overlapping spheres, Fig. 4c)")
       ->capture_default_str();
   with_rule(cmd->add_option("--sphere-diameter", o->sphere_diameter_mm, "sphere diameter, mm")->capture_default_str(),
             kDiameter);

@@ -1,8 +1,8 @@
-// `chutelab sensitivity`: the seed's Table 6 (§6.1) as one command at one condition. The transfer-
+// `chutelab sensitivity`: the reference study's Table 6 (§6.1) as one command at one condition. The transfer-
 // station DEM (dem/station) runs once per variant — LSD vs Hertz-Mindlin, sphere vs two-sphere clump,
-// dt = t_c/10 vs t_c/20, G x10 and /10, the seed's particle sizes — and the table of R_n, R_s, R with
+// dt = t_c/10 vs t_c/20, G x10 and /10, the reference study's particle sizes — and the table of R_n, R_s, R with
 // standard errors, their fluctuation, the change against the base and the run time is printed and
-// written (sensitivity.csv/.md/.html), with the verdict on the seed's conclusion.
+// written (sensitivity.csv/.md/.html), with the verdict on the reference study's conclusion.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -165,7 +165,10 @@ int run_sensitivity(const SensitivityCli& o) {
   for (std::size_t k = 0; k < variants.size(); ++k) {
     const SensitivityVariant& v = variants[k];
     st::RunSettings s = base;
-    s.contact = v.contact == "lsd" ? st::ContactLaw::linear_spring_dashpot : st::ContactLaw::hertz_mindlin;
+    const auto law = st::parse_contact(v.contact);
+    if (!law)
+      throw InputError("", 0, "contact", fmt::format("unknown contact law '{}' (known: {})", v.contact, dem::NormalLaw::keys()));
+    s.contact = *law;
     s.particle_diameter = v.diameter;
     s.particle_shape = v.shape == "clump" ? st::ParticleShape::clump : st::ParticleShape::sphere;
     s.dt_fraction = v.dt_fraction;
@@ -236,17 +239,17 @@ void add_sensitivity(CLI::App& app, Action& action) {
   auto o = std::make_shared<SensitivityCli>();
   auto* cmd = app.add_subcommand(
       "sensitivity",
-      "The seed's Table 6 at one condition: the station DEM with LSD vs Hertz-Mindlin, sphere vs clump, dt/20, "
-      "G x10 and /10, particle sizes 5.6/9/13.6 mm; writes sensitivity.csv/.md/.html to --out and says whether the seed's "
+      "The reference study's Table 6 at one condition: the station DEM with LSD vs Hertz-Mindlin, sphere vs clump, dt/20, "
+      "G x10 and /10, particle sizes 5.6/9/13.6 mm; writes sensitivity.csv/.md/.html to --out and says whether the reference study's "
       "conclusion is reproduced.");
   cmd->add_option("--dataset", o->dataset, "dataset (default: bundled grima2010)");
-  cmd->add_option("--condition", o->condition, "condition of the dataset (seed Table 6: V_b = 3 m/s, 41 t/h)")
+  cmd->add_option("--condition", o->condition, "condition of the dataset (reference study Table 6: V_b = 3 m/s, 41 t/h)")
       ->capture_default_str();
   cmd->add_option("--quality", o->quality, "quick, standard or paper (the base run's preset)")->capture_default_str();
   cmd->add_option("--only", o->only, "run only these variants besides the base (comma list of keys)");
   cmd->add_option("--sizes", o->sizes,
                   "sphere diameters of the size variants, mm (comma list; the one equal to the base diameter is the "
-                  "base). Default: the seed's 5.6,9,13.6; at quick quality 9,13.6 (5.6 mm alone would break the ~10 "
+                  "base). Default: the reference study's 5.6,9,13.6; at quick quality 9,13.6 (5.6 mm alone would break the ~10 "
                   "min budget; the verdict then says so)");
   with_rule(cmd->add_option("--limit", o->limit, "'changes little' means |change of mean R| <= this, %")
                 ->capture_default_str(),

@@ -65,7 +65,7 @@ int run_simulate(const SimulateCli& o) {
   }
   if (!o.contact.empty()) {
     ov.contact = st::parse_contact(o.contact);
-    if (!ov.contact) throw InputError("", 0, "--contact", "must be hertz-mindlin or lsd");
+    if (!ov.contact) throw InputError("", 0, "--contact", "must be one of " + dem::NormalLaw::keys());
   }
   if (!o.shape.empty()) {
     ov.shape = st::parse_shape(o.shape);
@@ -196,8 +196,8 @@ void add_simulate(CLI::App& app, Action& action) {
             options::NumberRule{"", 0.0, 1000.0, true, false, false, ""});
   with_rule(cmd->add_option("--dt-fraction", o->dt_fraction, "time step as a fraction of the Hertz collision time"),
             options::NumberRule{"", 0.0, 0.5, true, false, false, ""});
-  cmd->add_option("--contact", o->contact, "hertz-mindlin or lsd");
-  cmd->add_option("--shape", o->shape, "sphere, or clump (the seed's two-sphere pellet, Fig. 4c; --diameter-mm is its spheres')");
+  cmd->add_option("--contact", o->contact, "contact law: one of " + dem::NormalLaw::keys());
+  cmd->add_option("--shape", o->shape, "sphere, or clump (the reference study's two-sphere pellet, Fig. 4c; --diameter-mm is its spheres')");
   with_rule(cmd->add_option("--threads", o->threads, "OpenMP threads (results do not depend on it)"),
             options::rules::threads);
   with_rule(cmd->add_option("--seed", o->seed, "seed of the particle feed"), options::rules::seed);

@@ -59,7 +59,7 @@ int run_validate(const ValidateCli& o) {
   const auto dataset = validation::read_dataset(dir);
   // Read before any model runs: a bad study file ends the command before anything is written.
   const auto studies = reports::read_studies({o.studies.begin(), o.studies.end()}, dataset.setup.name);
-  std::optional<reports::SensitivityStudy> sensitivity;  // the seed's finding 6, when one was run
+  std::optional<reports::SensitivityStudy> sensitivity;  // the reference study's finding 6, when one was run
   for (const auto& s : o.studies) {
     const fs::path f = fs::is_directory(s) ? fs::path(s) / "sensitivity.csv" : fs::path(s);
     if (f.filename() == "sensitivity.csv" && fs::exists(f)) sensitivity = reports::read_sensitivity_csv(f);
@@ -160,8 +160,9 @@ int run_validate(const ValidateCli& o) {
   }
   std::cout << validate_console(report, o.add_missing, (fs::path(o.out) / "report.html").string());
   if (!o.junit.empty()) {
-    std::cout << fmt::format("junit: {} ({} test cases, {} failed, {} skipped)\n", o.junit, junit.tests,
-                             junit.failures, junit.skipped);
+    std::cout << fmt::format("junit: {} ({} test case{}, {} failed, {} skipped{})\n", o.junit, junit.tests,
+                             junit.tests == 1 ? "" : "s", junit.failures, junit.skipped,
+                             junit.errors ? fmt::format(", {} error: nothing was checked", junit.errors) : "");
     // The file says so too (an error test case), so a CI view never shows it green; the exit code
     // is the acceptance's own, as without --junit.
     if (junit.nothing_checked())

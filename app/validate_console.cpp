@@ -1,5 +1,6 @@
 #include "app/validate_console.h"
 
+#include <cctype>
 #include <fmt/format.h>
 
 #include "reports/plain_summary.h"
@@ -8,16 +9,30 @@
 namespace chutelab::app {
 namespace {
 
+// A unit after its number ("8.0 %", "4 m/s,"): kept on the number's line, where a reader looks for it.
+bool is_unit(const std::string& word) {
+  const std::string bare = word.substr(0, word.find_last_not_of(",.;:)") + 1);
+  for (const char* u : {"%", "mm", "m/s", "t/h", "N", "m", "s", "kg", "kg/m³"})
+    if (bare == u) return true;
+  return false;
+}
+
 // Words to lines of at most `width` characters, each after the first indented.
 std::string wrap(const std::string& text, std::size_t width, const std::string& first, const std::string& indent) {
-  std::string out, line = first;
-  std::size_t at = 0;
-  bool empty = true;
-  while (at < text.size()) {
+  std::vector<std::string> words;
+  for (std::size_t at = 0; at < text.size();) {
     const std::size_t end = std::min(text.find(' ', at), text.size());
-    const std::string word = text.substr(at, end - at);
+    std::string word = text.substr(at, end - at);
     at = end + 1;
     if (word.empty()) continue;
+    if (!words.empty() && is_unit(word) && std::isdigit(static_cast<unsigned char>(words.back().back())))
+      words.back() += " " + word;
+    else
+      words.push_back(std::move(word));
+  }
+  std::string out, line = first;
+  bool empty = true;
+  for (const auto& word : words) {
     if (!empty && line.size() + 1 + word.size() > width) {
       out += line + "\n";
       line = indent;

@@ -50,7 +50,7 @@ World make_world(const Params& P, bool add_particles) {
   s.skin = P.skin;
   s.threads = P.threads;
   s.gravity = Vec3(0, 0, -9.81);
-  s.normal = NormalModel::hertz_mindlin;
+  s.normal = NormalLaw::of<HertzMindlin>();
   s.tangential = P.tangential;
   s.rolling = P.rolling;
   s.domain = Box{Vec3(-0.01, -0.01, -0.01), Vec3(P.box + 0.01, P.box + 0.01, 2.0)};
@@ -244,7 +244,7 @@ World make_chute_world(const std::vector<ChuteAtom>& atoms, int threads) {
   s.skin = 0.1;
   s.threads = threads;
   s.gravity = Vec3(std::sin(th), 0.0, -std::cos(th));
-  s.normal = NormalModel::linear_spring_dashpot;
+  s.normal = NormalLaw::of<LinearSpringDashpot>();
   s.tangential = TangentialModel::coulomb_history;
   s.rolling = RollingModel::none;
   double ztop = 0.0;
@@ -259,8 +259,7 @@ World make_chute_world(const std::vector<ChuteAtom>& atoms, int threads) {
   const double zeta = 0.5 * gamma_n * std::sqrt(m_pair / kn);
   Interaction it;
   it.friction = 0.5;
-  it.linear_stiffness = kn;
-  it.linear_tangential_ratio = 2.0 / 7.0;
+  it.law = {{"normal_stiffness", kn}, {"tangential_ratio", 2.0 / 7.0}};
   it.restitution = std::exp(-zeta * M_PI / std::sqrt(1.0 - zeta * zeta));
   for (int a : {grain, base, wall})
     for (int b : {grain, base, wall}) w.materials().set_interaction(a, b, it);

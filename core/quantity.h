@@ -29,7 +29,7 @@ inline constexpr std::array<Quantity, kQuantityCount> kAllQuantities = {
 struct QuantityInfo {
   Quantity quantity;
   std::string_view name;     // file name with unit, e.g. "normal_force_N"
-  std::string_view symbol;   // the seed's symbol, e.g. "R_n"
+  std::string_view symbol;   // the reference study's symbol, e.g. "R_n"
   std::string_view label;    // words for reports
   std::string_view unit;     // boundary unit
   double to_boundary;        // SI value * to_boundary = boundary value

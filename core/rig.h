@@ -29,7 +29,7 @@ struct Belt {
 struct Plate {
   double width = 0.0;   // m
   double height = 0.0;  // m
-  double angle = 0.0;   // rad from vertical (the seed's beta); > 0 leans the top towards the pulley
+  double angle = 0.0;   // rad from vertical (the reference study's beta); > 0 leans the top towards the pulley
 };
 
 struct Material {
@@ -41,12 +41,12 @@ struct Material {
   double friction_particle = 0.0;          // particle-particle sliding
   double friction_plate = 0.0;             // particle-plate sliding, mu_pw
   double friction_belt = 0.0;              // particle-belt sliding
-  double rolling_friction_particle = 0.0;  // seed Eq 10, particle-particle
-  double rolling_friction_wall = 0.0;      // seed Eq 10, particle-boundary (defaults to particle value)
+  double rolling_friction_particle = 0.0;  // reference study Eq 10, particle-particle
+  double rolling_friction_wall = 0.0;      // reference study Eq 10, particle-boundary (defaults to particle value)
   double restitution_particle = 0.0;
   double restitution_plate = 0.0;
-  double restitution_belt = 0.0;           // conveyor belt, seed Table 2 (secondary source): 0.4
-  double friction_side = 0.0;              // side panels (acrylic in the seed's rig)
+  double restitution_belt = 0.0;           // conveyor belt, reference study Table 2 (secondary source): 0.4
+  double friction_side = 0.0;              // side panels (acrylic in the reference study's rig)
 };
 
 struct Setup {

@@ -56,7 +56,7 @@ void World::save_checkpoint(const std::string& path) const {
   if (!w.out) throw InputError(path, 0, "", "cannot write checkpoint");
   w.out.write(kMagic, 8);
   w.pod(kVersion);
-  w.pod(static_cast<std::int32_t>(settings_.normal));
+  w.pod(static_cast<std::int32_t>(settings_.normal.index()));
   w.pod(static_cast<std::int32_t>(settings_.tangential));
   w.pod(static_cast<std::int32_t>(settings_.rolling));
   w.pod(static_cast<std::int32_t>(materials_.size()));
@@ -119,7 +119,7 @@ void World::load_checkpoint(const std::string& path) {
   auto mismatch = [&](const char* what, auto file, auto scene) {
     throw InputError(path, 0, what, fmt::format("checkpoint has {} but the scene has {}", file, scene));
   };
-  if (nm != static_cast<std::int32_t>(settings_.normal)) mismatch("normal model", nm, static_cast<int>(settings_.normal));
+  if (nm != settings_.normal.index()) mismatch("normal model", nm, settings_.normal.index());
   if (tm != static_cast<std::int32_t>(settings_.tangential)) mismatch("tangential model", tm, static_cast<int>(settings_.tangential));
   if (rm != static_cast<std::int32_t>(settings_.rolling)) mismatch("rolling model", rm, static_cast<int>(settings_.rolling));
   if (mats != materials_.size()) mismatch("materials", mats, materials_.size());

@@ -1,7 +1,7 @@
 #pragma once
 // Rigid multi-sphere particles ("clumps"): a non-spherical grain made of overlapping spheres that move
-// as one rigid body (Favier et al. 1999, the seed's reference [24]; the seed's shaped pellet is two
-// overlapping 4.4 mm spheres, Fig. 4c). Contacts are sphere contacts of the member spheres; the body's
+// as one rigid body (Favier et al. 1999, reference [24] of the reference study, whose shaped pellet
+// is two overlapping 4.4 mm spheres, Fig. 4c). Contacts are sphere contacts of the member spheres; the body's
 // mass and inertia are those of the UNION of the spheres (overlaps counted once), not the sum, or a
 // clump of strongly overlapping spheres would be too heavy and its rotation too slow.
 //
@@ -46,11 +46,11 @@ struct ClumpShape {
   // Moves the spheres to the centre of mass and rotates them to the principal axes (right-handed).
   // Throws InputError for no spheres or a non-positive radius.
   static ClumpShape from_spheres(std::vector<ClumpSphere> spheres, std::string name = "clump");
-  // The seed's shaped pellet (Fig. 4c): two spheres of diameter d whose centres are `spacing` apart.
+  // The reference study's shaped pellet (Fig. 4c): two spheres of diameter d whose centres are `spacing` apart.
   static ClumpShape two_sphere(double sphere_diameter, double spacing, std::string name = "two-sphere");
-  // Pellet of the seed's Table 1 at scale 1:1 (Fig. 4c): two 4.4 mm spheres, spaced 0.45 mm so that the
+  // Pellet of the reference study's Table 1 at scale 1:1 (Fig. 4c): two 4.4 mm spheres, spaced 0.45 mm so that the
   // mean of the three axis widths, (3 x 4.4 + 0.45) / 3 mm, is the measured average pellet diameter
-  // d_ave = 4.55 mm ("determined by averaging the measured widths ... across 3 axes", seed §4).
+  // d_ave = 4.55 mm ("determined by averaging the measured widths ... across 3 axes", reference study §4).
   static ClumpShape seed_pellet();
 
   ClumpShape scaled(double factor) const;  // every length times factor

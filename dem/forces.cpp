@@ -19,18 +19,18 @@ template <class Model>
 void World::compute_forces_impl(const BlockCallback& after_block) {
   const std::size_t n = p_.size();
   const int nt = thread_count();
-  const MaterialTable& mt = materials_;
+  const auto& table = std::get<std::vector<typename Model::Coeffs>>(pair_table_);
+  const auto nmat = static_cast<std::size_t>(materials_.size());
   // Rounded up: a gap at or below the float limit goes to the full test.
   const double gap_limit = 2.0 * max_disp_ + pair_list_.gap_eps;
   float gap_limit_f = static_cast<float>(gap_limit);
   if (static_cast<double>(gap_limit_f) < gap_limit) gap_limit_f = std::nextafter(gap_limit_f, std::numeric_limits<float>::infinity());
   // Contact laws see a clump sphere's whole body mass (its damping and time scale are those of the
   // body); gravity uses each sphere's share (finish_block). For free spheres the two are the same.
-  const pair_loop::PairArrays pairs{p_.x.data(), p_.v.data(), p_.w.data(), p_.radius.data(), p_.contact_mass.data(),
+  const pair_loop::PairArrays<typename Model::Coeffs> pairs{p_.x.data(), p_.v.data(), p_.w.data(), p_.radius.data(), p_.contact_mass.data(),
                                     p_.inv_inertia.data(), p_.material.data(), pair_list_.row_begin.data(),
                                     pair_list_.neighbor.data(), pair_list_.slot_row.data(), pair_list_.shear.data(),
-                                    pair_list_.roll.data(), pair_list_.touch.data(), mt.coeff_table(),
-                                    static_cast<std::size_t>(mt.size()), dt_, pair_list_.gap.data(), gap_limit_f,
+                                    pair_list_.roll.data(), pair_list_.touch.data(), table.data(), nmat, dt_, pair_list_.gap.data(), gap_limit_f,
                                     pair_loop::gather_in_law()};
   wall_frames_.resize(walls_.size());
   wall_observed_.assign(walls_.size(), 0);
@@ -42,9 +42,9 @@ void World::compute_forces_impl(const BlockCallback& after_block) {
     wall_list_.observed_normal.resize(wall_list_.size());
     wall_list_.observed_velocity.resize(wall_list_.size());
   }
-  const WallForceArrays wall_arrays{p_.x.data(), p_.v.data(), p_.w.data(), p_.radius.data(), p_.contact_mass.data(),
+  const WallForceArrays<typename Model::Coeffs> wall_arrays{p_.x.data(), p_.v.data(), p_.w.data(), p_.radius.data(), p_.contact_mass.data(),
                                     p_.inv_inertia.data(), p_.material.data(), walls_.data(), wall_frames_.data(),
-                                    wall_observed_.data(), mt.coeff_table(), static_cast<std::size_t>(mt.size()), dt_,
+                                    wall_observed_.data(), table.data(), nmat, dt_,
                                     &wall_list_};
   const std::int32_t* owners = wall_list_.owners.data();
   const std::size_t n_owners = wall_list_.owners.size();
@@ -105,26 +105,9 @@ void World::finish_block(std::size_t b, std::size_t thread, const BlockCallback&
 
 
 void World::compute_forces(const BlockCallback& after_block) {
-  using HM = HertzMindlin;
-  using LSD = LinearSpringDashpot;
-  using CH = CoulombHistorySpring;
-  using NT = NoTangential;
-  const bool hertz = settings_.normal == NormalModel::hertz_mindlin;
-  const bool fric = settings_.tangential == TangentialModel::coulomb_history;
-  switch (settings_.rolling) {
-    case RollingModel::none:
-      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, NoRolling>>(after_block) : compute_forces_impl<ContactModel<HM, NT, NoRolling>>(after_block);
-      else fric ? compute_forces_impl<ContactModel<LSD, CH, NoRolling>>(after_block) : compute_forces_impl<ContactModel<LSD, NT, NoRolling>>(after_block);
-      break;
-    case RollingModel::constant_torque:
-      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, RollingConstantTorque>>(after_block) : compute_forces_impl<ContactModel<HM, NT, RollingConstantTorque>>(after_block);
-      else fric ? compute_forces_impl<ContactModel<LSD, CH, RollingConstantTorque>>(after_block) : compute_forces_impl<ContactModel<LSD, NT, RollingConstantTorque>>(after_block);
-      break;
-    case RollingModel::epsd:
-      if (hertz) fric ? compute_forces_impl<ContactModel<HM, CH, RollingEpsd>>(after_block) : compute_forces_impl<ContactModel<HM, NT, RollingEpsd>>(after_block);
-      else fric ? compute_forces_impl<ContactModel<LSD, CH, RollingEpsd>>(after_block) : compute_forces_impl<ContactModel<LSD, NT, RollingEpsd>>(after_block);
-      break;
-  }
+  derive_pair_table();
+  with_contact_model(settings_.normal, settings_.tangential, settings_.rolling, cohesive_,
+                     [&]<class Model>() { compute_forces_impl<Model>(after_block); });
 }
 
 }  // namespace chutelab::dem

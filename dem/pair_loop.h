@@ -25,6 +25,7 @@ namespace chutelab::dem::pair_loop {
 
 // Raw views of the arrays the pair loop reads. Kept as plain restrict pointers copied into locals, so
 // the compiler holds them in registers (a lambda capturing by reference reloads them per contact).
+template <class Coeffs>
 struct PairArrays {
   const Vec3* x;
   const Vec3* v;
@@ -39,7 +40,7 @@ struct PairArrays {
   Vec3* shear;
   Vec3* roll;
   std::uint8_t* touch;
-  const PairCoeffs* coeffs;
+  const Coeffs* coeffs;  // the contact model's per material pair, row-major
   std::size_t nmat;
   double dt;
   const float* gap;  // NeighborList::gap (CHUTELAB_DEM_PAIR_GAPS)
@@ -63,7 +64,8 @@ CHUTELAB_INLINE void store_force(Chunk& h, std::size_t c, const ContactForce& cf
 
 // Folds the material pair of contact (i, j) into the chunk's: the pair all contacts so far share
 // (an index of a.coeffs; -1 before the first), or -2 once they differ.
-CHUTELAB_INLINE void fold_pair_kind(std::int32_t& pair_kind, const PairArrays& a, std::size_t i, std::size_t j) {
+template <class Arrays>
+CHUTELAB_INLINE void fold_pair_kind(std::int32_t& pair_kind, const Arrays& a, std::size_t i, std::size_t j) {
   const auto kind = static_cast<std::int32_t>(static_cast<std::size_t>(a.mat[i]) * a.nmat + static_cast<std::size_t>(a.mat[j]));
   pair_kind = pair_kind == -1 || pair_kind == kind ? kind : -2;
 }
@@ -110,7 +112,7 @@ CHUTELAB_INLINE void gather_contact(GatherChunk& h, std::size_t c, const double*
                                    const double* __restrict v, const double* __restrict w,
                                    const double* __restrict rad, const double* __restrict mass,
                                    const double* __restrict inv_inertia, double* __restrict sh,
-                                   double* __restrict rl, const PairCoeffs& pc, double dt) {
+                                   double* __restrict rl, const typename Model::Coeffs& pc, double dt) {
   // int indices: GCC recognises base[int] as a vector gather, not base[size_t] computed from an int.
   const std::int32_t i = h.i[c], j = h.j[c], s = h.s[c];
   const ContactKinematics k = sphere_pair_kinematics(
@@ -129,7 +131,7 @@ CHUTELAB_INLINE void gather_contact(GatherChunk& h, std::size_t c, const double*
 // The contacts gathered in h: the law over all of them (vectorised when they share one material
 // pair, as they do in a one-material bed), then their forces scattered in gathering order.
 template <class Model>
-[[gnu::noinline]] void run_chunk(GatherChunk& h, std::size_t n, const PairArrays& a, Vec3* __restrict f,
+[[gnu::noinline]] void run_chunk(GatherChunk& h, std::size_t n, const PairArrays<typename Model::Coeffs>& a, Vec3* __restrict f,
                                  Vec3* __restrict t) {
   std::int32_t pair_kind = -1;  // the material pair of every contact in the chunk; -2 if mixed
   for (std::size_t c = 0; c < n; ++c)
@@ -144,7 +146,7 @@ template <class Model>
   double* rl = a.roll->data();
   const double dt = a.dt;
   if (pair_kind >= 0) {
-    const PairCoeffs pc = a.coeffs[static_cast<std::size_t>(pair_kind)];
+    const typename Model::Coeffs pc = a.coeffs[static_cast<std::size_t>(pair_kind)];
     // ivdep, not omp simd: under omp simd GCC 12 turns the law's small structs into per-lane
     // arrays and gives up; with ivdep it vectorises the whole law.
 #if !defined(__clang__)  // clang (the fuzz build) does not know the pragma and would warn
@@ -179,7 +181,7 @@ struct ContactChunk {
 
 // Contact c of a chunk through the contact law.
 template <class Model>
-CHUTELAB_INLINE void chunk_contact(ContactChunk& h, std::size_t c, const PairCoeffs& pc, double dt) {
+CHUTELAB_INLINE void chunk_contact(ContactChunk& h, std::size_t c, const typename Model::Coeffs& pc, double dt) {
   const ContactKinematics k =
       sphere_pair_kinematics({h.dx[c], h.dy[c], h.dz[c]}, h.ri[c], h.rj[c], h.mi[c], h.mj[c], h.ii[c], h.ij[c],
                              {h.vx[c], h.vy[c], h.vz[c]}, {h.wix[c], h.wiy[c], h.wiz[c]}, {h.wjx[c], h.wjy[c], h.wjz[c]});
@@ -194,7 +196,7 @@ CHUTELAB_INLINE void chunk_contact(ContactChunk& h, std::size_t c, const PairCoe
 // The contacts gathered in h: the law over all of them (vectorised when they share one material
 // pair, as they do in a one-material bed), then their forces scattered in gathering order.
 template <class Model>
-[[gnu::noinline]] void run_chunk(ContactChunk& h, std::size_t n, const PairArrays& a, Vec3* __restrict f,
+[[gnu::noinline]] void run_chunk(ContactChunk& h, std::size_t n, const PairArrays<typename Model::Coeffs>& a, Vec3* __restrict f,
                                  Vec3* __restrict t) {
   const Vec3* __restrict v = a.v;
   const Vec3* __restrict w = a.w;
@@ -219,7 +221,7 @@ template <class Model>
     }
   }
   if (pair_kind >= 0) {
-    const PairCoeffs pc = a.coeffs[static_cast<std::size_t>(pair_kind)];
+    const typename Model::Coeffs pc = a.coeffs[static_cast<std::size_t>(pair_kind)];
     const double dt = a.dt;
     // ivdep, not omp simd: under omp simd GCC 12 turns the law's small structs into per-lane
     // arrays and gives up; with ivdep it vectorises the whole law.
@@ -247,7 +249,7 @@ template <class Model>
 // evaluation): the pair goes into the next chunk entry and stays there only if it touches (no branch
 // on the outcome, which is a coin toss in a dense bed); a full chunk runs.
 template <class Model, class Chunk>
-CHUTELAB_INLINE void test_slot(const PairArrays& a, std::size_t i, std::size_t j, std::size_t s, std::uint8_t was,
+CHUTELAB_INLINE void test_slot(const PairArrays<typename Model::Coeffs>& a, std::size_t i, std::size_t j, std::size_t s, std::uint8_t was,
                                Chunk& h, std::size_t& n, Vec3* __restrict f, Vec3* __restrict t) {
   const double* __restrict rad = a.rad;
   const double rs = rad[i] + rad[j];
@@ -290,7 +292,7 @@ CHUTELAB_INLINE void test_slot(const PairArrays& a, std::size_t i, std::size_t j
 // slower.
 #if CHUTELAB_DEM_PAIR_GAPS
 template <class Model, class Chunk>
-void screen_slots_avx512(const PairArrays& a, std::size_t s0, std::size_t s1, Chunk& h, Vec3* __restrict f,
+void screen_slots_avx512(const PairArrays<typename Model::Coeffs>& a, std::size_t s0, std::size_t s1, Chunk& h, Vec3* __restrict f,
                          Vec3* __restrict t) {
   constexpr std::size_t kBatch = 256;
   std::int32_t ci[kBatch + 16], cj[kBatch + 16], cs[kBatch + 16], cw[kBatch + 16];
@@ -333,7 +335,7 @@ void screen_slots_avx512(const PairArrays& a, std::size_t s0, std::size_t s1, Ch
 
 // Pair contacts of rows [i0, i1), scattered row by row into f/t (a block's partial-sum buffers).
 template <class Model, class Chunk>
-void pair_rows(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* __restrict f, Vec3* __restrict t) {
+void pair_rows(const PairArrays<typename Model::Coeffs>& a, std::size_t i0, std::size_t i1, Vec3* __restrict f, Vec3* __restrict t) {
   // On the stack, not thread_local: the libraries are position independent (for the Python module),
   // so a thread_local is reached through a TLS call that GCC may not hoist; it was made once per
   // slot, with every live register spilled around it (about a fifth of the pair loop's time).
@@ -373,7 +375,7 @@ inline bool gather_in_law() {
 
 // The pair contacts of rows [i0, i1), scattered row by row into f/t (a force block's buffers).
 template <class Model>
-void block_pairs(const PairArrays& a, std::size_t i0, std::size_t i1, Vec3* f, Vec3* t) {
+void block_pairs(const PairArrays<typename Model::Coeffs>& a, std::size_t i0, std::size_t i1, Vec3* f, Vec3* t) {
   if (a.gather)
     pair_rows<Model, GatherChunk>(a, i0, i1, f, t);
   else

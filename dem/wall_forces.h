@@ -42,6 +42,7 @@ struct WallFrame {
 };
 
 // What the wall contacts read and write.
+template <class Coeffs>
 struct WallForceArrays {
   const Vec3* x;
   const Vec3* v;
@@ -53,7 +54,7 @@ struct WallForceArrays {
   const Wall* walls;
   const WallFrame* frames;
   const std::uint8_t* observed;  // per wall: 1 if an observer reads its contacts
-  const PairCoeffs* coeffs;      // row-major by material pair
+  const Coeffs* coeffs;          // the contact model's per material pair, row-major
   std::size_t nmat;
   double dt;
   WallContactList* list;
@@ -63,13 +64,13 @@ struct WallForceArrays {
 // entry's force, torque, point, the wall's torque, and what an observer reads; a contact that ended
 // forgets its history.
 template <class Model>
-void wall_group_forces(const WallForceArrays& a, std::size_t i, std::size_t k, std::size_t kend, const WallHit* geo,
+void wall_group_forces(const WallForceArrays<typename Model::Coeffs>& a, std::size_t i, std::size_t k, std::size_t kend, const WallHit* geo,
                        const char* hit) {
   WallContactList& list = *a.list;
   const std::size_t wi = static_cast<std::size_t>(list.wall[k]);
   const Wall& wl = a.walls[wi];
   const WallFrame& fr = a.frames[wi];
-  const PairCoeffs& c = a.coeffs[static_cast<std::size_t>(a.mat[i]) * a.nmat + static_cast<std::size_t>(wl.material)];
+  const typename Model::Coeffs& c = a.coeffs[static_cast<std::size_t>(a.mat[i]) * a.nmat + static_cast<std::size_t>(wl.material)];
   const Vec3 x = a.x[i], v = a.v[i], w = a.w[i];
   const double r = a.rad[i], m = a.mass[i];
   for (std::size_t q = k; q < kend; ++q) {
@@ -122,7 +123,7 @@ void wall_group_forces(const WallForceArrays& a, std::size_t i, std::size_t k, s
 
 // The wall contacts of particle i, wall by wall.
 template <class Model>
-void particle_wall_forces(const WallForceArrays& a, std::size_t i) {
+void particle_wall_forces(const WallForceArrays<typename Model::Coeffs>& a, std::size_t i) {
   const WallContactList& list = *a.list;
   const auto b = static_cast<std::size_t>(list.begin[i]);
   const auto e = static_cast<std::size_t>(list.begin[i + 1]);

@@ -135,23 +135,28 @@ void World::remove_particles_if(const std::function<bool(std::size_t)>& pred) {
   list_dirty_ = true;
 }
 
+double World::source_speed() const {
+  double vmax = 0.0;
+  for (const auto& vi : p_.v) vmax = std::max(vmax, vi.norm());
+  for (const auto& in : inserters_) vmax = std::max(vmax, in.velocity.norm());
+  for (const auto& w : walls_) {
+    double vw = w.motion.velocity.norm() + w.surface.linear.norm();
+    vw += (w.motion.omega.norm() + w.surface.omega.norm()) * std::min(reach_from_pivot(w), 10.0);
+    vmax = std::max(vmax, 2.0 * vw);
+  }
+  return vmax;
+}
+
+double World::fall_speed() const {
+  const double h = settings_.domain.empty() ? 0.0 : (settings_.domain.hi - settings_.domain.lo).norm();
+  return std::sqrt(2.0 * settings_.gravity.norm() * h);
+}
+
 TimeStepEstimate World::time_step_estimate() const {
   TimeStepEstimate est;
   // Characteristic speed: free fall across the domain, plus boundary and feed speeds.
   double v = settings_.characteristic_speed;
-  if (!(v > 0.0)) {
-    double vmax = 0.0;
-    for (const auto& vi : p_.v) vmax = std::max(vmax, vi.norm());
-    for (const auto& in : inserters_) vmax = std::max(vmax, in.velocity.norm());
-    for (const auto& w : walls_) {
-      double vw = w.motion.velocity.norm() + w.surface.linear.norm();
-      vw += (w.motion.omega.norm() + w.surface.omega.norm()) * std::min(reach_from_pivot(w), 10.0);
-      vmax = std::max(vmax, 2.0 * vw);
-    }
-    const double g = settings_.gravity.norm();
-    const double h = settings_.domain.empty() ? 0.0 : (settings_.domain.hi - settings_.domain.lo).norm();
-    v = std::max(vmax + std::sqrt(2.0 * g * h), 0.1);
-  }
+  if (!(v > 0.0)) v = std::max(source_speed() + fall_speed(), 0.1);
   est.speed = v;
   // Smallest particles of each material in the scene (existing and inserted).
   std::vector<double> rmin(static_cast<std::size_t>(materials_.size()), kInf);
@@ -173,12 +178,9 @@ TimeStepEstimate World::time_step_estimate() const {
     est.rayleigh = std::min(est.rayleigh, rayleigh_time(ra, rho, materials_.shear_modulus(a), ma.poisson_ratio));
     const double m = rho * 4.0 / 3.0 * std::numbers::pi * ra * ra * ra;
     auto consider = [&](int b, double r_eff, double m_eff) {
-      const PairCoeffs& c = materials_.pair(a, b);
-      double tc;
-      if (settings_.normal == NormalModel::hertz_mindlin)
-        tc = hertz_collision_time(m_eff, r_eff, c.e_star, v);
-      else
-        tc = c.linear_kn > 0.0 ? linear_collision_time(m_eff, c.linear_kn, 0.5 * c.linear_damping) : kInf;
+      const double tc = settings_.normal.visit([&]<class Law>() {
+        return Law::collision_time(Law::mix(ma, materials_.material(b), materials_.interaction(a, b)), m_eff, r_eff, v);
+      });
       est.collision = std::min(est.collision, tc);
     };
     for (int b = 0; b < materials_.size(); ++b) {
@@ -195,27 +197,57 @@ TimeStepEstimate World::time_step_estimate() const {
   return est;
 }
 
-void World::initialise() {
-  if (initialised_) return;
-  if (settings_.domain.empty())
-    throw InputError("", 0, "domain", "the simulation domain box is required (hi > lo on every axis)");
-  if (settings_.normal == NormalModel::linear_spring_dashpot) {
-    std::vector<char> used(static_cast<std::size_t>(materials_.size()), 0);
-    for (auto m : p_.material) used[static_cast<std::size_t>(m)] = 1;
-    for (const auto& in : inserters_) used[static_cast<std::size_t>(in.material)] = 1;
+void World::check_contact_law() const {
+  auto field = [&](int a, int b) {
+    return fmt::format("interaction '{}'-'{}'", materials_.material(a).name, materials_.material(b).name);
+  };
+  std::vector<char> used(static_cast<std::size_t>(materials_.size()), 0);
+  for (auto m : p_.material) used[static_cast<std::size_t>(m)] = 1;
+  for (const auto& in : inserters_) used[static_cast<std::size_t>(in.material)] = 1;
+  settings_.normal.visit([&]<class Law>() {
+    for (int a = 0; a < materials_.size(); ++a)
+      for (int b = 0; b < materials_.size(); ++b)
+        for (const auto& [key, value] : materials_.interaction(a, b).law.values()) {
+          bool declared = false;
+          std::string known;
+          for (const LawParameter& p : Law::parameters) {
+            declared = declared || p.key == key;
+            known += (known.empty() ? "" : ", ") + std::string(p.key);
+          }
+          if (!declared)
+            throw InputError("", 0, field(a, b),
+                             fmt::format("the {} contact law has no parameter '{}' ({})", Law::key, key,
+                                         known.empty() ? "it takes none" : "it takes " + known));
+        }
     for (int a = 0; a < materials_.size(); ++a) {
       if (!used[static_cast<std::size_t>(a)]) continue;
       auto check = [&](int b) {
-        if (!(materials_.pair(a, b).linear_kn > 0.0))
-          throw InputError("", 0,
-                           fmt::format("interaction '{}'-'{}'", materials_.material(a).name, materials_.material(b).name),
-                           "linear spring-dashpot model needs linear_stiffness > 0 N/m");
+        const std::string why = Law::check(Law::mix(materials_.material(a), materials_.material(b), materials_.interaction(a, b)));
+        if (!why.empty()) throw InputError("", 0, field(a, b), why);
       };
       for (int b = 0; b < materials_.size(); ++b)
         if (used[static_cast<std::size_t>(b)]) check(b);
       for (const auto& w : walls_) check(w.material);
     }
-  }
+  });
+}
+
+void World::derive_pair_table() {
+  if (pair_table_revision_ == materials_.revision()) return;
+  settings_.normal.visit([&]<class Law>() {
+    auto table = pair_table<Law>(materials_);
+    cohesive_ = std::any_of(table.begin(), table.end(), [](const PairCoeffs<Law>& c) { return c.cohesion > 0.0; });
+    pair_table_ = std::move(table);
+  });
+  pair_table_revision_ = materials_.revision();
+}
+
+void World::initialise() {
+  if (initialised_) return;
+  if (settings_.domain.empty())
+    throw InputError("", 0, "domain", "the simulation domain box is required (hi > lo on every axis)");
+  check_contact_law();
+  derive_pair_table();
   const TimeStepEstimate est = time_step_estimate();
   if (settings_.dt > 0.0) {
     dt_ = settings_.dt;
@@ -240,16 +272,7 @@ void World::initialise() {
   } else {
     // Nothing can move faster than its fastest source of energy allows: the fastest initial, feed or
     // boundary speed plus free fall across the whole domain. Twice that (plus 1 m/s) is "impossible".
-    double vmax = 0.0;
-    for (const auto& vi : p_.v) vmax = std::max(vmax, vi.norm());
-    for (const auto& in : inserters_) vmax = std::max(vmax, in.velocity.norm());
-    for (const auto& w : walls_) {
-      double vw = w.motion.velocity.norm() + w.surface.linear.norm();
-      vw += (w.motion.omega.norm() + w.surface.omega.norm()) * std::min(reach_from_pivot(w), 10.0);
-      vmax = std::max(vmax, 2.0 * vw);
-    }
-    const double h = (settings_.domain.hi - settings_.domain.lo).norm();
-    max_speed_ = 2.0 * (vmax + std::sqrt(2.0 * settings_.gravity.norm() * h)) + 1.0;
+    max_speed_ = 2.0 * (source_speed() + fall_speed()) + 1.0;
   }
   initialised_ = true;
   for (auto& w : walls_) w.set_time(time_);
@@ -376,30 +399,38 @@ Energy World::energy() const {
     e.rotational += 0.5 / p_.inv_inertia[i] * p_.w[i].squaredNorm();
     e.gravitational -= p_.mass[i] * settings_.gravity.dot(p_.x[i]);
   }
-  auto normal_energy = [&](const PairCoeffs& c, double delta, double r_eff) {
-    return settings_.normal == NormalModel::hertz_mindlin ? HertzMindlin::elastic_energy(c, delta, r_eff)
-                                                          : LinearSpringDashpot::elastic_energy(c, delta, r_eff);
-  };
-  for (std::size_t i = 0; i + 1 < pair_list_.row_begin.size(); ++i)
-    for (auto s = pair_list_.row_begin[i]; s < pair_list_.row_begin[i + 1]; ++s) {
-      const auto j = static_cast<std::size_t>(pair_list_.neighbor[static_cast<std::size_t>(s)]);
-      const double rs = p_.radius[i] + p_.radius[j];
-      const double delta = rs - (p_.x[j] - p_.x[i]).norm();
-      if (delta <= 0.0) continue;
-      const double r_eff = p_.radius[i] * p_.radius[j] / rs;
-      e.elastic += normal_energy(materials_.pair(p_.material[i], p_.material[j]), delta, r_eff);
-    }
-  for (std::size_t e_i = 0; e_i < wall_list_.touch.size(); ++e_i) {
-    if (!wall_list_.touch[e_i]) continue;
-    std::size_t i = 0;  // owner particle
-    i = static_cast<std::size_t>(std::upper_bound(wall_list_.begin.begin(), wall_list_.begin.end(), static_cast<std::int32_t>(e_i)) -
-                                 wall_list_.begin.begin()) - 1;
-    const double delta = p_.radius[i] - (wall_list_.point[e_i] - p_.x[i]).norm();
-    if (delta <= 0.0) continue;
-    const Wall& w = walls_[static_cast<std::size_t>(wall_list_.wall[e_i])];
-    e.elastic += normal_energy(materials_.pair(p_.material[i], w.material), delta, p_.radius[i]);
-  }
+  e.elastic = elastic_energy();
   return e;
+}
+
+// The energy in the normal springs of the touching contacts, through the scene's law.
+double World::elastic_energy() const {
+  return settings_.normal.visit([&]<class Law>() {
+    const std::vector<PairCoeffs<Law>> table = pair_table<Law>(materials_);
+    const auto nmat = static_cast<std::size_t>(materials_.size());
+    auto pair = [&](std::int32_t a, std::int32_t b) -> const typename Law::Coeffs& {
+      return table[static_cast<std::size_t>(a) * nmat + static_cast<std::size_t>(b)].normal;
+    };
+    double sum = 0.0;
+    for (std::size_t i = 0; i + 1 < pair_list_.row_begin.size(); ++i)
+      for (auto s = pair_list_.row_begin[i]; s < pair_list_.row_begin[i + 1]; ++s) {
+        const auto j = static_cast<std::size_t>(pair_list_.neighbor[static_cast<std::size_t>(s)]);
+        const double rs = p_.radius[i] + p_.radius[j];
+        const double delta = rs - (p_.x[j] - p_.x[i]).norm();
+        if (delta <= 0.0) continue;
+        const double r_eff = p_.radius[i] * p_.radius[j] / rs;
+        sum += Law::elastic_energy(pair(p_.material[i], p_.material[j]), delta, r_eff);
+      }
+    for (std::size_t q = 0; q < wall_list_.touch.size(); ++q) {
+      if (!wall_list_.touch[q]) continue;
+      const auto i = static_cast<std::size_t>(wall_list_.owner[q]);
+      const double delta = p_.radius[i] - (wall_list_.point[q] - p_.x[i]).norm();
+      if (delta <= 0.0) continue;
+      const Wall& w = walls_[static_cast<std::size_t>(wall_list_.wall[q])];
+      sum += Law::elastic_energy(pair(p_.material[i], w.material), delta, p_.radius[i]);
+    }
+    return sum;
+  });
 }
 
 }  // namespace chutelab::dem

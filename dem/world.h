@@ -33,7 +33,7 @@ namespace chutelab::dem {
 struct Settings {
   double dt = 0.0;  // s; 0 picks TimeStepEstimate::recommended at the first step
   Vec3 gravity = Vec3(0.0, 0.0, -9.80665);
-  NormalModel normal = NormalModel::hertz_mindlin;
+  NormalLaw normal;  // the normal contact law (dem/contact/normal_laws.h); Hertz-Mindlin by default
   TangentialModel tangential = TangentialModel::coulomb_history;
   RollingModel rolling = RollingModel::constant_torque;
   double skin = 0.0;        // m, Verlet skin; 0 -> 0.25 of the largest radius
@@ -196,6 +196,16 @@ class World {
   void insert_from(std::size_t inserter);
   bool try_insert_sphere(std::size_t inserter, double radius, std::vector<std::size_t>& near);
   void check_state() const;
+  // The contact law (dem/contact/normal_laws.h): the parameters the interactions give it and the
+  // pairs it will meet; its coefficients of every material pair, derived again when the materials
+  // change; the energy of its springs.
+  void check_contact_law() const;
+  void derive_pair_table();
+  double elastic_energy() const;
+  // The fastest initial, feed or boundary speed, and the speed of a free fall across the domain: what
+  // the time step's impact speed and the blow-up check's speed limit are made of.
+  double source_speed() const;
+  double fall_speed() const;
   [[noreturn]] void report_bad(std::size_t i) const;
   // A Verlet pass over all particles in a parallel region of its own, each thread on the rows of its
   // force blocks; returns the first bad particle (size() if none) and maxd2 raised by the drift.
@@ -223,6 +233,9 @@ class World {
   std::vector<Sink> sinks_;
   BodyForceHook body_force_;
   std::function<void()> load_observer_;
+  NormalLaws::PairTables pair_table_;  // the law's coefficients per material pair, row-major
+  std::uint64_t pair_table_revision_ = ~std::uint64_t{0};  // materials_.revision() it was derived at
+  bool cohesive_ = false;              // some pair has cohesion: the contact model's cohesion part runs
   ForceBlocks blocks_;
   WallLoads wall_loads_;
   std::vector<WallFrame> wall_frames_;      // per wall, each force evaluation (dem/wall_forces.h)

@@ -5,7 +5,7 @@
 // (drag force C_d rho_air |v| v A / 2 on a sphere of cross-section A = pi d^2 / 4, divided by its
 // mass rho_s pi d^3 / 6). C_d is the effective drag coefficient of a particle in the stream:
 // about 0.44-0.47 for an isolated sphere at Re ~ 10^3 (Clift, Grace & Weber 1978); shielding inside
-// a dense stream lowers it, so the physical range is 0 (no drag, the seed's assumption) to 1.5.
+// a dense stream lowers it, so the physical range is 0 (no drag, the reference study's assumption) to 1.5.
 // Hook: forces in flight. DEM: honoured — the same acceleration, with the dataset's real particle
 // diameter and density, as a body force on every particle past the pulley's tangent point
 // (dem/station/flight_force.h), so a scaled-up DEM particle is slowed like a real one.

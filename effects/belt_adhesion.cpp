@@ -6,7 +6,7 @@
 //   V^2 / r = g cos(theta) + a_h,
 // so a sticky layer rides further round the pulley and the stream leaves lower and steeper (the
 // adhesion term of the trajectory models reviewed by Hastie & Wypych 2007). sigma_a in Pa, 0 = dry
-// cohesionless material (the seed's case); physical range 0-2000 Pa for damp or sticky bulk solids.
+// cohesionless material (the reference study's case); physical range 0-2000 Pa for damp or sticky bulk solids.
 // Hook: discharge conditions. DEM: honoured — the stress becomes simplified-JKR cohesion between the
 // particles and the belt and the pulley, k_c = (24 sqrt(3) E*^2 sigma_a)^{1/3} / pi, the value at
 // which a hexagonal bottom layer of spheres holds sigma_a (derivation in dem/station/belt_cohesion.h).

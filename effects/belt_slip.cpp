@@ -1,7 +1,7 @@
 // belt_slip: the layer moves slower than the belt when it reaches the pulley.
 //
-// Physics: the material discharges at V_d = (1 - s) V_b instead of the seed's V_d = V_b, where s is
-// the slip fraction (0 = no slip, the seed's assumption; physical range 0-0.3). Slip of this kind
+// Physics: the material discharges at V_d = (1 - s) V_b instead of the reference study's V_d = V_b, where s is
+// the slip fraction (0 = no slip, the reference study's assumption; physical range 0-0.3). Slip of this kind
 // appears when the belt accelerates a freshly fed layer over too short a distance, or when rolling
 // particles do not reach belt speed (the seed, section 5: "if slip/rolling occurs at the discharge
 // point ... the impact zone on the impact plate will be lower than anticipated").

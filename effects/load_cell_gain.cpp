@@ -2,7 +2,7 @@
 //
 // Physics: a load cell's sensitivity (mV/V per N) comes from its calibration; a wrong calibration
 // factor, a wrong excitation voltage or an amplifier gain error scales everything the cell records.
-// The seed's plate hangs on load cells for the normal and the shear force (Fig. 3); when they share
+// The reference study's plate hangs on load cells for the normal and the shear force (Fig. 3); when they share
 // one calibration, R_n, R_s and R all read (1 + g) times the true force. The point of application
 // comes from moments over forces, y_R = M / R_n, so a shared gain cancels in it and y_R is unchanged
 // (DESIGN.md §6). g is a fraction, 0 = a true calibration; physical range -0.3 to +0.3.

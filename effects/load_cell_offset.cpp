@@ -1,6 +1,6 @@
 // load_cell_offset: the plate's normal load cells read a constant offset (a zero error).
 //
-// Physics: the plate rests on four load cells for the normal force (seed Fig. 3); a tare drift or a
+// Physics: the plate rests on four load cells for the normal force (reference study Fig. 3); a tare drift or a
 // preload from the tie rod adds a constant F_0 to the recorded R_n (and so to R). The recorded
 // point of application comes from moments, y_R = M / R_n; an offset shared evenly by the cells
 // about the reference point adds force but no moment, so the recorded y_R = M / (R_n + F_0). The

@@ -1,10 +1,10 @@
 // plate_rebound: part of the stream bounces off the plate instead of joining the layer on it.
 //
 // Physics: Korzen's control volume assumes the stream loses its whole normal momentum on the
-// plate (R_n = m_s V_pn, seed Eq 5). If particles rebound with an effective stream restitution
+// plate (R_n = m_s V_pn, reference study Eq 5). If particles rebound with an effective stream restitution
 // e_s, they carry normal momentum back and R_n = m_s V_pn (1 + e_s); the sliding layer, and so
-// R_s, is unchanged. e_s is dimensionless, 0 = the seed's model; physical range 0-0.6, well below
-// the single-particle restitution (0.66 on mild steel, seed Table 2) because most particles strike
+// R_s, is unchanged. e_s is dimensionless, 0 = the reference study's model; physical range 0-0.6, well below
+// the single-particle restitution (0.66 on mild steel, reference study Table 2) because most particles strike
 // the layer already on the plate, not the bare plate.
 // Hook: plate interaction. DEM: ignored, with a note in the prediction. e_s corrects Korzen's
 // control volume, in which no normal momentum comes back off the plate; a DEM resolves the rebound

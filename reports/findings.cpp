@@ -1,4 +1,4 @@
-// The seed's qualitative findings as checked by validation/seed_findings: one row per claim, so a
+// The reference study's qualitative findings as checked by validation/seed_findings: one row per claim, so a
 // reader sees which part of a "partly reproduced" finding failed and on what numbers.
 #include <cmath>
 

@@ -36,6 +36,16 @@ std::string rms_text(const validation::ValidationResult& r) {
   return "—";
 }
 
+// One model's quantities beyond the noise, judged on its own values alone (the combined view
+// judges each value by the first model that predicts it, so a model later in the list, such as
+// the DEM next to the analytical models, is never heard there).
+std::vector<QuantityMisfit> beyond_for(const validation::ValidationResult& r, const std::string& model) {
+  validation::ValidationResult own;
+  for (const auto& c : r.comparisons)
+    if (c.model == model) own.comparisons.push_back(c);
+  return beyond(validation::quantity_misfits(own));
+}
+
 std::string short_effects(const std::vector<EffectDescription>& effects) {
   std::vector<std::string> s;
   for (const auto& e : effects) s.push_back(spaced(e.name));
@@ -110,20 +120,52 @@ std::vector<std::string> in_short(const ReportInput& in) {
   const auto bad = beyond(before_all);
   const validation::EffectFit* best = in.diagnosis ? in.diagnosis->best() : nullptr;
 
-  // 1. The models as they are.
-  if (bad.empty()) {
+  // 1. The models as they are: each model judged on its own values too, so that one that agrees
+  // (or one that does not) is named even where the combined view hears another model.
+  std::vector<std::string> agreeing, missing;
+  std::vector<QuantityMisfit> own_bad;
+  std::string agreeing_rms, agreeing_one;
+  for (const auto& m : in.baseline->models) {
+    const auto z = in.baseline->overall_rms_normalised(m);
+    if (!z) continue;
+    const auto b = beyond_for(*in.baseline, m);
+    if (b.empty()) {
+      agreeing.push_back(m);
+      agreeing_rms += fmt::format("{}{} {:.2f}", agreeing_rms.empty() ? "" : ", ", m, *z);
+      agreeing_one = fmt::format("{:.2f}", *z);
+    } else {
+      missing.push_back(m);
+      if (own_bad.empty()) own_bad = b;
+    }
+  }
+  if (missing.empty()) {
     out.push_back(fmt::format("As they are, the models agree with the measurements within the stated uncertainties "
                               "(RMS E/u_val {}; 1 is the noise level).",
                               rms_text(*in.baseline)));
   } else {
+    // The combined view when it sees the misfit; else the first model that misses on its own.
+    const bool combined = !bad.empty();
+    const auto& shown = combined ? bad : own_bad;
+    std::string who = "the models";
+    if (!agreeing.empty()) {
+      out.push_back(fmt::format("{} {} with the measurements within the stated uncertainties (RMS E/u_val {}).",
+                                join_words(agreeing), agreeing.size() == 1 ? "agrees" : "agree",
+                                agreeing.size() == 1 ? agreeing_one : agreeing_rms));
+      who = join_words(missing);
+    }
+    if (!combined) who = shown.front().model;
     std::vector<std::string> parts;
-    for (std::size_t k = 0; k < bad.size() && k < 3; ++k)
-      parts.push_back(fmt::format("the {} {}", bad[k].label, validation::amount_words(bad[k], bad[k].mean_error)));
-    const auto& w = bad.front();
-    out.push_back(fmt::format("As they are, the models put {} on average; the worst is the {} at {}, {} "
+    for (std::size_t k = 0; k < shown.size() && k < 3; ++k)
+      parts.push_back(fmt::format("the {} {}", shown[k].label, validation::amount_words(shown[k], shown[k].mean_error)));
+    const auto& w = shown.front();
+    const auto rms = combined ? rms_text(*in.baseline)
+                              : fmt::format("{:.2f}", in.baseline->overall_rms_normalised(w.model).value_or(0.0));
+    const bool plural = who == "the models" || (combined && missing.size() > 1);
+    out.push_back(fmt::format("As {}, {} {} {} on average; the worst is the {} at {}, {} "
                               "(RMS E/u_val {}, where 1 is the noise level).",
-                              join_words(parts), w.label, condition_words(*in.dataset, w.worst_condition),
-                              validation::amount_words(w, w.worst_error), rms_text(*in.baseline)));
+                              plural ? "they are" : "it is", who, plural ? "put" : "puts", join_words(parts), w.label,
+                              condition_words(*in.dataset, w.worst_condition),
+                              validation::amount_words(w, w.worst_error), rms));
   }
 
   // 2. What the effect (or the diagnosis) says.

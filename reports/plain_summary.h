@@ -22,7 +22,8 @@ std::string condition_words(const validation::Dataset& d, const std::string& con
 std::vector<std::string> misfit_lines(const ReportInput& in, std::size_t max);
 
 // Two or three sentences: what the models as they are get wrong, what the added effect (or the
-// diagnosis) changes, and what to do.
+// diagnosis) changes, and what to do. A model that agrees with the measurements on its own values
+// is named as agreeing, and one that misses is never covered by "the models agree".
 std::vector<std::string> in_short(const ReportInput& in);
 
 // When the effects added are not what the diagnosis points to: one sentence saying so (empty

@@ -1,4 +1,4 @@
-// Bar charts: R per condition (the seed's Fig. 6), the RMS normalised error before/after adding
+// Bar charts: R per condition (the reference study's Fig. 6), the RMS normalised error before/after adding
 // effects, and the diagnosis ranking of candidate effects.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// The slump-test calibration chart (seed Table 3 as pictures): pile height and bulk density against
+// The slump-test calibration chart (reference study Table 3 as pictures): pile height and bulk density against
 // rolling friction, one line per (particle, solid density), targets dashed.
 #include <algorithm>
 #include <cmath>

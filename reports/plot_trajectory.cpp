@@ -1,4 +1,4 @@
-// The stream picture of every condition (the seed's Fig. 7), as small multiples: the head pulley,
+// The stream picture of every condition (the reference study's Fig. 7), as small multiples: the head pulley,
 // the plate, each model's streamlines, the measured stream points and the measured impact point.
 // Equal aspect in every panel so that angles and distances look as they are on the rig.
 #include <algorithm>

@@ -100,8 +100,9 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& b) {
   base.diameter = base_d;
   base.dt_fraction = b.dt_fraction;
   base.rayleigh_fraction = b.rayleigh_fraction;
-  base.label = fmt::format("Hertz-Mindlin, spheres d = {} mm, dt = {} t_c (at most {} t_R), {}", mm(base_d),
-                           fraction(b.dt_fraction), fraction(b.rayleigh_fraction), modulus_text(b.modulus_scale));
+  base.label = fmt::format("{}, spheres d = {} mm, dt = {} t_c (at most {} t_R), {}", dem::NormalLaw{}.title(),
+                           mm(base_d), fraction(b.dt_fraction), fraction(b.rayleigh_fraction),
+                           modulus_text(b.modulus_scale));
   v.push_back(base);
   auto variant = [&](std::string key, std::string label, VariantGroup g) {
     SensitivityVariant x = base;
@@ -110,10 +111,11 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& b) {
     x.group = g;
     return x;
   };
-  auto lsd = variant("LSD", "linear spring-dashpot (the reference study's Eq 8), same collision time", VariantGroup::contact);
-  lsd.contact = "lsd";
+  const auto lsd_law = dem::NormalLaw::of<dem::LinearSpringDashpot>();
+  auto lsd = variant("LSD", fmt::format("{}, same collision time", lsd_law.title()), VariantGroup::contact);
+  lsd.contact = lsd_law.key();
   v.push_back(lsd);
-  // The seed's two shaped rows: its 4.4 mm clump against its 5.6 mm spheres (about the pellet's
+  // The reference study's two shaped rows: its 4.4 mm clump against its 5.6 mm spheres (about the pellet's
   // size), and a clump of 5.6 mm spheres ("d increased"). Relative to this base: 4.4/5.6 d and d.
   auto clump = variant("clump", "", VariantGroup::shape);
   clump.shape = "clump";
@@ -138,7 +140,7 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& b) {
   auto g01 = variant("G/10", fmt::format("G / 10 of the base: {}", modulus_text(0.1 * b.modulus_scale)), VariantGroup::modulus);
   g01.modulus_scale = 0.1;
   v.push_back(g01);
-  // The seed's sizes are absolute (5.6, 9, 13.6 mm): a size variant is a sphere of that diameter,
+  // The reference study's sizes are absolute (5.6, 9, 13.6 mm): a size variant is a sphere of that diameter,
   // whatever the base. Scaling factors of the base instead would reach a different regime at a
   // coarse base (33 mm spheres are one grain deep in this stream).
   std::vector<double> sizes = b.sizes;
@@ -204,9 +206,9 @@ void evaluate(SensitivityStudy& s) {
   std::string head;
   const std::string on_what_ran = v.mean_insensitive && v.fluctuation_grows ? "reproduced" : "NOT reproduced";
   if (!(v.mean_tested && v.size_tested)) {
-    head = "Seed Table 6 conclusion NOT FULLY TESTED (a subset of the variants ran)";
+    head = "The reference study's Table 6 conclusion NOT FULLY TESTED (a subset of the variants ran)";
   } else if (!v.variants_left_out.empty()) {
-    head = fmt::format("Seed Table 6 conclusion NOT FULLY TESTED: {} not run (--only); on what ran it is {}",
+    head = fmt::format("The reference study's Table 6 conclusion NOT FULLY TESTED: {} not run (--only); on what ran it is {}",
                        fmt::join(v.variants_left_out, ", "), on_what_ran);
   } else if (!v.sizes_left_out.empty()) {
     // Judged on what ran, but never called reproduced: a left-out size is a claim not checked.
@@ -215,11 +217,11 @@ void evaluate(SensitivityStudy& s) {
     for (const auto& [d, f] : v.size_fluctuation) all.push_back(mm(d));
     for (double d : v.sizes_left_out) all.push_back(mm(d));
     std::sort(all.begin(), all.end(), [](const std::string& a, const std::string& b) { return std::stod(a) < std::stod(b); });
-    head = fmt::format("Seed Table 6 conclusion NOT FULLY TESTED: {} left out at {} quality (run with --sizes {}); on "
+    head = fmt::format("The reference study's Table 6 conclusion NOT FULLY TESTED: {} left out at {} quality (run with --sizes {}); on "
                        "what ran it is {}",
                        fmt::join(out, ", "), s.quality, fmt::join(all, ","), on_what_ran);
   } else {
-    head = v.reproduced() ? "Seed Table 6 conclusion REPRODUCED" : "Seed Table 6 conclusion NOT reproduced";
+    head = v.reproduced() ? "The reference study's Table 6 conclusion REPRODUCED" : "The reference study's Table 6 conclusion NOT reproduced";
   }
   const std::string mean_part =
       v.mean_tested ? fmt::format("contact model, shape, time step and shear modulus change it by at most {:+.1f} % ({}; "

@@ -1,7 +1,7 @@
 #pragma once
-// The seed's Table 6 (Grima & Wypych 2010, §6.1) as data: the variants of one transfer-station DEM run
+// The reference study's Table 6 (Grima & Wypych 2010, §6.1) as data: the variants of one transfer-station DEM run
 // (contact model, particle shape, time step, shear modulus, particle size), what each gave at the
-// plate, the change against the base case, and the check of the seed's conclusion: "mean plate force
+// plate, the change against the base case, and the check of the reference study's conclusion: "mean plate force
 // changes little with contact model, shape, dt and G; its fluctuation grows with particle size".
 // Independent of how a variant is run (the command plugs in the station DEM), so it can be tested on
 // made-up numbers; the report reads the CSV back (reports/studies.h).
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "dem/contact/normal_laws.h"
 #include "validation/seed_findings.h"
 
 namespace chutelab::reports {
@@ -23,7 +24,7 @@ struct SensitivityVariant {
   std::string label;   // what changes, for people
   VariantGroup group = VariantGroup::base;
   // Settings of the run (SI); 0 / empty = the base's.
-  std::string contact = "hertz-mindlin";
+  std::string contact{dem::NormalLaw{}.key()};  // a registered law's key
   std::string shape = "sphere";
   double diameter = 0.0;        // m (sphere diameter, or the clump's element spheres)
   double dt_fraction = 0.1;     // of the Hertz collision time
@@ -42,7 +43,7 @@ struct Table6Base {
   // Sphere diameters of the size variants, m. Those that differ from the base diameter become
   // variants; the one equal to it is the base itself.
   std::vector<double> sizes = seed_sizes();
-  static std::vector<double> seed_sizes() { return {5.6e-3, 9.0e-3, 13.6e-3}; }  // seed Table 6, absolute
+  static std::vector<double> seed_sizes() { return {5.6e-3, 9.0e-3, 13.6e-3}; }  // reference study Table 6, absolute
 };
 
 struct Stat {
@@ -67,7 +68,7 @@ struct SensitivityRow {
   Stat change;  // % change of the mean resultant against the base, with its standard error
 };
 
-// The verdict on the seed's conclusion, with the numbers it rests on.
+// The verdict on the reference study's conclusion, with the numbers it rests on.
 struct Table6Verdict {
   bool mean_insensitive = false;    // every contact/shape/dt/G variant within the limit of the base
   double worst_change = 0.0;        // %, largest |change| among those
@@ -77,7 +78,7 @@ struct Table6Verdict {
   double size_mean_spread = 0.0;    // %, largest |change| among the size variants
   bool mean_tested = false;         // at least one contact/shape/dt/G variant ran
   bool size_tested = false;         // at least two particle sizes ran
-  std::vector<double> sizes_left_out;  // m, the seed's sizes that did not run
+  std::vector<double> sizes_left_out;  // m, the reference study's sizes that did not run
   std::vector<std::string> variants_left_out;  // keys of other variants that did not run (--only)
   bool complete() const { return mean_tested && size_tested && sizes_left_out.empty() && variants_left_out.empty(); }
   bool reproduced() const { return complete() && mean_insensitive && fluctuation_grows; }
@@ -88,7 +89,7 @@ struct SensitivityStudy {
   std::string dataset;        // where it came from (folder), for people
   std::string dataset_name;   // setup.toml `name`: which rig the study is about ("" = not recorded)
   std::string condition, quality;
-  // The seed's sizes not run (m, e.g. 5.6 mm at quick quality, to stay within the time budget): the
+  // The reference study's sizes not run (m, e.g. 5.6 mm at quick quality, to stay within the time budget): the
   // verdict then says "not fully tested" and how to run them.
   std::vector<double> sizes_left_out;
   std::vector<std::string> variants_left_out;  // keys not run (--only)
@@ -100,16 +101,16 @@ struct SensitivityStudy {
   double limit_percent = 10.0;                 // "changes little": |change| <= this
 };
 
-// The seed's variants around a base run: LSD, a two-sphere clump whose spheres are d_base x 4.4/5.6
-// (the seed's 4.4 mm clump against its 5.6 mm spheres), the same clump of spheres of d_base (the
-// seed's "shaped d = 5.6 mm, d increased"), half the time step, G x10, G/10, and spheres of every
+// The reference study's variants around a base run: LSD, a two-sphere clump whose spheres are d_base x 4.4/5.6
+// (the reference study's 4.4 mm clump against its 5.6 mm spheres), the same clump of spheres of d_base (the
+// reference study's "shaped d = 5.6 mm, d increased"), half the time step, G x10, G/10, and spheres of every
 // size in base.sizes other than d_base, in increasing size.
 std::vector<SensitivityVariant> table6_variants(const Table6Base& base);
 
 // Fills change and the verdict from the rows.
 void evaluate(SensitivityStudy& s);
 
-// The seed's finding 6 (validation/seed_findings.h) from a study; not testable without one. The
+// The reference study's finding 6 (validation/seed_findings.h) from a study; not testable without one. The
 // evidence names the study's dataset, and says so when it is not `validated` (the report's dataset).
 validation::SeedFinding sensitivity_finding(const SensitivityStudy* study, std::string_view validated = {});
 

@@ -1,6 +1,6 @@
 #pragma once
-// Studies run beside a validation — `chutelab calibrate` (seed Table 3) and `chutelab sensitivity`
-// (seed Table 6) — read back from their output folders and turned into report sections: a verdict or
+// Studies run beside a validation — `chutelab calibrate` (reference study Table 3) and `chutelab sensitivity`
+// (reference study Table 6) — read back from their output folders and turned into report sections: a verdict or
 // finding, a table and a chart. The report draws them like its own sections (report.cpp) and knows
 // nothing of how they were made: the CSV files are the interface.
 #include <filesystem>

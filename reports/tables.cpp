@@ -1,7 +1,7 @@
-// The report's tables: the seed's Table 4 (forces) and Table 5 (velocities, impact point) as
+// The report's tables: the reference study's Table 4 (forces) and Table 5 (velocities, impact point) as
 // measured vs each model, the per-quantity summary, before/after, and the diagnosis ranking.
 // Each table is a list of columns, each column a header and a function from a condition to a cell,
-// so the two layouts of the seed (grouped by source, grouped by quantity) share every cell maker.
+// so the two layouts of the reference study (grouped by source, grouped by quantity) share every cell maker.
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -195,7 +195,7 @@ std::string symbols(const std::vector<Quantity>& qs) {
 
 }  // namespace
 
-// Seed Table 4: plate forces, measured vs each model, with the relative error of R.
+// The reference study's Table 4: plate forces, measured vs each model, with the relative error of R.
 Table force_table(const Context& c, const ValidationResult& r, std::string_view id) {
   const Lookup look(r);
   const std::vector<Quantity> qs = {Quantity::normal_force, Quantity::shear_force,
@@ -218,7 +218,7 @@ Table force_table(const Context& c, const ValidationResult& r, std::string_view 
   return t;
 }
 
-// Seed Table 5: plate position, stream thickness, velocities and the impact point.
+// The reference study's Table 5: plate position, stream thickness, velocities and the impact point.
 Table velocity_table(const Context& c, const ValidationResult& r, std::string_view id) {
   const Lookup look(r);
   const std::vector<Quantity> qs = {Quantity::impact_velocity, Quantity::exit_velocity,

@@ -618,8 +618,7 @@ void profile_best(EffectFit& f, const Stage& s, int jobs) {
   // more than their uncertainties say (another code's forces a few % apart, which no stated
   // uncertainty holds), the curvature claims too much: the sd is widened by their Birge ratio,
   // weighted by each quantity's share of the curvature.
-  const auto low = std::min_element(p.points.begin(), p.points.end(),
-                                    [](const auto& a, const auto& b) { return a.second < b.second; });
+  const auto low = p.lowest();
   if (low != p.points.begin() && std::next(low) != p.points.end()) {
     const std::array<double, 3> x = {std::prev(low)->first, low->first, std::next(low)->first};
     std::array<std::vector<double>, 3> r;
@@ -671,9 +670,7 @@ std::vector<double> best_residuals(const Stage& s, const EffectFit* best) {
   if (!best || !best->chi2_from_signatures || !s.m.source().reruns_expensive()) return residuals_at(s.m, best);
   std::vector<double> at = best->estimate;
   if (best->profile && !best->profile->points.empty())
-    at = {std::min_element(best->profile->points.begin(), best->profile->points.end(),
-                           [](const auto& a, const auto& b) { return a.second < b.second; })
-              ->first};
+    at = {best->profile->lowest()->first};
   return s.m.residuals_exact(infos_of(*best), at);
 }
 
@@ -1037,11 +1034,9 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
       const auto& g = m.groups()[e->group];
       out.concentrated = Concentration{best->effects[e->effect], g.quantity, m.models()[g.model]->name(), e->share};
     }
-    if (best->profile) {
+    if (best->profile && !best->profile->points.empty()) {
       // Its real runs are the profile's points.
-      double lowest = INFINITY;
-      for (const auto& [v, c] : best->profile->points) lowest = std::min(lowest, c);
-      out.confirmed_chi2 = lowest;
+      out.confirmed_chi2 = best->profile->lowest()->second;
     } else if (m.source().reruns_expensive()) {
       const Fx fx = infos_of(*best);
       m.source().prepare_exact(fx, best->estimate, jobs);

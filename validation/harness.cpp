@@ -104,9 +104,9 @@ std::optional<double> ValidationResult::combined_rms_normalised() const {
 }
 
 std::string ValidationResult::brief() const {
-  std::string s = fmt::format("{}: {} conditions x {} models", one_line(dataset_folder.empty() ? dataset_name : dataset_folder, 120),
+  std::string s = fmt::format("{}: {} conditions x {} model{}", one_line(dataset_folder.empty() ? dataset_name : dataset_folder, 120),
                               predictions.size() / std::max<std::size_t>(1, models.size()),
-                              models.size());
+                              models.size(), models.size() == 1 ? "" : "s");
   std::vector<std::string> rms;
   for (const auto& m : models)
     if (auto z = overall_rms_normalised(m)) rms.push_back(fmt::format("{} {:.2f}", m, *z));

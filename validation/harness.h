@@ -80,7 +80,7 @@ struct ValidationResult {
   const ConditionResult* prediction(const std::string& condition, const std::string& model) const;
   // RMS of E/u_val over every comparison of a model that has an uncertainty.
   std::optional<double> overall_rms_normalised(const std::string& model) const;
-  // The models used together as the seed's hybrid: each measured value is judged by the first
+  // The models used together as the reference study's hybrid: each measured value is judged by the first
   // model, in registry order (booth-cema, korzen, ...), that predicts it. This is the figure the
   // diagnosis works on.
   std::optional<double> combined_rms_normalised() const;

@@ -96,7 +96,8 @@ std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSum
   }
 
   JunitSummary sum;
-  const std::string dataset = xml_escape(r.dataset_name);
+  // The folder the user gave, as the report's title and validate's first line name it.
+  const std::string dataset = xml_escape(r.dataset_folder.empty() ? r.dataset_name : r.dataset_folder);
   std::string body;
   for (auto& s : suites) {
     std::string cases;

@@ -125,7 +125,7 @@ Agreement agree(const Value& p, const Value& m) {
 
 // --- Finding 1: Korzen's stationary flow ends at high belt speed -------------------------------
 // The Korzen model reports V_a only when Eq 3 finds stationary flow, so V_a's presence is the flag.
-constexpr double kFastBelt = 4.0;  // m/s, the seed's threshold
+constexpr double kFastBelt = 4.0;  // m/s, the reference study's threshold
 
 SeedFinding finding1(const Data& x) {
   SeedFinding f{1, "Korzen's stationary flow (Eq 3) does not occur at belt speeds of 4 m/s and above, so R_s comes "
@@ -305,7 +305,7 @@ SeedFinding finding3(const Data& x) {
                                     "{:.1f} % vs {:.1f} % (criterion: ρ < 0 and lower at the highest speed)",
                                     rho, speed.size(), 100 * groups.back().second, 100 * groups.front().second)});
   }
-  // The seed's 5 m/s, 44 t/h: the fastest condition, at its highest flow.
+  // The reference study's 5 m/s, 44 t/h: the fastest condition, at its highest flow.
   std::optional<Condition> top;
   for (const auto& c : x.conditions)
     if (x.measured(c.name, Quantity::resultant_force)) top = c;  // sorted: the last is fastest, then fullest
@@ -402,13 +402,13 @@ SeedFinding finding4(const Data& x) {
 }
 
 // --- Finding 5: impact point --------------------------------------------------------------------
-constexpr double kSeedBoothWorst = 0.0289;  // m, the seed's largest Booth/CEMA miss (2.5-28.9 mm)
+constexpr double kSeedBoothWorst = 0.0289;  // m, the reference study's largest Booth/CEMA miss (2.5-28.9 mm)
 
 SeedFinding finding5(const Data& x) {
   SeedFinding f{5, "The Booth/CEMA impact point differs from the measured one by 2.5–28.9 mm; the DEM's lies slightly "
                    "below Booth/CEMA's; Korzen's 0.5 h_b centroid instead of the CEMA centroid increases the error."};
   const auto q = Quantity::impact_point_y;
-  const std::string a_text = "Booth/CEMA misses the measured impact point by no more than the seed's 28.9 mm";
+  const std::string a_text = "Booth/CEMA misses the measured impact point by no more than the reference study's 28.9 mm";
   const std::string b_text = "the DEM's impact point lies below Booth/CEMA's at every condition";
   const std::string c_text = "Korzen's 0.5 h_b impact point is further from the measurement than Booth/CEMA's";
   std::vector<double> eb;

@@ -28,7 +28,7 @@ struct FindingClaim {
 
 struct SeedFinding {
   int number = 0;             // as in the reference list
-  std::string statement{};    // the seed's finding
+  std::string statement{};    // the reference study's finding
   std::vector<FindingClaim> claims{};
   FindingStatus status = FindingStatus::not_testable;
 };

@@ -4,6 +4,7 @@
 // trust-region least squares, with the covariance of a weighted least-squares estimate. And, for
 // an expensive model whose own response is not linear in the strength, the minimum and its
 // uncertainty from a few real evaluations (a profile of chi^2).
+#include <algorithm>
 #include <functional>
 #include <span>
 #include <vector>
@@ -52,6 +53,10 @@ struct ProfileFit {
   // With four or more points: the rms of chi^2 about the least-squares parabola through them all
   // (the expensive runs' own noise), whose vertex and sd are the estimate then.
   double scatter = 0.0;
+  // The evaluated point of lowest chi^2 (the best real run); points must not be empty.
+  std::vector<std::pair<double, double>>::const_iterator lowest() const {
+    return std::min_element(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  }
 };
 // `step` is rounded to a round number and the strengths lie on a grid of half a step from `first`
 // (itself on a grid: strength_fit.h's on_grid), so that nearby first estimates evaluate (and cache)

@@ -7,13 +7,14 @@
 #include <cmath>
 
 #include "dem/contact/kinematics.h"
+#include "dem/contact/pair_coeffs.h"
 
 namespace chutelab::dem {
 
 struct CoulombHistorySpring {
   // Written with selects instead of branches so that the pair loop vectorises across contacts; each
   // select gives what the branch would.
-  CHUTELAB_INLINE static LaneVec force(const PairCoeffs& c, const NormalResult& nr, const LaneVec& n,
+  CHUTELAB_INLINE static LaneVec force(const SharedCoeffs& c, const NormalResult& nr, const LaneVec& n,
                                        const LaneVec& vt, LaneVec& shear, double dt) {
     const double s2 = shear.squared_norm();
     const LaneVec in_plane = shear - shear.dot(n) * n;
@@ -35,7 +36,7 @@ struct CoulombHistorySpring {
 
 // Frictionless contacts (used by verification tests that isolate the normal law).
 struct NoTangential {
-  CHUTELAB_INLINE static LaneVec force(const PairCoeffs&, const NormalResult&, const LaneVec&, const LaneVec&,
+  CHUTELAB_INLINE static LaneVec force(const SharedCoeffs&, const NormalResult&, const LaneVec&, const LaneVec&,
                                        LaneVec& shear, double) {
     shear = LaneVec::zero();
     return LaneVec::zero();

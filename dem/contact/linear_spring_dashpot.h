@@ -1,24 +1,66 @@
 #pragma once
-// Linear spring-dashpot (seed Eq 8): F_n = k_n delta + D_n d(delta)/dt with D_n = 2 zeta sqrt(k_n m*),
+// Linear spring-dashpot (reference study Eq 8): F_n = k_n delta + D_n d(delta)/dt with D_n = 2 zeta sqrt(k_n m*),
 // zeta = -ln e / sqrt(ln^2 e + pi^2), which is the exact restitution of the damped linear oscillator
 // when the contact ends at delta = 0 (tensile tail kept). Tangential spring k_t = ratio * k_n with the
 // same damping ratio.
+#include <array>
 #include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <string_view>
 
+#include "dem/contact/damping_restitution.h"
 #include "dem/contact/kinematics.h"
+#include "dem/contact/law_parameters.h"
+#include "dem/timestep.h"
 
 namespace chutelab::dem {
 
 struct LinearSpringDashpot {
-  CHUTELAB_INLINE static NormalResult normal(const PairCoeffs& c, double delta, double delta_dot, double /*r_eff*/,
-                             double m_eff) {
-    const double damping = c.linear_damping * std::sqrt(c.linear_kn * m_eff) * delta_dot;
-    return {c.linear_kn * delta + damping, c.linear_kn, c.linear_kt,
-            c.linear_damping * std::sqrt(c.linear_kt * m_eff)};
+  static constexpr std::string_view key = "lsd";
+  static constexpr std::string_view title = "linear spring-dashpot (the reference study's Eq 8)";
+  // None in LIGGGHTS: its hooke takes k_n from the moduli, and its hooke/stiffness damps by m* gamma_n
+  // (as LAMMPS' gran/hooke/history), not by a restitution.
+  static constexpr std::string_view liggghts = "";
+  static constexpr bool hertz_elastic = false;
+  static constexpr std::array<LawParameter, 2> parameters{{
+      {"normal_stiffness", "N/m", "normal spring k_n", LawParameter::kRequired},
+      // 2/7 gives equal normal and tangential periods.
+      {"tangential_ratio", "", "tangential spring k_t / k_n", 2.0 / 7.0},
+  }};
+
+  struct Coeffs {
+    double kn = 0.0;       // N/m
+    double kt = 0.0;       // N/m
+    double damping = 0.0;  // 2 zeta
+  };
+  static Coeffs mix(const Material&, const Material&, const Interaction& in) {
+    const double kn = in.law.value(parameters[0]);
+    return {kn, kn * in.law.value(parameters[1]), 2.0 * damping_ratio_from_restitution(in.restitution)};
   }
-  static double elastic_energy(const PairCoeffs& c, double delta, double /*r_eff*/) {
-    return 0.5 * c.linear_kn * delta * delta;
+  static std::string check(const Coeffs& c) {
+    if (!(c.kn > 0.0)) return "the lsd contact law needs normal_stiffness > 0 N/m";
+    if (!(c.kt >= 0.0)) return "the lsd contact law needs tangential_ratio >= 0";
+    return {};
   }
+
+  CHUTELAB_INLINE static NormalResult normal(const Coeffs& c, double delta, double delta_dot, double /*r_eff*/,
+                                             double m_eff) {
+    const double damping = restitution_damping(c.damping, c.kn, m_eff) * delta_dot;
+    return {c.kn * delta + damping, c.kn, c.kt, restitution_damping(c.damping, c.kt, m_eff)};
+  }
+  static double collision_time(const Coeffs& c, double m_eff, double /*r_eff*/, double /*v*/) {
+    return c.kn > 0.0 ? linear_collision_time(m_eff, c.kn, 0.5 * c.damping) : std::numeric_limits<double>::infinity();
+  }
+  static double elastic_energy(const Coeffs& c, double delta, double /*r_eff*/) { return 0.5 * c.kn * delta * delta; }
+  // The k_n that makes a collision of effective mass m_eff and restitution e last `duration`.
+  static LawParameters matched_parameters(double restitution, double m_eff, double duration) {
+    const double zeta = damping_ratio_from_restitution(restitution);
+    const double w = std::numbers::pi / duration;
+    return {{"normal_stiffness", m_eff * w * w / (1.0 - zeta * zeta)}};
+  }
+  static LawParameters liggghts_pair_properties(const Coeffs&) { return {}; }  // no LIGGGHTS counterpart
 };
 
 }  // namespace chutelab::dem

@@ -1,5 +1,5 @@
 #pragma once
-// Coulomb-like rolling friction of seed Eq 10: a constant directional torque
+// Coulomb-like rolling friction of reference study Eq 10: a constant directional torque
 //   T_R,i = -mu_r F_n R_i w_rel/|w_rel|,   T_R,j = +mu_r F_n R_j w_rel/|w_rel|,
 // with w_rel = w_i - w_j (w_i alone against a non-rotating wall, which is Eq 10 as printed; the
 // relative form gives no torque to two spheres rotating together). A constant torque would reverse
@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "dem/contact/kinematics.h"
+#include "dem/contact/pair_coeffs.h"
 
 namespace chutelab::dem {
 
@@ -18,7 +19,7 @@ struct RollingConstantTorque {
   static constexpr double kRestSpin = 1e-9;  // rad/s
   // Selects instead of branches, so the pair loop vectorises across contacts: an inactive contact
   // adds a zero torque.
-  CHUTELAB_INLINE static void torque(const PairCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
+  CHUTELAB_INLINE static void torque(const SharedCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
                                      LaneVec* /*history*/, double dt, LaneVec& ti, LaneVec& tj) {
     const double fn = std::max(nr.force, 0.0);
     const double w2 = k.w_rel.squared_norm();
@@ -35,7 +36,7 @@ struct RollingConstantTorque {
 
 struct NoRolling {
   static constexpr bool has_history = false;
-  CHUTELAB_INLINE static void torque(const PairCoeffs&, const NormalResult&, const ContactKinematics&, LaneVec*,
+  CHUTELAB_INLINE static void torque(const SharedCoeffs&, const NormalResult&, const ContactKinematics&, LaneVec*,
                                      double, LaneVec&, LaneVec&) {}
 };
 

@@ -8,12 +8,13 @@
 #include <cmath>
 
 #include "dem/contact/kinematics.h"
+#include "dem/contact/pair_coeffs.h"
 
 namespace chutelab::dem {
 
 struct RollingEpsd {
   static constexpr bool has_history = true;
-  CHUTELAB_INLINE static void torque(const PairCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
+  CHUTELAB_INLINE static void torque(const SharedCoeffs& c, const NormalResult& nr, const ContactKinematics& k,
                      LaneVec* history, double dt, LaneVec& ti, LaneVec& tj) {
     LaneVec& m = *history;
     const double fn = std::max(nr.force, 0.0);

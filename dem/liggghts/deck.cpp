@@ -57,8 +57,9 @@ std::string ident(const std::string& s) {
 Deck make_deck(const Station& st, const station::Scene& sc, const station::RunSettings& s, double sim_time) {
   if (sc.shape != station::ParticleShape::sphere)
     throw InputError("", 0, "dem.shape", "the LIGGGHTS engine runs spheres only (no clumps)");
-  if (s.contact != station::ContactLaw::hertz_mindlin)
-    throw InputError("", 0, "dem.contact", "the LIGGGHTS engine runs the Hertz-Mindlin contact only");
+  if (s.contact.liggghts().empty())
+    throw InputError("", 0, "dem.contact",
+                     fmt::format("the LIGGGHTS engine has no counterpart of the {} contact law", s.contact.title()));
   const World& w = *sc.world;
   const MaterialTable& mt = w.materials();
   const int nt = mt.size();
@@ -106,11 +107,11 @@ Deck make_deck(const Station& st, const station::Scene& sc, const station::RunSe
   auto pair_table = [&](const char* id, const char* property, auto get) {
     o += fmt::format("\nfix {} all property/global {} peratomtypepair {}", id, property, nt);
     for (int a = 0; a < nt; ++a)
-      for (int b = 0; b < nt; ++b) (o += ' ') += num(get(mt.pair(a, b)));
+      for (int b = 0; b < nt; ++b) (o += ' ') += num(get(mt.interaction(a, b)));
   };
   // Wall-wall pairs never meet; LIGGGHTS needs a restitution in (0, 1] for them all the same.
-  pair_table("m_e", "coefficientRestitution", [](const PairCoeffs& p) { return std::clamp(p.restitution, 1e-3, 1.0); });
-  pair_table("m_mu", "coefficientFriction", [](const PairCoeffs& p) { return p.friction; });
+  pair_table("m_e", "coefficientRestitution", [](const Interaction& p) { return std::clamp(p.restitution, 1e-3, 1.0); });
+  pair_table("m_mu", "coefficientFriction", [](const Interaction& p) { return p.friction; });
   // cdt's lever is the effective radius R_i R_j / (R_i + R_j): R/2 between the deck's equal spheres, R
   // against a wall. The scene's coefficients are for the lever R_i (with rolling_lever = "effective"
   // it holds half the dataset's), so the same torque needs twice them between particles.
@@ -121,8 +122,14 @@ Deck make_deck(const Station& st, const station::Scene& sc, const station::RunSe
   o += fmt::format("\nfix m_mur all property/global coefficientRollingFriction peratomtypepair {}", nt);
   for (int a = 0; a < nt; ++a)
     for (int b = 0; b < nt; ++b)
-      (o += ' ') += num(mt.pair(a, b).rolling_friction * (a == ins.material && b == ins.material ? 2.0 : 1.0));
-  o += "\npair_style gran model hertz tangential history rolling_friction cdt\npair_coeff * *\n";
+      (o += ' ') += num(mt.interaction(a, b).rolling_friction * (a == ins.material && b == ins.material ? 2.0 : 1.0));
+  // What the law's model reads per type pair beyond the above (dem/contact/normal_laws.h).
+  for (const auto& [property, values] : s.contact.liggghts_pair_properties(mt)) {
+    o += fmt::format("\nfix m_{} all property/global {} peratomtypepair {}", property, property, nt);
+    for (double v : values) (o += ' ') += num(v);
+  }
+  o += fmt::format("\npair_style gran model {} tangential history rolling_friction cdt\npair_coeff * *\n",
+                   s.contact.liggghts());
   o += fmt::format("timestep {}\n", num(sc.dt));
   const Vec3 g = w.settings().gravity;
   o += fmt::format("fix gravity all gravity {} vector {}\n", num(g.norm()), vec(g.normalized()));
@@ -158,8 +165,8 @@ Deck make_deck(const Station& st, const station::Scene& sc, const station::RunSe
     o += line + "\n";
     mesh_ids.push_back(id);
   }
-  o += fmt::format("fix walls all wall/gran model hertz tangential history rolling_friction cdt mesh n_meshes {} "
-                   "meshes {}\n", mesh_ids.size(), fmt::join(mesh_ids, " "));
+  o += fmt::format("fix walls all wall/gran model {} tangential history rolling_friction cdt mesh n_meshes {} "
+                   "meshes {}\n", s.contact.liggghts(), mesh_ids.size(), fmt::join(mesh_ids, " "));
 
   // --- feed: a horizontal face at the bottom of the insertion box, extruded up over its height ---
   {

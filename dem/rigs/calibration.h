@@ -1,5 +1,5 @@
 #pragma once
-// The seed's simple calibration (Grima & Wypych 2010, §5, Table 3): slump tests over combinations of
+// The reference study's simple calibration (Grima & Wypych 2010, §5, Table 3): slump tests over combinations of
 // particle-particle rolling friction, solid density and particle shape, compared with the measured
 // loose-poured bulk density and pile height; the closest combination is the calibrated material.
 #include <functional>
@@ -28,7 +28,7 @@ struct CalibrationRow {
 };
 
 // Relative distance to the targets: sqrt of the mean of ((value - target) / target)^2 over the
-// targets given. Bulk density and pile height weigh equally, as in the seed's choice "closest
+// targets given. Bulk density and pile height weigh equally, as in the reference study's choice "closest
 // correlation ... in regards to the loose-poured bulk density, angle of repose and shape/height of
 // the conical pile".
 double target_distance(const SlumpResult& r, const CalibrationTargets& t);
@@ -37,8 +37,8 @@ struct CalibrationPlan {
   std::vector<double> rolling;     // particle-particle rolling friction coefficients
   std::vector<double> density;     // solid densities, kg/m^3
   std::vector<GrainKind> shapes;
-  Grain sphere = Grain::sphere(5.6e-3);    // the seed's scaled sphere (Fig. 4b)
-  Grain clump = Grain::seed_clump(4.4e-3); // the seed's 2 x 4.4 mm pellet (Fig. 4c)
+  Grain sphere = Grain::sphere(5.6e-3);    // the reference study's scaled sphere (Fig. 4b)
+  Grain clump = Grain::seed_clump(4.4e-3); // the reference study's 2 x 4.4 mm pellet (Fig. 4c)
   SlumpSettings settings;
   CalibrationTargets targets;
   // Particle-wall rolling friction by the inclined-plane rig: onset angle for each `rolling` value

@@ -1,5 +1,5 @@
 #pragma once
-// The particle a calibration rig is filled with: a sphere or a rigid multi-sphere clump (seed Fig. 4b
+// The particle a calibration rig is filled with: a sphere or a rigid multi-sphere clump (reference study Fig. 4b
 // and 4c), and the material numbers the rigs need, taken from a dataset's [material] table.
 #include <cstdint>
 #include <string>
@@ -30,7 +30,7 @@ struct Grain {
 // Returns the persistent id of its first sphere.
 std::int64_t add_grain(World& w, const Grain& g, const Vec3& position, const Quat& q, int material, double density);
 
-// Materials of a rig scene: the particles ("pellet") and one wall material ("wall"), with the seed's
+// Materials of a rig scene: the particles ("pellet") and one wall material ("wall"), with the reference study's
 // interaction coefficients from a dataset material: particle-particle friction, rolling friction and
 // restitution; particle-wall friction `wall_friction`, rolling friction `wall_rolling` and restitution
 // restitution_plate. Young's modulus (particles and walls) is multiplied by modulus_scale.

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "dem/contact/mixing.h"
 
 namespace chutelab::dem::rigs {
 namespace {
@@ -53,7 +54,7 @@ Motion incline_motion_at(const chutelab::Material& m, double mu_s, double mu_r, 
   const double rho = w.materials().material(rm.pellet).density;
   const double mass = rho * g.volume();
   const int contacts = g.kind == GrainKind::sphere ? 1 : static_cast<int>(g.clump.spheres.size());
-  const double e_star = w.materials().pair(rm.pellet, rm.wall).e_star;
+  const double e_star = effective_youngs_modulus(w.materials().material(rm.pellet), w.materials().material(rm.wall));
   const double delta = std::pow(mass * g_acc * std::cos(angle) / contacts / (4.0 / 3.0 * e_star * std::sqrt(r)), 2.0 / 3.0);
   Mat3 R;
   R.col(0) = Vec3::UnitY();

@@ -1,12 +1,12 @@
 #pragma once
-// Inclined-plane rig for the particle-wall rolling friction (seed §5: "an inclination rig to determine
+// Inclined-plane rig for the particle-wall rolling friction (reference study §5: "an inclination rig to determine
 // the required rolling resistance to prevent particles either rolling or sliding down the inclined
-// surface prematurely", details in Grima & Wypych 2010, the seed's reference [25]).
+// surface prematurely", details in Grima & Wypych 2010, reference [25] of the reference study).
 //
 // Theory (what the rig checks the DEM against). A sphere of radius R at rest on a plane at angle
 // theta: gravity pulls m g sin(theta) down the slope, the normal force is N = m g cos(theta). At rest
 // the contact friction F balances the pull, F = m g sin(theta), and F R is a moment that must be
-// balanced by the rolling resistance; with the constant rolling torque of seed Eq 10 the resistance
+// balanced by the rolling resistance; with the constant rolling torque of reference study Eq 10 the resistance
 // can supply at most T = mu_r N R. So the sphere stays at rest while
 //   F R <= mu_r N R   <=>  tan(theta) <= mu_r       (else it rolls), and
 //   F   <= mu_s N     <=>  tan(theta) <= mu_s       (else it slides),
@@ -35,7 +35,7 @@ struct InclineSettings {
   RollingModel rolling = RollingModel::constant_torque;
 };
 
-// Seed Eq 10 with Coulomb friction: onset angle (deg) and the motion that starts there.
+// The reference study's Eq 10 with Coulomb friction: onset angle (deg) and the motion that starts there.
 struct InclinePrediction {
   double onset_deg = 0.0;
   Motion motion = Motion::roll;

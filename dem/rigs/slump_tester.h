@@ -1,10 +1,10 @@
 #pragma once
-// The swing-arm slump tester of the seed (Grima & Wypych 2010, §5, Fig. 5): a 60 mm I.D. split tube
+// The swing-arm slump tester of the reference study (Grima & Wypych 2010, §5, Fig. 5): a 60 mm I.D. split tube
 // rests on a bed of the same material in a 150 mm I.D. pipe; the sample is poured into the tube and
 // settles, the loose-poured bulk density is measured, the swing arm opens the tube, the material flows
 // out rapidly and forms a conical pile whose height (and angle of repose) is measured. The tester is
 // designed so that particle-particle interactions dominate (the pile forms on a bed of grains, not on
-// a wall): it calibrates the particle-particle rolling friction and the solid density (seed Table 3).
+// a wall): it calibrates the particle-particle rolling friction and the solid density (reference study Table 3).
 //
 // DEM set-up and its simplifications (stated in reports):
 //  - the bed is a fixed rough floor: one hexagonal layer of glued grains of the same size and
@@ -38,8 +38,8 @@
 namespace chutelab::dem::rigs {
 
 struct SlumpSettings {
-  double tube_diameter = 0.060;   // m, I.D. of the split tube (seed Fig. 5)
-  double pipe_diameter = 0.150;   // m, I.D. of the pipe holding the bed (seed Fig. 5)
+  double tube_diameter = 0.060;   // m, I.D. of the split tube (reference study Fig. 5)
+  double pipe_diameter = 0.150;   // m, I.D. of the pipe holding the bed (reference study Fig. 5)
   double fill_height = 0.030;     // m of settled material aimed for (particle count from a 0.58 guess)
   double modulus_scale = 1.0;     // multiplies Young's modulus (softer = longer time step)
   double open_speed = 0.5;        // m/s of each half of the tube

@@ -181,7 +181,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
       "{:.2f} s simulated{}, steady window {:.2f}-{:.2f} s ({} blocks of {:.1f} s)",
       r.quality,
       sc.shape == ParticleShape::clump
-          ? fmt::format("two-sphere clumps (seed Fig. 4c) of {:.1f} mm spheres, {} bodies at the peak", r.diameter * 1e3,
+          ? fmt::format("two-sphere clumps (reference study Fig. 4c) of {:.1f} mm spheres, {} bodies at the peak", r.diameter * 1e3,
                         peak_bodies)
           : fmt::format("{:.1f} mm spheres", r.diameter * 1e3),
       r.dt, r.dt / r.collision_time, r.collision_time, r.dt / r.rayleigh_time,

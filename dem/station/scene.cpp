@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "dem/contact/mixing.h"
 #include "dem/station/belt_cohesion.h"
 #include "dem/timestep.h"
 #include "dem/walls/stl.h"
@@ -146,9 +147,9 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   ws.gravity = Vec3(0.0, -g, 0.0);
   ws.domain = Box{Vec3(std::min(p_start.x(), -R) - 0.15, sc.sink_y - 0.12, -z_half),
                   Vec3(x_hi, y_top, z_half)};
-  ws.normal = s.contact == ContactLaw::hertz_mindlin ? NormalModel::hertz_mindlin : NormalModel::linear_spring_dashpot;
+  ws.normal = s.contact;
   ws.tangential = TangentialModel::coulomb_history;
-  // Constant directional torque (seed Eq 10), as LIGGGHTS' `rolling_friction cdt` of the rig.
+  // Constant directional torque (reference study Eq 10), as LIGGGHTS' `rolling_friction cdt` of the rig.
   ws.rolling = RollingModel::constant_torque;
   ws.skin = s.skin_fraction * r;
   ws.threads = effective_threads(s.threads);
@@ -174,12 +175,8 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   const double m = sc.particle_mass;
   // Shortest collision: particle on particle (m* = m/2, R* = r/2).
   const double tc_hertz = hertz_collision_time(0.5 * m, 0.5 * r, e_star, sc.characteristic_speed);
-  // Linear spring-dashpot: the stiffness that gives the same particle-particle collision time.
-  double kn = 0.0;
-  if (s.contact == ContactLaw::linear_spring_dashpot) {
-    const double zeta = damping_ratio_from_restitution(mat.restitution_particle);
-    kn = 0.5 * m * (pi / tc_hertz) * (pi / tc_hertz) / (1.0 - zeta * zeta);
-  }
+  // Any other law: the parameters that give the same particle-particle collision time.
+  const LawParameters law_parameters = s.contact.matched_parameters(mat.restitution_particle, 0.5 * m, tc_hertz);
   sc.collision_time = tc_hertz;
   sc.dt = std::min(s.dt_fraction * tc_hertz, s.rayleigh_fraction * sc.rayleigh_time);
   ws.dt = sc.dt;
@@ -193,11 +190,11 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     in.friction = mu;
     in.rolling_friction = mu_r;
     in.restitution = std::clamp(e, 1e-3, 1.0);
-    in.linear_stiffness = kn;
+    in.law = law_parameters;
     return in;
   };
   const double mu_plate = fx.plate_friction ? std::max(0.0, *fx.plate_friction) : mat.friction_plate;
-  // The engine's rolling torque has the lever R_i (seed Eq 10); LIGGGHTS' cdt uses R_i R_j/(R_i + R_j),
+  // The engine's rolling torque has the lever R_i (reference study Eq 10); LIGGGHTS' cdt uses R_i R_j/(R_i + R_j),
   // which for the station's equal spheres is the same law with half the coefficient.
   const double mu_r_pp = mat.rolling_friction_particle * (s.rolling_lever_effective ? 0.5 : 1.0);
   mt.set_interaction(mp, mp, interaction(mat.friction_particle, mu_r_pp, mat.restitution_particle));
@@ -205,8 +202,8 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   mt.set_interaction(mp, mbelt, interaction(mat.friction_belt, mat.rolling_friction_wall, mat.restitution_belt));
   if (fx.belt_adhesive_stress > 0.0) {
     // The belt and the pulley share mbelt, so one pair carries the adhesion over both.
-    if (s.contact == ContactLaw::hertz_mindlin) {
-      const double es = mt.pair(mp, mbelt).e_star;
+    if (s.contact.hertz_elastic()) {
+      const double es = effective_youngs_modulus(mt.material(mp), mt.material(mbelt));
       Interaction in = interaction(mat.friction_belt, mat.rolling_friction_wall, mat.restitution_belt);
       in.cohesion_energy_density = belt_cohesion_energy_density(fx.belt_adhesive_stress, es);
       mt.set_interaction(mp, mbelt, in);
@@ -216,12 +213,12 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
           fx.belt_adhesive_stress, in.cohesion_energy_density,
           sjkr_pull_off_force(in.cohesion_energy_density, r, es), monolayer_contacts_per_area(d)));
     } else {
-      sc.notes.push_back(fmt::format("belt adhesion {:.4g} Pa not represented: with the linear spring-dashpot "
-                                     "contact the sJKR cohesion has no finite pull-off (belt_cohesion.h)",
-                                     fx.belt_adhesive_stress));
+      sc.notes.push_back(fmt::format("belt adhesion {:.4g} Pa not represented: with the {} contact the sJKR "
+                                     "cohesion has no finite pull-off (belt_cohesion.h)",
+                                     fx.belt_adhesive_stress, s.contact.title()));
     }
   }
-  // Side panels: their own friction (acrylic in the seed), the plate's restitution.
+  // Side panels: their own friction (acrylic in the reference study), the plate's restitution.
   mt.set_interaction(mp, mside, interaction(mat.friction_side, mat.rolling_friction_wall, mat.restitution_plate));
 
   const Vec3 zhat = Vec3::UnitZ();
@@ -357,7 +354,7 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     in.radius_min = in.radius_max = r;
     in.material = mp;
     if (s.particle_shape == ParticleShape::clump) {
-      // The seed's pellet (Fig. 4c), the same definition `chutelab calibrate` uses
+      // The reference study's pellet (Fig. 4c), the same definition `chutelab calibrate` uses
       // (rigs::Grain::seed_clump); the inserter scales it so that its spheres have diameter d and
       // turns each body at random. It owes the feed mass, not a count, so the mass flow is kept.
       in.clump_shape = w.add_clump_shape(ClumpShape::seed_pellet());

@@ -28,15 +28,9 @@ std::optional<Quality> parse_quality(std::string_view s) {
   return std::nullopt;
 }
 
-std::string_view name(ContactLaw c) {
-  return c == ContactLaw::hertz_mindlin ? "hertz-mindlin" : "lsd";
-}
+std::string_view name(ContactLaw c) { return c.key(); }
 
-std::optional<ContactLaw> parse_contact(std::string_view s) {
-  if (s == "hertz-mindlin") return ContactLaw::hertz_mindlin;
-  if (s == "lsd") return ContactLaw::linear_spring_dashpot;
-  return std::nullopt;
-}
+std::optional<ContactLaw> parse_contact(std::string_view s) { return NormalLaw::named(s); }
 
 std::string_view name(ParticleShape p) { return p == ParticleShape::sphere ? "sphere" : "clump"; }
 
@@ -56,12 +50,12 @@ RunSettings preset(Quality q) {
       // run of the LIGGGHTS rig; stops early once 0.5 s (five 0.1 s blocks) are steady.
       break;
     case Quality::paper:
-      // The seed's spheres (Grima & Wypych 2010 §4: 5.6 mm) at the dataset's modulus; 3.4x the
+      // The reference study's spheres (Grima & Wypych 2010 §4: 5.6 mm) at the dataset's modulus; 3.4x the
       // particles of the 9 mm rig and a shorter time step: hours, not minutes.
       s.particle_diameter = 5.6e-3;
       break;
     case Quality::quick:
-      // 13.6 mm spheres (seed Table 6's largest size: mean plate force unchanged, fluctuation
+      // 13.6 mm spheres (reference study Table 6's largest size: mean plate force unchanged, fluctuation
       // larger) at a third of the modulus: ~3.4x fewer particles and a ~2.4x longer time step. A
       // shorter feed face and free belt (the layer still reaches the pulley at belt speed, checked
       // by the tests), and a 0.3 s steady window (three 0.1 s blocks) within at most 1.0 s.
@@ -211,7 +205,7 @@ DemTable read_dem_table(const std::string& file) {
     } else if (kv == "contact") {
       const auto v = node.value<std::string>();
       const auto c = v ? parse_contact(*v) : std::nullopt;
-      if (!c) throw InputError(file, line_of(node), key, "must be \"hertz-mindlin\" or \"lsd\"");
+      if (!c) throw InputError(file, line_of(node), key, "must be one of " + NormalLaw::keys());
       t.contact = c;
     } else if (kv == "shape") {
       const auto v = node.value<std::string>();
@@ -239,7 +233,7 @@ DemTable read_dem_table(const std::string& file) {
     } else if (kv == "rolling_lever") {
       const auto v = node.value<std::string>();
       if (!v || (*v != "particle" && *v != "effective"))
-        throw InputError(file, line_of(node), key, "must be \"particle\" (seed Eq 10) or \"effective\" (LIGGGHTS cdt)");
+        throw InputError(file, line_of(node), key, "must be \"particle\" (reference study Eq 10) or \"effective\" (LIGGGHTS cdt)");
       t.rolling_lever_effective = *v == "effective";
     } else if (kv == "feed") {
       read_feed_table(node, file, key, t.feed);

@@ -1,6 +1,6 @@
 #pragma once
 // Every number that shapes a DEM run of the transfer station besides the Station (rig + condition)
-// itself, in one place: the quality presets, the scaling options of the seed's Table 6 and the
+// itself, in one place: the quality presets, the scaling options of the reference study's Table 6 and the
 // numerics. Precedence: preset(quality) < the dataset's optional [dem] table < command-line flags.
 #include <atomic>
 #include <cstdint>
@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "dem/contact/normal_laws.h"
 #include "dem/wear/archard.h"
 #include "dem/wear/finnie.h"
 
@@ -42,12 +43,13 @@ enum class Quality { quick, standard, paper };
 std::string_view name(Quality q);
 std::optional<Quality> parse_quality(std::string_view s);
 
-enum class ContactLaw { hertz_mindlin, linear_spring_dashpot };
+// The contact law of a run: one of the registered normal laws ([dem] contact, --contact), by its key.
+using ContactLaw = NormalLaw;
 std::string_view name(ContactLaw c);
 std::optional<ContactLaw> parse_contact(std::string_view s);
 
-// Particle representation (seed Fig. 4): single spheres (4b) or the two-overlapping-sphere clump of
-// the seed's shaped pellet (4c).
+// Particle representation (reference study Fig. 4): single spheres (4b) or the two-overlapping-sphere clump of
+// the reference study's shaped pellet (4c).
 enum class ParticleShape { sphere, clump };
 std::string_view name(ParticleShape p);
 std::optional<ParticleShape> parse_shape(std::string_view s);
@@ -55,21 +57,21 @@ std::optional<ParticleShape> parse_shape(std::string_view s);
 struct RunSettings {
   Quality quality = Quality::quick;
 
-  // --- scaling (seed Table 6) ---
+  // --- scaling (reference study Table 6) ---
   // Particle diameter, m; 0 = the dataset's material (particle_diameter_mm). Scaling the diameter
-  // up keeps the mass flow (fewer, heavier particles); the seed found the mean plate force similar
+  // up keeps the mass flow (fewer, heavier particles); the reference study found the mean plate force similar
   // at 9 and 13.6 mm, with larger fluctuations.
   double particle_diameter = 0.0;
   // Multiplies Young's modulus (and so the shear modulus G = E / 2(1 + nu)) of particles and walls.
-  // The seed varied G by x10 and /10 with small changes in the mean plate force; a softer material
+  // The reference study varied G by x10 and /10 with small changes in the mean plate force; a softer material
   // allows a longer time step (dt ~ E^-2/5).
   double shear_modulus_scale = 1.0;
-  // dt = dt_fraction * Hertz collision time (seed Eq 11) at the characteristic impact speed; the
-  // seed used 1/10 and tested 1/20. Also capped at rayleigh_fraction of the Rayleigh time.
+  // dt = dt_fraction * Hertz collision time (reference study Eq 11) at the characteristic impact speed; the
+  // reference study used 1/10 and tested 1/20. Also capped at rayleigh_fraction of the Rayleigh time.
   double dt_fraction = 0.1;
   double rayleigh_fraction = 0.2;
-  ContactLaw contact = ContactLaw::hertz_mindlin;
-  // clump: the feed inserts the seed's pellet (dem::ClumpShape::seed_pellet, the shape `chutelab
+  ContactLaw contact;  // Hertz-Mindlin
+  // clump: the feed inserts the reference study's pellet (dem::ClumpShape::seed_pellet, the shape `chutelab
   // calibrate` uses) with spheres of diameter `particle_diameter`, in random orientations, at the
   // condition's mass flow (fewer bodies than spheres of that size: each weighs ~1.1 spheres).
   ParticleShape particle_shape = ParticleShape::sphere;
@@ -108,7 +110,7 @@ struct RunSettings {
   double face_end_time = 0.0;        // s
   double face_width = std::numeric_limits<double>::quiet_NaN();  // m across the belt (default: loaded width)
   double belt_start_x = std::numeric_limits<double>::quiet_NaN(); // m, x of the belt's upstream end
-  // Lever arm of the particle-particle rolling torque: false = the particle's radius R_i (seed
+  // Lever arm of the particle-particle rolling torque: false = the particle's radius R_i (reference study
   // Eq 10); true = the effective radius R_i R_j / (R_i + R_j), as LIGGGHTS' `rolling_friction cdt`
   // defines it (half of R_i for the station's equal spheres). Against walls both use R_i.
   bool rolling_lever_effective = false;
@@ -152,7 +154,7 @@ struct RunSettings {
 
 // The presets. quick: for tests and first looks (13.6 mm spheres, soft, short belt, short time);
 // standard: the dataset's own particles and modulus with the LIGGGHTS rig's feed; paper: the
-// seed's 5.6 mm spheres. Documented value by value in settings.cpp.
+// reference study's 5.6 mm spheres. Documented value by value in settings.cpp.
 RunSettings preset(Quality q);
 
 // The thread count a run uses: `threads` if > 0, else the automatic choice above.

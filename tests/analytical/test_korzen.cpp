@@ -68,7 +68,7 @@ BOOST_AUTO_TEST_CASE(bundled_rig_reproduces_the_seed_findings) {
                  tt::tolerance(1e-9));
       BOOST_TEST((a.korzen.shear_equation ==
                  (st.belt_speed < 3.5 ? ShearEquation::eq6 : ShearEquation::eq7)));
-      // V_p from the trajectory equals the energy form of seed Eqs 1-2: V_p^2 = V_d^2 + 2 g s.
+      // V_p from the trajectory equals the energy form of reference study Eqs 1-2: V_p^2 = V_d^2 + 2 g s.
       const auto& k = a.line(Streamline::korzen_centroid);
       const double s = k.release.position.y() - k.hit->point.position.y();
       BOOST_TEST(k.hit->speed * k.hit->speed == st.belt_speed * st.belt_speed + 2 * st.gravity * s,

@@ -1,4 +1,4 @@
-// Issue 13: hostile-but-realistic input, one test per defect class. Every bad input must give exit 2
+// Hostile-but-realistic input, one test per defect class. Every bad input must give exit 2
 // (or 1 for a failed acceptance) with one line on stderr naming the file, line and field; no abort
 // (134) and no internal error (3); the output folder and every input file byte-identical afterwards;
 // no staging (.partial) entry left anywhere near --out.

@@ -1,4 +1,4 @@
-// Issue 30 (reliability, round three): one test per defect class, each through the real binary as a
+// Reliability: one test per defect class, each through the real binary as a
 // user runs it. Every refusal is checked for its exit code and its one-line message; every run for
 // its inputs byte-identical afterwards and for nothing written outside --out (a snapshot of the whole
 // sandbox, --out left out, before and after); no staging folder left behind.

@@ -31,7 +31,7 @@ inline HertzImpact hertz_impact(double e_star, double r_eff, double m_eff, doubl
   HertzImpact h;
   h.delta_max = std::pow(15.0 * m_eff * v * v / (16.0 * e_star * std::sqrt(r_eff)), 0.4);
   h.force_max = 4.0 / 3.0 * e_star * std::sqrt(r_eff) * std::pow(h.delta_max, 1.5);
-  h.duration = 2.868 * std::pow(m_eff * m_eff / (r_eff * e_star * e_star * v), 0.2);  // seed Eq 11
+  h.duration = 2.868 * std::pow(m_eff * m_eff / (r_eff * e_star * e_star * v), 0.2);  // reference study Eq 11
   return h;
 }
 

@@ -148,7 +148,7 @@ BOOST_AUTO_TEST_CASE(pairs_set_apart_by_their_gap_never_touch) {
   BOOST_TEST(checked > 400u * 50u);
 }
 
-// Poured bed (issue 4): 2000 polydisperse frictional spheres (mu = 0.3, mu_r = 0.05, e = 0.5) poured into
+// Poured bed: 2000 polydisperse frictional spheres (mu = 0.3, mu_r = 0.05, e = 0.5) poured into
 // a box settle to a solid fraction in the random-loose-packing range, 0.55-0.62 (Onoda & Liniger 1990:
 // 0.555 for frictional spheres at vanishing gravity; poured beds of frictional spheres reach ~0.58-0.61;
 // random close packing 0.64 would mean friction is not working). Measured in the bed's interior, 2.5

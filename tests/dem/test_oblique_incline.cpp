@@ -1,5 +1,5 @@
 // Chung & Ooi (2011) oblique impact tests (sphere on a wall and on a sphere) and a sphere sliding and
-// rolling down an incline (Coulomb friction, seed Eq 10 rolling friction) against closed forms.
+// rolling down an incline (Coulomb friction, reference study Eq 10 rolling friction) against closed forms.
 #define BOOST_TEST_MODULE dem_oblique_incline
 #include <boost/test/unit_test.hpp>
 
@@ -224,7 +224,7 @@ BOOST_AUTO_TEST_CASE(sphere_slides_down_incline_with_coulomb_friction) {
   BOOST_TEST(std::abs(res.omega / w_th - 1) < 0.01);
 }
 
-// Rolling without slip (tan theta < 7/2 mu) with the constant rolling torque of seed Eq 10:
+// Rolling without slip (tan theta < 7/2 mu) with the constant rolling torque of reference study Eq 10:
 // I dw/dt = F R - mu_r F_n R and a = R dw/dt give a = 5/7 g (sin - mu_r cos). The EPSD model at its
 // plastic limit gives the same torque (mu_r R* F_n, R* = R on a wall). Tolerance 1 % (the spring
 // phases before the limit last a few collision times).

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 #include "core/input_error.h"
 #include "dem/walls/stl.h"
@@ -19,7 +20,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string tmp(const std::string& name) { return (fs::temp_directory_path() / ("chutelab_dem_" + name)).string(); }
+// Per process: sessions sharing the machine run the suite at the same time.
+std::string tmp(const std::string& name) {
+  return (fs::temp_directory_path() / ("chutelab_dem_" + std::to_string(::getpid()) + "_" + name)).string();
+}
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 

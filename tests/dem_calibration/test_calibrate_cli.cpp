@@ -28,7 +28,7 @@ BOOST_AUTO_TEST_CASE(calibrate_writes_table3_and_a_usable_material_block) {
   // closest to the dataset's bulk density (the only row), then which dataset and quality
   BOOST_TEST(csv.find(",1,grima2010,quick\n") != std::string::npos);
   BOOST_TEST(read_file(out / "calibration.html").find("<svg") != std::string::npos);
-  // The seed's Table 3 layout: one row per mu_r x rho_s, the shape's bulk density and pile height beside it.
+  // The reference study's Table 3 layout: one row per mu_r x rho_s, the shape's bulk density and pile height beside it.
   const std::string md = read_file(out / "calibration.md");
   BOOST_TEST(md.find("| rolling friction mu_r | solid density (kg/m^3) | sphere d=5.6mm: bulk density (kg/m^3) | "
                      "sphere d=5.6mm: pile height (mm) |") != std::string::npos);

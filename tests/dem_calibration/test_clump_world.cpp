@@ -237,7 +237,7 @@ BOOST_AUTO_TEST_CASE(checkpoint_restart_with_clumps_is_bit_identical) {
 // A clump hitting a wall end-on (long axis along the normal, one sphere touching) rebounds with the set
 // restitution: its spheres' contacts are damped with the body's mass, not the sphere's share of it
 // (with the share, damping would be sqrt(2) too weak for this 2-sphere clump and e ~0.77 instead of
-// 0.7). Tolerance 1 %: the Hertz-Mindlin damping of seed §3 gives e to within ~0.5 % at dt = t_c/50.
+// 0.7). Tolerance 1 %: the Hertz-Mindlin damping of reference study §3 gives e to within ~0.5 % at dt = t_c/50.
 BOOST_AUTO_TEST_CASE(clump_end_on_impact_has_the_set_restitution) {
   World w(quiet(2e-6));
   const int m = pellet_material(w, 0.3, 0.0, 0.7);

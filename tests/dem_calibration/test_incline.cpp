@@ -1,5 +1,5 @@
-// The inclined-plane rig (seed §5): the onset angle of a sphere on a tilted wall follows the constant
-// rolling torque of seed Eq 10 (tan theta = mu_r, rolling) until the sliding limit takes over
+// The inclined-plane rig (reference study §5): the onset angle of a sphere on a tilted wall follows the constant
+// rolling torque of reference study Eq 10 (tan theta = mu_r, rolling) until the sliding limit takes over
 // (tan theta = mu_s, sliding). Derivation in dem/rigs/inclined_plane.h.
 #define BOOST_TEST_MODULE dem_incline
 #include <boost/test/unit_test.hpp>

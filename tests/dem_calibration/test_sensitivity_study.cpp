@@ -1,5 +1,5 @@
 // The Table 6 study's bookkeeping on made-up outcomes: the variants, the change against the base and
-// the verdict on the seed's conclusion (both ways), and that the outputs carry the numbers.
+// the verdict on the reference study's conclusion (both ways), and that the outputs carry the numbers.
 #define BOOST_TEST_MODULE dem_sensitivity_study
 #include <boost/test/unit_test.hpp>
 
@@ -58,8 +58,8 @@ SensitivityStudy made_up(double lsd_force, double fluct_mid) {
 
 }  // namespace
 
-// Variants around a 13.6 mm base: LSD, the seed's two clumps (10.7 mm spheres, and spheres of the
-// base's 13.6 mm), dt/20, G x10, G/10, and the seed's absolute sizes other than the base, ascending.
+// Variants around a 13.6 mm base: LSD, the reference study's two clumps (10.7 mm spheres, and spheres of the
+// base's 13.6 mm), dt/20, G x10, G/10, and the reference study's absolute sizes other than the base, ascending.
 BOOST_AUTO_TEST_CASE(table6_variants_around_the_base) {
   const auto v = table6_variants(quick_base());
   BOOST_TEST(v.size() == 9u);
@@ -81,7 +81,7 @@ BOOST_AUTO_TEST_CASE(table6_variants_around_the_base) {
   BOOST_TEST(v[0].label.find("the dataset's G / 3") != std::string::npos, v[0].label);
   BOOST_TEST(v[0].label.find("at most 0.2 t_R") != std::string::npos, v[0].label);
   BOOST_TEST(find(v, "Gx10")->label.find("the dataset's G x 3.33") != std::string::npos);
-  Table6Base paper;  // at the seed's base, 5.6 mm at the dataset's modulus: its own 9 and 13.6 mm
+  Table6Base paper;  // at the reference study's base, 5.6 mm at the dataset's modulus: its own 9 and 13.6 mm
   paper.diameter = 5.6e-3;
   const auto p = table6_variants(paper);
   BOOST_TEST(p.size() == 9u);
@@ -132,7 +132,7 @@ BOOST_AUTO_TEST_CASE(verdict_follows_the_numbers) {
 }
 
 // A seed size left out (5.6 mm at quick) is never silent: the verdict is "not fully tested" with the
-// command that runs it, even when everything that ran agrees with the seed.
+// command that runs it, even when everything that ran agrees with the reference study.
 BOOST_AUTO_TEST_CASE(a_left_out_size_is_not_fully_tested) {
   SensitivityStudy s = made_up(104.0, 6.0);
   s.rows.erase(std::remove_if(s.rows.begin(), s.rows.end(), [](const SensitivityRow& r) { return r.variant.key == "d=5.6mm"; }),

@@ -1,4 +1,4 @@
-// The swing-arm slump tester (seed §5, Fig. 5) with a few hundred spheres: the poured sample packs
+// The swing-arm slump tester (reference study §5, Fig. 5) with a few hundred spheres: the poured sample packs
 // loosely, and opening the tube leaves a conical pile whose height and flank can be measured.
 #define BOOST_TEST_MODULE dem_slump
 #include <boost/test/unit_test.hpp>
@@ -65,8 +65,8 @@ BOOST_AUTO_TEST_CASE(slump_test_gives_loose_packing_and_a_measurable_pile) {
   BOOST_TEST(r.repose_angle_deg < 40.0);
 }
 
-// The same tester filled with the seed's two-sphere clumps (Fig. 4c): the clumps are poured, pack
-// loosely (solid fraction 0.50-0.66: elongated grains pack a little denser than spheres, seed §5) and
+// The same tester filled with the reference study's two-sphere clumps (Fig. 4c): the clumps are poured, pack
+// loosely (solid fraction 0.50-0.66: elongated grains pack a little denser than spheres, reference study §5) and
 // slump into a pile with a flank.
 BOOST_AUTO_TEST_CASE(slump_test_with_clumps) {
   SlumpSettings s = small();

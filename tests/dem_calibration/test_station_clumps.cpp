@@ -1,4 +1,4 @@
-// The transfer-station DEM fed with the seed's two-sphere pellets (Fig. 4c) instead of spheres, on the
+// The transfer-station DEM fed with the reference study's two-sphere pellets (Fig. 4c) instead of spheres, on the
 // tiny station of the dem-station tests: mass is conserved with bodies that leave whole, the plate
 // feels the momentum the stream brings, and the shape is part of the settings' cache key. One DEM run
 // (~0.75 s simulated, a few seconds of CPU) is shared by the checks.

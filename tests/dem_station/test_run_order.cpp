@@ -50,10 +50,10 @@ BOOST_AUTO_TEST_CASE(a_run_does_not_depend_on_the_runs_before_it) {
   // One thread: the thread-count independence has its own test (dem_station_physics).
   for (int threads : {1}) {
     BOOST_TEST_CONTEXT("threads " << threads) {
-      const auto fresh = run(9e-3, ParticleShape::sphere, ContactLaw::hertz_mindlin, threads);
-      (void)run(13.6e-3, ParticleShape::sphere, ContactLaw::hertz_mindlin, threads);
-      (void)run(9e-3, ParticleShape::clump, ContactLaw::linear_spring_dashpot, threads);
-      const auto after = run(9e-3, ParticleShape::sphere, ContactLaw::hertz_mindlin, threads);
+      const auto fresh = run(9e-3, ParticleShape::sphere, dem::NormalLaw::of<dem::HertzMindlin>(), threads);
+      (void)run(13.6e-3, ParticleShape::sphere, dem::NormalLaw::of<dem::HertzMindlin>(), threads);
+      (void)run(9e-3, ParticleShape::clump, dem::NormalLaw::of<dem::LinearSpringDashpot>(), threads);
+      const auto after = run(9e-3, ParticleShape::sphere, dem::NormalLaw::of<dem::HertzMindlin>(), threads);
       same_bits(fresh, after);
     }
   }

@@ -6,6 +6,8 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <sstream>
+#include <string>
 
 #include "../cli/cli_runner.h"
 
@@ -98,4 +100,28 @@ BOOST_AUTO_TEST_CASE(validate_with_dem_is_cached) {
   BOOST_TEST(p.find(",dem,") != std::string::npos);
   BOOST_TEST(fs::exists(a / "dem" / "T3" / "timeseries.csv"));
   BOOST_TEST(fs::exists(b / "dem" / "T3" / "side_view.vtk"));
+  // Progress in a log (stderr is a pipe here): one plain line per run that ran, each "[k/N] ...
+  // done in", no carriage return; from the cache one line saying so; with --quiet nothing.
+  BOOST_TEST(first.err.find('\r') == std::string::npos);
+  const auto total_at = first.err.find("validate: ");
+  BOOST_REQUIRE(total_at != std::string::npos);
+  const int runs = std::stoi(first.err.substr(total_at + 10));
+  BOOST_TEST(runs >= 1);
+  int done = 0;
+  std::istringstream lines(first.err);
+  for (std::string l; std::getline(lines, l);)
+    if (l.starts_with("validate: [")) {
+      ++done;
+      BOOST_TEST(l.find("/" + std::to_string(runs) + "] dem T3") != std::string::npos, l);
+      BOOST_TEST(l.find(" done in ") != std::string::npos, l);
+    }
+  BOOST_TEST(done == runs, first.err);
+  BOOST_TEST(second.err.find("all from the cache") != std::string::npos, second.err);
+  BOOST_TEST(count_lines(second.err) <= 2, second.err);
+  const auto quiet = run_chutelab("validate --dataset " + ds + " --models korzen,booth-cema,dem --quiet --out " +
+                                  fresh_dir("val-q").string());
+  BOOST_TEST(quiet.exit_code == 0);
+  BOOST_TEST(quiet.err.empty(), quiet.err);
+  // The same results on stdout: --quiet silences progress only.
+  BOOST_TEST(quiet.out.substr(0, quiet.out.find("report: ")) == second.out.substr(0, second.out.find("report: ")));
 }

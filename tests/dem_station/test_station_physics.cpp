@@ -94,7 +94,7 @@ BOOST_AUTO_TEST_CASE(free_stream_follows_booth) {
   BOOST_TEST(worst_lower < d);
 }
 
-// The seed's discharge assumes the layer leaves the pulley at belt speed (no slip). The feeder's
+// The reference study's discharge assumes the layer leaves the pulley at belt speed (no slip). The feeder's
 // relaxation stops 0.1 + 0.04 V_b m before the pulley, so belt friction alone carries the layer over
 // the last stretch, where it is measured (20-100 mm before the tangent point). Tolerance 1 %: a
 // slipping layer would lag by more; settled particles ride at the belt's speed.

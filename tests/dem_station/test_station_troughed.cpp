@@ -50,7 +50,7 @@ BOOST_AUTO_TEST_CASE(troughed_belt_conserves_mass) {
              "mass flux " << r.mass_flux.value << " kg/s");
 }
 
-// The seed's no-slip discharge: settled particles ride at the belt's speed through the transition.
+// The reference study's no-slip discharge: settled particles ride at the belt's speed through the transition.
 // Tolerance 1 %, as on the flat belt.
 BOOST_AUTO_TEST_CASE(troughed_layer_reaches_the_pulley_at_belt_speed) {
   const auto& r = troughed_run();

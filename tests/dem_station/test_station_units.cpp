@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "core/input_error.h"
+#include "dem/contact/mixing.h"
 #include "dem/insertion.h"
 #include "dem/station/belt_cohesion.h"
 #include "dem/station/cache.h"
@@ -353,7 +354,7 @@ BOOST_AUTO_TEST_CASE(belt_cohesion_holds_the_adhesive_stress) {
     in.friction = 0.7;
     in.restitution = 0.4;
     w.materials().set_interaction(mp, mb, in);
-    const double es = w.materials().pair(mp, mb).e_star;
+    const double es = dem::effective_youngs_modulus(w.materials().material(mp), w.materials().material(mb));
     in.cohesion_energy_density = cohesion ? belt_cohesion_energy_density(sigma, es) : 0.0;
     w.materials().set_interaction(mp, mb, in);
     // Belt face at y = 0 facing down; the sphere under it at the overlap where elastic push and

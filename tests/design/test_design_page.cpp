@@ -151,7 +151,7 @@ PageView check_design(const std::string& name, const std::string& hash, const st
   BOOST_TEST(v.shown.at("verdict") == (stationary ? "yes" : "no"));
   // The drawing and the chart are chutelab's own SVGs, and the chart marks the current design.
   BOOST_TEST(v.dom.find("class=\"design-picture\"") != std::string::npos);
-  // The analytical impact zone is drawn on the plate face (issue: plate pressure and wear maps).
+  // The analytical impact zone is drawn on the plate face, where the DEM draws its pressure map.
   BOOST_TEST(v.dom.find("class=\"impact-zone\"") != std::string::npos);
   BOOST_TEST(v.dom.find("class=\"plot sweep-chart\"") != std::string::npos);
   BOOST_TEST(v.dom.find("class=\"current-design\"") != std::string::npos);
@@ -204,7 +204,7 @@ BOOST_AUTO_TEST_CASE(bad_input_shows_chutelabs_message_not_numbers) {
   BOOST_TEST(v.error.find("--belt-speed: belt speed must be positive, got -1") != std::string::npos, v.error);
 }
 
-// Issue 30: the export goes through chutelab's one CSV writer (a name with a comma is quoted, one a
+// The export goes through chutelab's one CSV writer (a name with a comma is quoted, one a
 // spreadsheet would run as a formula gets its apostrophe) and reads back; a malformed %-escape in
 // the address is said and skipped, the page stays whole and computes the rest.
 BOOST_AUTO_TEST_CASE(export_uses_the_csv_writer_and_a_bad_address_is_said_not_blank) {

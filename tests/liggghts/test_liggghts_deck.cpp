@@ -6,10 +6,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
+
+#include <fmt/format.h>
 
 #include "core/input_error.h"
 #include "dem/liggghts/output.h"
 #include "dem/liggghts/run.h"
+#include "dem/station/scene.h"
 #include "../dem_station/tiny_station.h"
 
 using namespace chutelab;
@@ -26,7 +30,9 @@ liggghts::Deck tiny_deck(dem::station::RunSettings s = test::tiny_settings()) {
 bool has(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
 
 std::string temp_file(const std::string& name, const std::string& text) {
-  const auto p = std::filesystem::temp_directory_path() / ("chutelab-liggghts-" + name);
+  // Per process: sessions sharing the machine run the suite at the same time.
+  const auto p =
+      std::filesystem::temp_directory_path() / ("chutelab-liggghts-" + std::to_string(::getpid()) + "-" + name);
   std::ofstream(p) << text;
   return p.string();
 }
@@ -86,8 +92,28 @@ BOOST_AUTO_TEST_CASE(deck_refuses_what_liggghts_cannot_run) {
   s.particle_shape = dem::station::ParticleShape::clump;
   BOOST_CHECK_THROW(tiny_deck(s), InputError);
   s = test::tiny_settings();
-  s.contact = dem::station::ContactLaw::linear_spring_dashpot;
+  s.contact = dem::NormalLaw::of<dem::LinearSpringDashpot>();
   BOOST_CHECK_THROW(tiny_deck(s), InputError);
+}
+
+// A law's LIGGGHTS model and its own per-pair numbers come from the law's file (its liggghts and
+// liggghts_pair_properties): Hooke's deck runs hooke/stiffness, between particles and against the
+// walls, with the kn, kt, gamman and gammat the built-in engine uses (the particle pair's kn: the
+// stiffness its matched_parameters give the scene).
+BOOST_AUTO_TEST_CASE(deck_takes_the_laws_own_model_and_numbers) {
+  auto s = test::tiny_settings();
+  BOOST_TEST(!has(tiny_deck(s).input, "property/global kn "));
+  s.contact = dem::NormalLaw::of<dem::Hooke>();
+  const std::string deck = tiny_deck(s).input;
+  BOOST_TEST(has(deck, "pair_style gran model hooke/stiffness tangential history"));
+  BOOST_TEST(has(deck, "wall/gran model hooke/stiffness tangential history"));
+  for (const char* p : {"kn", "kt", "gamman", "gammat"})
+    BOOST_TEST(has(deck, fmt::format("all property/global {} peratomtypepair", p)), p);
+  const auto sc = dem::station::build_scene(test::tiny_station(), s, {}, {});
+  const auto& in = sc.world->materials().interaction(0, 0);
+  const double kn = in.law.get("normal_stiffness").value_or(0.0);
+  BOOST_TEST(kn > 0.0);
+  BOOST_TEST(has(deck, fmt::format("property/global kn peratomtypepair {} {:.10g}", sc.world->materials().size(), kn)));
 }
 
 // The deck is a function of its inputs (the cache key contains it): equal inputs, equal text; a
@@ -161,7 +187,8 @@ BOOST_AUTO_TEST_CASE(missing_liggghts_is_a_clear_error) {
   liggghts::Options o;
   o.settings = test::tiny_settings();
   o.command = "/nonexistent/liggghts";
-  o.work_dir = (std::filesystem::temp_directory_path() / "chutelab-liggghts-missing").string();
+  o.work_dir =
+      (std::filesystem::temp_directory_path() / ("chutelab-liggghts-missing-" + std::to_string(::getpid()))).string();
   try {
     liggghts::run_station(test::tiny_station(), o);
     BOOST_FAIL("no error");

@@ -334,17 +334,46 @@ def test_arguments_are_checked_by_the_command_lines_rules(tmp_path):
     assert "use dataset=" in str(e.value) and "--dataset" not in str(e.value)
 
 
+def _tree(root):
+    """Every file under root, relative path -> bytes (folders as None)."""
+    out = {}
+    for d, dirs, files in os.walk(root):
+        for n in dirs:
+            out[os.path.relpath(os.path.join(d, n), root)] = None
+        for n in files:
+            out[os.path.relpath(os.path.join(d, n), root)] = open(os.path.join(d, n), "rb").read()
+    return out
+
+
 def test_a_deep_or_huge_toml_file_is_refused_not_a_crash(tmp_path):
+    # Every TOML reader the package reaches (setup.toml, whose [dem] table validate reads again, and a
+    # tolerances file): refused as InputError naming file and line; nothing changed or written.
     ds = tmp_path / "rig"
     shutil.copytree(RIG, ds)
     setup = (ds / "setup.toml").read_text()
-    for deep in ("a" + ".a" * 49999 + " = 1\n", "x = " + "[" * 100000 + "]" * 100000 + "\n"):
+    deep_cases = ("a" + ".a" * 49999 + " = 1\n", "x = " + "[" * 100000 + "]" * 100000 + "\n",
+                  "[" + "a." * 40000 + "b]\n", "x = " + "{a=" * 20000 + "1" + "}" * 20000 + "\n")
+    for deep in deep_cases:
         (ds / "setup.toml").write_text(deep + setup)
-        with pytest.raises(chutelab.InputError) as e:
-            chutelab.read_dataset(ds)
-        assert e.value.file == str(ds / "setup.toml") and e.value.line == 1 and "levels deep" in str(e.value)
-    tol = tmp_path / "tol.toml"
-    tol.write_text("[" + "a." * 40000 + "b]\n")
+        before = _tree(tmp_path)
+        for call in (lambda: chutelab.read_dataset(ds), lambda: chutelab.validate(ds, models=["korzen"]),
+                     lambda: chutelab.synthesize(ds, out=tmp_path / "out")):
+            with pytest.raises(chutelab.InputError) as e:
+                call()
+            assert e.value.file == str(ds / "setup.toml") and e.value.line == 1 and "levels deep" in str(e.value)
+            assert _tree(tmp_path) == before
+    (ds / "setup.toml").write_text(setup + "# padding padding padding padding padding padding\n" * 25000)
+    before = _tree(tmp_path)
     with pytest.raises(chutelab.InputError) as e:
-        chutelab.validate(RIG, tolerances=tol)
-    assert e.value.file == str(tol) and "levels deep" in str(e.value)
+        chutelab.read_dataset(ds)
+    assert e.value.file == str(ds / "setup.toml") and "is larger than 1 MiB" in str(e.value)
+    assert _tree(tmp_path) == before
+    (ds / "setup.toml").write_text(setup)
+    tol = tmp_path / "tol.toml"
+    for deep in deep_cases:
+        tol.write_text(deep)
+        before = _tree(tmp_path)
+        with pytest.raises(chutelab.InputError) as e:
+            chutelab.validate(ds, models=["korzen"], tolerances=tol)
+        assert e.value.file == str(tol) and e.value.line == 1 and "levels deep" in str(e.value)
+        assert _tree(tmp_path) == before

@@ -3,10 +3,13 @@
 // a dash where a model predicts nothing, user text escaped, the same bytes for the same inputs,
 // and nothing that reaches outside the file.
 #include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <regex>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include "reports/plain_summary.h"
 #include "reports/report.h"
 #include "reports/sensitivity_study.h"
 #include "reports/svg.h"
@@ -356,7 +359,7 @@ BOOST_FIXTURE_TEST_CASE(no_pairs_without_effects, Fixture) {
 }
 
 // A point cloud (a DEM's particles) is dots coloured on one scale shared by every panel, never a
-// polyline through 3000 particles; the seed's findings appear when given.
+// polyline through 3000 particles; the reference study's findings appear when given.
 BOOST_FIXTURE_TEST_CASE(point_clouds_are_dots_with_a_colour_bar, Fixture) {
   validation::Curve cloud{"particles", {}, validation::Curve::Kind::points, {}, "speed (m/s)"};
   for (int i = 0; i < 50; ++i) {
@@ -454,6 +457,109 @@ BOOST_AUTO_TEST_CASE(vv20_section_shows_parts_and_says_what_was_not_estimated) {
   BOOST_TEST(row.find("| -0.83 | 0.15 | 0.30 | 1.20 | 0.40 | 1.31 | 0.63 |") != std::string::npos, row);
   const std::string html = reports::report_html(in);
   BOOST_TEST(html.find("id=\"vv20-table\"") != std::string::npos);
+}
+
+}  // namespace chutelab::test
+
+namespace chutelab::test {
+
+// The plain words judge each model on its own values too: a model that agrees is named as agreeing,
+// and one that misses is never hidden behind "the models agree" because another model was judged
+// first (the DEM after the analytical models, in chutelab's model order).
+namespace {
+
+// Every measured value predicted by each model at measured x (1 + offset[model]).
+ValidationResult offset_result(const Dataset& d, const std::vector<std::pair<std::string, double>>& models) {
+  ValidationResult r;
+  r.dataset_name = "hand-made";
+  for (const auto& [m, f] : models) r.models.push_back(m);
+  for (const auto& s : d.stations)
+    for (const auto& [m, f] : models) r.predictions.push_back({s.condition, m, {}});
+  for (const auto& meas : d.measurements)
+    for (const auto& [m, f] : models) {
+      Comparison c;
+      c.condition = meas.condition;
+      c.model = m;
+      c.quantity = std::string(name(meas.quantity));
+      c.q = meas.quantity;
+      c.scale = info(meas.quantity).to_boundary;
+      c.measured = meas.value;
+      c.uncertainty = meas.uncertainty;
+      c.predicted = meas.value * (1.0 + f);
+      r.comparisons.push_back(c);
+    }
+  return r;
+}
+
+std::string joined(const std::vector<std::string>& s) {
+  std::string o;
+  for (const auto& x : s) o += x + "\n";
+  return o;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(plain_words_name_the_model_that_agrees_and_the_one_that_misses) {
+  const Dataset d = small_dataset();
+  // 1e-4 of the value is within every stated uncertainty here (the smallest, u/value, is 2.4e-3);
+  // 20 % is far outside all of them.
+  for (const auto& models : {std::vector<std::pair<std::string, double>>{{"m1", 1e-4}, {"m2", 0.2}},
+                             std::vector<std::pair<std::string, double>>{{"m2", 0.2}, {"m1", 1e-4}}}) {
+    const ValidationResult r = offset_result(d, models);
+    reports::ReportInput in;
+    in.dataset = &d;
+    in.baseline = &r;
+    const auto words = reports::in_short(in);
+    BOOST_TEST_CONTEXT(joined(words)) {
+      BOOST_TEST_REQUIRE(words.size() >= 2u);
+      BOOST_TEST(words[0].starts_with("m1 agrees with the measurements within the stated uncertainties (RMS E/u_val 0.0"));
+      BOOST_TEST(words[1].starts_with("As it is, m2 puts the "));
+      BOOST_TEST(words[1].find("20.0 % high on average") != std::string::npos);
+      BOOST_TEST(joined(words).find("the models agree") == std::string::npos);
+    }
+  }
+  // Both agree: one sentence for both.
+  const ValidationResult r = offset_result(d, {{"m1", 1e-4}, {"m2", -1e-4}});
+  reports::ReportInput in;
+  in.dataset = &d;
+  in.baseline = &r;
+  const auto words = reports::in_short(in);
+  BOOST_TEST_REQUIRE(words.size() == 1u);
+  BOOST_TEST(words[0].starts_with("As they are, the models agree with the measurements"), words[0]);
+}
+
+// Highlighted are exactly the predicted cells more than 2 u_val from their measurement: every cell of
+// Tables 4 and 5 whose tip gives E/u_val is marked "beyond" if and only if |E/u_val| > 2.
+BOOST_AUTO_TEST_CASE(exactly_the_values_beyond_two_u_val_are_highlighted) {
+  const Dataset d = small_dataset();
+  // m3's 0.7 % puts its values between 1.4 and 4.1 u_val: a threshold of 1 or 3 would be caught.
+  const ValidationResult r = offset_result(d, {{"m1", 1e-4}, {"m2", 0.2}, {"m3", 0.007}});
+  reports::ReportInput in;
+  in.dataset = &d;
+  in.baseline = &r;
+  const std::string html = reports::report_html(in);
+  int beyond = 0, within = 0, just_within = 0, just_beyond = 0;
+  for (const char* id : {"table4-base", "table5-base"}) {
+    const auto at = html.find(std::string("id=\"") + id + "\"");
+    BOOST_REQUIRE_MESSAGE(at != std::string::npos, id);
+    const std::string table = html.substr(at, html.find("</table>", at) - at);
+    static const std::regex cell(R"re(<td class="([^"]*)" title="[^"]*E/u_val ([-+0-9.]+)[^"]*">)re");
+    for (std::sregex_iterator it(table.begin(), table.end(), cell), end; it != end; ++it) {
+      const bool marked = (*it)[1].str().find("beyond") != std::string::npos;
+      const double z = std::stod((*it)[2].str());
+      BOOST_TEST(marked == (std::abs(z) > 2.0), id << ": " << it->str());
+      ++(marked ? beyond : within);
+      if (std::abs(z) > 1.0 && std::abs(z) <= 2.0) ++just_within;
+      if (std::abs(z) > 2.0 && std::abs(z) < 5.0) ++just_beyond;
+    }
+  }
+  BOOST_TEST(beyond > 0);
+  BOOST_TEST(within > 0);
+  BOOST_TEST(just_within >= 1);
+  BOOST_TEST(just_beyond >= 1);
+  // The Markdown marks the same values.
+  BOOST_TEST(reports::report_markdown(in).find("= the value is more than 2 u_val from the measurement") !=
+             std::string::npos);
 }
 
 }  // namespace chutelab::test

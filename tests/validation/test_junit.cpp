@@ -135,6 +135,9 @@ BOOST_AUTO_TEST_CASE(nothing_checked_is_an_error_not_a_pass) {
   // without it; the file and stderr say that nothing was checked.
   BOOST_TEST(none.exit_code == 0);
   BOOST_TEST(none.err.find("nothing was checked") != std::string::npos, none.err);
+  // and validate's own line about the file counts the error, not "0 failed" alone.
+  BOOST_TEST(none.out.find("(1 test case, 0 failed, 0 skipped, 1 error: nothing was checked)") != std::string::npos,
+             none.out);
   const auto plain = run_chutelab("validate --dataset '" + kReference + "' --out '" + (dir / "a0").string() + "'");
   BOOST_TEST(plain.exit_code == none.exit_code);
   const std::string a = read_file(dir / "a.xml");

@@ -1,4 +1,4 @@
-// The seed's findings are decided from numbers: a hand-built result that has each pattern gives
+// The reference study's findings are decided from numbers: a hand-built result that has each pattern gives
 // "reproduced", and breaking one pattern flips exactly the claim that depends on it.
 #include <boost/test/unit_test.hpp>
 #include <map>

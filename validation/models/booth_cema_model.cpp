@@ -1,4 +1,4 @@
-// Booth trajectories with the CEMA load-shape centroid (the seed's "Booth/CEMA hybrid"): stream
+// Booth trajectories with the CEMA load-shape centroid (the reference study's "Booth/CEMA hybrid"): stream
 // limits, the centroid's impact point and its speed at the plate.
 #include "analytical/transfer_station.h"
 #include "validation/models/models.h"

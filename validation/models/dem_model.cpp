@@ -413,7 +413,7 @@ ModelPrediction dem_station_prediction(const st::StationResult& r, const DemEffe
       }
       if (!c.points.empty()) p.curves.push_back(std::move(c));
     }
-    // Side view of the steady stream (seed Fig. 9): particle centres coloured by speed.
+    // Side view of the steady stream (reference study Fig. 9): particle centres coloured by speed.
     Curve pts{"particles", {}, Curve::Kind::points, {}, "speed (m/s)"};
     for (const auto& s : r.side_view) {
       pts.points.emplace_back(s.x, s.y);

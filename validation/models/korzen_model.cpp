@@ -1,4 +1,4 @@
-// The Korzen impact-plate model (seed Eqs 1-7) as a harness model: plate forces, V_p, V_a and the
+// The Korzen impact-plate model (reference study Eqs 1-7) as a harness model: plate forces, V_p, V_a and the
 // impact point on Korzen's own centroid assumption (0.5 h_b).
 #include <cmath>
 #include <fmt/format.h>
@@ -14,7 +14,7 @@ class KorzenModel final : public Model {
  public:
   std::string name() const override { return "korzen"; }
   std::string description() const override {
-    return "Korzen impact-plate model (seed Eqs 1-7) on the 0.5 h_b streamline";
+    return "Korzen impact-plate model (reference study Eqs 1-7) on the 0.5 h_b streamline";
   }
   ModelPrediction predict(const Station& st, const analytical::EffectList& effects,
                           const PredictRequest& request) const override {
