@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "effects/registry.h"
+
 namespace chutelab::reports {
 namespace {
 
@@ -49,6 +51,21 @@ std::vector<QuantityMisfit> beyond_for(const validation::ValidationResult& r, co
 std::string short_effects(const std::vector<EffectDescription>& effects) {
   std::vector<std::string> s;
   for (const auto& e : effects) s.push_back(spaced(e.name));
+  return join_words(s);
+}
+
+// Every effect added is a corrected record (effects/registry.h, Kind::record), not physics.
+bool all_records(const std::vector<EffectDescription>& effects) {
+  return !effects.empty() && std::all_of(effects.begin(), effects.end(), [](const EffectDescription& e) {
+    const auto* info = effects::find(e.name);
+    return info && info->kind == effects::EffectInfo::Kind::record;
+  });
+}
+
+std::string record_checks(const std::vector<EffectDescription>& effects) {
+  std::vector<std::string> s;
+  for (const auto& e : effects)
+    if (const auto* info = effects::find(e.name); info && !info->check.empty()) s.push_back(info->check);
   return join_words(s);
 }
 
@@ -183,7 +200,8 @@ std::vector<std::string> in_short(const ReportInput& in) {
         parts.push_back(fmt::format("the {} {}", left[k].label, validation::amount_words(left[k], left[k].mean_error)));
       result = "still leaves " + join_words(parts);
     }
-    out.push_back(fmt::format("Adding {} {} (RMS E/u_val {} -> {}).", join_words(added), result,
+    out.push_back(fmt::format("{} {} {} (RMS E/u_val {} -> {}).",
+                              all_records(in.effects) ? "Correcting the recorded" : "Adding", join_words(added), result,
                               rms_text(*in.baseline), rms_text(*in.with_effects)));
   } else if (best && !bad.empty()) {
     std::vector<std::string> named;
@@ -212,7 +230,13 @@ std::vector<std::string> in_short(const ReportInput& in) {
                               spaced(best->label())));
   } else if (in.with_effects && !in.effects.empty() && !bad.empty()) {
     const auto& w = bad.front();
-    if (left.empty())
+    if (left.empty() && all_records(in.effects))
+      out.push_back(fmt::format("Check the rig's record before changing any model: measure the {} ({}) and correct "
+                                "the dataset; until then, predict with the corrected value (chutelab estimate{}): "
+                                "with the record as it is, the models put the {} up to {}.",
+                                short_effects(in.effects), record_checks(in.effects), estimate_flags(in.effects),
+                                w.label, validation::amount_words(w, w.worst_error)));
+    else if (left.empty())
       out.push_back(fmt::format("For this rig and material, predict with {} included (chutelab estimate{}): without "
                                 "it the models put the {} up to {}.",
                                 short_effects(in.effects), estimate_flags(in.effects), w.label,

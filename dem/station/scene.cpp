@@ -129,9 +129,16 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
   if (std::isfinite(s.belt_start_x)) {
     // Belt coordinate of the given x on the carrying run (s grows along the belt, 0 at the tangent point).
     const double s_x = (s.belt_start_x - R * -std::sin(st.belt.incline)) / std::cos(st.belt.incline);
-    if (s_x > sc.feed_s_begin)
-      throw InputError("", 0, "dem.feed.belt_start_mm", "the belt must start upstream of the insertion face");
-    sc.belt_start = s_x;
+    // A feed placed by the belt speed (face_end_time_s) reaches further upstream when the belt runs
+    // faster than the setup was laid out for (a candidate's probe of the belt speed or the pulley):
+    // the belt then starts just upstream of the feed, as it does without a given start.
+    if (s_x > sc.feed_s_begin) {
+      sc.notes.push_back(fmt::format("the belt starts at {:.0f} mm along the belt, upstream of the insertion face, not at "
+                                     "dem.feed.belt_start_mm = {:.0f} mm (inside the feed)",
+                                     1e3 * sc.belt_start, 1e3 * s.belt_start_x));
+    } else {
+      sc.belt_start = s_x;
+    }
   }
   const double belt_len = -sc.belt_start;
   const double trough_transition = trough ? std::min(std::max(B, 0.3), 0.8 * belt_len) : 0.0;
