@@ -30,6 +30,13 @@ bool EffectFit::is_record() const {
   return !effects.empty();
 }
 
+bool EffectFit::within_plausible_error() const {
+  if (!is_record() || prior_width.size() != estimate.size()) return false;
+  for (std::size_t i = 0; i < estimate.size(); ++i)
+    if (!(prior_width[i] > 0.0) || !(std::abs(estimate[i]) < prior_width[i])) return false;
+  return true;
+}
+
 const EffectFit* DiagnosisResult::best() const {
   if (!any_significant) return nullptr;
   const EffectFit* b = !pairs.empty() ? &pairs.front() : singles.empty() ? nullptr : &singles.front();
@@ -200,7 +207,10 @@ void judge_singles(std::vector<EffectFit>& singles, const Stage& s) {
   const double k = static_cast<double>(singles.size());
   for (auto& f : singles) {
     f.p_adjusted = std::min(1.0, f.p_value * k);
-    f.significant = f.p_adjusted < s.opt.alpha;
+    // A record fitted within its plausible error is not a wrong record, however small its noise: a
+    // rig that agrees with the data once an input moves by less than its own tolerance needs no
+    // correction (another code's model-form differences find such stand-ins).
+    f.significant = f.p_adjusted < s.opt.alpha && !f.within_plausible_error();
   }
   std::stable_sort(singles.begin(), singles.end(), [](const auto& a, const auto& b) { return a.ranked_chi2() < b.ranked_chi2(); });
   for (std::size_t i = 0; i < singles.size(); ++i) singles[i].rank = static_cast<int>(i) + 1;
@@ -1023,8 +1033,15 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
     }
   out.any_significant = leader(out.singles) != nullptr;
   EffectFit* best = const_cast<EffectFit*>(out.best());
-  if (best && best->effects.size() == 1 && m.source().reruns_expensive() && opt.profile_runs > 0)
+  if (best && best->effects.size() == 1 && m.source().reruns_expensive() && opt.profile_runs > 0) {
     profile_best(*best, s, jobs);
+    // The real runs may move a record inside its plausible error: then it is not named.
+    if (best->within_plausible_error()) {
+      best->significant = false;
+      out.any_significant = false;
+      best = nullptr;
+    }
+  }
   if (best) {
     out.leftovers = leftovers_of(s, best_residuals(s, best), static_cast<double>(best->effects.size()),
                                  best->chi2_after, drivers);

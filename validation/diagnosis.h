@@ -89,6 +89,9 @@ struct EffectFit {
   std::vector<bool> prior_stated;
   double prior_penalty = 0.0;
   bool is_record() const;                 // every effect of it is a recorded input
+  // A record whose fitted error is within its plausible error at every input: the record is right
+  // to within what it claims, whatever the test says (a refinement, not a wrong record).
+  bool within_plausible_error() const;
   double ranked_chi2() const { return chi2_after + prior_penalty; }
   std::string label() const;              // "air_drag" or "air_drag + belt_slip"
 };

@@ -186,7 +186,7 @@ void describe_failures(DiagnosisResult& r) {
   }
 }
 
-void describe_findings(DiagnosisResult& r) {
+void describe_findings(DiagnosisResult& r, const DiagnoseOptions& opt) {
   r.findings.clear();
   for (const auto& o : r.outliers)
     r.findings.push_back(fmt::format(
@@ -249,6 +249,12 @@ void describe_findings(DiagnosisResult& r) {
           "against one for the rig): a drawing or set-up error common to the whole rig.",
           name, rs->p));
   }
+  if (!r.singles.empty() && r.singles.front().within_plausible_error() && r.singles.front().p_adjusted < opt.alpha)
+    r.findings.push_back(fmt::format(
+        "The data pin a recorded input closer than its record claims: {}. Within its plausible error, so the record "
+        "is right to within its tolerance and is not called wrong (the fit improves chi^2 from {:.1f} to {:.1f}; a "
+        "model-form difference smaller than the record's tolerance can look like this).",
+        record_words(r.singles.front()), r.singles.front().chi2_before, r.singles.front().chi2_after));
   if (const auto s = scale_words(r.scale); !s.empty()) r.findings.push_back(s);
   if (r.thin_data)
     r.findings.push_back(fmt::format(
@@ -447,7 +453,7 @@ void describe_caveats(DiagnosisResult& r, const DiagnoseOptions& opt) {
 
 void describe(DiagnosisResult& r, const DiagnoseOptions& opt) {
   describe_failures(r);
-  describe_findings(r);
+  describe_findings(r, opt);
   r.indistinguishable.erase(std::unique(r.indistinguishable.begin(), r.indistinguishable.end()),
                             r.indistinguishable.end());
   describe_ties(r);
