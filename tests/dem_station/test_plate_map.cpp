@@ -236,6 +236,48 @@ BOOST_AUTO_TEST_CASE(map_sums_to_the_plate_force_and_R_n) {
   BOOST_TEST(above < 0.01 * peak_p);
 }
 
+// The default map (issue 35): the contacts on the generated plate binned on 10 mm cells while the
+// World keeps the plate as two triangles. The grid only reads contacts, so the load cell's numbers
+// equal those of a run with the coarse map bit for bit; the map resolves the loaded band over
+// several rows, and its centre of pressure lies within one cell of the DEM's impact point y_R (the
+// map and the load cell sum the same contact forces; what differs is the rolling couples, ~2 mm
+// in the test above, and where in its cell a contact counts, at most one cell).
+BOOST_AUTO_TEST_CASE(default_map_is_a_10_mm_grid_that_changes_no_force) {
+  RunOptions o;
+  o.settings = test::tiny_settings();
+  BOOST_REQUIRE(o.settings.plate_cells == 0);
+  BOOST_REQUIRE(o.settings.map_cell == 0.010);
+  const Station st = test::tiny_station();
+  const StationResult fine = run_station(st, o);
+  o.settings.map_cell = 0.0;
+  const StationResult coarse = run_station(st, o);
+  BOOST_TEST(fine.normal_force.value == coarse.normal_force.value);
+  BOOST_TEST(fine.shear_force.value == coarse.shear_force.value);
+  BOOST_TEST(fine.impact_point_y.value == coarse.impact_point_y.value);
+  BOOST_REQUIRE_EQUAL(fine.forces.size(), coarse.forces.size());
+  for (std::size_t i = 0; i < fine.forces.size(); ++i) BOOST_TEST(fine.forces[i].normal == coarse.forces[i].normal);
+  BOOST_REQUIRE(!coarse.maps.empty() && !fine.maps.empty());
+  BOOST_TEST(coarse.maps.front().cells.size() == 2u);
+  const PlateMap& m = fine.maps.front();
+  const int rows = static_cast<int>(std::lround(st.plate.height / 0.010)), cols = static_cast<int>(std::lround(st.plate.width / 0.010));
+  BOOST_TEST(m.cells.size() == static_cast<std::size_t>(2 * rows * cols));
+  // Same total as the load cell (tolerance 1e-9: the same forces summed in another order).
+  BOOST_TEST(m.total_force().x() == fine.normal_force.value, tt::tolerance(1e-9));
+  // A band: rows loaded above a tenth of the peak row's pressure.
+  const auto prof = pressure_profile(m);
+  double peak = 0.0;
+  for (const auto& [y, p] : prof) peak = std::max(peak, p);
+  int loaded = 0;
+  for (const auto& [y, p] : prof) loaded += p > 0.1 * peak;
+  const double cell = st.plate.height / rows, cop = pressure_centre_y(m);
+  BOOST_TEST_MESSAGE("default map: " << rows << " x " << cols << " cells of " << cell * 1e3 << " mm; " << loaded
+                                     << " rows above 10 % of the peak row (" << peak << " Pa); centre of pressure "
+                                     << cop * 1e3 << " mm, y_R " << fine.impact_point_y.value * 1e3 << " mm");
+  BOOST_TEST(loaded >= 3);
+  BOOST_TEST(loaded < rows / 2);
+  BOOST_TEST(std::abs(cop - fine.impact_point_y.value) <= cell);
+}
+
 // Moving the plate away from the pulley lowers where the stream strikes it: in the DEM (peak of the
 // pressure profile and centre of pressure) and in the analytical zone, by amounts that agree. The
 // tolerance on the DEM's drop against the analytical one (40 % or 15 mm) allows for the layer that
