@@ -45,7 +45,7 @@ std::string heat_map(const std::vector<Panel>& panels, bool wear, std::string_vi
   const int cols = std::min<int>(4, static_cast<int>(panels.size()));
   const int rows = (static_cast<int>(panels.size()) + cols - 1) / cols;
   // Each panel has its own mm axes (y up the face on the left, z across it below).
-  const double gap = 18.0, left = 34.0, below = 26.0, pw = (width - gap * (cols + 1) - left * cols) / cols;
+  const double gap = 18.0, left = 46.0, below = 26.0, pw = (width - gap * (cols + 1) - left * cols) / cols;
   const double k = pw / (z1 - z0), ph = (y1 - y0) * k;  // equal scales: the plate face as it is
   const double head = 20.0, bar = 50.0, cell_h = ph + head + below + gap;
   const Ticks zt = inner_ticks(z0 * 1e3, z1 * 1e3, std::max(2, static_cast<int>(pw / 60.0)));
@@ -85,7 +85,8 @@ std::string heat_map(const std::vector<Panel>& panels, bool wear, std::string_vi
       svg.line(X(t * 1e-3), oy + ph, X(t * 1e-3), oy + ph + 4, "class=\"tick\" stroke=\"#333\"");
       svg.text(X(t * 1e-3), oy + ph + 14, zt.label(t), "middle", "font-size=\"10\"");
     }
-    svg.text(ox - left, oy + ph + 14, "y mm", "start", "font-size=\"10\" fill=\"#555\"");
+    svg.text(ox - left + 8, oy + 0.5 * ph, "y (mm)", "middle",
+             fmt::format("font-size=\"10\" fill=\"#555\" transform=\"rotate(-90 {} {})\"", px(ox - left + 8), px(oy + 0.5 * ph)));
     svg.text(ox + pw, oy + ph + 24, "z across (mm)", "end", "font-size=\"10\" fill=\"#555\"");
     for (std::size_t b = 0; b < paths.size(); ++b)
       if (!paths[b].empty())

@@ -80,7 +80,7 @@ void write_vtp_particles(const std::string& path, const Particles& p, const std:
   const std::string verts = arrays;
 
   std::ofstream f(path, std::ios::binary);
-  if (!f) throw InputError(path, 0, "--out", "cannot write this file");
+  if (!f) throw InputError(path, 0, "particle series", "cannot write this file");
   f << "<?xml version=\"1.0\"?>\n"
        "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
        "  <PolyData>\n"
@@ -93,7 +93,7 @@ void write_vtp_particles(const std::string& path, const Particles& p, const std:
     << verts << "      </Verts>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _";
   f.write(data.bytes().data(), static_cast<std::streamsize>(data.bytes().size()));
   f << "\n  </AppendedData>\n</VTKFile>\n";
-  if (!f) throw InputError(path, 0, "--out", "error while writing this file");
+  if (!f) throw InputError(path, 0, "particle series", "error while writing this file");
 }
 
 VtkSeries::VtkSeries(std::string dir, std::string name) : dir_(std::move(dir)), name_(std::move(name)) {
@@ -110,13 +110,13 @@ void VtkSeries::write(double t, const Particles& p, const std::vector<double>& c
   const fs::path pvd = fs::path(dir_) / (name_ + ".pvd"), tmp = fs::path(dir_) / (name_ + ".pvd.part");
   {
     std::ofstream f(tmp);
-    if (!f) throw InputError(tmp.string(), 0, "--out", "cannot write this file");
+    if (!f) throw InputError(tmp.string(), 0, "particle series", "cannot write this file");
     f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
          "  <Collection>\n";
     for (std::size_t k = 0; k < times_.size(); ++k)
       f << fmt::format("    <DataSet timestep=\"{:.9g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", times_[k], files_[k]);
     f << "  </Collection>\n</VTKFile>\n";
-    if (!f) throw InputError(tmp.string(), 0, "--out", "error while writing this file");
+    if (!f) throw InputError(tmp.string(), 0, "particle series", "error while writing this file");
   }
   fs::rename(tmp, pvd);
 }

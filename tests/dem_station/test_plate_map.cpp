@@ -325,6 +325,12 @@ BOOST_AUTO_TEST_CASE(wear_table_is_checked) {
   BOOST_TEST(s.wear.exposure_hours == 100.0);
   BOOST_TEST(canonical(s).find("finnie_force_ratio") != std::string::npos);
   BOOST_TEST(canonical(resolve(DemTable{}, {})).find("plate_cells") == std::string::npos);
+  // The map grid: the default keys nothing (cached runs keep their key), another size keys apart.
+  BOOST_TEST(canonical(resolve(DemTable{}, {})).find("map_cell") == std::string::npos);
+  write("name = \"x\"\n[dem]\nmap_cell_mm = 5\n");
+  const RunSettings fine = resolve(read_dem_table(file.string()), {});
+  BOOST_TEST(fine.map_cell == 0.005);
+  BOOST_TEST(canonical(fine).find("map_cell = 0.005") != std::string::npos);
   auto fails = [&](const std::string& text, const std::string& field, long line) {
     write(text);
     try {
@@ -338,6 +344,7 @@ BOOST_AUTO_TEST_CASE(wear_table_is_checked) {
     BOOST_TEST(false, "no error for " << text);
   };
   fails("[dem.wear]\narchard = 1\n", "dem.wear.archard", 2);
+  fails("[dem]\nmap_cell_mm = 0.5\n", "dem.map_cell_mm", 2);
   fails("[dem.wear]\nhardness_Pa = -1\n", "dem.wear.hardness_Pa", 2);
   fails("[dem.wear]\n\nfinnie_cutting_fraction = 2\n", "dem.wear.finnie_cutting_fraction", 3);
   fails("[dem]\nplate_cells = 1.5\n", "dem.plate_cells", 2);

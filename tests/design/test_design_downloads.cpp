@@ -108,6 +108,31 @@ BOOST_AUTO_TEST_CASE(page_downloads_the_svg_and_a_dxf_with_estimates_points) {
   BOOST_TEST_MESSAGE(n << " streamline points of the page's DXF equal estimate's; largest relative difference " << worst);
 }
 
+// "PDF (print)": the browser prints the page with its print stylesheet, which keeps the drawing
+// alone on one landscape A4 page, as vectors (no raster image in the file).
+BOOST_AUTO_TEST_CASE(printing_the_page_gives_a_one_page_pdf_of_the_drawing) {
+  const fs::path dir = fresh_dir("design-pdf");
+  const auto built = run_chutelab("design --out '" + (dir / "page").string() + "'");
+  BOOST_TEST_REQUIRE(built.exit_code == 0, built.err);
+  const fs::path pdf = dir / "drawing.pdf";
+  const std::string cmd = fmt::format(
+      "HOME='{}' timeout 120 '{}' --headless --no-sandbox --disable-gpu --no-first-run --disable-extensions "
+      "--user-data-dir='{}' --virtual-time-budget=60000 --no-pdf-header-footer --print-to-pdf='{}' '{}' >/dev/null 2>&1 </dev/null",
+      (dir / "home").string(), kChromium.string(), (dir / "profile").string(), pdf.string(),
+      "file://" + fs::absolute(dir / "page" / "design.html").string() + "#belt_speed=4&mass_flow=35&plate_distance=450");
+  std::system(cmd.c_str());
+  BOOST_REQUIRE(fs::exists(pdf));
+  const std::string bytes = read_file(pdf);
+  BOOST_TEST(bytes.rfind("%PDF-", 0) == 0u);
+  BOOST_TEST(bytes.find("/Count 1") != std::string::npos);  // one page
+  std::smatch m;
+  BOOST_REQUIRE(std::regex_search(bytes, m, std::regex("/MediaBox \\[0 0 ([0-9.]+) ([0-9.]+)\\]")));
+  BOOST_TEST(std::stod(m[1]) == 841.92, boost::test_tools::tolerance(0.01));  // A4 landscape, pt
+  BOOST_TEST(std::stod(m[2]) == 595.0, boost::test_tools::tolerance(0.01));
+  BOOST_TEST(bytes.find("/Subtype /Image") == std::string::npos);
+  BOOST_TEST_MESSAGE("printed drawing: " << bytes.size() << " bytes, one A4 landscape page of vectors");
+}
+
 }  // namespace chutelab::test
 
 int main(int argc, char* argv[]) {
