@@ -75,6 +75,32 @@ MapGrid MapGrid::on_face(const Vec3& top_edge, const Vec3& down, double height, 
   return g;
 }
 
+std::vector<std::array<Vec3, 3>> MapGrid::triangles() const {
+  auto at = [&](int r, int c) { return Vec3(origin + (height * r / rows) * down + (width * c / cols) * across); };
+  std::vector<std::array<Vec3, 3>> t;
+  // The triangles a mesh of these cells would have (dem/station/scene.cpp's plate_cells), so that
+  // a grid map and a meshed plate's map read alike.
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      t.push_back({at(r, c), at(r + 1, c), at(r + 1, c + 1)});
+      t.push_back({at(r, c), at(r + 1, c + 1), at(r, c + 1)});
+    }
+  return t;
+}
+
+MapCell empty_cell(const std::array<Vec3, 3>& corners, bool flip, std::size_t blocks) {
+  MapCell c;
+  c.corners = corners;
+  const Vec3 cr = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+  c.area = 0.5 * cr.norm();
+  const Vec3 n = cr.norm() > 0.0 ? Vec3(cr.normalized()) : Vec3::UnitX();
+  c.normal = flip ? Vec3(-n) : n;
+  c.block_normal.assign(blocks, 0.0);
+  c.block_load_slip.assign(blocks, 0.0);
+  c.block_finnie.assign(blocks, 0.0);
+  return c;
+}
+
 PlateMapRecorder::PlateMapRecorder(const Wall& wall, const wear::FinnieParams& finnie, std::size_t max_samples,
                                    const MapGrid* grid)
     : name_(wall.name), finnie_(finnie) {
@@ -82,17 +108,7 @@ PlateMapRecorder::PlateMapRecorder(const Wall& wall, const wear::FinnieParams& f
     throw InputError("", 0, fmt::format("wall '{}'", wall.name), "a pressure map needs a triangle-mesh wall");
   if (grid) {
     grid_ = *grid;
-    const MapGrid& g = *grid;
-    auto at = [&](int r, int c) {
-      return Vec3(g.origin + (g.height * r / g.rows) * g.down + (g.width * c / g.cols) * g.across);
-    };
-    // The triangles a mesh of these cells would have (dem/station/scene.cpp's plate_cells), so that
-    // a grid map and a meshed plate's map read alike.
-    for (int r = 0; r < g.rows; ++r)
-      for (int c = 0; c < g.cols; ++c) {
-        corners_.push_back({at(r, c), at(r + 1, c), at(r + 1, c + 1)});
-        corners_.push_back({at(r, c), at(r + 1, c + 1), at(r, c + 1)});
-      }
+    corners_ = grid->triangles();
     triangles_per_bin_ = 2;
   } else {
     const auto& m = std::get<TriangleMesh>(wall.current);
@@ -224,6 +240,7 @@ void PlateMapRecorder::merge_blocks() {
 PlateMap PlateMapRecorder::reduce(double start, double end, double block) const {
   PlateMap m;
   m.wall = name_;
+  m.grid = grid_;
   const std::size_t nt = bins_;
   std::vector<double> sum(nt * kChannels, 0.0);
   constexpr double eps = 1e-9;

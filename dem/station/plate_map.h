@@ -54,13 +54,6 @@ struct MapCell {
   double wear_rate_se(const WearInputs& w) const;
 };
 
-struct PlateMap {
-  std::string wall;              // "plate" or the STL file
-  double duration = 0.0;         // s of the steady window the means cover
-  std::vector<MapCell> cells;
-  Vec3 total_force() const;
-};
-
 // A grid of square-ish cells laid on a flat rectangular face (the generated plate) for the maps,
 // independent of the wall's triangles: a contact counts in the cell its contact point lies in. The
 // World never sees it (the wall stays two triangles), so the physics and its round-off are those of
@@ -74,6 +67,16 @@ struct MapGrid {
   int rows = 1, cols = 1;
   // Cells of about `cell` m (at most 400 rows or columns), on the face of a PlateFrame.
   static MapGrid on_face(const Vec3& top_edge, const Vec3& down, double height, double width, double cell);
+  // The map's triangles, two a cell (2 b and 2 b + 1 for cell b = row * cols + column).
+  std::vector<std::array<Vec3, 3>> triangles() const;
+};
+
+struct PlateMap {
+  std::string wall;              // "plate" or the STL file
+  double duration = 0.0;         // s of the steady window the means cover
+  std::vector<MapCell> cells;
+  std::optional<MapGrid> grid;   // the cells are this grid's triangles (the cache stores it compactly)
+  Vec3 total_force() const;
 };
 
 class PlateMapRecorder {
@@ -126,6 +129,10 @@ std::vector<std::pair<double, double>> pressure_profile(const PlateMap& m, doubl
 double peak_pressure_y(const PlateMap& m, double bin = 0.0);
 // Centre of pressure: the height where the normal load acts (sum p A y / sum p A), m.
 double pressure_centre_y(const PlateMap& m);
+
+// A map cell's geometry from its corners as the recorder computes it (area, unit normal of the
+// corners' winding, flipped when `flip`), its values zero: for readers that rebuild a grid map.
+MapCell empty_cell(const std::array<Vec3, 3>& corners, bool flip, std::size_t blocks);
 
 // OUT/plate_map.csv (every map, one row per triangle, units in the column names) and a VTK of the
 // maps for ParaView.

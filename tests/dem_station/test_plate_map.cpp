@@ -12,6 +12,7 @@
 
 #include "analytical/impact_zone.h"
 #include "core/input_error.h"
+#include "dem/station/cache.h"
 #include "dem/station/plate_map.h"
 #include "dem/station/run.h"
 #include "dem/world.h"
@@ -276,6 +277,24 @@ BOOST_AUTO_TEST_CASE(default_map_is_a_10_mm_grid_that_changes_no_force) {
   BOOST_TEST(loaded >= 3);
   BOOST_TEST(loaded < rows / 2);
   BOOST_TEST(std::abs(cop - fine.impact_point_y.value) <= cell);
+  // The cache stores the grid once and only the cells with a contact; what it gives back is the
+  // map, bit for bit.
+  const std::string text = to_text(fine);
+  const auto back = from_text(text);
+  BOOST_REQUIRE(back.has_value());
+  BOOST_REQUIRE_EQUAL(back->maps.front().cells.size(), m.cells.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < m.cells.size(); ++i) {
+    const MapCell &a = m.cells[i], &b = back->maps.front().cells[i];
+    differ += !(a.corners == b.corners && a.normal == b.normal && a.area == b.area && a.force == b.force &&
+                a.impact_power == b.impact_power && a.sliding_power == b.sliding_power && a.load_slip == b.load_slip &&
+                a.finnie_measure == b.finnie_measure && a.impacts == b.impacts && a.block_normal == b.block_normal &&
+                a.block_load_slip == b.block_load_slip && a.block_finnie == b.block_finnie);
+  }
+  BOOST_TEST(differ == 0u);
+  BOOST_TEST(to_text(*back) == text);
+  BOOST_TEST_MESSAGE("cache entry with the grid map: " << text.size() << " bytes");
+  BOOST_TEST(text.size() < 400000u);
 }
 
 // Moving the plate away from the pulley lowers where the stream strikes it: in the DEM (peak of the
