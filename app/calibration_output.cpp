@@ -77,7 +77,8 @@ std::vector<std::string> findings(const CalibrationStudy& s) {
         if (a.shape == b.shape && a.rolling_friction == b.rolling_friction && a.solid_density < b.solid_density)
           worst = std::max(worst, std::abs(b.slump.pile_height / a.slump.pile_height - 1.0));
     out.push_back(fmt::format("Solid density changes the pile height by at most {:.0f} % at equal shape and mu_r "
-                              "(seed: \"the sensitivity of the solid density on the height of pile formed is minor\").",
+                              "(reference study: \"the sensitivity of the solid density on the height of pile "
+                              "formed is minor\").",
                               100.0 * worst));
   }
   return out;
@@ -96,7 +97,7 @@ std::string rig_text(const CalibrationStudy& s) {
   return fmt::format(
       "Swing-arm slump tester (reference study Fig. 5): {:.0f} mm I.D. split tube on a bed of glued grains of the same "
       "material filling a {:.0f} mm pipe; sample poured to about {:.0f} mm, settled (no grain faster than {:g} m/s), "
-      "tube halves moved apart at {:g} m/s; Young's modulus x {:g} (a shorter run; the seed found mean flow "
+      "tube halves moved apart at {:g} m/s; Young's modulus x {:g} (a shorter run; the reference study found mean flow "
       "results insensitive to G x10 and /10). Bulk density: mass per volume of the settled column's core; angle of "
       "repose: line fit of the pile's surface profile over its flank (20-80 % of the peak); pile height: that line at "
       "the axis (the fitted cone's apex; a single pour scatters by ~0.6 % in bulk density and ~3 % in this height, "
