@@ -8,9 +8,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "reports/sensitivity_study.h"
+#include "reports/sensitivity_page.h"
+#include "studies/sensitivity.h"
 
-using namespace chutelab::reports;
+using namespace chutelab::studies;
+using chutelab::reports::sensitivity_html;
+using chutelab::reports::sensitivity_md;
 
 namespace {
 
@@ -172,4 +175,25 @@ BOOST_AUTO_TEST_CASE(csv_round_trip_keeps_provenance_and_labels) {
   BOOST_REQUIRE(r.rows.size() == s.rows.size());
   for (std::size_t k = 0; k < r.rows.size(); ++k) BOOST_TEST(r.rows[k].variant.label == s.rows[k].variant.label);
   BOOST_TEST(r.verdict.text == s.verdict.text);
+}
+
+BOOST_AUTO_TEST_CASE(finding_6_follows_the_sensitivity_verdict) {
+  using chutelab::validation::FindingStatus;
+  BOOST_TEST((sensitivity_finding(nullptr).status == FindingStatus::not_testable));
+  SensitivityStudy s;
+  s.condition = "V3-41";
+  s.quality = "quick";
+  auto& v = s.verdict;
+  v.mean_tested = v.size_tested = true;
+  v.mean_insensitive = true;
+  v.fluctuation_grows = true;
+  v.size_fluctuation = {{0.0136, 5.9}, {0.0219, 10.7}};
+  BOOST_TEST((sensitivity_finding(&s).status == FindingStatus::reproduced));
+  v.fluctuation_grows = false;
+  BOOST_TEST((sensitivity_finding(&s).status == FindingStatus::partly));
+  v.mean_insensitive = false;
+  BOOST_TEST((sensitivity_finding(&s).status == FindingStatus::not_reproduced));
+  v.size_tested = false;
+  v.mean_tested = false;
+  BOOST_TEST((sensitivity_finding(&s).status == FindingStatus::not_testable));
 }

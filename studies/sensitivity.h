@@ -4,7 +4,8 @@
 // plate, the change against the base case, and the check of the reference study's conclusion: "mean plate force
 // changes little with contact model, shape, dt and G; its fluctuation grows with particle size".
 // Independent of how a variant is run (the command plugs in the station DEM), so it can be tested on
-// made-up numbers; the report reads the CSV back (reports/studies.h).
+// made-up numbers. This is the study as data and its CSV files; the pages and the report's section
+// that draw it are the report's (reports/sensitivity_page.h, reports/studies.h).
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -14,7 +15,7 @@
 #include "dem/contact/normal_laws.h"
 #include "validation/reference_findings.h"
 
-namespace chutelab::reports {
+namespace chutelab::studies {
 
 enum class VariantGroup { base, contact, shape, time_step, modulus, size };
 std::string_view name(VariantGroup g);
@@ -114,8 +115,9 @@ void evaluate(SensitivityStudy& s);
 // evidence names the study's dataset, and says so when it is not `validated` (the report's dataset).
 validation::ReferenceFinding sensitivity_finding(const SensitivityStudy* study, std::string_view validated = {});
 
-// "grima2010 (path)" — which dataset the study ran on, as the outputs name it.
-std::string dataset_text(const SensitivityStudy& s, bool markdown);
+// A diameter (m) as the study names it: in mm to 0.1 mm, "13.6"; the variants' keys and every
+// output use it, so that one size has one name.
+std::string mm_text(double m);
 // Notes on what really ran that a label cannot say: a step set by the Rayleigh cap, sizes left out.
 std::vector<std::string> run_notes(const SensitivityStudy& s);
 
@@ -127,9 +129,5 @@ std::string sensitivity_timing_csv(const SensitivityStudy& s);
 // Reads back what sensitivity_csv wrote (the report's "Sensitivity" section) and evaluates it again;
 // bad or missing columns and values throw InputError naming the file, line and column.
 SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file);
-// The chart of sensitivity_html: mean R with its standard error and the fluctuation, per variant.
-std::string sensitivity_chart(const SensitivityStudy& s, std::string_view id);
-std::string sensitivity_md(const SensitivityStudy& s);
-std::string sensitivity_html(const SensitivityStudy& s);
 
-}  // namespace chutelab::reports
+}  // namespace chutelab::studies
