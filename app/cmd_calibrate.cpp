@@ -90,7 +90,7 @@ int run_calibrate(const CalibrateCli& o) {
                       "calibration-timing.csv"});
 
   plan.sphere = Grain::sphere(o.sphere_diameter_mm * 1e-3);
-  plan.clump = Grain::seed_clump(o.clump_diameter_mm * 1e-3);
+  plan.clump = Grain::reference_clump(o.clump_diameter_mm * 1e-3);
   plan.settings = slump_preset(o.quality == "standard" ? RigQuality::standard : RigQuality::quick);
   plan.settings.threads = o.threads;
   plan.settings.seed = o.seed;
@@ -130,7 +130,7 @@ int run_calibrate(const CalibrateCli& o) {
                                r.wall_friction, r.result.onset_deg, name(r.result.motion), r.result.predicted.onset_deg,
                                name(r.result.predicted.motion));
   }
-  std::cout << "Table 3 (seed layout):\n" << table3_md(study);
+  std::cout << "Table 3 (the reference study's layout):\n" << table3_md(study);
   out.write("calibration.csv", calibration_csv(ctx, study));
   out.write("incline.csv", incline_csv(study));
   out.write("calibration.md", calibration_md(ctx, study));

@@ -96,7 +96,7 @@ int run_validate(const ValidateCli& o) {
   reports::ReportInput report;
   report.dataset = &dataset;
   report.baseline = &baseline;
-  auto findings = validation::check_seed_findings(dataset, baseline);
+  auto findings = validation::check_reference_findings(dataset, baseline);
   findings.push_back(chutelab::studies::sensitivity_finding(sensitivity ? &*sensitivity : nullptr, dataset.setup.name));
   report.findings = &findings;
   report.studies = &studies;

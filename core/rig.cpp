@@ -85,7 +85,7 @@ void complete_defaults(Setup& setup, const std::vector<std::string_view>& presen
     return std::find(present.begin(), present.end(), key) != present.end();
   };
   // Without a separate measurement, the walls get the particle-particle rolling resistance and
-  // the side panels the plate friction: the seed calibrated one rolling coefficient for both.
+  // the side panels the plate friction: the reference study calibrated one rolling coefficient for both.
   if (!has("rolling_friction_wall"))
     setup.material.rolling_friction_wall = setup.material.rolling_friction_particle;
   if (!has("friction_side")) setup.material.friction_side = setup.material.friction_plate;

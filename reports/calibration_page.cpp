@@ -24,7 +24,7 @@ std::string rig_text(const CalibrationStudy& s) {
   return fmt::format(
       "Swing-arm slump tester (reference study Fig. 5): {:.0f} mm I.D. split tube on a bed of glued grains of the same "
       "material filling a {:.0f} mm pipe; sample poured to about {:.0f} mm, settled (no grain faster than {:g} m/s), "
-      "tube halves moved apart at {:g} m/s; Young's modulus x {:g} (a shorter run; the seed found mean flow "
+      "tube halves moved apart at {:g} m/s; Young's modulus x {:g} (a shorter run; the reference study found mean flow "
       "results insensitive to G x10 and /10). Bulk density: mass per volume of the settled column's core; angle of "
       "repose: line fit of the pile's surface profile over its flank (20-80 % of the peak); pile height: that line at "
       "the axis (the fitted cone's apex; a single pour scatters by ~0.6 % in bulk density and ~3 % in this height, "

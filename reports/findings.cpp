@@ -1,17 +1,17 @@
-// The reference study's qualitative findings as checked by validation/seed_findings: one row per claim, so a
+// The reference study's qualitative findings as checked by validation/reference_findings: one row per claim, so a
 // reader sees which part of a "partly reproduced" finding failed and on what numbers.
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "reports/common.h"
-#include "validation/seed_findings.h"
+#include "validation/reference_findings.h"
 
 namespace chutelab::reports {
 
-Table findings_table(const std::vector<validation::SeedFinding>& findings) {
+Table findings_table(const std::vector<validation::ReferenceFinding>& findings) {
   Table t;
-  t.id = "seed-findings";
+  t.id = "reference-findings";
   t.caption = "The reference study's qualitative findings (Grima and Wypych 2010), checked on this dataset";
   t.columns = {{"", "#", "", true}, {"", "finding", "", true}, {"", "verdict", "", true},
                {"", "claim", "", true}, {"", "holds", "", true}, {"", "evidence", "", true}};

@@ -70,7 +70,8 @@ std::vector<std::string> calibration_findings(const CalibrationStudy& s) {
         if (a.shape == b.shape && a.rolling_friction == b.rolling_friction && a.solid_density < b.solid_density)
           worst = std::max(worst, std::abs(b.slump.pile_height / a.slump.pile_height - 1.0));
     out.push_back(fmt::format("Solid density changes the pile height by at most {:.0f} % at equal shape and mu_r "
-                              "(seed: \"the sensitivity of the solid density on the height of pile formed is minor\").",
+                              "(reference study: \"the sensitivity of the solid density on the height of pile "
+                              "formed is minor\").",
                               100.0 * worst));
   }
   return out;

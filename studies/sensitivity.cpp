@@ -393,8 +393,8 @@ const char* kMeanClaim = "contact model, shape, time step and G change the mean 
 const char* kSizeClaim = "the fluctuation of R grows with the particle diameter";
 }  // namespace
 
-validation::SeedFinding sensitivity_finding(const SensitivityStudy* s, std::string_view validated) {
-  validation::SeedFinding f{6, kTable6};
+validation::ReferenceFinding sensitivity_finding(const SensitivityStudy* s, std::string_view validated) {
+  validation::ReferenceFinding f{6, kTable6};
   if (!s) {
     const std::string why = "no sensitivity study given (chutelab sensitivity, then validate --studies DIR)";
     f.claims = {{kMeanClaim, false, false, why}, {kSizeClaim, false, false, why}};
@@ -420,8 +420,8 @@ validation::SeedFinding sensitivity_finding(const SensitivityStudy* s, std::stri
     for (const auto& [d, sd] : v.size_fluctuation) fl.push_back(fmt::format("{:.1f} N at {:.1f} mm", sd, d * 1e3));
     std::vector<std::string> out = size_out;
     for (double d : v.sizes_left_out) out.push_back(fmt::format("{:g} mm", std::round(d * 1e4) / 10.0));
-    // A seed size that did not run leaves the claim unchecked there: undecided if it holds on the
-    // sizes that ran (one that fails there fails anyway).
+    // A size of the reference study's Table 6 that did not run leaves the claim unchecked there:
+    // undecided if it holds on the sizes that ran (one that fails there fails anyway).
     const bool all_sizes = out.empty();
     f.claims.push_back({kSizeClaim, v.size_tested, v.size_tested && v.fluctuation_grows && all_sizes,
                         v.size_tested ? fmt::format("sd of R: {}; the sizes move the mean by up to {:.1f} %{}",

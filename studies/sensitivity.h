@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "dem/contact/normal_laws.h"
-#include "validation/seed_findings.h"
+#include "validation/reference_findings.h"
 
 namespace chutelab::studies {
 
@@ -34,7 +34,7 @@ struct SensitivityVariant {
 };
 
 // The base run as resolved (quality preset < the dataset's [dem] table < flags), so that the labels
-// say what ran rather than what the seed ran: at quick quality the modulus is a third of the
+// say what ran rather than what the reference study ran: at quick quality the modulus is a third of the
 // dataset's, and the Rayleigh cap can make the step shorter than dt_fraction t_c.
 struct Table6Base {
   double diameter = 13.6e-3;           // m, the base spheres
@@ -43,8 +43,8 @@ struct Table6Base {
   double rayleigh_fraction = 0.2;      // cap, of the Rayleigh time
   // Sphere diameters of the size variants, m. Those that differ from the base diameter become
   // variants; the one equal to it is the base itself.
-  std::vector<double> sizes = seed_sizes();
-  static std::vector<double> seed_sizes() { return {5.6e-3, 9.0e-3, 13.6e-3}; }  // reference study Table 6, absolute
+  std::vector<double> sizes = reference_sizes();
+  static std::vector<double> reference_sizes() { return {5.6e-3, 9.0e-3, 13.6e-3}; }  // reference study Table 6, absolute
 };
 
 struct Stat {
@@ -111,9 +111,9 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& base);
 // Fills change and the verdict from the rows.
 void evaluate(SensitivityStudy& s);
 
-// The reference study's finding 6 (validation/seed_findings.h) from a study; not testable without one. The
+// The reference study's finding 6 (validation/reference_findings.h) from a study; not testable without one. The
 // evidence names the study's dataset, and says so when it is not `validated` (the report's dataset).
-validation::SeedFinding sensitivity_finding(const SensitivityStudy* study, std::string_view validated = {});
+validation::ReferenceFinding sensitivity_finding(const SensitivityStudy* study, std::string_view validated = {});
 
 // A diameter (m) as the study names it: in mm to 0.1 mm, "13.6"; the variants' keys and every
 // output use it, so that one size has one name.

@@ -21,9 +21,9 @@ namespace {
 
 // Version 5 ends with an "end" line, so a file cut short (a writer that died, a file system that
 // shows a rename before the data) is a miss, not a result with half its series, and carries the
-// plate maps with their block means (the versions 3 and 4 of two branches had one each). Version 2
-// files (no end line, no maps, written by an atomic rename only) are still read: a standard or
-// paper run is too dear to repeat for a picture (--no-dem-cache does).
+// plate maps with their block means. Version 2 files (no end line, no maps, written by an atomic
+// rename only) are still read: a standard or paper run is too dear to repeat for a picture
+// (--no-dem-cache does). Any other version is a miss.
 constexpr const char* kMagic = "chutelab-dem-result 5";
 constexpr const char* kMagicV2 = "chutelab-dem-result 2";
 constexpr const char* kEnd = "end\n";

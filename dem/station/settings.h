@@ -71,7 +71,7 @@ struct RunSettings {
   double dt_fraction = 0.1;
   double rayleigh_fraction = 0.2;
   ContactLaw contact;  // Hertz-Mindlin
-  // clump: the feed inserts the reference study's pellet (dem::ClumpShape::seed_pellet, the shape `chutelab
+  // clump: the feed inserts the reference study's pellet (dem::ClumpShape::reference_pellet, the shape `chutelab
   // calibrate` uses) with spheres of diameter `particle_diameter`, in random orientations, at the
   // condition's mass flow (fewer bodies than spheres of that size: each weighs ~1.1 spheres).
   ParticleShape particle_shape = ParticleShape::sphere;

@@ -134,8 +134,9 @@ BOOST_AUTO_TEST_CASE(verdict_follows_the_numbers) {
   BOOST_TEST(html.find("REPRODUCED") != std::string::npos);
 }
 
-// A seed size left out (5.6 mm at quick) is never silent: the verdict is "not fully tested" with the
-// command that runs it, even when everything that ran agrees with the reference study.
+// A size of the reference study's Table 6 left out (5.6 mm at quick) is never silent: the verdict is
+// "not fully tested" with the command that runs it, even when everything that ran agrees with the
+// reference study.
 BOOST_AUTO_TEST_CASE(a_left_out_size_is_not_fully_tested) {
   SensitivityStudy s = made_up(104.0, 6.0);
   s.rows.erase(std::remove_if(s.rows.begin(), s.rows.end(), [](const SensitivityRow& r) { return r.variant.key == "d=5.6mm"; }),

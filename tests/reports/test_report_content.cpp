@@ -367,7 +367,7 @@ BOOST_FIXTURE_TEST_CASE(point_clouds_are_dots_with_a_colour_bar, Fixture) {
   }
   for (auto& p : r.predictions)
     if (p.model == "m1") p.prediction.curves.push_back(cloud);
-  std::vector<validation::SeedFinding> findings(1);
+  std::vector<validation::ReferenceFinding> findings(1);
   findings[0].number = 1;
   findings[0].statement = "a finding";
   findings[0].status = validation::FindingStatus::partly;
