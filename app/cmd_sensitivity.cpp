@@ -83,15 +83,7 @@ int run_sensitivity(const SensitivityCli& o) {
   OutputFolder out(o.out, dataset_inputs(dir));  // checked before minutes of DEM runs
   out.owns({"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity-timing.csv"});
   check_entries(out, {"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity-timing.csv"});
-  const Station* station = nullptr;
-  for (const auto& s : stations)
-    if (s.condition == o.condition) station = &s;
-  if (!station) {
-    std::vector<std::string> names;
-    for (const auto& s : stations) names.push_back(s.condition);
-    throw InputError((dir / "conditions.csv").string(), 0, "--condition",
-                     fmt::format("no condition named '{}' (known: {})", o.condition, fmt::join(names, ", ")));
-  }
+  const Station* station = &validation::condition_row(stations, o.condition, dir / "conditions.csv", "--condition");
   st::SettingsOverrides ov;
   ov.quality = st::parse_quality(o.quality);
   if (!ov.quality) throw InputError("", 0, "--quality", "must be quick, standard or paper");

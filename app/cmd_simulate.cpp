@@ -52,15 +52,7 @@ int run_simulate(const SimulateCli& o) {
   const Setup setup = validation::read_setup(setup_file);
   std::vector<validation::SourceLine> lines;
   const auto stations = validation::read_conditions(dir / "conditions.csv", setup, &lines);
-  const Station* station = nullptr;
-  for (const auto& s : stations)
-    if (s.condition == o.condition) station = &s;
-  if (!station) {
-    std::vector<std::string> names;
-    for (const auto& s : stations) names.push_back(s.condition);
-    throw InputError((dir / "conditions.csv").string(), 0, "--condition",
-                     fmt::format("no condition named '{}' (known: {})", o.condition, fmt::join(names, ", ")));
-  }
+  const Station* station = &validation::condition_row(stations, o.condition, dir / "conditions.csv", "--condition");
 
   st::SettingsOverrides ov;
   if (!o.quality.empty()) {
