@@ -236,6 +236,14 @@ ProfileFit profile_strength(const std::function<double(double)>& chi2_at, double
     }
     if (!at(next)) break;
   }
+  // Three points fix a parabola exactly, so their runs' own noise cannot show in its sd (the peer
+  // flow-bias case: three runs drew a minimum 2 sd from the truth). The half-steps beside a bracketed
+  // minimum give the least-squares fit below a scatter to measure, where the budget allows.
+  if (const auto low = lowest(); seen.size() < 5 && low != seen.begin() && std::next(low) != seen.end()) {
+    const double s = low->first;
+    if (budget > 0) at(s - grid);
+    if (budget > 0) at(s + grid);
+  }
   for (const auto& p : seen) out.points.push_back(p);
   const auto low = lowest();
   out.estimate = low->first;

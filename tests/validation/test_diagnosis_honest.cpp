@@ -222,6 +222,23 @@ BOOST_AUTO_TEST_CASE(profile_of_a_parabola_is_exact) {
   BOOST_TEST(calls <= 6);
 }
 
+// A noisy profile whose first three runs already bracket the minimum: the two half-steps beside it
+// are run too, so that the runs' own noise (here +-0.5 in chi^2, alternating) shows in the sd instead
+// of a three-point parabola's exact fit hiding it.
+BOOST_AUTO_TEST_CASE(profile_measures_its_own_noise) {
+  const double truth = 0.1, sd = 0.02;
+  int calls = 0;
+  auto chi2 = [&](double s) {
+    ++calls;
+    return 50.0 + std::pow((s - truth) / sd, 2) + ((calls % 2) ? 0.5 : -0.5);
+  };
+  const auto p = profile_strength(chi2, truth, 0.02, -0.2, 0.5, 6);
+  BOOST_TEST(p.bracketed);
+  BOOST_TEST(p.points.size() == 5u);
+  BOOST_TEST(p.scatter > 0.0);
+  BOOST_TEST(std::abs(p.estimate - truth) <= 2.0 * p.uncertainty);
+}
+
 // tau of a quantity whose residuals are all c (u = 1): sum c^2 / (1 + tau^2) = n gives tau^2 = c^2 - 1.
 BOOST_AUTO_TEST_CASE(discrepancy_closed_form) {
   const Dataset d = make({kRig, {}, 1.0, 0, 6340});
