@@ -10,7 +10,6 @@
 
 #include <fmt/format.h>
 
-#include "app/calibration_output.h"
 #include "app/commands.h"
 #include "app/dem_options.h"
 #include "app/option_checks.h"
@@ -22,6 +21,8 @@
 #include "core/number.h"
 #include "dem/rigs/calibration.h"
 #include "core/output_folder.h"
+#include "reports/calibration_page.h"
+#include "studies/calibration.h"
 #include "validation/dataset.h"
 #include "validation/output_files.h"
 
@@ -55,6 +56,12 @@ constexpr std::size_t kMaxSlumpTests = 100;
 int run_calibrate(const CalibrateCli& o) {
   namespace fs = std::filesystem;
   using namespace dem::rigs;
+  using reports::calibration_html;
+  using reports::calibration_md;
+  using reports::table3_md;
+  using studies::CalibrationContext;
+  using studies::calibration_timing_csv;
+  using studies::incline_csv;
   // Every list checked before anything is read or run.
   CalibrationPlan plan;
   plan.rolling = options::number_list(kRolling, o.rolling);
@@ -83,7 +90,7 @@ int run_calibrate(const CalibrateCli& o) {
                       "calibration-timing.csv"});
 
   plan.sphere = Grain::sphere(o.sphere_diameter_mm * 1e-3);
-  plan.clump = Grain::seed_clump(o.clump_diameter_mm * 1e-3);
+  plan.clump = Grain::reference_clump(o.clump_diameter_mm * 1e-3);
   plan.settings = slump_preset(o.quality == "standard" ? RigQuality::standard : RigQuality::quick);
   plan.settings.threads = o.threads;
   plan.settings.seed = o.seed;
@@ -123,7 +130,7 @@ int run_calibrate(const CalibrateCli& o) {
                                r.wall_friction, r.result.onset_deg, name(r.result.motion), r.result.predicted.onset_deg,
                                name(r.result.predicted.motion));
   }
-  std::cout << "Table 3 (seed layout):\n" << table3_md(study);
+  std::cout << "Table 3 (the reference study's layout):\n" << table3_md(study);
   out.write("calibration.csv", calibration_csv(ctx, study));
   out.write("incline.csv", incline_csv(study));
   out.write("calibration.md", calibration_md(ctx, study));

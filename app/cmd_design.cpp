@@ -34,12 +34,8 @@ std::string condition_inputs(const DesignOptions& o, const std::filesystem::path
     throw InputError("", 0, "--condition", "--condition picks a row of a dataset's conditions.csv; use --dataset");
   const auto dir = o.dataset.empty() ? default_dataset() : std::filesystem::path(o.dataset);
   const Setup setup = validation::read_setup(setup_path);
-  const Station* st = nullptr;
   const auto rows = validation::read_conditions(dir / "conditions.csv", setup);
-  for (const auto& r : rows)
-    if (r.condition == o.condition) st = &r;
-  if (!st)
-    throw InputError((dir / "conditions.csv").string(), 0, "--condition", fmt::format("no condition named '{}'", o.condition));
+  const Station* st = &validation::condition_row(rows, o.condition, dir / "conditions.csv", "--condition");
   std::string js = fmt::format("{{\"name\": {}, \"belt_speed\": {}, \"mass_flow\": {}, \"plate_distance\": {}, \"plate_top\": {}, "
                                "\"stream_thickness\": {}",
                                json_string(st->condition), json_number(st->belt_speed), json_number(st->mass_flow / units::tph),

@@ -13,6 +13,7 @@
 #include "core/units.h"
 #include "effects/registry.h"
 #include "reports/design.h"
+#include "reports/dxf.h"
 #include "validation/dataset.h"
 #include "validation/harness.h"
 #include "validation/models/models.h"
@@ -23,13 +24,13 @@ namespace {
 
 // The estimate's inputs (app/estimate.h) and what only the command line adds.
 struct EstimateOptions : EstimateInput {
-  std::string format = "table", svg, sweep;
+  std::string format = "table", svg, sweep, dxf, points;
 };
 
-// --svg FILE: never over a file this run reads, and never half-written.
-void write_svg(const EstimateOptions& o, const std::string& svg) {
+// --svg, --dxf, --points FILE: never over a file this run reads, and never half-written.
+void write_export(const EstimateOptions& o, const std::string& file, const char* flag, const std::string& content) {
   namespace fs = std::filesystem;
-  const fs::path out = fs::absolute(o.svg);
+  const fs::path out = fs::absolute(file);
   std::vector<fs::path> read = {o.setup_file.empty() ? fs::path() : fs::path(o.setup_file)};
   if (o.setup_file.empty()) {
     const fs::path dir = o.dataset.empty() ? o.default_dataset : fs::path(o.dataset);
@@ -38,13 +39,17 @@ void write_svg(const EstimateOptions& o, const std::string& svg) {
   std::error_code ec;
   for (const auto& r : read)
     if (!r.empty() && fs::exists(out, ec) && fs::equivalent(out, r, ec))
-      throw InputError(o.svg, 0, "--svg", "is an input of this run; choose another file");
-  if (fs::is_directory(out, ec)) throw InputError(o.svg, 0, "--svg", "is a folder; give a file name");
+      throw InputError(file, 0, flag, "is an input of this run; choose another file");
+  if (fs::is_directory(out, ec)) throw InputError(file, 0, flag, "is a folder; give a file name");
   // The same inputs to the one writer, which refuses them whatever a check above missed.
   std::vector<fs::path> inputs;
   for (const auto& r : read)
     if (!r.empty()) inputs.push_back(r);
-  validation::write_outputs(out.parent_path(), {{out.filename().string(), reports::standalone_svg(svg)}}, inputs);
+  validation::write_outputs(out.parent_path(), {{out.filename().string(), content}}, inputs);
+}
+
+void write_svg(const EstimateOptions& o, const std::string& svg) {
+  write_export(o, o.svg, "--svg", reports::standalone_svg(svg));
 }
 
 QuantityValues korzen_reading(const EstimatePoint& p) {
@@ -55,6 +60,8 @@ QuantityValues korzen_reading(const EstimatePoint& p) {
 
 int run_sweep(const EstimateOptions& o, const analytical::EffectList& fixed,
               const std::vector<effects::EffectSetting>& settings) {
+  if (!o.dxf.empty() || !o.points.empty())
+    throw InputError("", 0, o.dxf.empty() ? "--points" : "--dxf", "draws one design; leave it out with --sweep");
   const SweepSpec spec = parse_sweep(o.sweep);
   if (spec.kind == SweepSpec::Kind::condition) {
     const bool given = (spec.flag == "--belt-speed" && o.belt_speed) || (spec.flag == "--mass-flow" && o.mass_flow) ||
@@ -85,7 +92,8 @@ int run_sweep(const EstimateOptions& o, const analytical::EffectList& fixed,
     apply_sweep_value(spec, v, st);
     analytical::EffectList fx = fixed;
     if (spec.kind == SweepSpec::Kind::effect) fx.push_back(spec.effect->make(v));
-    SweepRow row{v, std::nullopt, {}};
+    SweepRow row{v, std::nullopt, {}, {}, st.plate_top * 1e3,
+                 (st.plate_top - st.plate.height * std::cos(st.plate.angle)) * 1e3};
     try {
       // A design with no answer at this point (the stream misses the plate, the load no longer
       // fits the belt) is a result of the sweep, not bad input: the row says why.
@@ -94,6 +102,7 @@ int run_sweep(const EstimateOptions& o, const analytical::EffectList& fixed,
         row.note = "the centroid meets the plate line off the plate";
     } catch (const InputError& e) {
       row.note = e.problem();
+      row.why = e.field();
     }
     rows.push_back(std::move(row));
   }
@@ -120,6 +129,8 @@ int run_estimate(EstimateOptions o) {
   if (!o.svg.empty()) {
     write_svg(o, reports::design_svg(p.analysis, korzen_reading(p)));
   }
+  if (!o.dxf.empty()) write_export(o, o.dxf, "--dxf", reports::design_dxf(p.analysis));
+  if (!o.points.empty()) write_export(o, o.points, "--points", streamline_points_csv(p.analysis));
   if (o.format == "json")
     std::cout << estimate_json(p.analysis, p.models, settings);
   else if (o.format == "csv")
@@ -152,6 +163,13 @@ void add_estimate(CLI::App& app, Action& action) {
   cmd->add_option("--svg", o->svg,
                   "also draw the design (pulley, streamlines, plate, impact point, Korzen readout) as SVG "
                   "into this file; with --sweep, the chart of impact points and plate forces");
+  cmd->add_option("--dxf", o->dxf,
+                  "also write the design as ASCII DXF R12 for CAD into this file: mm, origin at the pulley centre; "
+                  "layers PULLEY, BELT, PLATE, IMPACT_ZONE and one polyline per streamline (the points_mm of "
+                  "--format json)");
+  cmd->add_option("--points", o->points,
+                  "also write the streamlines' points as CSV into this file (condition, streamline, point, x_mm, "
+                  "y_mm; the points_mm of --format json)");
   cmd->add_option("--sweep", o->sweep,
                   "NAME=FROM:TO:STEP: one row per value of an input, the rest held. NAME: belt_speed (m/s), "
                   "mass_flow (t/h), plate_distance, plate_top, stream_thickness (mm), a conditions.csv "

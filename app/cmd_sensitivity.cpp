@@ -16,7 +16,8 @@
 #include "app/option_checks.h"
 #include "core/campaign.h"
 #include "dem/station/cache.h"
-#include "reports/sensitivity_study.h"
+#include "reports/sensitivity_page.h"
+#include "studies/sensitivity.h"
 #include "core/input_error.h"
 #include "core/message.h"
 #include "core/option_check.h"
@@ -31,11 +32,11 @@ namespace chutelab::app {
 namespace {
 
 namespace st = dem::station;
-using reports::SensitivityRow;
-using reports::SensitivityStudy;
-using reports::SensitivityVariant;
-using reports::Stat;
-using reports::VariantOutcome;
+using studies::SensitivityRow;
+using studies::SensitivityStudy;
+using studies::SensitivityVariant;
+using studies::Stat;
+using studies::VariantOutcome;
 
 struct SensitivityCli {
   std::string dataset, condition = "V3-41", quality = "quick", out, only, sizes;
@@ -82,15 +83,7 @@ int run_sensitivity(const SensitivityCli& o) {
   OutputFolder out(o.out, dataset_inputs(dir));  // checked before minutes of DEM runs
   out.owns({"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity-timing.csv"});
   check_entries(out, {"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity-timing.csv"});
-  const Station* station = nullptr;
-  for (const auto& s : stations)
-    if (s.condition == o.condition) station = &s;
-  if (!station) {
-    std::vector<std::string> names;
-    for (const auto& s : stations) names.push_back(s.condition);
-    throw InputError((dir / "conditions.csv").string(), 0, "--condition",
-                     fmt::format("no condition named '{}' (known: {})", o.condition, fmt::join(names, ", ")));
-  }
+  const Station* station = &validation::condition_row(stations, o.condition, dir / "conditions.csv", "--condition");
   st::SettingsOverrides ov;
   ov.quality = st::parse_quality(o.quality);
   if (!ov.quality) throw InputError("", 0, "--quality", "must be quick, standard or paper");
@@ -104,7 +97,7 @@ int run_sensitivity(const SensitivityCli& o) {
   const double base_d = base.particle_diameter > 0.0 ? base.particle_diameter : station->material.particle_diameter;
 
   SensitivityStudy study;
-  reports::Table6Base& b = study.base;
+  studies::Table6Base& b = study.base;
   b.diameter = base_d;
   b.modulus_scale = base.shear_modulus_scale;  // of the dataset's: the preset's and the [dem] table's
   b.dt_fraction = base.dt_fraction;
@@ -117,14 +110,15 @@ int run_sensitivity(const SensitivityCli& o) {
     // than the whole rest of the study, which must stay within ~10 min; left out by default.
     b.sizes = {9.0e-3, 13.6e-3};
   }
-  // Every seed size that will not run is said (verdict "not fully tested"), whatever left it out.
-  for (double d : reports::Table6Base::seed_sizes()) {
+  // Every size of the reference study's Table 6 that will not run is said (verdict "not fully
+  // tested"), whatever left it out.
+  for (double d : studies::Table6Base::reference_sizes()) {
     bool runs = std::abs(d - base_d) < 0.05e-3;
     for (double x : b.sizes) runs = runs || std::abs(d - x) < 0.05e-3;
     if (!runs) study.sizes_left_out.push_back(d);
   }
 
-  std::vector<SensitivityVariant> variants = reports::table6_variants(b);
+  std::vector<SensitivityVariant> variants = studies::table6_variants(b);
   if (!o.only.empty()) {  // a subset (always with the base), e.g. for a quick look
     std::vector<SensitivityVariant> keep{variants[0]};
     const auto& keys = only;
@@ -157,7 +151,7 @@ int run_sensitivity(const SensitivityCli& o) {
   std::cout << fmt::format("sensitivity: {} DEM runs of {} / {} ({} quality), base {}\n", variants.size(),
                            one_line(setup.name, 80),
                            one_line(station->condition, 80), o.quality, variants[0].label);
-  for (const auto& n : reports::run_notes(study)) std::cout << "note: " << n << "\n";
+  for (const auto& n : studies::run_notes(study)) std::cout << "note: " << n << "\n";
   std::cout << std::flush;
   // One campaign job per variant (core/campaign.h): in order in one process, side by side with
   // --jobs, or spread over the ranks of mpirun; each result comes back as the run's full text.
@@ -221,12 +215,12 @@ int run_sensitivity(const SensitivityCli& o) {
                              out.resultant.value, out.resultant.se, out.fluct_resultant, out.dt * 1e6, out.wall_seconds)
               << std::flush;
   }
-  reports::evaluate(study);
+  studies::evaluate(study);
   study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.write("sensitivity.csv", reports::sensitivity_csv(study));
+  out.write("sensitivity.csv", studies::sensitivity_csv(study));
   out.write("sensitivity.md", reports::sensitivity_md(study));
   out.write("sensitivity.html", reports::sensitivity_html(study));
-  out.write("sensitivity-timing.csv", reports::sensitivity_timing_csv(study));
+  out.write("sensitivity-timing.csv", studies::sensitivity_timing_csv(study));
   out.commit();
   std::cout << study.verdict.text << "\n";
   std::cout << fmt::format("{:.0f} s; written: {}\n", study.wall_seconds, (fs::path(o.out) / "sensitivity.html").string());

@@ -23,11 +23,15 @@
 namespace chutelab::app {
 namespace {
 
+// Frames of the particle series per simulated second by default: 20 (a quick run of ~2 s gives ~40
+// frames, a few MB).
+constexpr double kSeriesEvery = 0.05;
+
 namespace st = dem::station;
 
 struct SimulateCli {
   std::string dataset, condition, out, quality, contact, shape;
-  std::optional<double> diameter_mm, shear_modulus_scale, dt_fraction, max_time, vtk_every;
+  std::optional<double> diameter_mm, shear_modulus_scale, dt_fraction, max_time, vtk_every, map_cell_mm;
   std::optional<int> threads, plate_cells;
   std::optional<std::uint64_t> seed;
   std::map<std::string, double> wear;  // wear_fields() key -> value given on the command line
@@ -48,15 +52,7 @@ int run_simulate(const SimulateCli& o) {
   const Setup setup = validation::read_setup(setup_file);
   std::vector<validation::SourceLine> lines;
   const auto stations = validation::read_conditions(dir / "conditions.csv", setup, &lines);
-  const Station* station = nullptr;
-  for (const auto& s : stations)
-    if (s.condition == o.condition) station = &s;
-  if (!station) {
-    std::vector<std::string> names;
-    for (const auto& s : stations) names.push_back(s.condition);
-    throw InputError((dir / "conditions.csv").string(), 0, "--condition",
-                     fmt::format("no condition named '{}' (known: {})", o.condition, fmt::join(names, ", ")));
-  }
+  const Station* station = &validation::condition_row(stations, o.condition, dir / "conditions.csv", "--condition");
 
   st::SettingsOverrides ov;
   if (!o.quality.empty()) {
@@ -78,6 +74,7 @@ int run_simulate(const SimulateCli& o) {
   ov.seed = o.seed;
   ov.max_time = o.max_time;
   ov.plate_cells = o.plate_cells;
+  if (o.map_cell_mm) ov.map_cell = *o.map_cell_mm * 1e-3;
   for (const auto& [k, v] : o.wear) ov.wear.emplace_back(k, v);
   const st::DemTable table = st::read_dem_table(setup_file.string());
   const st::RunSettings settings = st::resolve(table, ov);
@@ -112,7 +109,7 @@ int run_simulate(const SimulateCli& o) {
   ro.progress = st::ProgressPrinter(fmt::format("dem {}", station->condition));
   if (!o.out.empty()) {
     ro.vtk_dir = (out->staging() / "vtk").string();
-    ro.vtk_every = o.vtk_every.value_or(0.0);
+    ro.vtk_every = o.vtk_every.value_or(kSeriesEvery);
   }
   st::StationResult r;
   try {
@@ -205,12 +202,23 @@ void add_simulate(CLI::App& app, Action& action) {
             options::NumberRule{"", 0.0, 100.0, true, false, false, "s"});
   cmd->add_option("--effect", o->effects, "physical effect NAME=VALUE (those with a DEM counterpart act)");
   cmd->add_option("--out", o->out, "output folder: CSV series, steady means, side view, VTK");
-  with_rule(cmd->add_option("--vtk-every", o->vtk_every, "write particle VTK files every this many simulated seconds"),
+  with_rule(cmd->add_option("--vtk-every", o->vtk_every,
+                            fmt::format("interval of the particle time series in --out, simulated seconds (default {} "
+                                        "s): vtk/particles.pvd, which ParaView opens as one series, lists one VTK XML "
+                                        "PolyData file (vtk/particles_NNNNN.vtp, raw binary appended data) per frame "
+                                        "with each particle's id, clump, radius, velocity, speed and contact-force "
+                                        "magnitude; the last frame is the final state",
+                                        kSeriesEvery)),
             options::NumberRule{"", 0.0, 100.0, true, false, false, "s"});
   cmd->add_flag("--no-cache", o->no_cache, "do not store the result in the DEM cache");
   with_rule(cmd->add_option("--plate-cells", o->plate_cells,
                             "rows of cells down the generated plate for the pressure and wear maps (0: two triangles)"),
             options::NumberRule{"", 0.0, 400.0, false, false, true, ""});
+  with_rule(cmd->add_option("--map-cell-mm", o->map_cell_mm,
+                            "cell size of the plate's pressure and wear maps, mm (default 10; the contacts are binned "
+                            "on the face, the plate itself stays two triangles; 0: the coarse plate's own two "
+                            "triangles)"),
+            options::NumberRule{"", 0.0, 1000.0, false, false, false, "mm"});
   for (const auto& f : st::wear_fields()) {
     std::string flag = std::string("--") + f.key;
     for (auto& ch : flag) ch = ch == '_' ? '-' : ch;

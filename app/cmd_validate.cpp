@@ -12,8 +12,8 @@
 #include "core/progress.h"
 #include "reports/plain_summary.h"
 #include "reports/report.h"
-#include "reports/sensitivity_study.h"
 #include "reports/studies.h"
+#include "studies/sensitivity.h"
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
@@ -57,10 +57,10 @@ int run_validate(const ValidateCli& o) {
   const auto dataset = validation::read_dataset(dir);
   // Read before any model runs: a bad study file ends the command before anything is written.
   const auto studies = reports::read_studies({o.studies.begin(), o.studies.end()}, dataset.setup.name);
-  std::optional<reports::SensitivityStudy> sensitivity;  // the reference study's finding 6, when one was run
+  std::optional<chutelab::studies::SensitivityStudy> sensitivity;  // the reference study's finding 6, when one was run
   for (const auto& s : o.studies) {
     const fs::path f = fs::is_directory(s) ? fs::path(s) / "sensitivity.csv" : fs::path(s);
-    if (f.filename() == "sensitivity.csv" && fs::exists(f)) sensitivity = reports::read_sensitivity_csv(f);
+    if (f.filename() == "sensitivity.csv" && fs::exists(f)) sensitivity = chutelab::studies::read_sensitivity_csv(f);
   }
   std::optional<validation::Tolerances> tol;
   if (!o.tolerances.empty()) tol = validation::Tolerances::read(o.tolerances);
@@ -96,8 +96,8 @@ int run_validate(const ValidateCli& o) {
   reports::ReportInput report;
   report.dataset = &dataset;
   report.baseline = &baseline;
-  auto findings = validation::check_seed_findings(dataset, baseline);
-  findings.push_back(reports::sensitivity_finding(sensitivity ? &*sensitivity : nullptr, dataset.setup.name));
+  auto findings = validation::check_reference_findings(dataset, baseline);
+  findings.push_back(chutelab::studies::sensitivity_finding(sensitivity ? &*sensitivity : nullptr, dataset.setup.name));
   report.findings = &findings;
   report.studies = &studies;
   // Fits and the diagnosis call the models hundreds of times: they use the cheap ones (an expensive

@@ -23,11 +23,8 @@ Station resolve_station(const EstimateInput& o) {
   if (!o.condition.empty()) {
     if (!o.setup_file.empty())
       throw InputError("", 0, "--condition", "--condition picks a row of a dataset's conditions.csv; use --dataset");
-    for (const auto& s : validation::read_conditions(dir / "conditions.csv", setup))
-      if (s.condition == o.condition) base = s;
-    if (!base)
-      throw InputError((dir / "conditions.csv").string(), 0, "--condition",
-                       fmt::format("no condition named '{}'", o.condition));
+    base = validation::condition_row(validation::read_conditions(dir / "conditions.csv", setup), o.condition,
+                                     dir / "conditions.csv", "--condition");
   }
   auto need = [&](const std::optional<double>& flag, const char* name, double from_base) {
     if (flag) return *flag;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "analytical/impact_zone.h"
+#include "analytical/streamline_path.h"
 #include "core/csv_field.h"
 #include "core/message.h"
 #include "core/units.h"
@@ -185,6 +186,17 @@ std::string estimate_csv(const analytical::TransferAnalysis& a, const ModelValue
   return o;
 }
 
+std::string streamline_points_csv(const analytical::TransferAnalysis& a) {
+  std::string o = "condition,streamline,point,x_mm,y_mm\n";
+  for (Streamline s : analytical::kAllStreamlines) {
+    const auto pts = analytical::streamline_path(a, s);
+    for (std::size_t k = 0; k < pts.size(); ++k)
+      o += fmt::format("{},{},{},{},{}\n", csv_field(a.station.condition), name(s), k, csv_number(pts[k].x() * 1e3),
+                       csv_number(pts[k].y() * 1e3));
+  }
+  return o;
+}
+
 std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValues& models,
                           const std::vector<effects::EffectSetting>& fx) {
   const auto& st = a.station;
@@ -238,7 +250,12 @@ std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValu
                        json_number(l.hit->point.position.y() * 1e3), json_number(l.hit->speed),
                        json_number(l.hit->alpha * kDeg), json_number(l.hit->point.t),
                        l.hit->on_plate ? "true" : "false");
-    o += "}";
+    // The path as drawn and exported (DXF, CSV): mm, [x, y] from the top of the pulley to the plate.
+    o += ", \"points_mm\": [";
+    const auto pts = analytical::streamline_path(a, s);
+    for (std::size_t k = 0; k < pts.size(); ++k)
+      o += fmt::format("{}[{}, {}]", k ? ", " : "", json_number(pts[k].x() * 1e3), json_number(pts[k].y() * 1e3));
+    o += "]}";
     first = false;
   }
   o += "\n  },\n  \"models\": {";

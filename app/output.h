@@ -23,6 +23,8 @@ std::vector<std::pair<std::string, double>> estimate_scalars(const analytical::T
 std::string estimate_table(const analytical::TransferAnalysis& a, const ModelValues& models,
                            const std::vector<effects::EffectSetting>& fx);
 std::string estimate_csv(const analytical::TransferAnalysis& a, const ModelValues& models);
+// The streamlines' points (analytical/streamline_path.h) as CSV: condition,streamline,point,x_mm,y_mm.
+std::string streamline_points_csv(const analytical::TransferAnalysis& a);
 std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValues& models,
                           const std::vector<effects::EffectSetting>& fx);
 

@@ -295,6 +295,14 @@ std::string sweep_chart(const SweepSpec& s, const std::vector<SweepRow>& rows) {
     c.forces_N.push_back({fmt::format("{} (korzen)", info(q).symbol), colour, "", {}});
   for (const auto& r : rows) {
     c.x.push_back(r.value);
+    c.plate_top_mm.push_back(r.plate_top_mm);
+    c.plate_bottom_mm.push_back(r.plate_bottom_mm);
+    // What the reason is about: the mass flow (continuity) means the load no longer fits the belt.
+    c.gap_label.push_back(r.point ? ""
+                          : r.why == "mass_flow_tph" || r.why == "stream_thickness_mm" ? "belt overfilled"
+                          : r.why == "plate_distance_mm" || r.why == "plate_top_mm"    ? "stream misses the plate"
+                                                                                       : "no answer");
+    c.gap_reason.push_back(r.point ? "" : r.note);
     for (std::size_t i = 0; i < std::size(lines); ++i) {
       std::optional<double> y;
       if (r.point)

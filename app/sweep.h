@@ -37,6 +37,8 @@ struct SweepRow {
   double value = 0.0;
   std::optional<EstimatePoint> point;  // absent where the design has no answer (see note)
   std::string note;
+  std::string why;                     // the input the note is about (InputError::field), "" = none
+  std::optional<double> plate_top_mm, plate_bottom_mm;  // y of the plate's edges at this point
 };
 
 std::string sweep_table(const SweepSpec& s, const std::vector<SweepRow>& rows);

@@ -32,7 +32,7 @@ struct Params {
   int particles = 20000;
   double box = 0.2;        // m, square base side
   double radius = 4.5e-3;  // m (9 mm spheres, +-5 % uniform so the bed does not crystallise)
-  double dt = 3e-5;        // s (the seed's LIGGGHTS virtual rig)
+  double dt = 3e-5;        // s (the reference study's LIGGGHTS virtual rig)
   double skin = 1.0e-3;    // m, Verlet skin (same in LIGGGHTS: neighbor 0.001 bin)
   double settle_time = 0.35;
   int threads = 1;
@@ -55,7 +55,7 @@ World make_world(const Params& P, bool add_particles) {
   s.rolling = P.rolling;
   s.domain = Box{Vec3(-0.01, -0.01, -0.01), Vec3(P.box + 0.01, P.box + 0.01, 2.0)};
   World w(s);
-  // Seed study material (polyethylene pellets, LIGGGHTS rig modulus) and steel walls.
+  // The reference study's material (polyethylene pellets, LIGGGHTS rig modulus) and steel walls.
   const int pe = w.materials().add({"pellet", 2.5e7, 0.38, 1000});
   const int steel = w.materials().add({"steel", 2.0e11, 0.30, 7800});
   Interaction pp, pw;
@@ -156,7 +156,7 @@ void read_liggghts_data(const std::string& path, World& w) {
 // 26 degrees down the chute (+x), dt = 1e-4 s, skin 0.1 m; gran/hooke/history with k_n = 2e5 N/m,
 // k_t = 2/7 k_n, gamma_n = 50 1/s, mu = 0.5, no tangential damping; base atoms (type 2) frozen.
 // chutelab's equivalent, and where it differs:
-//   - linear spring-dashpot with tangential history (seed Eq 8). LAMMPS' damping force is
+//   - linear spring-dashpot with tangential history (the reference study's Eq 8). LAMMPS' damping force is
 //     m* gamma_n v_n; chutelab's is 2 zeta sqrt(k_n m*) v_n. zeta is set so the two agree for two
 //     free spheres (m* = m/2); against the base (m* = m) chutelab damps 1/sqrt(2) as much. The
 //     tangential spring keeps chutelab's damping at the same ratio (LAMMPS: none, dampflag 0).

@@ -1,6 +1,6 @@
 #!/bin/sh
-# LIGGGHTS as the station engine beside chutelab's DEM (bench/LIGGGHTS_ENGINE.md): the done-when run
-# of issue 14 on two conditions of datasets/liggghts-rig (default V4-28 and V5-28, the fewest
+# LIGGGHTS as the station engine beside chutelab's DEM (bench/LIGGGHTS_ENGINE.md): the acceptance
+# run on two conditions of datasets/liggghts-rig (default V4-28 and V5-28, the fewest
 # particles). From the repository root, after building. Fresh cache, so every run is really run.
 #   bench/liggghts_engine.sh [CONDITION ...]
 # Each engine runs each condition in its own process (up to four at once on two cores); a final

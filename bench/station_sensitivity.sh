@@ -1,6 +1,6 @@
 #!/bin/sh
-# The seed's Table 6 sensitivity study with chutelab's DEM, at V3-41 of the LIGGGHTS rig (3 m/s,
-# 41 t/h, as the seed): contact law, time step, shear modulus, particle size. Prints the mean plate
+# The reference study's Table 6 sensitivity study with chutelab's DEM, at V3-41 of the LIGGGHTS rig (3 m/s,
+# 41 t/h, as the reference study): contact law, time step, shear modulus, particle size. Prints the mean plate
 # normal force, its standard error and the fluctuation (sd of the 3 ms samples in the steady window).
 set -eu
 B=${B:-build/app/chutelab}

@@ -83,6 +83,7 @@ struct RigField {
   bool required;
   std::optional<double> fallback;  // boundary value used when absent and not required
   std::function<double&(Setup&)> ref;
+  std::string_view label = {};  // plain words with the unit, for people (the designer's page)
 };
 const std::vector<RigField>& rig_fields();
 const RigField* find_override_column(std::string_view column);

@@ -14,7 +14,9 @@ namespace chutelab::dem {
 namespace {
 
 constexpr char kMagic[8] = {'C', 'H', 'L', 'D', 'E', 'M', 'C', 'K'};
-constexpr std::uint32_t kVersion = 4;  // 2: block force layout; 3: clumps; 4: held particles
+// Raised whenever the layout changes, so that a checkpoint of another layout is refused by name and
+// never misread (what each value changed: `git log -S kVersion -- dem/checkpoint.cpp`).
+constexpr std::uint32_t kVersion = 4;
 
 struct Writer {
   std::ofstream out;

@@ -171,7 +171,7 @@ ClumpShape ClumpShape::two_sphere(double sphere_diameter, double spacing, std::s
   return from_spheres({{Vec3(-0.5 * spacing, 0, 0), r}, {Vec3(0.5 * spacing, 0, 0), r}}, std::move(name));
 }
 
-ClumpShape ClumpShape::seed_pellet() { return two_sphere(4.4e-3, 3.0 * 4.55e-3 - 3.0 * 4.4e-3, "seed-pellet"); }
+ClumpShape ClumpShape::reference_pellet() { return two_sphere(4.4e-3, 3.0 * 4.55e-3 - 3.0 * 4.4e-3, "reference-pellet"); }
 
 ClumpShape ClumpShape::scaled(double f) const {
   ClumpShape c = *this;

@@ -51,7 +51,7 @@ struct ClumpShape {
   // Pellet of the reference study's Table 1 at scale 1:1 (Fig. 4c): two 4.4 mm spheres, spaced 0.45 mm so that the
   // mean of the three axis widths, (3 x 4.4 + 0.45) / 3 mm, is the measured average pellet diameter
   // d_ave = 4.55 mm ("determined by averaging the measured widths ... across 3 axes", reference study §4).
-  static ClumpShape seed_pellet();
+  static ClumpShape reference_pellet();
 
   ClumpShape scaled(double factor) const;  // every length times factor
   double largest_sphere_radius() const;

@@ -73,8 +73,9 @@ struct Particles {
 
  private:
   // Each array is gathered into a spare one of its type, which then takes its place; the old one is
-  // the spare for the next. Kept between rebuilds: a fresh array each time was first zero-filled by
-  // one thread (bench bed, 2 threads: the reordering did not scale at all, 17-19 ms; now 8 ms).
+  // the spare for the next. Kept between rebuilds: a fresh array each time is first zero-filled by
+  // one thread, and the reordering does not scale (bench bed, 2 threads: 17-19 ms with fresh arrays,
+  // 8.4 ms with the spares; bench/RESULTS.md).
   std::vector<Vec3> spare_vec3_;
   std::vector<double> spare_double_;
   std::vector<std::int32_t> spare_int_;

@@ -61,8 +61,8 @@ void WallLoads::finish_block(std::size_t ob, std::size_t thread, std::size_t lo,
     elements_[ob] = std::move(parts);
     return;
   }
-  // Apart from the loop above: its rare call (push_back) kept fi and ti on the stack (bench bed,
-  // one thread: 3 % slower).
+  // Apart from the loop above: inside it, its rare call (push_back) would keep fi and ti on the stack
+  // (bench bed, one thread: 3 % slower).
   const std::int32_t* __restrict base = element_base_.data();
   std::int32_t* __restrict slot_of = slot_[thread].data();
   for (auto q = static_cast<std::size_t>(wb[lo]); q < static_cast<std::size_t>(wb[hi]); ++q) {

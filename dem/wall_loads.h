@@ -2,8 +2,9 @@
 // The walls' loads (force, torque about the load point, force per element) summed with the same
 // thread independence as the particles' forces (dem/force_blocks.h): each force block sums the wall
 // contacts of its own particles, in entry order, into its share (per wall, and per element touched),
-// and a wall's load is the blocks' shares in block order. A serial sum over all entries read every
-// entry the other threads had just written (bench bed, 2 threads: their wall contacts 45 % dearer).
+// and a wall's load is the blocks' shares in block order. A serial sum over all entries would read
+// every entry the other threads have just written (bench bed, 2 threads: their wall contacts 45 %
+// dearer).
 #include <cstdint>
 #include <vector>
 

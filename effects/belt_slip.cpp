@@ -3,7 +3,7 @@
 // Physics: the material discharges at V_d = (1 - s) V_b instead of the reference study's V_d = V_b, where s is
 // the slip fraction (0 = no slip, the reference study's assumption; physical range 0-0.3). Slip of this kind
 // appears when the belt accelerates a freshly fed layer over too short a distance, or when rolling
-// particles do not reach belt speed (the seed, section 5: "if slip/rolling occurs at the discharge
+// particles do not reach belt speed (the reference study, section 5: "if slip/rolling occurs at the discharge
 // point ... the impact zone on the impact plate will be lower than anticipated").
 // Hook: discharge conditions (speed of every streamline). DEM: honoured — the belt and the pulley
 // carry the layer at (1 - s) V_b (validation/models/dem_model.cpp), so the material reaches the

@@ -4,7 +4,7 @@
 // preload from the tie rod adds a constant F_0 to the recorded R_n (and so to R). The recorded
 // point of application comes from moments, y_R = M / R_n; an offset shared evenly by the cells
 // about the reference point adds force but no moment, so the recorded y_R = M / (R_n + F_0). The
-// seed notes creep and vibration of the load cells at low momentum (section 6). F_0 in N, 0 = a
+// reference study notes creep and vibration of the load cells at low momentum (section 6). F_0 in N, 0 = a
 // true zero; physical range -20 to +20 N.
 // Hook: the measurement itself — it applies to every model's prediction, DEM included: the harness
 // adds it to the DEM's R_n and y_R as to any model's; no DEM input changes.

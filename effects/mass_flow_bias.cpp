@@ -1,6 +1,6 @@
 // mass_flow_bias: the recorded mass flow is not the flow that reached the plate.
 //
-// Physics: the seed set its feeder "at approximately 20 and 40 tph" and recalculated the flow from
+// Physics: the reference study set its feeder "at approximately 20 and 40 tph" and recalculated the flow from
 // the bin's load cells (section 4.1); a calibration error or spillage before the pulley makes the
 // true flow m_true = (1 + b) m_recorded. Every force scales with it (Eq 5, 6, 7) and, where the
 // stream thickness comes from continuity, so does h_b and with it the impact point. b is a

@@ -4,7 +4,7 @@
 // the exit velocity (Eq 4) and the shear force (Eqs 6-7). The dynamic friction of a fast stream on
 // a plate (wet, worn, or coated with fines) can differ from the static bench value; this effect
 // replaces mu_pw by mu_pw + d_mu. d_mu is dimensionless, 0 = the setup's value; physical range
-// -0.2 to +0.5 (the sum is kept at least 0.01). The seed measured 0.22-0.27 on mild steel
+// -0.2 to +0.5 (the sum is kept at least 0.01). The reference study measured 0.22-0.27 on mild steel
 // (kinematic and static, Table 2), a spread of 0.05 from the method alone.
 // Hook: plate interaction. DEM: honoured — the particle-plate sliding friction becomes mu_pw + d_mu
 // (the same floor of 0.01).

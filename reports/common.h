@@ -160,7 +160,7 @@ Table vv20_table(const Context& c, const validation::ValidationResult& r, std::s
 std::vector<std::string> vv20_not_estimated(const validation::Dataset& d, const validation::ValidationResult& r);
 
 // findings.cpp
-Table findings_table(const std::vector<validation::SeedFinding>& findings);
+Table findings_table(const std::vector<validation::ReferenceFinding>& findings);
 
 
 // plot_bars.cpp (`width`, `other`: as residual_chart's)

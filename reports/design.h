@@ -28,7 +28,12 @@ struct SweepChart {
   std::string x_label;                   // with unit, e.g. "plate distance (mm)"
   std::vector<double> x;
   std::vector<SweepSeries> impact_mm;    // top panel: y on the plate, mm
-  std::vector<SweepSeries> forces_N;     // bottom panel: plate forces, N
+  std::vector<SweepSeries> forces_N;     // bottom panel: plate forces, N (axis from 0)
+  // The plate's extent in y at each x (top panel, shaded), absent where unknown.
+  std::vector<std::optional<double>> plate_top_mm, plate_bottom_mm;
+  // Per x: why the design has no answer there ("" = it has one); runs of one reason are marked as
+  // a band with a short label and the full reason as its tooltip.
+  std::vector<std::string> gap_label, gap_reason;
 };
 
 std::string sweep_svg(const SweepChart& c, std::string_view id = "sweep");

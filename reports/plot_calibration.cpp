@@ -9,7 +9,7 @@
 
 namespace chutelab::reports {
 
-std::string calibration_chart(const std::vector<CalibrationPoint>& points, const CalibrationTargetsView& targets,
+std::string calibration_chart(const std::vector<studies::CalibrationPoint>& points, const CalibrationTargetsView& targets,
                               std::string_view id) {
   const std::vector<std::string> palette = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
   struct Series {

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "analytical/impact_zone.h"
+#include "analytical/streamline_path.h"
 #include "reports/design.h"
 #include "reports/svg.h"
 
@@ -31,23 +32,13 @@ LineStyle style(Streamline s) {
 
 using Pt = Eigen::Vector2d;
 
-// The path of a streamline in mm: along the belt at height e, round the pulley to the release
-// point (low-speed discharge), then its flight to the plate (or 1 s when it never gets there).
-std::vector<Pt> streamline_path(const analytical::TransferAnalysis& a, const analytical::StreamlineFlight& l,
-                                double approach /* mm */) {
+// The path of a streamline in mm as drawn: along the belt at height e, then the exported path
+// (analytical/streamline_path.h).
+std::vector<Pt> streamline_path(const analytical::TransferAnalysis& a, Streamline which, double approach /* mm */) {
   const double gamma = a.station.belt.incline;
-  const double r = a.station.belt.belt_radius() + l.height_above_belt;
-  const Pt tangent = r * Pt(-std::sin(gamma), std::cos(gamma));
-  std::vector<Pt> p = {tangent - approach * 1e-3 * Pt(std::cos(gamma), std::sin(gamma)), tangent};
-  const double theta = l.release.theta;
-  if (theta > -gamma + 1e-9)
-    for (int k = 1; k <= 24; ++k) {
-      const double phi = -gamma + (theta + gamma) * k / 24.0;
-      p.push_back(r * Pt(std::sin(phi), std::cos(phi)));
-    }
-  const double t_end = l.hit ? l.hit->point.t : 1.0;
-  for (const auto& f : l.trajectory.sample(t_end, 64)) p.push_back(f.position);
-  for (auto& q : p) q *= 1e3;
+  std::vector<Pt> p;
+  for (const auto& q : analytical::streamline_path(a, which)) p.push_back(q * 1e3);
+  p.insert(p.begin(), p.front() - approach * Pt(std::cos(gamma), std::sin(gamma)));
   return p;
 }
 
@@ -64,7 +55,7 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
   const Pt plate_bottom = plate_top + st.plate.height * 1e3 * Pt(std::sin(st.plate.angle), -std::cos(st.plate.angle));
 
   std::array<std::vector<Pt>, 4> paths;
-  for (std::size_t i = 0; i < paths.size(); ++i) paths[i] = streamline_path(a, a.streamlines[i], approach);
+  for (std::size_t i = 0; i < paths.size(); ++i) paths[i] = streamline_path(a, a.streamlines[i].which, approach);
 
   // Extent: the belt, the pulley, the plate and every streamline that reaches the plate; a stream
   // that misses it is cut at the picture's edge rather than stretching the picture.
@@ -78,9 +69,11 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
       }
   const double pad = 0.06 * std::max(x1 - x0, y1 - y0);
   x0 -= pad; x1 += pad; y0 -= pad; y1 += pad;
+  x1 += 0.1 * std::max(x1 - x0, y1 - y0);  // room right of the plate for its dimensions
 
-  const double W = 980.0, H = 520.0, side = 300.0;
-  const Frame f{14.0, 34.0, W - side - 28.0, H - 48.0};
+  const double W = 980.0, H = 540.0, side = 300.0;
+  // Margins for the mm ticks: y on the left, x below.
+  const Frame f{52.0, 34.0, W - side - 66.0, H - 72.0};
   const double s = std::min(f.width / (x1 - x0), f.height / (y1 - y0));
   const double cx = f.left + 0.5 * (f.width - s * (x1 - x0)), cy = f.top + 0.5 * (f.height - s * (y1 - y0));
   auto X = [&](double x) { return cx + (x - x0) * s; };
@@ -95,9 +88,15 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
   svg.rect(f.left, f.top, f.width, f.height, "fill=\"#fbfbfb\" stroke=\"#ccc\"");
   svg.raw(fmt::format("<g clip-path=\"url(#{})\">\n", clip));
 
-  // Axes through the pulley centre, with a 100 mm scale bar: the designer reads distances off it.
-  svg.line(f.left, Y(0), f.right(), Y(0), "stroke=\"#e0e0e0\"");
-  svg.line(X(0), f.top, X(0), f.bottom(), "stroke=\"#e0e0e0\"");
+  // Axes through the pulley centre and a light mm grid on the ticks: the designer reads
+  // coordinates off the frame's edges and distances off the scale bar and the dimensions.
+  const double xv0 = x0 - (cx - f.left) / s, xv1 = xv0 + f.width / s;
+  const double yv1 = y1 + (cy - f.top) / s, yv0 = yv1 - f.height / s;
+  const Ticks xt = inner_ticks(xv0, xv1, 9), yt = inner_ticks(yv0, yv1, 6);
+  for (double t : xt.values) svg.line(X(t), f.top, X(t), f.bottom(), "stroke=\"#f0f0f0\"");
+  for (double t : yt.values) svg.line(f.left, Y(t), f.right(), Y(t), "stroke=\"#f0f0f0\"");
+  svg.line(f.left, Y(0), f.right(), Y(0), "stroke=\"#d8d8d8\"");
+  svg.line(X(0), f.top, X(0), f.bottom(), "stroke=\"#d8d8d8\"");
 
   // Belt (top strand towards the pulley) and the load on it, then the pulley and its lagging.
   const double gamma = st.belt.incline;
@@ -111,6 +110,15 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
   svg.line(X(belt_start.x()), Y(belt_start.y()), X(tan_b.x()), Y(tan_b.y()),
            "class=\"belt\" stroke=\"#333\" stroke-width=\"3\"");
   svg.line(X(belt_start.x()), Y(-rb), X(0), Y(-rb), "stroke=\"#333\" stroke-width=\"3\"");
+  if (st.belt.trough.troughed()) {
+    // The trough's wing edges stand above the belt's centre line: seen from the side, the load lies
+    // in the trough below this line (its section is drawn beside the readout).
+    const double edge = 0.5 * (st.belt.belt_width - st.belt.trough.centre_roll) * std::sin(st.belt.trough.idler_angle) * 1e3;
+    const Pt e0 = belt_start + edge * Pt(-std::sin(gamma), std::cos(gamma)), e1 = tan_b + edge * Pt(-std::sin(gamma), std::cos(gamma));
+    svg.raw(fmt::format("<line class=\"trough-edge\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#333\" "
+                        "stroke-dasharray=\"6 3\"><title>edge of the troughed belt ({} mm above its centre line)</title></line>\n",
+                        px(X(e0.x())), px(Y(e0.y())), px(X(e1.x())), px(Y(e1.y())), num(edge, 0)));
+  }
   svg.raw(fmt::format("<circle class=\"pulley\" cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"#bbb\" stroke=\"#333\" stroke-width=\"3\">"
                       "<title>head pulley, {} mm diameter, belt radius R_b = {} mm</title></circle>\n",
                       px(X(0)), px(Y(0)), px(rb * s), num(2 * rp, 0), num(rb, 1)));
@@ -166,10 +174,79 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
   }
   svg.raw("</g>\n");
 
-  // 100 mm scale bar, bottom left.
-  const double bar = 100.0 * s;
-  svg.line(f.left + 12, f.bottom() - 12, f.left + 12 + bar, f.bottom() - 12, "stroke=\"#333\" stroke-width=\"2\"");
-  svg.text(f.left + 12 + bar / 2, f.bottom() - 17, "100 mm", "middle", "font-size=\"11\" fill=\"#333\"");
+  // Ticks in mm on the frame (origin: the pulley centre).
+  for (double t : xt.values) {
+    svg.line(X(t), f.bottom(), X(t), f.bottom() + 5, "class=\"tick x\" stroke=\"#333\"");
+    svg.text(X(t), f.bottom() + 17, xt.label(t), "middle", "font-size=\"11\"");
+  }
+  for (double t : yt.values) {
+    svg.line(f.left - 5, Y(t), f.left, Y(t), "class=\"tick y\" stroke=\"#333\"");
+    svg.text(f.left - 7, Y(t) + 4, yt.label(t), "end", "font-size=\"11\"");
+  }
+  svg.text(f.right(), f.bottom() + 31, "x (mm) from the pulley centre", "end", "font-size=\"11\" fill=\"#555\"");
+  svg.text(f.left - 46, f.top - 8, "y (mm)", "start", "font-size=\"11\" fill=\"#555\"");
+
+  // Dimensions: a line with arrowheads between two points (px), its text beside its middle.
+  auto dimension = [&](double ax, double ay, double bx, double by, const std::string& text, double tx, double ty,
+                       std::string_view anchor, const std::string& title, double rotate = 0.0) {
+    svg.raw(fmt::format("<g class=\"dimension\"><title>{}</title>", esc(title)));
+    svg.line(ax, ay, bx, by, "stroke=\"#444\" stroke-width=\"1\"");
+    const double len = std::hypot(bx - ax, by - ay);
+    if (len > 1.0) {
+      const double ux = (bx - ax) / len, uy = (by - ay) / len;
+      for (int end = 0; end < 2; ++end) {
+        const double px0 = end ? bx : ax, py0 = end ? by : ay, dir = end ? -1.0 : 1.0;
+        svg.raw(fmt::format("<path d=\"M{} {}L{} {}L{} {}Z\" fill=\"#444\"/>", px(px0), px(py0),
+                            px(px0 + dir * 8 * ux - 3 * uy), px(py0 + dir * 8 * uy + 3 * ux),
+                            px(px0 + dir * 8 * ux + 3 * uy), px(py0 + dir * 8 * uy - 3 * ux)));
+      }
+    }
+    svg.text(tx, ty, text, anchor,
+             fmt::format("font-size=\"11\" fill=\"#222\" paint-order=\"stroke\" stroke=\"#fbfbfb\" stroke-width=\"3\"{}",
+                         rotate != 0.0 ? fmt::format(" transform=\"rotate({} {} {})\"", px(rotate), px(tx), px(ty)) : ""));
+    svg.raw("</g>\n");
+  };
+  {
+    // Plate distance: pulley centre to the face's top edge, above both.
+    const double yd = std::max(f.top + 12.0, std::min(Y(plate_top.y()), Y(rb + a.load.height * 1e3)) - 16.0);
+    svg.line(X(0), Y(0), X(0), yd - 4, "stroke=\"#999\" stroke-dasharray=\"2 2\"");
+    svg.line(X(plate_top.x()), Y(plate_top.y()), X(plate_top.x()), yd - 4, "stroke=\"#999\" stroke-dasharray=\"2 2\"");
+    dimension(X(0), yd, X(plate_top.x()), yd, num(plate_top.x(), 0) + " mm", 0.5 * (X(0) + X(plate_top.x())), yd - 4,
+              "middle", "plate distance: x of the face's top edge from the pulley centre");
+    // Right of the plate: its height along the face, then its top edge's height above the pulley
+    // centre; labels turned along the lines.
+    const Pt off = 12.0 / s * Pt(std::cos(st.plate.angle), std::sin(st.plate.angle));
+    const Pt q0 = plate_top + off, q1 = plate_bottom + off;
+    dimension(X(q0.x()) + 3, Y(q0.y()), X(q1.x()) + 3, Y(q1.y()), num(st.plate.height * 1e3, 0) + " mm",
+              0.5 * (X(q0.x()) + X(q1.x())) + 14, 0.5 * (Y(q0.y()) + Y(q1.y())), "middle",
+              fmt::format("plate height along its face; {} deg from vertical", num(st.plate.angle * kDeg, 1)),
+              -90.0 + st.plate.angle * kDeg);
+    const double xd = std::min(f.right() - 14.0, std::max(X(plate_top.x()), X(plate_bottom.x())) + 40.0);
+    svg.line(X(plate_top.x()) + 6, Y(plate_top.y()), xd + 4, Y(plate_top.y()), "stroke=\"#999\" stroke-dasharray=\"2 2\"");
+    svg.line(X(0) + rb * s + 4, Y(0), xd + 4, Y(0), "stroke=\"#999\" stroke-dasharray=\"2 2\"");
+    dimension(xd, Y(0), xd, Y(plate_top.y()), num(plate_top.y(), 0) + " mm", xd + 11, 0.5 * (Y(0) + Y(plate_top.y())), "middle",
+              "plate top: y of the face's top edge above the pulley centre", -90.0);
+    // Pulley diameter across the pulley, on the 45 degree line below-left.
+    const Pt d0 = rp * Pt(-std::sqrt(0.5), -std::sqrt(0.5)), d1 = -d0;
+    dimension(X(d0.x()), Y(d0.y()), X(d1.x()), Y(d1.y()), "Ø " + num(2 * rp, 0) + " mm", X(d0.x()) - 4, Y(d0.y()) + 12,
+              "end", "head pulley diameter");
+  }
+
+  // Scale bar, bottom left: 1, 2 or 5 x 10^k mm, the largest such length under a fifth of the frame.
+  {
+    const double target = 0.2 * f.width / s;
+    const double decade = std::pow(10.0, std::floor(std::log10(target)));
+    double length = decade;
+    for (double m : {2.0, 5.0})
+      if (m * decade <= target) length = m * decade;
+    const double bar = length * s;
+    svg.raw("<g class=\"scale-bar\">");
+    svg.rect(f.left + 12, f.bottom() - 16, bar, 5, "fill=\"#333\"");
+    svg.rect(f.left + 12 + bar / 2, f.bottom() - 16, bar / 2, 5, "fill=\"#fff\" stroke=\"#333\"");
+    svg.text(f.left + 12 + bar / 2, f.bottom() - 21, fixed(length, length < 1.0 ? 1 : 0) + " mm", "middle",
+             "font-size=\"11\" fill=\"#333\"");
+    svg.raw("</g>\n");
+  }
 
   // Legend and readout, right of the drawing.
   double ty = f.top + 6;
@@ -216,6 +293,43 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
           (zone.top_clipped || zone.bottom_clipped ? " (clipped)" : "")),
       "zone");
   row(esc(fmt::format("mean pressure = {} Pa", num(zone.mean_pressure, 0))), "zone-pressure");
+  // A troughed belt: its cross-section under the readout, since the side view shows the load's
+  // height h_b but not its shape.
+  if (st.belt.trough.troughed()) {
+    const auto& tr = st.belt.trough;
+    const double c = tr.centre_roll, wing = 0.5 * (st.belt.belt_width - c);
+    const double lam = tr.idler_angle, hb = a.load.height, cw = a.load.contact_width;
+    const double iw = W - tx - 12.0, ih = std::min(110.0, H - ty - 14.0), ix = tx, iy = ty + 6.0;
+    const double k = std::min((iw - 16) / std::max(c + 2 * wing * std::cos(lam), 1e-6), (ih - 26) / std::max(hb, wing * std::sin(lam)));
+    auto IX = [&](double u) { return ix + 0.5 * iw + u * k; };
+    auto IY = [&](double v) { return iy + ih - 8 - v * k; };
+    svg.raw("<g class=\"trough-section\"><title>cross-section of the troughed belt and its load (CEMA shape): "
+            + esc(fmt::format("idler angle {} deg, centre roll {} mm, surcharge angle {} deg, h_b = {} mm, contact "
+                              "width {} mm", num(lam * kDeg, 0), num(c * 1e3, 0), num(tr.surcharge_angle * kDeg, 0),
+                              num(hb * 1e3, 1), num(cw * 1e3, 0)))
+            + "</title>\n");
+    svg.rect(ix, iy, iw, ih, "fill=\"#ffffff\" stroke=\"#bbb\"");
+    // The load: on the rolls up to the contact width, topped by a circular arc of apex h_b.
+    double ex = 0.5 * std::min(cw, c), ey = 0.0;
+    if (cw > c) {
+      const double up = 0.5 * (cw - c);
+      ex = 0.5 * c + up * std::cos(lam);
+      ey = up * std::sin(lam);
+    }
+    const double sag = std::max(hb - ey, 1e-9), radius = (ex * ex + sag * sag) / (2 * sag);
+    std::string load = fmt::format("M{} {}", px(IX(-ex)), px(IY(ey)));
+    if (cw > c) load += fmt::format("L{} {}L{} {}", px(IX(-0.5 * c)), px(IY(0)), px(IX(0.5 * c)), px(IY(0)));
+    load += fmt::format("L{} {}A{} {} 0 0 0 {} {}Z", px(IX(ex)), px(IY(ey)), px(radius * k), px(radius * k),
+                        px(IX(-ex)), px(IY(ey)));
+    svg.raw(fmt::format("<path class=\"load-section\" d=\"{}\" fill=\"#e8d9b0\" stroke=\"#b59a55\"/>\n", load));
+    const double tx = 0.5 * c + wing * std::cos(lam), ty = wing * std::sin(lam);
+    svg.raw(fmt::format("<polyline class=\"belt-section\" points=\"{},{} {},{} {},{} {},{}\" fill=\"none\" stroke=\"#333\" "
+                        "stroke-width=\"2.5\"/>\n",
+                        px(IX(-tx)), px(IY(ty)), px(IX(-0.5 * c)), px(IY(0)), px(IX(0.5 * c)), px(IY(0)), px(IX(tx)), px(IY(ty))));
+    svg.text(ix + 4, iy + 11, fmt::format("trough {}°, section", num(lam * kDeg, 0)), "start", "font-size=\"10\" fill=\"#444\"");
+    svg.raw("</g>\n");
+  }
+
   return svg.finish();
 }
 

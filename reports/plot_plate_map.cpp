@@ -44,26 +44,50 @@ std::string heat_map(const std::vector<Panel>& panels, bool wear, std::string_vi
   if (!(z1 > z0) || !(y1 > y0)) return {};
   const int cols = std::min<int>(4, static_cast<int>(panels.size()));
   const int rows = (static_cast<int>(panels.size()) + cols - 1) / cols;
-  const double gap = 18.0, pw = (width - gap * (cols + 1)) / cols;
+  // Each panel has its own mm axes (y up the face on the left, z across it below).
+  const double gap = 18.0, left = 46.0, below = 26.0, pw = (width - gap * (cols + 1) - left * cols) / cols;
   const double k = pw / (z1 - z0), ph = (y1 - y0) * k;  // equal scales: the plate face as it is
-  const double head = 20.0, bar = 50.0;
-  Svg svg(width, rows * (ph + head + gap) + bar + gap, "plate-map", id,
+  const double head = 20.0, bar = 50.0, cell_h = ph + head + below + gap;
+  const Ticks zt = inner_ticks(z0 * 1e3, z1 * 1e3, std::max(2, static_cast<int>(pw / 60.0)));
+  const Ticks yt = inner_ticks(y0 * 1e3, y1 * 1e3, std::max(2, static_cast<int>(ph / 40.0)));
+  Svg svg(width, rows * cell_h + bar + gap, "plate-map", id,
           wear ? "wear rate maps of the plate" : "pressure maps of the plate");
   for (std::size_t n = 0; n < panels.size(); ++n) {
     const Panel& p = panels[n];
-    const double ox = gap + static_cast<double>(n % cols) * (pw + gap);
-    const double oy = gap + static_cast<double>(n / cols) * (ph + head + gap) + head;
+    const double ox = gap + left + static_cast<double>(n % cols) * (pw + gap + left);
+    const double oy = gap + static_cast<double>(n / cols) * cell_h + head;
     auto X = [&](double z) { return ox + (z - z0) * k; };
     auto Y = [&](double y) { return oy + (y1 - y) * k; };
-    svg.text(ox, oy - 6, p.condition + " (" + p.model + ")", "start", "font-size=\"12\"");
+    svg.text(ox - left, oy - 6, p.condition + " (" + p.model + ")", "start", "font-size=\"12\"");
     svg.rect(ox, oy, pw, ph, "fill=\"#440154\" stroke=\"none\"");
     const auto& v = wear ? p.map->wear_rate : p.map->pressure;
     std::array<std::string, kRamp.size()> paths;
     for (std::size_t i = 0; i < p.map->cells.size(); ++i) {
       const auto& c = p.map->cells[i];
+      // The two triangles of one grid cell (dem/station/plate_map.h) with one value: drawn as the cell.
+      if (i + 1 < p.map->cells.size() && v[i + 1] == v[i] && p.map->cells[i + 1][0] == c[0] &&
+          p.map->cells[i + 1][1] == c[2]) {
+        const auto& d = p.map->cells[i + 1][2];
+        paths[bin(v[i], hi)] += fmt::format("M{} {}L{} {}L{} {}L{} {}Z", px(X(c[0].x())), px(Y(c[0].y())),
+                                            px(X(c[1].x())), px(Y(c[1].y())), px(X(c[2].x())), px(Y(c[2].y())),
+                                            px(X(d.x())), px(Y(d.y())));
+        ++i;
+        continue;
+      }
       paths[bin(v[i], hi)] += fmt::format("M{} {}L{} {}L{} {}Z", px(X(c[0].x())), px(Y(c[0].y())), px(X(c[1].x())),
                                           px(Y(c[1].y())), px(X(c[2].x())), px(Y(c[2].y())));
     }
+    for (double t : yt.values) {
+      svg.line(ox - 4, Y(t * 1e-3), ox, Y(t * 1e-3), "class=\"tick\" stroke=\"#333\"");
+      svg.text(ox - 6, Y(t * 1e-3) + 3.5, yt.label(t), "end", "font-size=\"10\"");
+    }
+    for (double t : zt.values) {
+      svg.line(X(t * 1e-3), oy + ph, X(t * 1e-3), oy + ph + 4, "class=\"tick\" stroke=\"#333\"");
+      svg.text(X(t * 1e-3), oy + ph + 14, zt.label(t), "middle", "font-size=\"10\"");
+    }
+    svg.text(ox - left + 8, oy + 0.5 * ph, "y (mm)", "middle",
+             fmt::format("font-size=\"10\" fill=\"#555\" transform=\"rotate(-90 {} {})\"", px(ox - left + 8), px(oy + 0.5 * ph)));
+    svg.text(ox + pw, oy + ph + 24, "z across (mm)", "end", "font-size=\"10\" fill=\"#555\"");
     for (std::size_t b = 0; b < paths.size(); ++b)
       if (!paths[b].empty())
         svg.raw(fmt::format("<path d=\"{}\" fill=\"{}\" stroke=\"{}\" stroke-width=\"0.3\"/>\n", paths[b], kRamp[b], kRamp[b]));
@@ -86,7 +110,7 @@ std::string heat_map(const std::vector<Panel>& panels, bool wear, std::string_vi
     }
   }
   // Colour bar: one scale for every panel, labelled at its ends and middle.
-  const double by = rows * (ph + head + gap) + gap, bw = 40.0;
+  const double by = rows * cell_h + gap, bw = 40.0;
   const std::string what = wear ? "wear rate (um/h)" : "normal pressure (Pa)";
   svg.text(gap, by + 10, what, "start", "font-size=\"12\"");
   const double x = gap + text_width(what, 12) + 10;

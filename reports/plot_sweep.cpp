@@ -10,13 +10,25 @@
 namespace chutelab::reports {
 namespace {
 
+// The top panel shows the plate's extent, the bottom one starts at 0 N (a force near zero must look
+// near zero, not like the bottom of the chart).
 void panel(Svg& svg, const Frame& f, const SweepChart& c, const std::vector<SweepSeries>& series,
-           std::string_view ylabel, std::string_view cls, bool x_labels) {
+           std::string_view ylabel, std::string_view cls, bool x_labels, bool forces) {
   double lo = 1e300, hi = -1e300;
   for (const auto& s : series)
     for (const auto& y : s.y)
       if (y && std::isfinite(*y)) { lo = std::min(lo, *y); hi = std::max(hi, *y); }
   if (lo > hi) { lo = 0.0; hi = 1.0; }
+  if (forces) lo = std::min(lo, 0.0), hi = std::max(hi, 0.0);
+  if (!forces) {
+    // The plate in view, with a margin of a tenth of the impact points' spread.
+    const double pad = 0.1 * (hi - lo);
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      if (i < c.plate_top_mm.size() && c.plate_top_mm[i]) hi = std::max(hi, std::min(*c.plate_top_mm[i], hi + pad + 1.0));
+      if (i < c.plate_bottom_mm.size() && c.plate_bottom_mm[i])
+        lo = std::min(lo, std::max(*c.plate_bottom_mm[i], lo - pad - 1.0));
+    }
+  }
   if (hi - lo < 1e-9 * std::max(1.0, std::abs(hi))) { lo -= 1.0; hi += 1.0; }
   const Ticks xt = nice_ticks(c.x.front(), c.x.back() == c.x.front() ? c.x.front() + 1.0 : c.x.back());
   const Ticks yt = nice_ticks(lo, hi, 5);
@@ -24,8 +36,39 @@ void panel(Svg& svg, const Frame& f, const SweepChart& c, const std::vector<Swee
   svg.axes(f, X, xt, Y, yt, x_labels ? std::string_view(c.x_label) : std::string_view(), ylabel);
   // The x scale for a page that marks its current design on the chart.
   svg.raw(fmt::format("<g class=\"x-scale\" data-d0=\"{}\" data-d1=\"{}\" data-r0=\"{}\" data-r1=\"{}\" "
-                      "data-top=\"{}\" data-bottom=\"{}\"></g>\n",
-                      xt.lo, xt.hi, px(f.left), px(f.right()), px(f.top), px(f.bottom())));
+                      "data-top=\"{}\" data-bottom=\"{}\" data-y0=\"{}\" data-y1=\"{}\"></g>\n",
+                      xt.lo, xt.hi, px(f.left), px(f.right()), px(f.top), px(f.bottom()), yt.lo, yt.hi));
+  const std::string clip = svg.clip(f);
+  if (!forces && c.plate_top_mm.size() == c.x.size()) {
+    // The plate face as a shaded band between its edges (a polygon: a swept plate_top moves it).
+    std::string upper, lower;
+    for (std::size_t i = 0; i < c.x.size(); ++i)
+      if (c.plate_top_mm[i] && c.plate_bottom_mm[i]) {
+        upper += fmt::format("{},{} ", px(X(c.x[i])), px(Y(*c.plate_top_mm[i])));
+        lower = fmt::format("{},{} ", px(X(c.x[i])), px(Y(*c.plate_bottom_mm[i]))) + lower;
+      }
+    if (!upper.empty())
+      svg.raw(fmt::format("<polygon class=\"plate-extent\" clip-path=\"url(#{})\" points=\"{}{}\" fill=\"#888\" "
+                          "fill-opacity=\"0.13\" stroke=\"#888\" stroke-dasharray=\"3 3\"><title>the plate face, top to "
+                          "bottom edge</title></polygon>\n",
+                          clip, upper, lower));
+    svg.text(f.right() - 6, f.top + 14, "shaded: the plate face", "end", "font-size=\"11\" fill=\"#555\"");
+  }
+  // Runs of points without an answer, one band each, from half a step before to half a step after.
+  if (c.gap_label.size() == c.x.size())
+    for (std::size_t i = 0; i < c.x.size();) {
+      if (c.gap_label[i].empty()) { ++i; continue; }
+      std::size_t j = i;
+      while (j + 1 < c.x.size() && c.gap_label[j + 1] == c.gap_label[i]) ++j;
+      const double half = c.x.size() > 1 ? 0.5 * std::abs(c.x[1] - c.x[0]) : 0.5;
+      const double a = std::max(X(std::min(c.x[i], c.x[j]) - half), f.left);
+      const double b = std::min(X(std::max(c.x[i], c.x[j]) + half), f.right());
+      svg.rect(a, f.top, b - a, f.height, "class=\"no-answer\" fill=\"#d62728\" fill-opacity=\"0.08\" stroke=\"none\"",
+               c.gap_reason[i]);
+      svg.text(0.5 * (a + b), f.top + (forces ? 30 : 30), c.gap_label[i], "middle",
+               "class=\"no-answer-label\" font-size=\"11\" fill=\"#a33\"");
+      i = j + 1;
+    }
   svg.raw(fmt::format("<g class=\"{}\">\n", cls));
   for (const auto& s : series) {
     // Gaps where a point has no answer: one polyline per run of answered points.
@@ -64,9 +107,9 @@ std::string sweep_svg(const SweepChart& c, std::string_view id) {
   svg.title("Impact point and plate forces against " + c.x_label);
   if (c.x.empty()) return svg.finish();
   svg.legend(left, 30.0, width, top);
-  panel(svg, f1, c, c.impact_mm, "y on the plate (mm)", "impact-series", false);
+  panel(svg, f1, c, c.impact_mm, "y on the plate (mm)", "impact-series", false, false);
   svg.legend(left, f1.bottom() + 24.0, width, bottom);
-  panel(svg, f2, c, c.forces_N, "force on the plate (N)", "force-series", true);
+  panel(svg, f2, c, c.forces_N, "force on the plate (N)", "force-series", true, true);
   return svg.finish();
 }
 

@@ -455,8 +455,10 @@ Doc assemble(const ReportInput& in) {
     const PlateSection ps = plate_section(c, *in.baseline, "platemap", 980.0);
     if (!ps.empty()) {
       d.h(2, "plate", "Plate loading and wear");
-      d.p("The mean normal pressure and the wear rate on the plate face over each run's steady window, per triangle "
-          "of the plate mesh (setup.toml [dem] plate_cells refines it), seen from the pulley: z across, y up. One "
+      d.p("The mean normal pressure and the wear rate on the plate face over each run's steady window, per cell of "
+          "the map (by default 10 mm cells on which the plate's contacts are binned; setup.toml [dem] map_cell_mm "
+          "sets the size, 0 gives the coarse plate's own two triangles; a run read from a cache entry recorded "
+          "before the grid shows those two triangles), seen from the pulley: z across, y up, in mm. One "
           "colour scale per quantity for every condition. The dashed box is the analytical impact zone (Booth/CEMA "
           "upper and lower limits, loaded width; Korzen's R_n spread over it as a mean pressure), the dotted line "
           "its centroid streamline.");

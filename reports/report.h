@@ -8,7 +8,7 @@
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
-#include "validation/seed_findings.h"
+#include "validation/reference_findings.h"
 
 namespace chutelab::reports {
 
@@ -27,7 +27,7 @@ struct ReportInput {
   const validation::ValidationResult* with_effects = nullptr;  // optional: after adding effects
   std::vector<EffectDescription> effects;                   // what with_effects added
   const validation::DiagnosisResult* diagnosis = nullptr;   // optional: "What is missing"
-  const std::vector<validation::SeedFinding>* findings = nullptr;  // optional: the reference study's findings checked
+  const std::vector<validation::ReferenceFinding>* findings = nullptr;  // optional: the reference study's findings checked
   std::vector<std::string> notes;                           // provenance of numbers, warnings
   const std::vector<StudySection>* studies = nullptr;       // optional: calibrate / sensitivity sections
 };

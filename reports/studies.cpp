@@ -6,13 +6,16 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
-#include "reports/sensitivity_study.h"
-#include "validation/csv_table.h"
+#include "reports/sensitivity_page.h"
+#include "studies/sensitivity.h"
 
 namespace chutelab::reports {
 namespace {
 
 namespace fs = std::filesystem;
+using studies::CalibrationPoint;
+using studies::SensitivityStudy;
+using studies::Stat;
 
 std::string num(double v, int decimals) { return std::isfinite(v) ? fixed(v, decimals) : std::string(kDash); }
 
@@ -39,48 +42,8 @@ std::vector<std::string> provenance_paragraphs(std::string_view kind, std::strin
   return out;
 }
 
-std::vector<CalibrationPoint> read_calibration_csv(const fs::path& file) {
-  using validation::CsvTable;
-  const CsvTable t = CsvTable::read(file, {"shape", "grain", "rolling_friction", "solid_density_kgm3",
-                                           "bulk_density_kgm3", "pile_height_mm", "repose_angle_deg", "particles",
-                                           "settled", "target_distance", "closest"});
-  if (t.rows().empty()) throw InputError(file.string(), 0, "shape", "no slump tests in the file (a header only)");
-  auto col = [&](std::string_view c) { return t.require(c); };
-  std::vector<CalibrationPoint> out;
-  std::vector<double> timing;
-  if (const auto tf = file.parent_path() / "calibration-timing.csv"; fs::exists(tf)) {
-    const CsvTable tt = CsvTable::read(tf, {"run_seconds"});
-    for (const auto& r : tt.rows()) timing.push_back(tt.number(r, tt.require("run_seconds")));
-  }
-  for (const auto& r : t.rows()) {
-    CalibrationPoint p;
-    p.shape = t.text(r, col("shape"));
-    if (p.shape != "sphere" && p.shape != "clump")
-      throw InputError(file.string(), r.line, "shape", fmt::format("must be sphere or clump, got '{}'", p.shape));
-    p.grain = t.text(r, col("grain"));
-    p.rolling_friction = t.number(r, col("rolling_friction"));
-    p.solid_density = t.number(r, col("solid_density_kgm3"));
-    p.bulk_density = t.number(r, col("bulk_density_kgm3"));
-    p.pile_height = t.number(r, col("pile_height_mm")) * 1e-3;
-    p.repose_angle_deg = t.optional_number(r, col("repose_angle_deg")).value_or(std::nan(""));
-    p.particles = static_cast<long>(t.number(r, col("particles")));
-    p.settled = t.number(r, col("settled")) != 0.0;
-    // Older files carry the time; newer ones keep it in calibration-timing.csv beside them.
-    p.run_seconds = t.column("run_seconds") ? t.number(r, col("run_seconds")) : std::nan("");
-    p.distance = t.optional_number(r, col("target_distance"));
-    p.closest = t.number(r, col("closest")) != 0.0;
-    // Provenance columns came later: optional, so a study written before them still reads.
-    if (const auto c = t.column("dataset")) p.dataset = t.text(r, *c);
-    if (const auto c = t.column("quality")) p.quality = t.text(r, *c);
-    if (!(p.solid_density > 0.0)) throw InputError(file.string(), r.line, "solid_density_kgm3", "must be > 0");
-    if (timing.size() == t.rows().size()) p.run_seconds = timing[out.size()];
-    out.push_back(p);
-  }
-  return out;
-}
-
 StudySection calibration_section(const fs::path& csv_file, std::string_view suffix, std::string_view validated) {
-  const std::vector<CalibrationPoint> pts = read_calibration_csv(csv_file);
+  const std::vector<CalibrationPoint> pts = studies::read_calibration_csv(csv_file);
   StudySection s;
   s.id = fmt::format("calibration{}", suffix);
   s.title = "Calibration (the reference study's Table 3)";
@@ -132,7 +95,7 @@ StudySection calibration_section(const fs::path& csv_file, std::string_view suff
 }
 
 StudySection sensitivity_section(const fs::path& csv_file, std::string_view suffix, std::string_view validated) {
-  const SensitivityStudy st = read_sensitivity_csv(csv_file);
+  const SensitivityStudy st = studies::read_sensitivity_csv(csv_file);
   StudySection s;
   s.id = fmt::format("sensitivity{}", suffix);
   s.title = "Sensitivity (the reference study's Table 6)";
@@ -160,7 +123,7 @@ StudySection sensitivity_section(const fs::path& csv_file, std::string_view suff
     const auto& r = st.rows[k];
     const auto& o = r.outcome;
     t.rows.push_back({text_cell(r.variant.key, k == 0), text_cell(r.variant.label),
-                      num_cell(fmt::format("{:g}", std::round(o.diameter * 1e4) / 10.0)), num_cell(num(o.dt * 1e6, 2)),
+                      num_cell(studies::mm_text(o.diameter)), num_cell(num(o.dt * 1e6, 2)),
                       num_cell(o.collision_time > 0.0 ? num(o.dt / o.collision_time, 3) : std::string(kDash)),
                       num_cell(pm(o.normal)), num_cell(pm(o.shear)), num_cell(pm(o.resultant)),
                       num_cell(num(o.fluct_normal, 1)), num_cell(num(o.fluct_shear, 1)), num_cell(num(o.fluct_resultant, 1)),
@@ -171,7 +134,7 @@ StudySection sensitivity_section(const fs::path& csv_file, std::string_view suff
   }
   for (const auto& r : st.rows)
     if (!r.outcome.steady) t.notes.push_back(r.variant.key + ": no steady window within the time limit (means uncertain).");
-  for (const auto& n : run_notes(st)) t.notes.push_back(n + ".");
+  for (const auto& n : studies::run_notes(st)) t.notes.push_back(n + ".");
   s.chart_svg = sensitivity_chart(st, s.id + "-chart");
   s.caption = "Mean resultant plate force (± 1 standard error; dashed: the base) and its fluctuation per variant.";
   return s;

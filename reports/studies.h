@@ -2,7 +2,8 @@
 // Studies run beside a validation — `chutelab calibrate` (reference study Table 3) and `chutelab sensitivity`
 // (reference study Table 6) — read back from their output folders and turned into report sections: a verdict or
 // finding, a table and a chart. The report draws them like its own sections (report.cpp) and knows
-// nothing of how they were made: the CSV files are the interface.
+// nothing of how they were made: the CSV files are the interface, and the studies read them
+// (studies/calibration.h, studies/sensitivity.h).
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "reports/common.h"
+#include "studies/calibration.h"
 
 namespace chutelab::reports {
 
@@ -23,24 +25,6 @@ struct StudySection {
   std::string caption;
 };
 
-// One slump test of a calibration sweep (a row of calibration.csv).
-struct CalibrationPoint {
-  std::string shape;                 // sphere | clump
-  std::string grain;                 // "sphere d=5.6mm"
-  double rolling_friction = 0.0;
-  double solid_density = 0.0;        // kg/m^3
-  double bulk_density = 0.0;         // kg/m^3
-  double pile_height = 0.0;          // m
-  double repose_angle_deg = 0.0;     // NaN when the flank had too few grains
-  long particles = 0;
-  bool settled = true;
-  double run_seconds = 0.0;
-  std::optional<double> distance;    // relative distance to the target
-  bool closest = false;
-  std::string dataset;               // setup.toml `name` of the calibrated dataset ("" = not recorded)
-  std::string quality;               // of the slump tests ("" = not recorded)
-};
-
 struct CalibrationTargetsView {
   std::optional<double> bulk_density;  // kg/m^3
   std::optional<double> pile_height;   // m
@@ -48,12 +32,8 @@ struct CalibrationTargetsView {
 
 // Pile height and bulk density against rolling friction, one line per (grain, solid density); the
 // targets as dashed lines. Shared by `chutelab calibrate`'s page and the report.
-std::string calibration_chart(const std::vector<CalibrationPoint>& points, const CalibrationTargetsView& targets,
+std::string calibration_chart(const std::vector<studies::CalibrationPoint>& points, const CalibrationTargetsView& targets,
                               std::string_view id);
-
-// Reads calibration.csv (as `chutelab calibrate` writes it). Throws InputError naming the file, line
-// and column for a missing column, a bad number or an empty table.
-std::vector<CalibrationPoint> read_calibration_csv(const std::filesystem::path& file);
 
 // A section from one CSV file; `suffix` makes its anchors unique when a kind occurs twice. The
 // section says which dataset and quality the study used, and warns when that is not `validated` (the

@@ -5,26 +5,14 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "core/markup.h"
 #include "core/utf8.h"
 
 namespace chutelab::reports {
 
 std::string esc(std::string_view raw) {
   // The pages declare UTF-8: names from users' files are made valid UTF-8 before escaping.
-  const std::string s = to_utf8(raw);
-  std::string o;
-  o.reserve(s.size());
-  for (char c : s) {
-    switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      case '\'': o += "&#39;"; break;
-      default: o += c;
-    }
-  }
-  return o;
+  return markup_escape(to_utf8(raw), Markup::html);
 }
 
 std::string md_esc(std::string_view raw) {

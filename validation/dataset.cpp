@@ -279,6 +279,16 @@ Station make_station(const Setup& setup, std::string condition, double belt_spee
   return st;
 }
 
+const Station& condition_row(const std::vector<Station>& stations, std::string_view condition,
+                             const fs::path& conditions_file, std::string_view field) {
+  for (const auto& s : stations)
+    if (s.condition == condition) return s;
+  std::vector<std::string> names;
+  for (const auto& s : stations) names.push_back(s.condition);
+  throw InputError(conditions_file.string(), 0, std::string(field),
+                   fmt::format("no condition named '{}' (known: {})", condition, fmt::join(names, ", ")));
+}
+
 std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
                                      std::vector<SourceLine>* lines,
                                      std::vector<InputUncertainties>* uncertainties,

@@ -101,6 +101,10 @@ std::vector<Station> read_conditions(const std::filesystem::path& file, const Se
                                      std::vector<SourceLine>* lines = nullptr,
                                      std::vector<InputUncertainties>* uncertainties = nullptr,
                                      const InputUncertainties& defaults = {});
+// The row of `stations` (as read from `conditions_file`) named `condition`. None: InputError naming
+// the file and `field` (the caller's word for what chose the row) with the names there are.
+const Station& condition_row(const std::vector<Station>& stations, std::string_view condition,
+                             const std::filesystem::path& conditions_file, std::string_view field);
 
 // The measurement-like files (measurements.csv, trajectory.csv; also another code's exported
 // predictions, validation/models/external_model.h), checked as strictly. With `d`, every condition

@@ -5,35 +5,15 @@
 #include <map>
 #include <tuple>
 
+#include "core/markup.h"
 #include "validation/output_files.h"
 
 namespace chutelab::validation {
 namespace {
 
-std::string xml_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      case '\'': o += "&apos;"; break;
-      case '\n': o += "&#10;"; break;
-      default:
-        // XML 1.0 has no other control characters; a condition name should never carry one.
-        if (static_cast<unsigned char>(c) >= 0x20 || c == '\t') o += c;
-    }
-  }
-  return o;
-}
-
+std::string xml_escape(const std::string& s) { return markup_escape(s, Markup::xml_attribute); }
 // Text content keeps its line breaks.
-std::string xml_text(const std::string& s) {
-  std::string o;
-  for (char c : s) o += c == '\n' ? std::string("\n") : xml_escape(std::string(1, c));
-  return o;
-}
+std::string xml_text(const std::string& s) { return markup_escape(s, Markup::xml_text); }
 
 std::string unit_of(const Comparison& c) {
   return c.q ? std::string(info(*c.q).unit) : std::string("mm");

@@ -75,8 +75,9 @@ std::string number_or_null(std::optional<double> v) { return v ? app::json_numbe
 std::string rig_fields_json() {
   std::string o = "[";
   for (const auto& f : rig_fields())
-    o += fmt::format("{}{{\"section\": {}, \"key\": {}, \"column\": {}, \"min\": {}, \"max\": {}, \"required\": {}, \"fallback\": {}}}",
+    o += fmt::format("{}{{\"section\": {}, \"key\": {}, \"label\": {}, \"column\": {}, \"min\": {}, \"max\": {}, \"required\": {}, \"fallback\": {}}}",
                      o.size() > 1 ? "," : "", app::json_string(std::string(f.section)), app::json_string(std::string(f.key)),
+                     app::json_string(std::string(f.label)),
                      app::json_string(std::string(f.column)), app::json_number(f.min), app::json_number(f.max),
                      f.required ? "true" : "false", number_or_null(f.fallback));
   return o + "]";

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The LIGGGHTS rig with a trajectory.csv of N rows (issue 30, class 7): each condition's upper and
+"""The LIGGGHTS rig with a trajectory.csv of N rows (a large trajectory file): each condition's upper and
 lower stream limit measured at N / (2 x conditions) evenly spaced x values from 100 mm to 60 mm
 before the plate, on a plausible parabola. The benchmark measures time, memory and report size.
 Usage: make_trajectory.py N OUT_DIR"""

@@ -37,8 +37,8 @@ struct HertzMindlin {
     Coeffs c;
     c.e_star = effective_youngs_modulus(a, b);
     c.g_star = effective_shear_modulus(a, b);
-    // Seed §3 (Tsuji-type damping of Hertz): F_d = 2 sqrt(5/6) beta sqrt(S_n m*) v_n. With the
-    // tensile tail of the force allowed this reproduces e exactly for any impact speed.
+    // The reference study's §3 (Tsuji-type damping of Hertz): F_d = 2 sqrt(5/6) beta sqrt(S_n m*) v_n.
+    // With the tensile tail of the force allowed this reproduces e exactly for any impact speed.
     c.damping = 2.0 * std::sqrt(5.0 / 6.0) * damping_ratio_from_restitution(in.restitution);
     c.tangential_ratio = std::sqrt(4.0 * c.g_star / c.e_star);
     return c;
@@ -55,7 +55,7 @@ struct HertzMindlin {
     // sqrt(S_t m*) = sqrt(S_n m*) sqrt(4 G*/E*): one square root fewer per contact.
     return {elastic + q * delta_dot, sn, st, q * c.tangential_ratio};
   }
-  // Seed Eq 11 at impact speed v.
+  // The reference study's Eq 11 at impact speed v.
   static double collision_time(const Coeffs& c, double m_eff, double r_eff, double v) {
     return hertz_collision_time(m_eff, r_eff, c.e_star, v);
   }

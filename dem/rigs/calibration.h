@@ -38,7 +38,7 @@ struct CalibrationPlan {
   std::vector<double> density;     // solid densities, kg/m^3
   std::vector<GrainKind> shapes;
   Grain sphere = Grain::sphere(5.6e-3);    // the reference study's scaled sphere (Fig. 4b)
-  Grain clump = Grain::seed_clump(4.4e-3); // the reference study's 2 x 4.4 mm pellet (Fig. 4c)
+  Grain clump = Grain::reference_clump(4.4e-3); // the reference study's 2 x 4.4 mm pellet (Fig. 4c)
   SlumpSettings settings;
   CalibrationTargets targets;
   // Particle-wall rolling friction by the inclined-plane rig: onset angle for each `rolling` value

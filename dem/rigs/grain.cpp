@@ -17,13 +17,13 @@ Grain Grain::sphere(double d) {
   return g;
 }
 
-Grain Grain::seed_clump(double element_diameter) {
+Grain Grain::reference_clump(double element_diameter) {
   if (!(element_diameter > 0.0))
     throw InputError("", 0, "clump diameter", fmt::format("must be > 0, got {} m", element_diameter));
   Grain g;
   g.kind = GrainKind::clump;
   g.diameter = element_diameter;
-  const ClumpShape base = ClumpShape::seed_pellet();
+  const ClumpShape base = ClumpShape::reference_pellet();
   g.clump = base.scaled(element_diameter / (2.0 * base.largest_sphere_radius()));
   return g;
 }

@@ -19,8 +19,8 @@ struct Grain {
   ClumpShape clump;          // used when kind == clump (scaled to `diameter`)
 
   static Grain sphere(double d);
-  // The seed pellet (two overlapping spheres, Fig. 4c) with element spheres of diameter d.
-  static Grain seed_clump(double element_diameter = 4.4e-3);
+  // The reference study's pellet (two overlapping spheres, Fig. 4c) with element spheres of diameter d.
+  static Grain reference_clump(double element_diameter = 4.4e-3);
   double volume() const;            // m^3 of solid
   double bounding_radius() const;   // m
   std::string label() const;        // "sphere d=5.6mm", "clump 2x4.4mm"

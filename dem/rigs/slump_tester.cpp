@@ -62,8 +62,8 @@ SlumpSettings slump_preset(RigQuality q) {
   if (q == RigQuality::quick) {
     // ~800 spheres of 5.6 mm (~1400 clumps of 2 x 4.4 mm): a column 3/4 as tall as the tube is wide, so
     // that it really slumps (a 30 mm column is already close to its own pile and hardly feels mu_r);
-    // E/100 lets the time step grow 10x (dt ~ E^-1/2 through the Rayleigh limit); the seed found mean
-    // flow quantities insensitive to G x10 and /10 (Table 6).
+    // E/100 lets the time step grow 10x (dt ~ E^-1/2 through the Rayleigh limit); the reference study
+    // found mean flow quantities insensitive to G x10 and /10 (Table 6).
     s.fill_height = 0.045;
     s.modulus_scale = 0.01;
     s.max_settle_time = 0.5;

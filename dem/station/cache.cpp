@@ -1,5 +1,6 @@
 #include "dem/station/cache.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
@@ -21,9 +22,9 @@ namespace {
 
 // Version 5 ends with an "end" line, so a file cut short (a writer that died, a file system that
 // shows a rename before the data) is a miss, not a result with half its series, and carries the
-// plate maps with their block means (the versions 3 and 4 of two branches had one each). Version 2
-// files (no end line, no maps, written by an atomic rename only) are still read: a standard or
-// paper run is too dear to repeat for a picture (--no-dem-cache does).
+// plate maps with their block means. Version 2 files (no end line, no maps, written by an atomic
+// rename only) are still read: a standard or paper run is too dear to repeat for a picture
+// (--no-dem-cache does). Any other version is a miss.
 constexpr const char* kMagic = "chutelab-dem-result 5";
 constexpr const char* kMagicV2 = "chutelab-dem-result 2";
 constexpr const char* kEnd = "end\n";
@@ -105,6 +106,33 @@ std::string to_text(const StationResult& r) {
   // The wear inputs are not stored: the maps keep their sums, the reader applies its own inputs.
   for (const auto& m : r.maps) {
     o += fmt::format("map {} {}\n", num(m.duration), m.wall);
+    if (m.grid && m.cells.size() == 2 * static_cast<std::size_t>(m.grid->rows * m.grid->cols)) {
+      // A grid map: its geometry once, then the cells with a contact (most of a fine map is empty);
+      // the reader rebuilds the rest (plate_map.h empty_cell), bit for bit.
+      const MapGrid& g = *m.grid;
+      const std::size_t nb = m.cells.front().block_normal.size();
+      o += fmt::format("grid {} {} {} {} {} {} {} {} {} {} {} {} {} {}\n", num(g.origin.x()), num(g.origin.y()),
+                       num(g.origin.z()), num(g.down.x()), num(g.down.y()), num(g.down.z()), num(g.across.x()),
+                       num(g.across.y()), num(g.across.z()), num(g.height), num(g.width), g.rows, g.cols, nb);
+      const auto tri = g.triangles();
+      for (std::size_t b = 0; 2 * b < m.cells.size(); ++b) {
+        const MapCell& c = m.cells[2 * b];
+        const bool flip = c.normal.dot((tri[2 * b][1] - tri[2 * b][0]).cross(tri[2 * b][2] - tri[2 * b][0])) < 0.0;
+        const bool empty = !flip && c.force == Vec3::Zero() && c.impact_power == 0.0 && c.sliding_power == 0.0 &&
+                           c.load_slip == 0.0 && c.finnie_measure == 0.0 && c.impacts == 0.0 &&
+                           std::all_of(c.block_normal.begin(), c.block_normal.end(), [](double v) { return v == 0.0; }) &&
+                           std::all_of(c.block_load_slip.begin(), c.block_load_slip.end(), [](double v) { return v == 0.0; }) &&
+                           std::all_of(c.block_finnie.begin(), c.block_finnie.end(), [](double v) { return v == 0.0; });
+        if (empty) continue;
+        o += fmt::format("gcell {} {} {} {} {} {} {} {} {} {}", b, flip ? 1 : 0, num(c.force.x()), num(c.force.y()),
+                         num(c.force.z()), num(c.impact_power), num(c.sliding_power), num(c.load_slip),
+                         num(c.finnie_measure), num(c.impacts));
+        for (std::size_t k = 0; k < nb; ++k)
+          o += fmt::format(" {} {} {}", num(c.block_normal[k]), num(c.block_load_slip[k]), num(c.block_finnie[k]));
+        o += "\n";
+      }
+      continue;
+    }
     for (const auto& c : m.cells) {
       o += "cell";
       for (const auto& p : c.corners) o += fmt::format(" {} {} {}", num(p.x()), num(p.y()), num(p.z()));
@@ -194,6 +222,44 @@ std::optional<StationResult> from_text(const std::string& text) {
       in >> std::ws;
       std::getline(in, m.wall);
       r.maps.push_back(std::move(m));
+    } else if (tag == "grid") {
+      if (r.maps.empty()) return std::nullopt;
+      MapGrid g;
+      auto v3 = [&] {
+        const double x = rd(in), y = rd(in), z = rd(in);
+        return Vec3(x, y, z);
+      };
+      g.origin = v3();
+      g.down = v3();
+      g.across = v3();
+      g.height = rd(in);
+      g.width = rd(in);
+      std::size_t nb = 0;
+      in >> g.rows >> g.cols >> nb;
+      if (!in || g.rows < 1 || g.cols < 1 || g.rows > 400 || g.cols > 400 || nb > 10000) return std::nullopt;
+      PlateMap& m = r.maps.back();
+      m.grid = g;
+      for (const auto& t : g.triangles()) m.cells.push_back(empty_cell(t, false, nb));
+    } else if (tag == "gcell") {
+      if (r.maps.empty() || !r.maps.back().grid) return std::nullopt;
+      PlateMap& m = r.maps.back();
+      std::size_t b = 0;
+      int flip = 0;
+      in >> b >> flip;
+      if (!in || 2 * b + 1 >= m.cells.size()) return std::nullopt;
+      const double fx = rd(in), fy = rd(in), fz = rd(in);
+      const double ip = rd(in), sp = rd(in), ls = rd(in), fm = rd(in), im = rd(in);
+      const std::size_t nb = m.cells[2 * b].block_normal.size();
+      std::vector<double> bn(nb), bl(nb), bf(nb);
+      for (std::size_t k = 0; k < nb; ++k) bn[k] = rd(in), bl[k] = rd(in), bf[k] = rd(in);
+      if (!in) return std::nullopt;
+      for (std::size_t t = 2 * b; t < 2 * b + 2; ++t) {
+        MapCell& c = m.cells[t];
+        if (flip) c.normal = -c.normal;
+        c.force = Vec3(fx, fy, fz);
+        c.impact_power = ip; c.sliding_power = sp; c.load_slip = ls; c.finnie_measure = fm; c.impacts = im;
+        c.block_normal = bn; c.block_load_slip = bl; c.block_finnie = bf;
+      }
     } else if (tag == "cell") {
       if (r.maps.empty()) return std::nullopt;
       MapCell c;

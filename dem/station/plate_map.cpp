@@ -61,27 +61,89 @@ Vec3 PlateMap::total_force() const {
   return f;
 }
 
-PlateMapRecorder::PlateMapRecorder(const Wall& wall, const wear::FinnieParams& finnie, std::size_t max_samples)
+MapGrid MapGrid::on_face(const Vec3& top_edge, const Vec3& down, double height, double width, double cell) {
+  MapGrid g;
+  g.origin = top_edge - 0.5 * width * Vec3::UnitZ();
+  g.down = down;
+  g.across = Vec3::UnitZ();
+  g.height = height;
+  g.width = width;
+  // Whole cells across the face, as near `cell` as the face allows; capped so that a very large face
+  // keeps a map of bounded size (its cells then grow).
+  g.rows = std::clamp(static_cast<int>(std::lround(height / cell)), 1, 400);
+  g.cols = std::clamp(static_cast<int>(std::lround(width / cell)), 1, 400);
+  return g;
+}
+
+std::vector<std::array<Vec3, 3>> MapGrid::triangles() const {
+  auto at = [&](int r, int c) { return Vec3(origin + (height * r / rows) * down + (width * c / cols) * across); };
+  std::vector<std::array<Vec3, 3>> t;
+  // The triangles a mesh of these cells would have (dem/station/scene.cpp's plate_cells), so that
+  // a grid map and a meshed plate's map read alike.
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      t.push_back({at(r, c), at(r + 1, c), at(r + 1, c + 1)});
+      t.push_back({at(r, c), at(r + 1, c + 1), at(r, c + 1)});
+    }
+  return t;
+}
+
+MapCell empty_cell(const std::array<Vec3, 3>& corners, bool flip, std::size_t blocks) {
+  MapCell c;
+  c.corners = corners;
+  const Vec3 cr = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+  c.area = 0.5 * cr.norm();
+  const Vec3 n = cr.norm() > 0.0 ? Vec3(cr.normalized()) : Vec3::UnitX();
+  c.normal = flip ? Vec3(-n) : n;
+  c.block_normal.assign(blocks, 0.0);
+  c.block_load_slip.assign(blocks, 0.0);
+  c.block_finnie.assign(blocks, 0.0);
+  return c;
+}
+
+PlateMapRecorder::PlateMapRecorder(const Wall& wall, const wear::FinnieParams& finnie, std::size_t max_samples,
+                                   const MapGrid* grid)
     : name_(wall.name), finnie_(finnie) {
-  if (const auto* m = std::get_if<TriangleMesh>(&wall.current)) {
-    for (const auto& t : m->triangles)
-      corners_.push_back({m->vertices[static_cast<std::size_t>(t[0])], m->vertices[static_cast<std::size_t>(t[1])],
-                          m->vertices[static_cast<std::size_t>(t[2])]});
-  } else {
+  if (!std::holds_alternative<TriangleMesh>(wall.current))
     throw InputError("", 0, fmt::format("wall '{}'", wall.name), "a pressure map needs a triangle-mesh wall");
+  if (grid) {
+    grid_ = *grid;
+    corners_ = grid->triangles();
+    triangles_per_bin_ = 2;
+  } else {
+    const auto& m = std::get<TriangleMesh>(wall.current);
+    for (const auto& t : m.triangles)
+      corners_.push_back({m.vertices[static_cast<std::size_t>(t[0])], m.vertices[static_cast<std::size_t>(t[1])],
+                          m.vertices[static_cast<std::size_t>(t[2])]});
   }
-  const double per_sample = static_cast<double>(corners_.size() * kChannels);
-  samples_per_block_ = std::max<std::size_t>(
-      1, static_cast<std::size_t>(std::ceil(per_sample * static_cast<double>(max_samples) / kStoreDoubles)));
+  bins_ = corners_.size() / triangles_per_bin_;
+  (void)max_samples;  // the store grows with what is touched (end_sample), not with the run's length
   for (const auto& c : corners_) {
     const Vec3 cr = (c[1] - c[0]).cross(c[2] - c[0]);
     normals_.push_back(cr.norm() > 0.0 ? Vec3(cr.normalized()) : Vec3::UnitX());
   }
-  current_.assign(corners_.size() * kChannels, 0.0);
+  current_.assign(bins_ * kChannels, 0.0);
+  touched_flag_.assign(bins_, 0);
+  block_begin_.push_back(0);
+}
+
+std::size_t PlateMapRecorder::bin_of(const WallContact& c) const {
+  if (!grid_) return static_cast<std::size_t>(c.element);
+  const MapGrid& g = *grid_;
+  const Vec3 d = c.point - g.origin;
+  // A contact on the face's rim (a sphere over its edge) counts in the nearest cell.
+  const int r = std::clamp(static_cast<int>(std::floor(d.dot(g.down) / g.height * g.rows)), 0, g.rows - 1);
+  const int k = std::clamp(static_cast<int>(std::floor(d.dot(g.across) / g.width * g.cols)), 0, g.cols - 1);
+  return static_cast<std::size_t>(r) * static_cast<std::size_t>(g.cols) + static_cast<std::size_t>(k);
 }
 
 void PlateMapRecorder::observe(const WallContact& c) {
-  double* a = current_.data() + static_cast<std::size_t>(c.element) * kChannels;
+  const std::size_t bin = bin_of(c);
+  if (!touched_flag_[bin]) {
+    touched_flag_[bin] = 1;
+    touched_.push_back(static_cast<std::uint32_t>(bin));
+  }
+  double* a = current_.data() + bin * kChannels;
   const Vec3& n = c.normal;
   const double fn = c.force.dot(n);
   const Vec3 ft = c.force - fn * n;
@@ -93,7 +155,7 @@ void PlateMapRecorder::observe(const WallContact& c) {
   a[2] += c.force.z() * c.dt;
   a[4] += std::abs(ft.dot(vt)) * c.dt;
   a[5] += std::max(0.0, fn) * slip * c.dt;
-  a[8] += n.dot(normals_[static_cast<std::size_t>(c.element)]) * c.dt;
+  a[8] += n.dot(normals_[bin * triangles_per_bin_]) * c.dt;
   auto [it, fresh] = last_touch_.try_emplace(c.particle, c.step);
   // A new contact: the particle did not touch this wall in the previous step (several triangles
   // touched in one step are one contact).
@@ -110,8 +172,18 @@ void PlateMapRecorder::observe(const WallContact& c) {
 
 void PlateMapRecorder::end_sample(double t) {
   if (++in_block_ < samples_per_block_) return;
-  store_.insert(store_.end(), current_.begin(), current_.end());
-  std::fill(current_.begin(), current_.end(), 0.0);
+  // The block's touched cells only (a stream loads a band of the plate: most cells of a fine map are
+  // empty in any one sample), in cell order.
+  std::sort(touched_.begin(), touched_.end());
+  for (std::uint32_t bin : touched_) {
+    double* a = current_.data() + static_cast<std::size_t>(bin) * kChannels;
+    store_bins_.push_back(bin);
+    store_.insert(store_.end(), a, a + kChannels);
+    std::fill(a, a + kChannels, 0.0);
+    touched_flag_[bin] = 0;
+  }
+  touched_.clear();
+  block_begin_.push_back(store_bins_.size());
   block_t0_.push_back(block_start_);
   block_t1_.push_back(t);
   block_start_ = t;
@@ -119,12 +191,57 @@ void PlateMapRecorder::end_sample(double t) {
   // Particles that left the wall more than a step ago can be forgotten.
   for (auto it = last_touch_.begin(); it != last_touch_.end();)
     it = it->second < last_step_ - 1 ? last_touch_.erase(it) : std::next(it);
+  if (static_cast<double>(store_.size()) > kStoreDoubles) merge_blocks();
+}
+
+// Past the store's budget: neighbouring blocks merged in pairs and later blocks twice as long. A
+// window edge inside a merged block then drops it (the map averages over a few ms less than the
+// load cell); below the budget every block is one force sample and the map's window is the load
+// cell's.
+void PlateMapRecorder::merge_blocks() {
+  std::vector<std::uint32_t> bins;
+  std::vector<double> values, t0, t1;
+  std::vector<std::size_t> begin = {0};
+  std::vector<double> dense(bins_ * kChannels, 0.0);
+  std::vector<std::uint32_t> used;
+  std::vector<std::uint8_t> flag(bins_, 0);
+  const std::size_t blocks = block_t1_.size();
+  for (std::size_t b = 0; b < blocks; b += 2) {
+    const std::size_t last = std::min(b + 1, blocks - 1);
+    for (std::size_t k = block_begin_[b]; k < block_begin_[last + 1]; ++k) {
+      double* a = dense.data() + static_cast<std::size_t>(store_bins_[k]) * kChannels;
+      if (!flag[store_bins_[k]]) {
+        flag[store_bins_[k]] = 1;
+        used.push_back(store_bins_[k]);
+      }
+      for (std::size_t c = 0; c < kChannels; ++c) a[c] += store_[k * kChannels + c];
+    }
+    std::sort(used.begin(), used.end());
+    for (std::uint32_t bin : used) {
+      double* a = dense.data() + static_cast<std::size_t>(bin) * kChannels;
+      bins.push_back(bin);
+      values.insert(values.end(), a, a + kChannels);
+      std::fill(a, a + kChannels, 0.0);
+      flag[bin] = 0;
+    }
+    used.clear();
+    begin.push_back(bins.size());
+    t0.push_back(block_t0_[b]);
+    t1.push_back(block_t1_[last]);
+  }
+  store_bins_ = std::move(bins);
+  store_ = std::move(values);
+  block_begin_ = std::move(begin);
+  block_t0_ = std::move(t0);
+  block_t1_ = std::move(t1);
+  samples_per_block_ *= 2;
 }
 
 PlateMap PlateMapRecorder::reduce(double start, double end, double block) const {
   PlateMap m;
   m.wall = name_;
-  const std::size_t nt = corners_.size();
+  m.grid = grid_;
+  const std::size_t nt = bins_;
   std::vector<double> sum(nt * kChannels, 0.0);
   constexpr double eps = 1e-9;
   const std::size_t nb = block > 0.0 ? static_cast<std::size_t>(std::floor((end - start) / block + eps)) : 0;
@@ -133,8 +250,11 @@ PlateMap PlateMapRecorder::reduce(double start, double end, double block) const 
     // As the load cell's means (block_mean): a sample belongs to the window by its end time.
     if (block_t1_[b] <= start + eps || block_t1_[b] > end + eps) continue;
     m.duration += block_t1_[b] - block_t0_[b];
-    const double* s = store_.data() + b * nt * kChannels;
-    for (std::size_t k = 0; k < nt * kChannels; ++k) sum[k] += s[k];
+    for (std::size_t e = block_begin_[b]; e < block_begin_[b + 1]; ++e) {
+      const double* v = store_.data() + e * kChannels;
+      double* to = sum.data() + static_cast<std::size_t>(store_bins_[e]) * kChannels;
+      for (std::size_t k = 0; k < kChannels; ++k) to[k] += v[k];
+    }
     if (nb == 0) continue;  // no block means asked for (block 0): nothing to divide by
     // Counted back from `end` with the window's own tolerance in seconds, so that a sample the test
     // above puts in the window (ending up to eps after `end`) is in the last block, never at -1.
@@ -142,36 +262,40 @@ PlateMap PlateMapRecorder::reduce(double start, double end, double block) const 
     if (back >= static_cast<double>(nb)) continue;
     const auto j = static_cast<std::size_t>(back);
     bdur[j] += block_t1_[b] - block_t0_[b];
-    for (std::size_t t = 0; t < nt; ++t) {
-      const double* c = s + t * kChannels;
+    for (std::size_t e = block_begin_[b]; e < block_begin_[b + 1]; ++e) {
+      const double* c = store_.data() + e * kChannels;
+      const std::size_t t = store_bins_[e];
       const Vec3 f(c[0], c[1], c[2]);
-      bsum[(j * nt + t) * 3 + 0] += f.dot(normals_[t]);
+      bsum[(j * nt + t) * 3 + 0] += f.dot(normals_[t * triangles_per_bin_]);
       bsum[(j * nt + t) * 3 + 1] += c[5];
       bsum[(j * nt + t) * 3 + 2] += c[6];
     }
   }
   const double inv = m.duration > 0.0 ? 1.0 / m.duration : 0.0;
-  for (std::size_t t = 0; t < nt; ++t) {
-    const double* s = sum.data() + t * kChannels;
+  const double share = 1.0 / static_cast<double>(triangles_per_bin_);
+  for (std::size_t t = 0; t < nt * triangles_per_bin_; ++t) {
+    const std::size_t bin = t / triangles_per_bin_;
+    const double* s = sum.data() + bin * kChannels;
+    const double w = inv * share;
     MapCell c;
     c.corners = corners_[t];
     const Vec3 cr = (c.corners[1] - c.corners[0]).cross(c.corners[2] - c.corners[0]);
     c.area = 0.5 * cr.norm();
-    c.force = Vec3(s[0], s[1], s[2]) * inv;
+    c.force = Vec3(s[0], s[1], s[2]) * w;
     // Oriented the way the particles approach the face (not by the force's sign: a damped contact
     // pulls for a moment as it parts, and a rarely touched triangle may net a pull).
     c.normal = s[8] < 0.0 ? Vec3(-normals_[t]) : normals_[t];
-    c.impact_power = s[3] * inv;
-    c.sliding_power = s[4] * inv;
-    c.load_slip = s[5] * inv;
-    c.finnie_measure = s[6] * inv;
-    c.impacts = s[7] * inv;
+    c.impact_power = s[3] * w;
+    c.sliding_power = s[4] * w;
+    c.load_slip = s[5] * w;
+    c.finnie_measure = s[6] * w;
+    c.impacts = s[7] * w;
     const double sign = s[8] < 0.0 ? -1.0 : 1.0;
     for (std::size_t j = 0; j < nb; ++j) {
       if (!(bdur[j] > 0.0)) continue;
-      c.block_normal.push_back(sign * bsum[(j * nt + t) * 3 + 0] / bdur[j]);
-      c.block_load_slip.push_back(bsum[(j * nt + t) * 3 + 1] / bdur[j]);
-      c.block_finnie.push_back(bsum[(j * nt + t) * 3 + 2] / bdur[j]);
+      c.block_normal.push_back(sign * share * bsum[(j * nt + bin) * 3 + 0] / bdur[j]);
+      c.block_load_slip.push_back(share * bsum[(j * nt + bin) * 3 + 1] / bdur[j]);
+      c.block_finnie.push_back(share * bsum[(j * nt + bin) * 3 + 2] / bdur[j]);
     }
     m.cells.push_back(c);
   }

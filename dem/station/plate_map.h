@@ -7,12 +7,14 @@
 // and per block of force samples: the impulse of the contact forces; the normal kinetic energy
 // 1/2 m v_n^2 of every impact (a particle whose previous step had no contact with the wall); the
 // frictional work |F_t . v_t| dt; Archard's F_n |v_t| dt; Finnie's M v^2 f(alpha) per impact. The
-// steady window is known only at the end of the run, so the blocks are kept (triangles x blocks
-// is small) and the ones inside the window summed then. A block is one force sample unless the
-// mesh is so fine that the store would pass ~32 MB; then a window edge falling inside a block
-// drops that block (the map then averages over a few ms less than the load cell).
+// steady window is known only at the end of the run, so the blocks are kept (only the cells each
+// block touched: a stream loads a band of the plate) and the ones inside the window summed then. A
+// block is one force sample until the store would pass ~32 MB; then neighbouring blocks merge, and
+// a window edge falling inside a merged block drops it (the map then averages over a few ms less
+// than the load cell).
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -52,16 +54,36 @@ struct MapCell {
   double wear_rate_se(const WearInputs& w) const;
 };
 
+// A grid of square-ish cells laid on a flat rectangular face (the generated plate) for the maps,
+// independent of the wall's triangles: a contact counts in the cell its contact point lies in. The
+// World never sees it (the wall stays two triangles), so the physics and its round-off are those of
+// the coarse plate; only the map is resolved. Each cell is reported as two triangles carrying half
+// of its sums each (the maps' data are triangles), so both halves show the cell's value.
+struct MapGrid {
+  Vec3 origin = Vec3::Zero();  // the face's top edge at z = -width/2
+  Vec3 down = -Vec3::UnitY();  // unit, along the face downward
+  Vec3 across = Vec3::UnitZ(); // unit, across the face
+  double height = 0.0, width = 0.0;  // m
+  int rows = 1, cols = 1;
+  // Cells of about `cell` m (at most 400 rows or columns), on the face of a PlateFrame.
+  static MapGrid on_face(const Vec3& top_edge, const Vec3& down, double height, double width, double cell);
+  // The map's triangles, two a cell (2 b and 2 b + 1 for cell b = row * cols + column).
+  std::vector<std::array<Vec3, 3>> triangles() const;
+};
+
 struct PlateMap {
   std::string wall;              // "plate" or the STL file
   double duration = 0.0;         // s of the steady window the means cover
   std::vector<MapCell> cells;
+  std::optional<MapGrid> grid;   // the cells are this grid's triangles (the cache stores it compactly)
   Vec3 total_force() const;
 };
 
 class PlateMapRecorder {
  public:
-  PlateMapRecorder(const Wall& wall, const wear::FinnieParams& finnie, std::size_t max_samples);
+  // With `grid`, the wall's contacts are binned on it (MapGrid); without, per triangle of the wall.
+  PlateMapRecorder(const Wall& wall, const wear::FinnieParams& finnie, std::size_t max_samples,
+                   const MapGrid* grid = nullptr);
   void observe(const WallContact& c);
   // Closes the force sample ending at t (the recorder's block boundaries follow the samples).
   void end_sample(double t);
@@ -72,15 +94,27 @@ class PlateMapRecorder {
  private:
   // Fx Fy Fz (N s), impact J, sliding J, Archard N m, Finnie, impacts, contact normal . face normal (s)
   static constexpr std::size_t kChannels = 9;
+  std::size_t bin_of(const WallContact& c) const;
+  void merge_blocks();
   std::string name_;
-  std::vector<std::array<Vec3, 3>> corners_;
+  std::vector<std::array<Vec3, 3>> corners_;  // the map's triangles
   std::vector<Vec3> normals_;  // unit, of the corners' winding
+  // What the sums are kept per: a triangle of the wall, or a cell of the grid (its two triangles,
+  // 2 b and 2 b + 1, each get half).
+  std::size_t bins_ = 0, triangles_per_bin_ = 1;
+  std::optional<MapGrid> grid_;
   wear::FinnieParams finnie_;
   std::size_t samples_per_block_ = 1;
   std::size_t in_block_ = 0;
   double block_start_ = 0.0;
-  std::vector<double> current_;                 // triangles x channels
-  std::vector<double> store_;                   // blocks x triangles x channels
+  std::vector<double> current_;                 // bins x channels, the block being summed
+  std::vector<std::uint32_t> touched_;          // bins of current_ with a contact in this block
+  std::vector<std::uint8_t> touched_flag_;      // per bin: in touched_
+  // The finished blocks, sparse: entries (bin, channels) of the touched bins, block b's entries in
+  // [block_begin_[b], block_begin_[b + 1]).
+  std::vector<std::uint32_t> store_bins_;
+  std::vector<double> store_;                   // entries x channels
+  std::vector<std::size_t> block_begin_;
   std::vector<double> block_t0_, block_t1_;     // (start, end] of each block
   std::int64_t last_step_ = 0;
   std::unordered_map<std::int64_t, std::int64_t> last_touch_;  // particle id -> last step in contact
@@ -95,6 +129,10 @@ std::vector<std::pair<double, double>> pressure_profile(const PlateMap& m, doubl
 double peak_pressure_y(const PlateMap& m, double bin = 0.0);
 // Centre of pressure: the height where the normal load acts (sum p A y / sum p A), m.
 double pressure_centre_y(const PlateMap& m);
+
+// A map cell's geometry from its corners as the recorder computes it (area, unit normal of the
+// corners' winding, flipped when `flip`), its values zero: for readers that rebuild a grid map.
+MapCell empty_cell(const std::array<Vec3, 3>& corners, bool flip, std::size_t blocks);
 
 // OUT/plate_map.csv (every map, one row per triangle, units in the column names) and a VTK of the
 // maps for ParaView.

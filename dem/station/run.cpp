@@ -7,11 +7,13 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "core/input_error.h"
 #include "dem/io/vtk.h"
+#include "dem/io/vtk_series.h"
 
 namespace chutelab::dem::station {
 namespace {
@@ -79,20 +81,37 @@ StationResult run_station(const Station& st, const RunOptions& o) {
     std::vector<int> mapped = {sc.plate_wall};
     mapped.insert(mapped.end(), sc.map_walls.begin(), sc.map_walls.end());
     const auto max_samples = static_cast<std::size_t>(max_steps / steps_per_sample + 2);
+    // The generated plate, not meshed for the maps, gets the map grid (plate_map.h MapGrid).
+    std::optional<MapGrid> grid;
+    if (!o.geometry.stl_plate && s.plate_cells == 0 && s.map_cell > 0.0)
+      grid = MapGrid::on_face(sc.plate.top_edge, sc.plate.down, sc.plate.height, sc.plate.width, s.map_cell);
     for (int wi : mapped) {
-      auto rec = std::make_unique<PlateMapRecorder>(w.walls()[static_cast<std::size_t>(wi)], s.wear.finnie, max_samples);
+      auto rec = std::make_unique<PlateMapRecorder>(w.walls()[static_cast<std::size_t>(wi)], s.wear.finnie, max_samples,
+                                                    wi == sc.plate_wall && grid ? &*grid : nullptr);
       w.observe_wall(wi, [p = rec.get()](const WallContact& c) { p->observe(c); });
       maps.push_back(std::move(rec));
     }
   }
   std::vector<FaceParticle> face;
   namespace fs_ = std::filesystem;
+  // The particles as a ParaView time series (dem/io/vtk_series.h), with each particle's contact
+  // force: its force less its weight and the flight force (air drag) the run adds.
+  std::optional<VtkSeries> series;
   if (!o.vtk_dir.empty()) {
     fs_::create_directories(o.vtk_dir);
     write_vtk_walls((fs_::path(o.vtk_dir) / "walls.vtk").string(), w.walls());
+    series.emplace(o.vtk_dir, "particles");
   }
-  double next_vtk = o.vtk_every > 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
-  int vtk_index = 0;
+  auto frame = [&] {
+    const Particles& p = w.particles();
+    std::vector<Vec3> flight(p.size(), Vec3::Zero());
+    sc.flight.add(p, 0, p.size(), flight);
+    const Vec3 g = w.settings().gravity;
+    std::vector<double> contact(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) contact[i] = (p.f[i] - p.mass[i] * g - flight[i]).norm();
+    series->write(w.time(), p, contact);
+  };
+  double next_vtk = series && o.vtk_every > 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
   double next_check = std::max(s.min_time, s.detect_tail + s.min_window);
   double next_progress = 0.0;
   const double progress_step = 0.01 * s.max_time;
@@ -133,8 +152,7 @@ StationResult run_station(const Station& st, const RunOptions& o) {
       peak_bodies = std::max(peak_bodies, w.clumps().size());
     }
     if (t + 1e-12 >= next_vtk) {
-      write_vtk_particles((fs_::path(o.vtk_dir) / fmt::format("particles_{:05d}.vtk", vtk_index++)).string(),
-                          w.particles());
+      frame();
       next_vtk += o.vtk_every;
     }
     if (o.progress && t >= next_progress) {
@@ -172,8 +190,8 @@ StationResult run_station(const Station& st, const RunOptions& o) {
 
   r.side_view = sensors.side_view(w, o.side_view_points);
   r.side_view_time = w.time();
-  if (!o.vtk_dir.empty())
-    write_vtk_particles((fs_::path(o.vtk_dir) / "particles_final.vtk").string(), w.particles());
+  // The series ends on the final state (the side view's instant).
+  if (series && series->last_time() < w.time() - 1e-12) frame();
 
   // --- notes ---
   r.notes.push_back(fmt::format(

@@ -80,7 +80,7 @@ struct RunOptions {
   ExternalInputs external;
   std::function<void(const Progress&)> progress;  // every ~1 % of max_time, and at the end
   std::string vtk_dir;               // "" = no VTK during the run
-  double vtk_every = 0.0;            // s between particle VTK files (0 = only the final snapshot)
+  double vtk_every = 0.0;            // s between frames of the particle series (0 = only the final state)
   std::size_t side_view_points = 3000;
 };
 

@@ -355,9 +355,9 @@ Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geome
     in.material = mp;
     if (s.particle_shape == ParticleShape::clump) {
       // The reference study's pellet (Fig. 4c), the same definition `chutelab calibrate` uses
-      // (rigs::Grain::seed_clump); the inserter scales it so that its spheres have diameter d and
+      // (rigs::Grain::reference_clump); the inserter scales it so that its spheres have diameter d and
       // turns each body at random. It owes the feed mass, not a count, so the mass flow is kept.
-      in.clump_shape = w.add_clump_shape(ClumpShape::seed_pellet());
+      in.clump_shape = w.add_clump_shape(ClumpShape::reference_pellet());
     }
     in.velocity = vb * sc.belt.along + Vec3(0.0, -s.insert_speed_down, 0.0);
     in.interval = s.insert_interval;

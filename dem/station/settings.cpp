@@ -237,6 +237,11 @@ DemTable read_dem_table(const std::string& file) {
       if (!v || !node.is_integer() || *v < 0 || *v > 400)
         throw InputError(file, line_of(node), key, "must be an integer from 0 (the plate as two triangles) to 400");
       t.plate_cells = static_cast<int>(*v);
+    } else if (kv == "map_cell_mm") {
+      const auto v = node.value<double>();
+      if (!v || !(*v == 0.0 || (*v >= 1.0 && *v <= 1000.0)))
+        throw InputError(file, line_of(node), key, "must be 0 (the plate's own triangles) or from 1 to 1000 mm");
+      t.map_cell = *v * 1e-3;
     } else if (kv == "wear") {
       const toml::table* wt = node.as_table();
       if (!wt) throw InputError(file, line_of(node), key, "must be a table ([dem.wear])");
@@ -267,7 +272,7 @@ DemTable read_dem_table(const std::string& file) {
     } else {
       throw InputError(file, line_of(node), key,
                        "unknown key (known: quality, particle_diameter_mm, shear_modulus_scale, dt_fraction, "
-                       "contact, shape, seed, max_time_s, min_window_s, feed_length_mm, skin_fraction, rolling_lever, plate_cells, "
+                       "contact, shape, seed, max_time_s, min_window_s, feed_length_mm, skin_fraction, rolling_lever, plate_cells, map_cell_mm, "
                        "[dem.feed], [dem.stl], [dem.wear])");
     }
   }
@@ -301,6 +306,7 @@ void apply(const DemTable& t, RunSettings& s) {
   if (f.insert_at_face) s.insert_at_face = *f.insert_at_face;
   if (f.belt_start_x) s.belt_start_x = *f.belt_start_x;
   if (t.plate_cells) s.plate_cells = *t.plate_cells;
+  if (t.map_cell) s.map_cell = *t.map_cell;
   for (const auto& [k, v] : t.wear) set_wear(s.wear, k, v, t.file, 0, "dem.wear." + k);
 }
 
@@ -316,6 +322,7 @@ RunSettings resolve(const DemTable& table, const SettingsOverrides& o, Quality f
   if (o.seed) s.seed = *o.seed;
   if (o.threads) s.threads = *o.threads;
   if (o.plate_cells) s.plate_cells = *o.plate_cells;
+  if (o.map_cell) s.map_cell = *o.map_cell;
   for (const auto& [k, v] : o.wear) set_wear(s.wear, k, v, "", 0, "--" + k);
   if (o.max_time) {
     s.max_time = *o.max_time;
@@ -340,6 +347,8 @@ void check(const RunSettings& s) {
        "must be sphere or clump");
   need(s.threads >= 0 && s.threads <= 256, "--threads", "must be between 0 (all) and 256");
   need(s.plate_cells >= 0 && s.plate_cells <= 400, "--plate-cells", fmt::format("must be from 0 to 400, got {}", s.plate_cells));
+  need(s.map_cell == 0.0 || (s.map_cell >= 1e-3 && s.map_cell <= 1.0), "map_cell_mm",
+       fmt::format("must be 0 (the plate's own triangles) or from 1 to 1000 mm, got {} mm", s.map_cell * 1e3));
   need(s.max_time > 0.0 && s.max_time <= 100.0, "max_time_s", fmt::format("must be in (0, 100] s, got {}", s.max_time));
   need(s.min_window > 0.0 && s.min_window < s.max_time, "min_window_s",
        fmt::format("steady window {} s must be shorter than the simulated time {} s", s.min_window, s.max_time));
@@ -397,6 +406,8 @@ std::string canonical(const RunSettings& s) {
   // Keys of runs without a finer plate or a Finnie model of their own stay as they were. Finnie's
   // K and n enter the per-impact sums; every other wear input only scales the stored sums.
   if (s.plate_cells > 0) o += fmt::format("plate_cells = {}\n", s.plate_cells);
+  // The map grid bins contacts and changes no force: only a size other than the default keys apart.
+  if (s.map_cell != RunSettings{}.map_cell) put("map_cell", s.map_cell);
   const wear::FinnieParams finnie_default;
   if (s.wear.finnie.force_ratio != finnie_default.force_ratio) put("finnie_force_ratio", s.wear.finnie.force_ratio);
   if (s.wear.finnie.velocity_exponent != finnie_default.velocity_exponent)

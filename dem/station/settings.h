@@ -71,7 +71,7 @@ struct RunSettings {
   double dt_fraction = 0.1;
   double rayleigh_fraction = 0.2;
   ContactLaw contact;  // Hertz-Mindlin
-  // clump: the feed inserts the reference study's pellet (dem::ClumpShape::seed_pellet, the shape `chutelab
+  // clump: the feed inserts the reference study's pellet (dem::ClumpShape::reference_pellet, the shape `chutelab
   // calibrate` uses) with spheres of diameter `particle_diameter`, in random orientations, at the
   // condition's mass flow (fewer bodies than spheres of that size: each weighs ~1.1 spheres).
   ParticleShape particle_shape = ParticleShape::sphere;
@@ -150,6 +150,12 @@ struct RunSettings {
   // 0 = the plate as two triangles (the maps then have two cells). The mesh changes round-off
   // only, not the physics, but it is part of the cache key.
   int plate_cells = 0;
+  // Cell size of the generated plate's maps when the plate is not meshed (plate_cells = 0): the
+  // contacts are binned on a grid of such cells (plate_map.h MapGrid) while the World keeps the
+  // plate as two triangles, so the physics is that of the coarse plate, bit for bit. 0 = the map of
+  // the plate's own triangles (two cells). Binning only: a different size keys another cache entry,
+  // the default none (entries recorded before the grid keep their key and their coarse map).
+  double map_cell = 0.010;
   WearInputs wear;
 };
 
@@ -187,6 +193,7 @@ struct DemTable {
     }
   } feed;
   std::optional<int> plate_cells;
+  std::optional<double> map_cell;            // m
   std::vector<std::pair<std::string, double>> wear;  // [dem.wear] key -> value (checked)
   // STL meshes (mm, DESIGN.md frame) replacing generated parts; absolute paths after reading.
   std::optional<std::string> stl_plate, stl_belt, stl_pulley;
@@ -212,6 +219,7 @@ struct SettingsOverrides {
   std::optional<int> threads;
   std::optional<double> max_time;           // s
   std::optional<int> plate_cells;
+  std::optional<double> map_cell;           // m
   std::vector<std::pair<std::string, double>> wear;  // wear_fields() key -> value
 };
 

@@ -55,8 +55,8 @@ BOOST_AUTO_TEST_CASE(stationary_flow_switches_at_atan_mu) {
   BOOST_TEST(tilted.normal_speed == 4.0 * std::cos(20.0 * pi / 180), tt::tolerance(1e-12));
 }
 
-BOOST_AUTO_TEST_CASE(bundled_rig_reproduces_the_seed_findings) {
-  // Seed findings 1 and 2: stationary flow at 2 and 3 m/s, not at 4 and 5 m/s; R_s/R_n = mu_pw.
+BOOST_AUTO_TEST_CASE(bundled_rig_reproduces_the_reference_findings) {
+  // The reference study's findings 1 and 2: stationary flow at 2 and 3 m/s, not at 4 and 5 m/s; R_s/R_n = mu_pw.
   const auto d = validation::read_dataset(CHUTELAB_SOURCE_DIR "/datasets/grima2010",
                                           validation::MeasurementsRequired::no);
   BOOST_REQUIRE_EQUAL(d.stations.size(), 8u);

@@ -102,10 +102,10 @@ long set_cell(const fs::path& f, const std::string& prefix, std::size_t col, con
 
 BOOST_AUTO_TEST_SUITE(hardening)
 
-// Class 1: what used to abort (exit 134) is a clean exit 2 and leaves --out as it was.
+// Class 1: inputs that could abort (exit 134) give a clean exit 2 and leave --out as it was.
 BOOST_AUTO_TEST_CASE(class1_no_abort_and_out_left_as_it_was) {
   Case c("abort");
-  // A folder where an output file goes: the write used to abort half-way, leaving a mix and .partial files.
+  // A folder where an output file goes: an abort half-way would leave a mix and .partial files.
   fs::create_directories(c.out / "errors.csv");
   expect_refused(c, c.args("validate"), 2, "errors.csv: --out: is a folder where chutelab writes a file");
   fs::remove(c.out / "errors.csv");
@@ -121,7 +121,7 @@ BOOST_AUTO_TEST_CASE(class1_no_abort_and_out_left_as_it_was) {
                  "loop: cannot read the dataset folder");
   expect_refused(c, "validate --dataset '" + c.data.string() + "' --out '" + (c.root / "loop").string() + "'", 2,
                  "loop: --out: ");
-  // An extreme measured value (Korzen's Eq 4 iteration used to throw past every handler).
+  // An extreme measured value (Korzen's Eq 4 iteration can throw on it; the throw must reach a handler).
   const long line = set_cell(c.data / "measurements.csv", "V3-41,normal_force_N,", 2, "5e307");
   expect_refused(c, c.args("diagnose"), 2, "measurements.csv:" + std::to_string(line) + ": value:");
   expect_refused(c, c.args("validate") + " --effect air_drag=fit", 2, "value: normal_force_N = 5e+307 is beyond");
@@ -131,7 +131,7 @@ BOOST_AUTO_TEST_CASE(class1_no_abort_and_out_left_as_it_was) {
 BOOST_AUTO_TEST_CASE(class1_interrupt_leaves_nothing_behind) {
   Case c("interrupt");
   const auto data_before = snapshot(c.data), out_before = snapshot(c.out);
-  // Standard quality: a quick run of one condition now ends in about the 2 s the signal waits.
+  // Standard quality: a quick run of one condition ends in about the 2 s the signal waits.
   const std::string simulate =
       "simulate --dataset '" + c.data.string() + "' --condition V3-41 --quality standard --no-cache";
   // validate with the DEM stages OUT/dem while its runs go on (one thread: seconds per condition).
@@ -227,7 +227,7 @@ BOOST_AUTO_TEST_CASE(class4_nonsense_is_refused) {
     expect_refused(c, c.args("validate"), 2, "bulk_density_kgm3: bulk density 5000 kg/m^3 is above the solid density");
   }
   {
-    // An input uncertainty wider than any rig: u_input used to vanish without a word.
+    // An input uncertainty wider than any rig: u_input must not vanish without a word.
     Case c("input-u");
     write_file(c.data / "setup.toml", read_file(c.data / "setup.toml") + "\n[uncertainty]\nbelt_speed_mps = 5e307\n");
     expect_refused(c, c.args("validate"), 2,
@@ -249,7 +249,7 @@ BOOST_AUTO_TEST_CASE(class4_nonsense_is_refused) {
     expect_refused(c, c.args("validate"), 2, "x_mm: x = -20 mm is behind the pulley centre");
   }
   {
-    // The command line has the same bounds as conditions.csv (the estimate used to print inf).
+    // The command line has the same bounds as conditions.csv (otherwise the estimate would print inf).
     Case c("estimate");
     const std::string row = "estimate --dataset '" + c.data.string() + "' --condition V3-41";
     expect_refused(c, row + " --belt-speed 5e307", 2, "--belt-speed: belt speed 5e+307 m/s is beyond any conveyor");

@@ -111,7 +111,7 @@ BOOST_AUTO_TEST_SUITE(reliability)
 
 // Class 1: no TOML file reaches toml++ unbounded. Each reader (setup.toml, tolerances, the
 // import mapping; the [dem] table is setup.toml read again) refuses deep and oversized files with
-// exit 2 and a line naming file and line, where toml++ used to overflow its stack (exit 139).
+// exit 2 and a line naming file and line, where toml++ would overflow its stack (exit 139).
 BOOST_AUTO_TEST_CASE(class1_toml_is_bounded_before_the_parser) {
   Sandbox s("toml");
   const std::string setup = read_file(s.data / "setup.toml");
@@ -158,9 +158,9 @@ BOOST_AUTO_TEST_CASE(class1_toml_is_bounded_before_the_parser) {
   refused(s, s.args("validate"), 2, "setup.toml: is UTF-16 text");
 }
 
-// Class 2: a name from the data never becomes a path unmapped. A condition named ../../../ds used to
-// make `validate --models dem` write its per-condition files into the dataset folder (overwriting
-// trajectory.csv); now each name is one plain folder under OUT/dem/. The DEM runs come from the
+// Class 2: a name from the data never becomes a path unmapped. Taken as a path, a condition named
+// ../../../ds would make `validate --models dem` write its per-condition files into the dataset
+// folder (overwriting trajectory.csv); each name is one plain folder under OUT/dem/. The DEM runs come from the
 // recorded runs of tests/peer/dem-cache (--dem-cache-only: no run here).
 BOOST_AUTO_TEST_CASE(class2_names_are_not_paths) {
   Sandbox s("names");
@@ -271,7 +271,7 @@ BOOST_AUTO_TEST_CASE(class5_earlier_outputs_do_not_survive_as_current) {
 }
 
 // Class 6: a check that cannot be computed does not pass. A measured 0 against a relative limit has
-// no relative error: the limit fails (exit 1), it is not "within"; a measured 1e-320 no longer blanks
+// no relative error: the limit fails (exit 1), it is not "within"; a measured 1e-320 does not blank
 // the summary's maximum (it is taken over the finite values).
 BOOST_AUTO_TEST_CASE(class6_undefined_metrics_do_not_pass) {
   Sandbox s("metrics");
@@ -382,8 +382,8 @@ BOOST_AUTO_TEST_CASE(class9_csv_has_one_writer_and_a_formula_policy) {
 }
 
 // Class 10: numbers that are read again are written at round-trip precision, and errors are said
-// against the user's file. Two digitised points 4.02 in and 4.020001 in apart are two rows (they
-// used to collide at 6 digits and be refused naming a staging file that did not exist); a sweep in
+// against the user's file. Two digitised points 4.02 in and 4.020001 in apart are two rows (at 6
+// digits they would collide and be refused naming a staging file that does not exist); a sweep in
 // steps of 1e-13 shows distinct values.
 BOOST_AUTO_TEST_CASE(class10_round_trip_precision) {
   Sandbox s("precision");

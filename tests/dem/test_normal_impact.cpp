@@ -93,7 +93,7 @@ ImpactRecord run_impact(bool wall, double v, double e, NormalLaw model, double k
 }  // namespace
 
 // Chung & Ooi test 1 (sphere-sphere) and test 2 (sphere-rigid wall): elastic normal impact at 0.2 m/s
-// (aluminium alloy, their table 1). Tolerance 2 % (issue 4): the contact duration is counted in whole
+// (aluminium alloy, their table 1). Tolerance 2 %: the contact duration is counted in whole
 // steps (dt = t_c/1000, so 0.1 %) and theory is exact for an elastic Hertz contact.
 BOOST_AUTO_TEST_CASE(elastic_normal_impact_matches_hertz_theory) {
   for (bool wall : {false, true}) {
@@ -114,7 +114,7 @@ BOOST_AUTO_TEST_CASE(elastic_normal_impact_matches_hertz_theory) {
 }
 
 // Chung & Ooi test 3: normal impact with restitution 0.3-0.9, for Hertz-Mindlin (reference study Eq 9 with the
-// sqrt(5/6) damping) and the linear spring-dashpot (reference study Eq 8). Tolerance 1 % (issue 4); both damping
+// sqrt(5/6) damping) and the linear spring-dashpot (reference study Eq 8). Tolerance 1 %: both damping
 // laws reproduce e exactly in continuous time, so what remains is the time-step error (dt = t_c/200).
 BOOST_AUTO_TEST_CASE(restitution_is_reproduced_for_both_models) {
   for (NormalLaw model : {NormalLaw::of<HertzMindlin>(), NormalLaw::of<LinearSpringDashpot>()})

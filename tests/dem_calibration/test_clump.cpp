@@ -66,7 +66,7 @@ double sphere_volume(double r) { return 4.0 / 3.0 * pi * r * r * r; }
 // boundary, ~ (cell / size) for moments of a union this small, measured at 0.05-0.15 % here.
 BOOST_AUTO_TEST_CASE(union_mass_properties_match_numerical_integral) {
   const std::vector<std::vector<ClumpSphere>> shapes = {
-      {{Vec3(-0.225e-3, 0, 0), 2.2e-3}, {Vec3(0.225e-3, 0, 0), 2.2e-3}},            // seed pellet
+      {{Vec3(-0.225e-3, 0, 0), 2.2e-3}, {Vec3(0.225e-3, 0, 0), 2.2e-3}},            // reference pellet
       {{Vec3(0, 0, 0), 3e-3}, {Vec3(2e-3, 1e-3, -1e-3), 1.5e-3}},                    // unequal, oblique
       {{Vec3(0, 0, 0), 2e-3}, {Vec3(3e-3, 0, 0), 2e-3}, {Vec3(6e-3, 1e-3, 0), 2e-3}},  // chain, pairs only
       {{Vec3(0, 0, 0), 2e-3}, {Vec3(0.5e-3, 0, 0), 1e-3}},                            // one inside the other
@@ -94,7 +94,7 @@ BOOST_AUTO_TEST_CASE(union_mass_properties_match_numerical_integral) {
 }
 
 // The clump template sits in its principal frame: centre of mass at the origin, inertia diagonal
-// (ascending), the seed pellet's long axis along body x; scaling by f scales V by f^3 and I by f^5.
+// (ascending), the reference pellet's long axis along body x; scaling by f scales V by f^3 and I by f^5.
 BOOST_AUTO_TEST_CASE(clump_shape_is_in_its_principal_frame) {
   const ClumpShape c = ClumpShape::from_spheres(
       {{Vec3(1e-3, 2e-3, 0), 2e-3}, {Vec3(3e-3, 2.5e-3, 1e-3), 1.5e-3}, {Vec3(0, 4e-3, -1e-3), 1.8e-3}});
@@ -109,14 +109,14 @@ BOOST_AUTO_TEST_CASE(clump_shape_is_in_its_principal_frame) {
   BOOST_TEST(c.principal_inertia[0] <= c.principal_inertia[1]);
   BOOST_TEST(c.principal_inertia[1] <= c.principal_inertia[2]);
 
-  const ClumpShape p = ClumpShape::seed_pellet();
+  const ClumpShape p = ClumpShape::reference_pellet();
   BOOST_TEST(std::abs(p.spheres[0].offset.x()) > 0.0);
   BOOST_TEST(p.spheres[0].offset.tail<2>().norm() < 1e-15);
   BOOST_TEST(std::abs(p.bounding_radius - (2.2e-3 + 0.225e-3)) < 1e-12);
   const ClumpShape big = p.scaled(5.6 / 4.4);
   BOOST_TEST(std::abs(big.volume / p.volume - std::pow(5.6 / 4.4, 3)) < 1e-12);
   BOOST_TEST(std::abs(big.principal_inertia[2] / p.principal_inertia[2] - std::pow(5.6 / 4.4, 5)) < 1e-12);
-  BOOST_TEST_MESSAGE("seed pellet: V = " << p.volume * 1e9 << " mm^3, d_eq = " << p.equivalent_diameter() * 1e3
+  BOOST_TEST_MESSAGE("reference pellet: V = " << p.volume * 1e9 << " mm^3, d_eq = " << p.equivalent_diameter() * 1e3
                                          << " mm, I/rho = " << p.principal_inertia.transpose() * 1e15 << " mm^5");
 }
 

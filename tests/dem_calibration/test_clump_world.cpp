@@ -86,7 +86,7 @@ BOOST_AUTO_TEST_CASE(free_clump_in_world_conserves_angular_momentum) {
 BOOST_AUTO_TEST_CASE(clump_clump_impact_conserves_momentum) {
   World w(quiet(2e-6));
   const int m = pellet_material(w);
-  const int shape = w.add_clump_shape(ClumpShape::seed_pellet());
+  const int shape = w.add_clump_shape(ClumpShape::reference_pellet());
   ClumpSpec a, b;
   a.shape = b.shape = shape;
   a.material = b.material = m;
@@ -142,7 +142,7 @@ World pour(int threads) {
   in.material = m;
   in.end_time = 0.1;
   in.interval = 0.01;
-  in.clump_shape = w.add_clump_shape(ClumpShape::seed_pellet());
+  in.clump_shape = w.add_clump_shape(ClumpShape::reference_pellet());
   in.velocity = Vec3(0, 0, -0.5);
   w.add_inserter(in);
   Sink s;
@@ -201,7 +201,7 @@ BOOST_AUTO_TEST_CASE(clump_comes_to_rest_on_a_wall) {
   w.materials().set_interaction(m, steel, pw);
   w.add_wall(Wall::plane("floor", Vec3::Zero(), Vec3::UnitZ(), steel));
   ClumpSpec c;
-  c.shape = w.add_clump_shape(ClumpShape::seed_pellet());
+  c.shape = w.add_clump_shape(ClumpShape::reference_pellet());
   c.material = m;
   c.position = Vec3(0, 0, 0.01);
   c.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3(1, 1, 0).normalized()));
@@ -248,7 +248,7 @@ BOOST_AUTO_TEST_CASE(clump_end_on_impact_has_the_set_restitution) {
   w.materials().set_interaction(m, steel, pw);
   w.add_wall(Wall::plane("floor", Vec3::Zero(), Vec3::UnitZ(), steel));
   ClumpSpec c;
-  c.shape = w.add_clump_shape(ClumpShape::seed_pellet());
+  c.shape = w.add_clump_shape(ClumpShape::reference_pellet());
   c.material = m;
   c.orientation = Quat(Eigen::AngleAxisd(0.5 * M_PI, Vec3::UnitY()));  // body x (long axis) -> world -z
   c.position = Vec3(0, 0, w.clumps().shapes[0].bounding_radius + 1e-6);

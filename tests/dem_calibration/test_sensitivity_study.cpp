@@ -8,9 +8,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "reports/sensitivity_study.h"
+#include "reports/sensitivity_page.h"
+#include "studies/sensitivity.h"
 
-using namespace chutelab::reports;
+using namespace chutelab::studies;
+using chutelab::reports::sensitivity_html;
+using chutelab::reports::sensitivity_md;
 
 namespace {
 
@@ -131,8 +134,9 @@ BOOST_AUTO_TEST_CASE(verdict_follows_the_numbers) {
   BOOST_TEST(html.find("REPRODUCED") != std::string::npos);
 }
 
-// A seed size left out (5.6 mm at quick) is never silent: the verdict is "not fully tested" with the
-// command that runs it, even when everything that ran agrees with the reference study.
+// A size of the reference study's Table 6 left out (5.6 mm at quick) is never silent: the verdict is
+// "not fully tested" with the command that runs it, even when everything that ran agrees with the
+// reference study.
 BOOST_AUTO_TEST_CASE(a_left_out_size_is_not_fully_tested) {
   SensitivityStudy s = made_up(104.0, 6.0);
   s.rows.erase(std::remove_if(s.rows.begin(), s.rows.end(), [](const SensitivityRow& r) { return r.variant.key == "d=5.6mm"; }),
@@ -171,4 +175,25 @@ BOOST_AUTO_TEST_CASE(csv_round_trip_keeps_provenance_and_labels) {
   BOOST_REQUIRE(r.rows.size() == s.rows.size());
   for (std::size_t k = 0; k < r.rows.size(); ++k) BOOST_TEST(r.rows[k].variant.label == s.rows[k].variant.label);
   BOOST_TEST(r.verdict.text == s.verdict.text);
+}
+
+BOOST_AUTO_TEST_CASE(finding_6_follows_the_sensitivity_verdict) {
+  using chutelab::validation::FindingStatus;
+  BOOST_TEST((sensitivity_finding(nullptr).status == FindingStatus::not_testable));
+  SensitivityStudy s;
+  s.condition = "V3-41";
+  s.quality = "quick";
+  auto& v = s.verdict;
+  v.mean_tested = v.size_tested = true;
+  v.mean_insensitive = true;
+  v.fluctuation_grows = true;
+  v.size_fluctuation = {{0.0136, 5.9}, {0.0219, 10.7}};
+  BOOST_TEST((sensitivity_finding(&s).status == FindingStatus::reproduced));
+  v.fluctuation_grows = false;
+  BOOST_TEST((sensitivity_finding(&s).status == FindingStatus::partly));
+  v.mean_insensitive = false;
+  BOOST_TEST((sensitivity_finding(&s).status == FindingStatus::not_reproduced));
+  v.size_tested = false;
+  v.mean_tested = false;
+  BOOST_TEST((sensitivity_finding(&s).status == FindingStatus::not_testable));
 }

@@ -71,7 +71,7 @@ BOOST_AUTO_TEST_CASE(slump_test_gives_loose_packing_and_a_measurable_pile) {
 BOOST_AUTO_TEST_CASE(slump_test_with_clumps) {
   SlumpSettings s = small();
   s.fill_height = 0.020;  // ~640 clumps of 2 x 4.4 mm
-  const SlumpResult r = run_slump_test(pellets(), 1000.0, 0.1, Grain::seed_clump(), s);
+  const SlumpResult r = run_slump_test(pellets(), 1000.0, 0.1, Grain::reference_clump(), s);
   BOOST_TEST_MESSAGE(fmt::format("{}: {} grains, {:.1f} s wall; bulk {:.0f} kg/m^3, pile {:.1f} mm, repose {:.1f} deg",
                                  r.grain, r.particles, r.wall_seconds, r.bulk_density, r.pile_height * 1e3,
                                  r.repose_angle_deg));

@@ -12,6 +12,7 @@
 
 #include "analytical/impact_zone.h"
 #include "core/input_error.h"
+#include "dem/station/cache.h"
 #include "dem/station/plate_map.h"
 #include "dem/station/run.h"
 #include "dem/world.h"
@@ -236,6 +237,66 @@ BOOST_AUTO_TEST_CASE(map_sums_to_the_plate_force_and_R_n) {
   BOOST_TEST(above < 0.01 * peak_p);
 }
 
+// The default map (issue 35): the contacts on the generated plate binned on 10 mm cells while the
+// World keeps the plate as two triangles. The grid only reads contacts, so the load cell's numbers
+// equal those of a run with the coarse map bit for bit; the map resolves the loaded band over
+// several rows, and its centre of pressure lies within one cell of the DEM's impact point y_R (the
+// map and the load cell sum the same contact forces; what differs is the rolling couples, ~2 mm
+// in the test above, and where in its cell a contact counts, at most one cell).
+BOOST_AUTO_TEST_CASE(default_map_is_a_10_mm_grid_that_changes_no_force) {
+  RunOptions o;
+  o.settings = test::tiny_settings();
+  BOOST_REQUIRE(o.settings.plate_cells == 0);
+  BOOST_REQUIRE(o.settings.map_cell == 0.010);
+  const Station st = test::tiny_station();
+  const StationResult fine = run_station(st, o);
+  o.settings.map_cell = 0.0;
+  const StationResult coarse = run_station(st, o);
+  BOOST_TEST(fine.normal_force.value == coarse.normal_force.value);
+  BOOST_TEST(fine.shear_force.value == coarse.shear_force.value);
+  BOOST_TEST(fine.impact_point_y.value == coarse.impact_point_y.value);
+  BOOST_REQUIRE_EQUAL(fine.forces.size(), coarse.forces.size());
+  for (std::size_t i = 0; i < fine.forces.size(); ++i) BOOST_TEST(fine.forces[i].normal == coarse.forces[i].normal);
+  BOOST_REQUIRE(!coarse.maps.empty() && !fine.maps.empty());
+  BOOST_TEST(coarse.maps.front().cells.size() == 2u);
+  const PlateMap& m = fine.maps.front();
+  const int rows = static_cast<int>(std::lround(st.plate.height / 0.010)), cols = static_cast<int>(std::lround(st.plate.width / 0.010));
+  BOOST_TEST(m.cells.size() == static_cast<std::size_t>(2 * rows * cols));
+  // Same total as the load cell (tolerance 1e-9: the same forces summed in another order).
+  BOOST_TEST(m.total_force().x() == fine.normal_force.value, tt::tolerance(1e-9));
+  // A band: rows loaded above a tenth of the peak row's pressure.
+  const auto prof = pressure_profile(m);
+  double peak = 0.0;
+  for (const auto& [y, p] : prof) peak = std::max(peak, p);
+  int loaded = 0;
+  for (const auto& [y, p] : prof) loaded += p > 0.1 * peak;
+  const double cell = st.plate.height / rows, cop = pressure_centre_y(m);
+  BOOST_TEST_MESSAGE("default map: " << rows << " x " << cols << " cells of " << cell * 1e3 << " mm; " << loaded
+                                     << " rows above 10 % of the peak row (" << peak << " Pa); centre of pressure "
+                                     << cop * 1e3 << " mm, y_R " << fine.impact_point_y.value * 1e3 << " mm");
+  BOOST_TEST(loaded >= 3);
+  BOOST_TEST(loaded < rows / 2);
+  BOOST_TEST(std::abs(cop - fine.impact_point_y.value) <= cell);
+  // The cache stores the grid once and only the cells with a contact; what it gives back is the
+  // map, bit for bit.
+  const std::string text = to_text(fine);
+  const auto back = from_text(text);
+  BOOST_REQUIRE(back.has_value());
+  BOOST_REQUIRE_EQUAL(back->maps.front().cells.size(), m.cells.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < m.cells.size(); ++i) {
+    const MapCell &a = m.cells[i], &b = back->maps.front().cells[i];
+    differ += !(a.corners == b.corners && a.normal == b.normal && a.area == b.area && a.force == b.force &&
+                a.impact_power == b.impact_power && a.sliding_power == b.sliding_power && a.load_slip == b.load_slip &&
+                a.finnie_measure == b.finnie_measure && a.impacts == b.impacts && a.block_normal == b.block_normal &&
+                a.block_load_slip == b.block_load_slip && a.block_finnie == b.block_finnie);
+  }
+  BOOST_TEST(differ == 0u);
+  BOOST_TEST(to_text(*back) == text);
+  BOOST_TEST_MESSAGE("cache entry with the grid map: " << text.size() << " bytes");
+  BOOST_TEST(text.size() < 400000u);
+}
+
 // Moving the plate away from the pulley lowers where the stream strikes it: in the DEM (peak of the
 // pressure profile and centre of pressure) and in the analytical zone, by amounts that agree. The
 // tolerance on the DEM's drop against the analytical one (40 % or 15 mm) allows for the layer that
@@ -283,6 +344,12 @@ BOOST_AUTO_TEST_CASE(wear_table_is_checked) {
   BOOST_TEST(s.wear.exposure_hours == 100.0);
   BOOST_TEST(canonical(s).find("finnie_force_ratio") != std::string::npos);
   BOOST_TEST(canonical(resolve(DemTable{}, {})).find("plate_cells") == std::string::npos);
+  // The map grid: the default keys nothing (cached runs keep their key), another size keys apart.
+  BOOST_TEST(canonical(resolve(DemTable{}, {})).find("map_cell") == std::string::npos);
+  write("name = \"x\"\n[dem]\nmap_cell_mm = 5\n");
+  const RunSettings fine = resolve(read_dem_table(file.string()), {});
+  BOOST_TEST(fine.map_cell == 0.005);
+  BOOST_TEST(canonical(fine).find("map_cell = 0.005") != std::string::npos);
   auto fails = [&](const std::string& text, const std::string& field, long line) {
     write(text);
     try {
@@ -296,6 +363,7 @@ BOOST_AUTO_TEST_CASE(wear_table_is_checked) {
     BOOST_TEST(false, "no error for " << text);
   };
   fails("[dem.wear]\narchard = 1\n", "dem.wear.archard", 2);
+  fails("[dem]\nmap_cell_mm = 0.5\n", "dem.map_cell_mm", 2);
   fails("[dem.wear]\nhardness_Pa = -1\n", "dem.wear.hardness_Pa", 2);
   fails("[dem.wear]\n\nfinnie_cutting_fraction = 2\n", "dem.wear.finnie_cutting_fraction", 3);
   fails("[dem]\nplate_cells = 1.5\n", "dem.plate_cells", 2);

@@ -1,4 +1,4 @@
-// Issue 13, class 7: a run's numbers must not depend on what ran before it in the process. The
+// A run's numbers must not depend on what ran before it in the process. The
 // sensitivity study runs variants one after another; here the same 9 mm run is made first in a
 // fresh state and again after runs of 13.6 mm spheres and of clumps (which leave larger per-thread
 // scratch, other neighbour-list sizes and another contact law behind), and must agree bit for bit.

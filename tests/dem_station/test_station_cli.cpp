@@ -62,7 +62,7 @@ BOOST_AUTO_TEST_CASE(simulate_writes_series_means_and_vtk) {
   BOOST_REQUIRE(r.exit_code == 0);
   BOOST_TEST(r.out.find("plate normal force R_n") != std::string::npos);
   for (const char* f : {"timeseries.csv", "sensors.csv", "steady.csv", "trajectory.csv", "side_view.csv", "run.txt",
-                        "side_view.vtk", "vtk/walls.vtk", "vtk/particles_00001.vtk", "vtk/particles_final.vtk"})
+                        "side_view.vtk", "vtk/walls.vtk", "vtk/particles.pvd", "vtk/particles_00000.vtp", "vtk/particles_00001.vtp"})
     BOOST_TEST(fs::exists(out / f), f);
   BOOST_TEST(read_file(out / "steady.csv").find("normal_force_N,") != std::string::npos);
   BOOST_TEST(count_lines(read_file(out / "timeseries.csv")) > 100);

@@ -71,7 +71,7 @@ BOOST_AUTO_TEST_CASE(plate_normal_force_equals_momentum_flux) {
 // of the free-stream particles) is compared with the streamline released at the mean height of the
 // particle centres on the belt, and the lower limit with the streamline of the bottom layer
 // (e = d/2), over the free flight (x <= Z - 100 mm, before the cushion of slowed particles in front
-// of the plate). Tolerance: one particle diameter (13.6 mm), as the issue asks.
+// of the plate). Tolerance: one particle diameter (13.6 mm), the resolution of a stream of particles that size.
 BOOST_AUTO_TEST_CASE(free_stream_follows_booth) {
   const auto& r = tiny_run();
   const Station st = test::tiny_station();

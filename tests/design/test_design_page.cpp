@@ -197,6 +197,40 @@ BOOST_AUTO_TEST_CASE(a_page_started_from_a_dataset_row_shows_that_rows_estimate)
   BOOST_TEST(std::stod(v.values.at("out-stream_thickness_mm")) == 34.0);
 }
 
+// The page speaks to designers: inputs labelled in words with units, no measurement effects (the
+// registry's stage, not a list in the page), the design written back into the address as a link
+// that reopens it, and an address key the page does not know said rather than dropped.
+BOOST_AUTO_TEST_CASE(labels_effects_link_and_unknown_address_keys) {
+  const fs::path dir = build_page("link");
+  const PageView v = open_page(dir, dir / "page" / "design.html",
+                               "belt_speed=3.5&mass_flow=30&plate_distance=400&belt.pulley_diameter_mm=400&"
+                               "effect.air_drag=0.5&bogus_key=1&effect.load_cell_gain=1.02&name=L1");
+  BOOST_TEST_REQUIRE(v.state == "ready", v.error);
+  BOOST_TEST(v.dom.find("head pulley diameter (mm)") != std::string::npos);
+  BOOST_TEST(v.dom.find(">belt.pulley_diameter_mm<") == std::string::npos);  // the key is a tooltip, not the label
+  BOOST_TEST(v.dom.find("id=\"fx-air_drag\"") != std::string::npos);
+  BOOST_TEST(v.dom.find("id=\"fx-load_cell_gain\"") == std::string::npos);
+  BOOST_TEST(v.dom.find("id=\"fx-load_cell_offset\"") == std::string::npos);
+  std::smatch m;
+  BOOST_REQUIRE(std::regex_search(v.dom, m, std::regex("<div id=\"warning\"[^>]*>([^<]*)</div>")));
+  const std::string warning = html_unescape(m[1]);
+  BOOST_TEST(warning.find("\"bogus_key\"") != std::string::npos, warning);
+  BOOST_TEST(warning.find("Measurement effects are not part of a design, ignored: effect.load_cell_gain") != std::string::npos,
+             warning);
+  BOOST_REQUIRE(std::regex_search(v.dom, m, std::regex("<a id=\"share-link\" href=\"([^\"]*)\"")));
+  const std::string link = html_unescape(m[1]);
+  for (const char* part : {"#belt_speed=3.5&", "&mass_flow=30&", "&plate_distance=400&", "&belt.pulley_diameter_mm=400&",
+                           "&effect.air_drag=0.5&", "&name=L1"})
+    BOOST_TEST(link.find(part) != std::string::npos, part << " not in " << link);
+  BOOST_TEST(link.find("bogus") == std::string::npos);
+  // The link reopens the same design: the same numbers on a fresh page.
+  const fs::path again = build_page("link-again");
+  const PageView w = open_page(again, again / "page" / "design.html", link.substr(1));
+  BOOST_TEST_REQUIRE(w.state == "ready", w.error);
+  for (const char* id : {"out-normal_force_N", "out-impact_point_y_mm", "out-stream_thickness_mm"})
+    BOOST_TEST(w.values.at(id) == v.values.at(id), id);
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_shows_chutelabs_message_not_numbers) {
   const fs::path dir = build_page("bad");
   const PageView v = open_page(dir, dir / "page" / "design.html", "belt_speed=-1&mass_flow=35&plate_distance=450");

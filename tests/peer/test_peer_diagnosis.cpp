@@ -1,5 +1,4 @@
-// The DEM-baseline diagnosis on data made by another code (issue: find the missing physics in data
-// from another code). datasets/liggghts-flowbias is the LIGGGHTS rig with one hidden effect; its
+// The DEM-baseline diagnosis on data made by another code. datasets/liggghts-flowbias is the LIGGGHTS rig with one hidden effect; its
 // HOW-MADE.md gives the truth, mass_flow_bias = -0.12. datasets/liggghts-rig is the same rig without
 // any effect. Both are diagnosed exactly as a user would (`diagnose --models dem --dem-quality
 // standard --signature-quality quick`) from DEM runs recorded in tests/peer/dem-cache by

@@ -168,7 +168,7 @@ def test_the_dem_through_python_gives_the_command_lines_numbers(tmp_path):
     v = chutelab.validate(ds, models=["dem"], dem_quality="quick", dem_cache=cache)
     dem = v.predictions[v.predictions.model == "dem"].set_index("quantity")
     assert dem.loc["normal_force_N", "uncertainty"] > 0  # u_num of the steady mean
-    # The rig measured R_n = 35.0 N here; the quick DEM gave 35.8 N (2026-12-01). The 10 % band
+    # The rig measured R_n = 35.0 N here; the quick DEM gives about 35.8 N. The 10 % band
     # is a sanity bound on a coarse run, not an accuracy claim: the numbers must be the CLI's.
     assert dem.loc["normal_force_N", "value"] == pytest.approx(35.0, rel=0.1)
     r = cli("validate", "--dataset", str(ds), "--models", "dem", "--dem-quality", "quick", "--dem-cache", str(cache),
@@ -279,7 +279,7 @@ def test_the_guide_example_runs(tmp_path):
     assert "air_drag" in out.getvalue()
 
 
-# ---- issue 30: every guarantee of the command line holds here too ---------------------------------
+# ---- every guarantee of the command line holds here too ----------------------------------------------
 
 def _files(folder):
     return {f: open(os.path.join(folder, f), "rb").read() for f in sorted(os.listdir(folder))}

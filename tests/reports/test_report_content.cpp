@@ -11,7 +11,6 @@
 
 #include "reports/plain_summary.h"
 #include "reports/report.h"
-#include "reports/sensitivity_study.h"
 #include "reports/svg.h"
 
 namespace chutelab::test {
@@ -368,7 +367,7 @@ BOOST_FIXTURE_TEST_CASE(point_clouds_are_dots_with_a_colour_bar, Fixture) {
   }
   for (auto& p : r.predictions)
     if (p.model == "m1") p.prediction.curves.push_back(cloud);
-  std::vector<validation::SeedFinding> findings(1);
+  std::vector<validation::ReferenceFinding> findings(1);
   findings[0].number = 1;
   findings[0].statement = "a finding";
   findings[0].status = validation::FindingStatus::partly;
@@ -383,27 +382,6 @@ BOOST_FIXTURE_TEST_CASE(point_clouds_are_dots_with_a_colour_bar, Fixture) {
   BOOST_TEST(md.find("The reference study's findings") != std::string::npos);
   BOOST_TEST(md.find("partly reproduced") != std::string::npos);
   BOOST_TEST(md.find("numbers two") != std::string::npos);
-}
-
-BOOST_AUTO_TEST_CASE(finding_6_follows_the_sensitivity_verdict) {
-  using validation::FindingStatus;
-  BOOST_TEST((reports::sensitivity_finding(nullptr).status == FindingStatus::not_testable));
-  reports::SensitivityStudy s;
-  s.condition = "V3-41";
-  s.quality = "quick";
-  auto& v = s.verdict;
-  v.mean_tested = v.size_tested = true;
-  v.mean_insensitive = true;
-  v.fluctuation_grows = true;
-  v.size_fluctuation = {{0.0136, 5.9}, {0.0219, 10.7}};
-  BOOST_TEST((reports::sensitivity_finding(&s).status == FindingStatus::reproduced));
-  v.fluctuation_grows = false;
-  BOOST_TEST((reports::sensitivity_finding(&s).status == FindingStatus::partly));
-  v.mean_insensitive = false;
-  BOOST_TEST((reports::sensitivity_finding(&s).status == FindingStatus::not_reproduced));
-  v.size_tested = false;
-  v.mean_tested = false;
-  BOOST_TEST((reports::sensitivity_finding(&s).status == FindingStatus::not_testable));
 }
 
 BOOST_AUTO_TEST_CASE(nice_ticks_land_on_round_numbers) {

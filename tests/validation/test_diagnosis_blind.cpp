@@ -1,4 +1,4 @@
-// Blind acceptance of the diagnosis (issue "Find the missing physics"): for each effect of the
+// Blind acceptance of the diagnosis: for each effect of the
 // library a dataset is generated on the bundled rig with the effect at its typical strength and the
 // noise of the stated uncertainties, `diagnose` runs without being told, and the winner is added
 // with `validate --effect <winner>=fit`. Seeds 7100-7199 are reserved for this test and were never

@@ -105,7 +105,7 @@ class OwnResponseModel final : public Model {
 
 }  // namespace
 
-// Signatures from the expensive model itself (issue: DEM signatures): one probe run per condition
+// Signatures from the expensive model itself: one probe run per condition
 // for the candidate it represents, and the fit lands on the strength its own response asks for.
 BOOST_AUTO_TEST_CASE(expensive_model_gives_its_own_signature) {
   std::atomic<int> calls{0};

@@ -2,9 +2,10 @@
 // instrument could give, and nothing in them may carry the hidden effect except the values
 // themselves (the blind acceptance test, test_diagnosis_blind.cpp, relies on that).
 //
-// Seeds: 9001-9020 for the round trip and the uncertainty check (the block in which an audit
-// found belt_slip writing negative exit velocities), 9101-9999 for the noise statistics (one seed
-// per dataset, so no two datasets share their deviates). Neither block is used elsewhere.
+// Seeds: 9001-9020 for the round trip and the uncertainty check (a block in which belt_slip puts
+// an exit velocity within one uncertainty of zero, so the noise's truncation at zero is used),
+// 9101-9999 for the noise statistics (one seed per dataset, so no two datasets share their
+// deviates). Neither block is used elsewhere.
 #include <boost/test/unit_test.hpp>
 #include <algorithm>
 #include <cmath>
@@ -161,7 +162,8 @@ BOOST_AUTO_TEST_CASE(noise_is_unbiased_and_one_stated_uncertainty_for_well_measu
 }
 
 // Resampling at zero must keep a dataset a function of its seed. belt_slip at seed 9002 resamples
-// (its V_a at 4 m/s lies within one uncertainty of zero; the old generator wrote it negative).
+// (its V_a at 4 m/s lies within one uncertainty of zero, where untruncated noise could write it
+// negative).
 BOOST_AUTO_TEST_CASE(same_seed_same_bytes_when_a_magnitude_is_resampled) {
   const auto rig = read_dataset(kRig, MeasurementsRequired::no);
   const auto* slip = effects::find("belt_slip");

@@ -1,4 +1,4 @@
-#include "reports/sensitivity_study.h"
+#include "studies/sensitivity.h"
 #include "core/csv_field.h"
 
 #include <algorithm>
@@ -9,16 +9,13 @@
 
 #include "core/input_error.h"
 #include "core/number.h"
-#include "reports/svg.h"
 #include "validation/csv_table.h"
 #include "validation/output_files.h"
 
-namespace chutelab::reports {
+namespace chutelab::studies {
 namespace {
 
 using validation::csv_number;
-
-std::string mm(double m) { return fmt::format("{:g}", std::round(m * 1e4) / 10.0); }
 
 std::vector<std::string> split_cell(const std::string& cell, char sep) {
   std::vector<std::string> out;
@@ -48,11 +45,7 @@ std::string modulus_text(double scale) {
 
 }  // namespace
 
-std::string dataset_text(const SensitivityStudy& s, bool markdown) {
-  auto code = [&](const std::string& x) { return markdown ? "`" + md_esc(x) + "`" : x; };
-  if (s.dataset_name.empty()) return code(s.dataset) + " (dataset name not recorded)";
-  return code(s.dataset_name) + (s.dataset.empty() ? std::string() : " (" + code(s.dataset) + ")");
-}
+std::string mm_text(double m) { return fmt::format("{:g}", std::round(m * 1e4) / 10.0); }
 
 std::vector<std::string> run_notes(const SensitivityStudy& s) {
   std::vector<std::string> notes;
@@ -70,7 +63,7 @@ std::vector<std::string> run_notes(const SensitivityStudy& s) {
                                 "the collision time for {}", fmt::join(capped, ", ")));
   if (!s.sizes_left_out.empty()) {
     std::vector<std::string> d;
-    for (double x : s.sizes_left_out) d.push_back(mm(x) + " mm");
+    for (double x : s.sizes_left_out) d.push_back(mm_text(x) + " mm");
     notes.push_back(fmt::format("not run: spheres of {}, of the reference study's sizes (at quick quality the default leaves 5.6 mm "
                                 "out: that one run costs more than the rest of the study's ~10 min); give --sizes to run "
                                 "them", fmt::join(d, ", ")));
@@ -101,7 +94,7 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& b) {
   base.dt_fraction = b.dt_fraction;
   base.rayleigh_fraction = b.rayleigh_fraction;
   base.label = fmt::format("{}, spheres d = {} mm, dt = {} t_c (at most {} t_R), {}", dem::NormalLaw{}.title(),
-                           mm(base_d), fraction(b.dt_fraction), fraction(b.rayleigh_fraction),
+                           mm_text(base_d), fraction(b.dt_fraction), fraction(b.rayleigh_fraction),
                            modulus_text(b.modulus_scale));
   v.push_back(base);
   auto variant = [&](std::string key, std::string label, VariantGroup g) {
@@ -120,12 +113,12 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& b) {
   auto clump = variant("clump", "", VariantGroup::shape);
   clump.shape = "clump";
   clump.diameter = base_d * 4.4 / 5.6;
-  clump.label = fmt::format("two-sphere clump (Fig. 4c), spheres d = {} mm (the reference study's 4.4 vs 5.6 mm)", mm(clump.diameter));
+  clump.label = fmt::format("two-sphere clump (Fig. 4c), spheres d = {} mm (the reference study's 4.4 vs 5.6 mm)", mm_text(clump.diameter));
   v.push_back(clump);
   auto clump_d = variant("clump-d", "", VariantGroup::shape);
   clump_d.shape = "clump";
   clump_d.label = fmt::format("two-sphere clump, spheres d = {} mm = the base's (the reference study's \"shaped d = 5.6 mm, d "
-                              "increased\")", mm(base_d));
+                              "increased\")", mm_text(base_d));
   v.push_back(clump_d);
   auto dt = variant("dt/20", fmt::format("dt = {} t_c (at most {} t_R): half the base step", fraction(b.dt_fraction / 2),
                                          fraction(b.rayleigh_fraction / 2)),
@@ -148,8 +141,8 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& b) {
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     const double d = sizes[k];
     if (same_size(d, base_d) || (k > 0 && same_size(d, sizes[k - 1]))) continue;
-    auto s = variant(fmt::format("d={}mm", mm(d)),
-                     fmt::format("spheres d = {} mm ({:.2f} x the base's); mass flow kept: {} grains", mm(d), d / base_d,
+    auto s = variant(fmt::format("d={}mm", mm_text(d)),
+                     fmt::format("spheres d = {} mm ({:.2f} x the base's); mass flow kept: {} grains", mm_text(d), d / base_d,
                                  d > base_d ? "fewer, heavier" : "more, lighter"),
                      VariantGroup::size);
     s.diameter = d;
@@ -202,7 +195,7 @@ void evaluate(SensitivityStudy& s) {
   for (std::size_t k = 1; k < v.size_fluctuation.size(); ++k)
     v.fluctuation_grows = v.fluctuation_grows && v.size_fluctuation[k].second > v.size_fluctuation[k - 1].second;
   std::vector<std::string> fl;
-  for (const auto& [d, f] : v.size_fluctuation) fl.push_back(fmt::format("{:.1f} N at {} mm", f, mm(d)));
+  for (const auto& [d, f] : v.size_fluctuation) fl.push_back(fmt::format("{:.1f} N at {} mm", f, mm_text(d)));
   std::string head;
   const std::string on_what_ran = v.mean_insensitive && v.fluctuation_grows ? "reproduced" : "NOT reproduced";
   if (!(v.mean_tested && v.size_tested)) {
@@ -213,9 +206,9 @@ void evaluate(SensitivityStudy& s) {
   } else if (!v.sizes_left_out.empty()) {
     // Judged on what ran, but never called reproduced: a left-out size is a claim not checked.
     std::vector<std::string> out, all;
-    for (double d : v.sizes_left_out) out.push_back(mm(d) + " mm");
-    for (const auto& [d, f] : v.size_fluctuation) all.push_back(mm(d));
-    for (double d : v.sizes_left_out) all.push_back(mm(d));
+    for (double d : v.sizes_left_out) out.push_back(mm_text(d) + " mm");
+    for (const auto& [d, f] : v.size_fluctuation) all.push_back(mm_text(d));
+    for (double d : v.sizes_left_out) all.push_back(mm_text(d));
     std::sort(all.begin(), all.end(), [](const std::string& a, const std::string& b) { return std::stod(a) < std::stod(b); });
     head = fmt::format("The reference study's Table 6 conclusion NOT FULLY TESTED: {} left out at {} quality (run with --sizes {}); on "
                        "what ran it is {}",
@@ -361,7 +354,7 @@ std::string sensitivity_csv(const SensitivityStudy& s) {
       "simulated_s,steps,peak_particles,steady,condition,belt_speed_mps,mass_flow_tph,quality,"
       "change_limit_pct,dataset,rayleigh_fraction,modulus_scale_of_dataset,sizes_left_out_mm,variants_left_out\n";
   std::vector<std::string> left_out;
-  for (double d : s.sizes_left_out) left_out.push_back(mm(d));
+  for (double d : s.sizes_left_out) left_out.push_back(mm_text(d));
   // One list in one cell: ';' keeps the CSV plain (no quoting).
   const std::string left = fmt::format("{}", fmt::join(left_out, ";"));
   for (const auto& r : s.rows) {
@@ -390,148 +383,57 @@ std::string sensitivity_timing_csv(const SensitivityStudy& s) {
   return out;
 }
 
-std::string sensitivity_md(const SensitivityStudy& s) {
-  std::string md = "# Sensitivity of the plate force (the reference study's Table 6)\n\n";
-  md += fmt::format("Dataset {}, condition `{}` (V_b = {:g} m/s, {:.1f} t/h), quality `{}`; {} DEM runs.\n\n",
-                    dataset_text(s, true), md_esc(s.condition), s.belt_speed, s.mass_flow * 3.6,
-                    s.quality, s.rows.size());
-  md += s.verdict.text + "\n\n";
-  md += "| variant | what changes | d (mm) | dt (µs) | dt / t_c | R_n (N) | R_s (N) | R (N) | sd R_n (N) | sd R_s (N) | sd R (N) | "
-        "change of R vs base (%) | work (10⁶ particle-steps) |\n";
-  md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  for (const auto& r : s.rows) {
-    const auto& o = r.outcome;
-    md += fmt::format("| {} | {} | {} | {:.2f} | {} | {:.1f} ± {:.1f} | {:.1f} ± {:.1f} | {:.1f} ± {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} | {:.0f} |\n",
-                      r.variant.key, md_esc(r.variant.label), mm(o.diameter), o.dt * 1e6,
-                      o.collision_time > 0.0 ? fmt::format("{:.3f}", o.dt / o.collision_time) : std::string("–"),
-                      o.normal.value,
-                      o.normal.se, o.shear.value, o.shear.se, o.resultant.value, o.resultant.se, o.fluct_normal,
-                      o.fluct_shear, o.fluct_resultant,
-                      &r == &s.rows[0] ? std::string("—") : fmt::format("{:+.1f} ± {:.1f}", r.change.value, r.change.se),
-                      static_cast<double>(o.steps) * static_cast<double>(o.particles) * 1e-6);
+// Finding 6's words, as the report's findings table shows them.
+namespace {
+const char* kTable6 =
+    "Sensitivity (the reference study's Table 6): LSD vs Hertz-Mindlin, sphere vs two-sphere clump, dt = t_c/10 vs t_c/20 and "
+    "shear modulus x10 or /10 change the mean plate force little; larger particles give a similar mean force "
+    "with larger fluctuations.";
+const char* kMeanClaim = "contact model, shape, time step and G change the mean R by no more than the limit";
+const char* kSizeClaim = "the fluctuation of R grows with the particle diameter";
+}  // namespace
+
+validation::ReferenceFinding sensitivity_finding(const SensitivityStudy* s, std::string_view validated) {
+  validation::ReferenceFinding f{6, kTable6};
+  if (!s) {
+    const std::string why = "no sensitivity study given (chutelab sensitivity, then validate --studies DIR)";
+    f.claims = {{kMeanClaim, false, false, why}, {kSizeClaim, false, false, why}};
+  } else {
+    const auto& v = s->verdict;
+    // Which rig the numbers are from: the main job validates one dataset with a study of another.
+    const std::string where =
+        s->dataset_name.empty()
+            ? fmt::format("{} (dataset not recorded)", s->condition)
+            : fmt::format("{} of {}{}", s->condition, s->dataset_name,
+                          !validated.empty() && validated != s->dataset_name ? " (not this dataset)" : "");
+    // Variants --only left out: sizes are keyed "d=...".
+    std::vector<std::string> mean_out, size_out;
+    for (const auto& k : v.variants_left_out) (k.rfind("d=", 0) == 0 ? size_out : mean_out).push_back(k);
+    std::string not_run;
+    if (!mean_out.empty()) not_run = fmt::format("; not run: {}", fmt::join(mean_out, ", "));
+    f.claims.push_back({kMeanClaim, v.mean_tested, v.mean_tested && v.mean_insensitive && mean_out.empty(),
+                        v.mean_tested ? fmt::format("{}, {} quality: largest change {:+.1f} % ({}), limit ±{:g} %{}", where,
+                                                    s->quality, v.worst_change, v.worst_variant, s->limit_percent, not_run)
+                                      : "no contact, shape, dt or G variant ran"});
+    f.claims.back().undecided = v.mean_tested && v.mean_insensitive && !mean_out.empty();
+    std::vector<std::string> fl;
+    for (const auto& [d, sd] : v.size_fluctuation) fl.push_back(fmt::format("{:.1f} N at {:.1f} mm", sd, d * 1e3));
+    std::vector<std::string> out = size_out;
+    for (double d : v.sizes_left_out) out.push_back(fmt::format("{:g} mm", std::round(d * 1e4) / 10.0));
+    // A size of the reference study's Table 6 that did not run leaves the claim unchecked there:
+    // undecided if it holds on the sizes that ran (one that fails there fails anyway).
+    const bool all_sizes = out.empty();
+    f.claims.push_back({kSizeClaim, v.size_tested, v.size_tested && v.fluctuation_grows && all_sizes,
+                        v.size_tested ? fmt::format("sd of R: {}; the sizes move the mean by up to {:.1f} %{}",
+                                                    fmt::join(fl, ", "), v.size_mean_spread,
+                                                    all_sizes ? std::string()
+                                                              : fmt::format("; not run: {} (so not decided over the "
+                                                                            "reference study's sizes)", fmt::join(out, ", ")))
+                                      : "fewer than two particle sizes ran"});
+    f.claims.back().undecided = v.size_tested && v.fluctuation_grows && !all_sizes;
   }
-  md += "\nMeans are over the steady window of the plate load cell with block standard errors (±); sd is the "
-        "standard deviation of the load-cell samples in that window (the fluctuation); change = R / R_base - 1; work = "
-        "steps x peak particles, a measure of cost that does not depend on the machine (wall-clock times are in "
-        "sensitivity-timing.csv, which differs from run to run).\n";
-  std::vector<std::string> notes = run_notes(s);
-  for (const auto& r : s.rows) {
-    if (!r.outcome.steady) notes.push_back(fmt::format("{}: no steady window within the time limit (means uncertain)", r.variant.key));
-    for (const auto& n : r.outcome.notes) notes.push_back(fmt::format("{}: {}", r.variant.key, n));
-  }
-  if (!notes.empty()) {
-    md += "\n## Notes\n\n";
-    for (const auto& n : notes) md += "- " + md_esc(n) + "\n";
-  }
-  return md;
+  f.status = validation::status_of(f.claims);
+  return f;
 }
 
-std::string sensitivity_chart(const SensitivityStudy& s, std::string_view id) {
-  const std::size_t n = s.rows.size();
-  double rmax = 0.0, fmax = 0.0;
-  for (const auto& r : s.rows) {
-    rmax = std::max(rmax, r.outcome.resultant.value + r.outcome.resultant.se);
-    fmax = std::max(fmax, r.outcome.fluct_resultant);
-  }
-  auto colour = [](VariantGroup g) {
-    switch (g) {
-      case VariantGroup::base: return "#555555";
-      case VariantGroup::contact: return "#1f77b4";
-      case VariantGroup::shape: return "#2ca02c";
-      case VariantGroup::time_step: return "#9467bd";
-      case VariantGroup::modulus: return "#ff7f0e";
-      case VariantGroup::size: return "#d62728";
-    }
-    return "#000000";
-  };
-  std::vector<LegendEntry> legend;
-  for (VariantGroup g : {VariantGroup::base, VariantGroup::contact, VariantGroup::shape, VariantGroup::time_step,
-                         VariantGroup::modulus, VariantGroup::size})
-    legend.push_back({LegendEntry::Kind::box, std::string(name(g)), colour(g)});
-  const double W = 960, lh = legend_height(W - 40, legend);
-  Svg svg(W, 70 + lh + 330, "plot sensitivity", id, "Mean resultant plate force and its fluctuation per variant");
-  svg.title("Plate force per variant: mean R (± 1 standard error) and its fluctuation (sd of R)");
-  svg.legend(20, 28, W - 40, legend);
-  auto panel = [&](double left, double top_value, const std::string& ylabel, bool mean) {
-    Frame f{left, 40 + lh + 10, 370, 250};
-    const Ticks yt = nice_ticks(0.0, top_value > 0.0 ? top_value * 1.08 : 1.0, 6);
-    const Scale y{0.0, yt.hi, f.bottom(), f.top};
-    svg.y_axis(f, y, yt, ylabel);
-    svg.line(f.left, f.bottom(), f.right(), f.bottom(), "stroke=\"#444\"");
-    const double gw = f.width / static_cast<double>(std::max<std::size_t>(n, 1));
-    if (mean && n > 0) {
-      const double yb = y(s.rows[0].outcome.resultant.value);
-      svg.line(f.left, yb, f.right(), yb, "stroke=\"#555\" stroke-dasharray=\"4,3\"");
-    }
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto& r = s.rows[k];
-      const double v = mean ? r.outcome.resultant.value : r.outcome.fluct_resultant;
-      const double cx = f.left + gw * (static_cast<double>(k) + 0.5), bw = std::min(30.0, 0.6 * gw);
-      const double yv = y(std::max(0.0, v));
-      svg.rect(cx - bw / 2, yv, bw, f.bottom() - yv, fmt::format("fill=\"{}\" class=\"bar\"", colour(r.variant.group)),
-               mean ? fmt::format("{}: R = {:.1f} ± {:.1f} N ({})", r.variant.key, v, r.outcome.resultant.se,
-                                  k == 0 ? std::string("base") : fmt::format("{:+.1f} %", r.change.value))
-                    : fmt::format("{}: sd of R = {:.1f} N", r.variant.key, v));
-      if (mean && r.outcome.resultant.se > 0.0) {
-        const double y1 = y(v + r.outcome.resultant.se), y2 = y(std::max(0.0, v - r.outcome.resultant.se));
-        const std::string st = "stroke=\"#000\" stroke-width=\"1.2\"";
-        svg.line(cx, y1, cx, y2, st);
-        svg.line(cx - 4, y1, cx + 4, y1, st);
-        svg.line(cx - 4, y2, cx + 4, y2, st);
-      }
-      svg.text(cx, f.bottom() + 14, r.variant.key, "end",
-               fmt::format("font-size=\"11\" transform=\"rotate(-35 {} {})\"", px(cx), px(f.bottom() + 14)));
-    }
-  };
-  panel(70, rmax, "mean resultant R (N)", true);
-  panel(560, fmax, "fluctuation: sd of R (N)", false);
-  return svg.finish();
-}
-
-std::string sensitivity_html(const SensitivityStudy& s) {
-  const std::size_t n = s.rows.size();
-
-  // Page: verdict, chart, table (the Markdown's table rendered), notes.
-  const std::string md = sensitivity_md(s);
-  std::string body = "<h1>Sensitivity of the plate force (the reference study's Table 6)</h1>\n";
-  body += fmt::format("<p>Dataset {}, condition <code>{}</code> (V<sub>b</sub> = {:g} m/s, {:.1f} t/h), "
-                      "quality <code>{}</code>; {} DEM runs.</p>\n",
-                      esc(dataset_text(s, false)), esc(s.condition), s.belt_speed, s.mass_flow * 3.6, esc(s.quality), n);
-  body += fmt::format("<p class=\"verdict {}\">{}</p>\n", s.verdict.reproduced() ? "ok" : "not", esc(s.verdict.text));
-  body += sensitivity_chart(s, "sensitivity-chart") + "\n<table>\n";
-  std::size_t pos = 0;
-  bool header = true;
-  std::string tail;
-  while (pos < md.size()) {
-    const auto end = md.find('\n', pos);
-    const std::string line = md.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
-    pos = end == std::string::npos ? md.size() : end + 1;
-    if (line.empty() || line[0] != '|') {
-      if (!header && line.rfind("- ", 0) == 0) tail += "<p class=\"item\">• " + esc(md_unesc(line.substr(2))) + "</p>\n";
-      else if (!header && line.rfind("Means are", 0) == 0) tail += "<p>" + esc(line) + "</p>\n";
-      else if (line.rfind("## ", 0) == 0) tail += "<h2>" + esc(line.substr(3)) + "</h2>\n";
-      continue;
-    }
-    if (line.find("|---") == 0) continue;
-    std::string row = "<tr>";
-    std::size_t a = 1;
-    while (a < line.size()) {
-      const auto b = line.find('|', a);
-      if (b == std::string::npos) break;
-      row += fmt::format("<{0}>{1}</{0}>", header ? "th" : "td", esc(md_unesc(line.substr(a, b - a))));
-      a = b + 1;
-    }
-    body += row + "</tr>\n";
-    header = false;
-  }
-  body += "</table>\n" + tail;
-  return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>chutelab sensitivity</title>"
-         "<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}"
-         "table{border-collapse:collapse;margin:1em 0;font-size:13px}td,th{border:1px solid #ccc;padding:3px 6px;"
-         "text-align:right}th{background:#f3f3f3}td:nth-child(2){text-align:left}p.verdict{padding:8px;border-left:4px solid}"
-         "p.ok{border-color:#2e7d32;background:#eef7ee}p.not{border-color:#c62828;background:#fbeeee}"
-         "p.item{margin:0.3em 0 0.3em 1em}svg{max-width:100%;height:auto}</style></head><body>\n" +
-         body + "</body></html>\n";
-}
-
-}  // namespace chutelab::reports
+}  // namespace chutelab::studies

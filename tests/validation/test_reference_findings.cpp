@@ -3,7 +3,7 @@
 #include <boost/test/unit_test.hpp>
 #include <map>
 
-#include "validation/seed_findings.h"
+#include "validation/reference_findings.h"
 
 using namespace chutelab;
 using namespace chutelab::validation;
@@ -65,7 +65,7 @@ struct Case {
     }
   }
 
-  std::vector<SeedFinding> check() {
+  std::vector<ReferenceFinding> check() {
     r.predictions.clear();
     d.measurements.clear();
     for (const auto& [key, v] : pred) {
@@ -82,11 +82,11 @@ struct Case {
                                     q == Quantity::impact_point_y && impact_u.count(c) ? impact_u.at(c)
                                                                                        : 0.002 * std::abs(*v[q]),
                                     {}});
-    return check_seed_findings(d, r);
+    return check_reference_findings(d, r);
   }
 };
 
-const FindingClaim& claim(const std::vector<SeedFinding>& f, int finding, std::size_t k) {
+const FindingClaim& claim(const std::vector<ReferenceFinding>& f, int finding, std::size_t k) {
   return f.at(static_cast<std::size_t>(finding - 1)).claims.at(k);
 }
 

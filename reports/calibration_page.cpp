@@ -1,102 +1,30 @@
-#include "app/calibration_output.h"
-#include "core/csv_field.h"
-#include "core/message.h"
+#include "reports/calibration_page.h"
 
-#include <algorithm>
 #include <cmath>
-#include <map>
 
 #include <fmt/format.h>
 
-#include "core/units.h"
 #include "reports/studies.h"
 #include "reports/svg.h"
-#include "validation/output_files.h"
 
-namespace chutelab::app {
+namespace chutelab::reports {
 namespace {
 
 using dem::rigs::CalibrationRow;
 using dem::rigs::CalibrationStudy;
 using dem::rigs::GrainKind;
-using validation::csv_number;
+using studies::CalibrationContext;
+using studies::CalibrationPoint;
+using studies::grain_label;
 
-std::string grain_label(const CalibrationStudy& s, GrainKind k) {
-  return k == GrainKind::sphere ? s.plan.sphere.label() : s.plan.clump.label();
-}
-
-std::string num(double v, int decimals) { return std::isfinite(v) ? reports::fixed(v, decimals) : "–"; }
-
-// The row the material is written from: the closest one, else the first.
-const CalibrationRow& chosen(const CalibrationStudy& s) {
-  return s.rows.at(s.closest >= 0 ? static_cast<std::size_t>(s.closest) : 0);
-}
-
-// Plain-language trends of the sweep, computed from the rows (what the reference study's §5 reads off Table 3).
-std::vector<std::string> findings(const CalibrationStudy& s) {
-  std::vector<std::string> out;
-  for (GrainKind k : s.plan.shapes)
-    for (double rho : s.plan.density) {
-      const CalibrationRow *lo = nullptr, *hi = nullptr;
-      for (const auto& r : s.rows)
-        if (r.shape == k && r.solid_density == rho) {
-          if (!lo || r.rolling_friction < lo->rolling_friction) lo = &r;
-          if (!hi || r.rolling_friction > hi->rolling_friction) hi = &r;
-        }
-      if (!lo || lo == hi) continue;
-      out.push_back(fmt::format(
-          "{}, rho_s = {:g} kg/m^3: raising mu_r from {:g} to {:g} changes the pile height from {:.1f} to {:.1f} mm "
-          "({:+.0f} %) and the bulk density from {:.0f} to {:.0f} kg/m^3 ({:+.1f} %).",
-          grain_label(s, k), rho, lo->rolling_friction, hi->rolling_friction, lo->slump.pile_height * 1e3,
-          hi->slump.pile_height * 1e3, 100.0 * (hi->slump.pile_height / lo->slump.pile_height - 1.0),
-          lo->slump.bulk_density, hi->slump.bulk_density, 100.0 * (hi->slump.bulk_density / lo->slump.bulk_density - 1.0)));
-    }
-  // Shape at equal rolling friction and density: packing (solid fraction).
-  if (s.plan.shapes.size() == 2) {
-    double sum_s = 0, sum_c = 0;
-    int n = 0;
-    for (const auto& a : s.rows)
-      for (const auto& b : s.rows)
-        if (a.shape == GrainKind::sphere && b.shape == GrainKind::clump && a.rolling_friction == b.rolling_friction &&
-            a.solid_density == b.solid_density) {
-          sum_s += a.slump.bulk_density / a.solid_density;
-          sum_c += b.slump.bulk_density / b.solid_density;
-          ++n;
-        }
-    if (n > 0)
-      out.push_back(fmt::format("Mean solid fraction (bulk / solid density): spheres {:.3f}, clumps {:.3f} — the "
-                                "shaped particles pack {} (reference study §5: \"the smaller shaped particles pack more "
-                                "efficiently ... and achieve a higher loose-poured bulk density\").",
-                                sum_s / n, sum_c / n, sum_c > sum_s ? "more densely, as in the reference study" : "less densely, unlike the reference study"));
-  }
-  // Density at equal shape and rolling friction: pile height sensitivity.
-  if (s.plan.density.size() >= 2) {
-    double worst = 0.0;
-    for (const auto& a : s.rows)
-      for (const auto& b : s.rows)
-        if (a.shape == b.shape && a.rolling_friction == b.rolling_friction && a.solid_density < b.solid_density)
-          worst = std::max(worst, std::abs(b.slump.pile_height / a.slump.pile_height - 1.0));
-    out.push_back(fmt::format("Solid density changes the pile height by at most {:.0f} % at equal shape and mu_r "
-                              "(seed: \"the sensitivity of the solid density on the height of pile formed is minor\").",
-                              100.0 * worst));
-  }
-  return out;
-}
-
-std::string targets_text(const CalibrationStudy& s) {
-  std::vector<std::string> t;
-  if (s.plan.targets.bulk_density) t.push_back(fmt::format("bulk density {:.0f} kg/m^3", *s.plan.targets.bulk_density));
-  if (s.plan.targets.pile_height) t.push_back(fmt::format("pile height {:.1f} mm", *s.plan.targets.pile_height * 1e3));
-  if (t.empty()) return "none (no combination is marked)";
-  return fmt::format("{}", fmt::join(t, ", "));
-}
+std::string num(double v, int decimals) { return std::isfinite(v) ? fixed(v, decimals) : "–"; }
 
 std::string rig_text(const CalibrationStudy& s) {
   const auto& st = s.plan.settings;
   return fmt::format(
       "Swing-arm slump tester (reference study Fig. 5): {:.0f} mm I.D. split tube on a bed of glued grains of the same "
       "material filling a {:.0f} mm pipe; sample poured to about {:.0f} mm, settled (no grain faster than {:g} m/s), "
-      "tube halves moved apart at {:g} m/s; Young's modulus x {:g} (a shorter run; the seed found mean flow "
+      "tube halves moved apart at {:g} m/s; Young's modulus x {:g} (a shorter run; the reference study found mean flow "
       "results insensitive to G x10 and /10). Bulk density: mass per volume of the settled column's core; angle of "
       "repose: line fit of the pile's surface profile over its flank (20-80 % of the peak); pile height: that line at "
       "the axis (the fitted cone's apex; a single pour scatters by ~0.6 % in bulk density and ~3 % in this height, "
@@ -106,31 +34,6 @@ std::string rig_text(const CalibrationStudy& s) {
 }
 
 }  // namespace
-
-std::string calibration_csv(const CalibrationContext& c, const CalibrationStudy& s) {
-  std::string out =
-      "shape,grain,rolling_friction,solid_density_kgm3,bulk_density_kgm3,pile_height_mm,repose_angle_deg,"
-      "peak_height_mm,fill_height_mm,particles,settled,steps,target_distance,closest,dataset,quality\n";
-  for (std::size_t k = 0; k < s.rows.size(); ++k) {
-    const auto& r = s.rows[k];
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", name(r.shape), grain_label(s, r.shape),
-                       csv_number(r.rolling_friction), csv_number(r.solid_density), csv_number(r.slump.bulk_density),
-                       csv_number(r.slump.pile_height * 1e3), csv_number(r.slump.repose_angle_deg),
-                       csv_number(r.slump.peak_height * 1e3), csv_number(r.slump.fill_height * 1e3), r.slump.particles, r.slump.settled ? 1 : 0,
-                       r.slump.steps,
-                       std::isfinite(r.distance) ? csv_number(r.distance) : std::string(),
-                       static_cast<int>(k) == s.closest ? 1 : 0, csv_field(c.setup.name), c.quality);
-  }
-  return out;
-}
-
-std::string calibration_timing_csv(const CalibrationStudy& s) {
-  std::string out = "shape,rolling_friction,solid_density_kgm3,run_seconds\n";
-  for (const auto& r : s.rows)
-    out += fmt::format("{},{},{},{}\n", name(r.shape), csv_number(r.rolling_friction), csv_number(r.solid_density),
-                       csv_number(r.slump.wall_seconds));
-  return out;
-}
 
 std::string table3_md(const CalibrationStudy& s) {
   // Column pairs per shape, in the order asked for; a combination that did not run is a dash.
@@ -174,15 +77,6 @@ std::string table3_md(const CalibrationStudy& s) {
   return md;
 }
 
-std::string incline_csv(const CalibrationStudy& s) {
-  std::string out = "rolling_friction_wall,friction_wall,onset_deg,predicted_deg,motion,predicted_motion\n";
-  for (const auto& r : s.incline)
-    out += fmt::format("{},{},{},{},{},{}\n", csv_number(r.rolling_friction), csv_number(r.wall_friction),
-                       csv_number(r.result.onset_deg), csv_number(r.result.predicted.onset_deg),
-                       dem::rigs::name(r.result.motion), dem::rigs::name(r.result.predicted.motion));
-  return out;
-}
-
 std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& s) {
   std::string md = "# Slump-test calibration (reference study Table 3)\n\n";
   md += fmt::format("Dataset `{}` (`{}`), quality `{}`; {} slump tests (run times: calibration-timing.csv).\n\n",
@@ -191,7 +85,7 @@ std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& 
   md += fmt::format("Held constant from the dataset: mu_s = {:g} (particle-particle), e = {:g}, E = {:g} MPa, nu = {:g}.\n\n",
                     c.setup.material.friction_particle, c.setup.material.restitution_particle,
                     c.setup.material.youngs_modulus / 1e6, c.setup.material.poisson_ratio);
-  md += fmt::format("Target (measured): {}.\n\n", targets_text(s));
+  md += fmt::format("Target (measured): {}.\n\n", studies::targets_text(s));
   md += "## Table 3 (the reference study's layout)\n\n";
   md += table3_md(s);
   md += "\n## Every slump test\n\n";
@@ -217,7 +111,7 @@ std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& 
   for (const auto& r : s.rows) unsettled = unsettled || !r.slump.settled;
   if (unsettled) md += "\nSome runs reached their time limit before every grain came to rest (settled = 0 in the CSV).\n";
   md += "\n## What the sweep shows\n\n";
-  for (const auto& f : findings(s)) md += "- " + f + "\n";
+  for (const auto& f : studies::calibration_findings(s)) md += "- " + f + "\n";
   if (!s.incline.empty()) {
     md += "\n## Inclined-plane rig (particle-wall rolling friction)\n\n";
     md += "A sphere of the scaled size on the plate material, tilted in steps (bisection to 0.05 deg); onset = the "
@@ -230,18 +124,17 @@ std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& 
                         dem::rigs::name(r.result.predicted.motion));
   }
   md += "\n## Chosen material\n\n";
-  const auto& ch = chosen(s);
+  const auto& ch = studies::chosen(s);
   md += fmt::format("{} `material.toml`: {}, mu_r = {:g}, rho_s = {:g} kg/m^3.\n\n",
                     s.closest >= 0 ? "Closest to the target, written to" : "No target given; the first row is written to",
                     grain_label(s, ch.shape), ch.rolling_friction, ch.solid_density);
-  md += "```toml\n" + material_toml(c, s) + "```\n";
+  md += "```toml\n" + studies::material_toml(c, s) + "```\n";
   md += "\nThe reference study's own Table 3 values are not legible in the available text, so no comparison with its numbers is "
         "made; its findings are checked in the list above.\n";
   return md;
 }
 
 std::string calibration_html(const CalibrationContext& c, const CalibrationStudy& s) {
-  using namespace reports;
   // The chart is the report's (reports/plot_calibration.cpp), drawn from the rows as calibration.csv has them.
   std::vector<CalibrationPoint> points;
   for (std::size_t k = 0; k < s.rows.size(); ++k) {
@@ -314,23 +207,4 @@ std::string calibration_html(const CalibrationContext& c, const CalibrationStudy
          body + "</body></html>\n";
 }
 
-std::string material_toml(const CalibrationContext& c, const CalibrationStudy& s) {
-  const auto& ch = chosen(s);
-  Setup setup = c.setup;
-  setup.material.solid_density = ch.solid_density;
-  setup.material.rolling_friction_particle = ch.rolling_friction;
-  std::string out = fmt::format(
-      "# chutelab calibrate: slump tests ({} quality) on {}; {} {}.\n"
-      "# Calibrated for DEM {}: solid_density_kgm3 and rolling_friction_particle are the DEM values for that\n"
-      "# particle; every other value is the dataset's.\n[material]\n",
-      c.quality, one_line(c.dataset), s.closest >= 0 ? "closest to the target" : "no target given, first combination",
-      targets_text(s), grain_label(s, ch.shape));
-  for (const auto& f : rig_fields()) {
-    if (f.section != "material") continue;
-    const double v = f.ref(setup) / f.to_si;
-    out += fmt::format("{} = {}\n", f.key, csv_number(v));
-  }
-  return out;
-}
-
-}  // namespace chutelab::app
+}  // namespace chutelab::reports

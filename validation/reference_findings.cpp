@@ -1,4 +1,4 @@
-#include "validation/seed_findings.h"
+#include "validation/reference_findings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -127,8 +127,8 @@ Agreement agree(const Value& p, const Value& m) {
 // The Korzen model reports V_a only when Eq 3 finds stationary flow, so V_a's presence is the flag.
 constexpr double kFastBelt = 4.0;  // m/s, the reference study's threshold
 
-SeedFinding finding1(const Data& x) {
-  SeedFinding f{1, "Korzen's stationary flow (Eq 3) does not occur at belt speeds of 4 m/s and above, so R_s comes "
+ReferenceFinding finding1(const Data& x) {
+  ReferenceFinding f{1, "Korzen's stationary flow (Eq 3) does not occur at belt speeds of 4 m/s and above, so R_s comes "
                    "from Eq 7 there; below 4 m/s it does."};
   const std::string fast_text = "Korzen finds no stationary flow at V_b ≥ 4 m/s";
   const std::string slow_text = "Korzen finds stationary flow at V_b < 4 m/s";
@@ -207,8 +207,8 @@ FindingClaim varies(const Ratio& q, const std::string& text, const std::string& 
                       100 * kSpread)};
 }
 
-SeedFinding finding2(const Data& x, const Dataset& d) {
-  SeedFinding f{2, "In Korzen's model R_s/R_n is constant (= μ_pw); in the DEM and in the experiment it varies."};
+ReferenceFinding finding2(const Data& x, const Dataset& d) {
+  ReferenceFinding f{2, "In Korzen's model R_s/R_n is constant (= μ_pw); in the DEM and in the experiment it varies."};
   const std::string k_text = "Korzen's R_s/R_n is the same at every condition";
   if (!x.has_model(kKorzen)) {
     f.claims.push_back(untestable(k_text, "the korzen model was not run"));
@@ -261,8 +261,8 @@ double spearman(const std::vector<double>& a, const std::vector<double>& b) {
   return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
 }
 
-SeedFinding finding3(const Data& x) {
-  SeedFinding f{3, "The DEM's error in the resultant plate force R is largest at the lowest belt speed and falls as "
+ReferenceFinding finding3(const Data& x) {
+  ReferenceFinding f{3, "The DEM's error in the resultant plate force R is largest at the lowest belt speed and falls as "
                    "the belt speed rises; the DEM, Korzen and the measurement agree closely at the highest belt speed "
                    "and mass flow."};
   const std::string a_text = "the DEM's |E_R|/D is largest in the lowest belt-speed group";
@@ -336,8 +336,8 @@ SeedFinding finding3(const Data& x) {
 }
 
 // --- Finding 4: the DEM under-predicts V_p, more at high flow; its V_a matches -------------------
-SeedFinding finding4(const Data& x) {
-  SeedFinding f{4, "The DEM under-predicts the impact velocity V_p, more at high mass flow; the DEM's exit velocity "
+ReferenceFinding finding4(const Data& x) {
+  ReferenceFinding f{4, "The DEM under-predicts the impact velocity V_p, more at high mass flow; the DEM's exit velocity "
                    "V_a matches the experiment well."};
   const std::string a_text = "the DEM's V_p is below the measured V_p at every condition";
   const std::string b_text = "at each belt speed, the DEM's V_p error is more negative at the highest mass flow";
@@ -402,10 +402,10 @@ SeedFinding finding4(const Data& x) {
 }
 
 // --- Finding 5: impact point --------------------------------------------------------------------
-constexpr double kSeedBoothWorst = 0.0289;  // m, the reference study's largest Booth/CEMA miss (2.5-28.9 mm)
+constexpr double kReferenceBoothWorst = 0.0289;  // m, the reference study's largest Booth/CEMA miss (2.5-28.9 mm)
 
-SeedFinding finding5(const Data& x) {
-  SeedFinding f{5, "The Booth/CEMA impact point differs from the measured one by 2.5–28.9 mm; the DEM's lies slightly "
+ReferenceFinding finding5(const Data& x) {
+  ReferenceFinding f{5, "The Booth/CEMA impact point differs from the measured one by 2.5–28.9 mm; the DEM's lies slightly "
                    "below Booth/CEMA's; Korzen's 0.5 h_b centroid instead of the CEMA centroid increases the error."};
   const auto q = Quantity::impact_point_y;
   const std::string a_text = "Booth/CEMA misses the measured impact point by no more than the reference study's 28.9 mm";
@@ -438,7 +438,7 @@ SeedFinding finding5(const Data& x) {
     f.claims.push_back(untestable(a_text, "no condition with both a measured and a Booth/CEMA impact point"));
   } else {
     const auto [lo, hi] = std::minmax_element(eb.begin(), eb.end());
-    f.claims.push_back({a_text, true, *hi <= kSeedBoothWorst,
+    f.claims.push_back({a_text, true, *hi <= kReferenceBoothWorst,
                         fmt::format("|E| from {} to {} mm over {} conditions", fmt_value(q, *lo, 1), fmt_value(q, *hi, 1),
                                     eb.size())});
   }
@@ -497,7 +497,7 @@ SeedFinding finding5(const Data& x) {
 
 }  // namespace
 
-std::vector<SeedFinding> check_seed_findings(const Dataset& d, const ValidationResult& r) {
+std::vector<ReferenceFinding> check_reference_findings(const Dataset& d, const ValidationResult& r) {
   const Data x(d, r);
   return {finding1(x), finding2(x, d), finding3(x), finding4(x), finding5(x)};
 }

@@ -26,7 +26,7 @@ struct FindingClaim {
   bool undecided = false;
 };
 
-struct SeedFinding {
+struct ReferenceFinding {
   int number = 0;             // as in the reference list
   std::string statement{};    // the reference study's finding
   std::vector<FindingClaim> claims{};
@@ -39,6 +39,6 @@ FindingStatus status_of(const std::vector<FindingClaim>& claims);
 
 // Findings 1-5 (model behaviour and model-vs-measurement patterns). Finding 6, the sensitivity
 // study, needs its own runs (`chutelab sensitivity`) and is judged there.
-std::vector<SeedFinding> check_seed_findings(const Dataset& d, const ValidationResult& r);
+std::vector<ReferenceFinding> check_reference_findings(const Dataset& d, const ValidationResult& r);
 
 }  // namespace chutelab::validation

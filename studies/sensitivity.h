@@ -4,7 +4,8 @@
 // plate, the change against the base case, and the check of the reference study's conclusion: "mean plate force
 // changes little with contact model, shape, dt and G; its fluctuation grows with particle size".
 // Independent of how a variant is run (the command plugs in the station DEM), so it can be tested on
-// made-up numbers; the report reads the CSV back (reports/studies.h).
+// made-up numbers. This is the study as data and its CSV files; the pages and the report's section
+// that draw it are the report's (reports/sensitivity_page.h, reports/studies.h).
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -12,9 +13,9 @@
 #include <vector>
 
 #include "dem/contact/normal_laws.h"
-#include "validation/seed_findings.h"
+#include "validation/reference_findings.h"
 
-namespace chutelab::reports {
+namespace chutelab::studies {
 
 enum class VariantGroup { base, contact, shape, time_step, modulus, size };
 std::string_view name(VariantGroup g);
@@ -33,7 +34,7 @@ struct SensitivityVariant {
 };
 
 // The base run as resolved (quality preset < the dataset's [dem] table < flags), so that the labels
-// say what ran rather than what the seed ran: at quick quality the modulus is a third of the
+// say what ran rather than what the reference study ran: at quick quality the modulus is a third of the
 // dataset's, and the Rayleigh cap can make the step shorter than dt_fraction t_c.
 struct Table6Base {
   double diameter = 13.6e-3;           // m, the base spheres
@@ -42,8 +43,8 @@ struct Table6Base {
   double rayleigh_fraction = 0.2;      // cap, of the Rayleigh time
   // Sphere diameters of the size variants, m. Those that differ from the base diameter become
   // variants; the one equal to it is the base itself.
-  std::vector<double> sizes = seed_sizes();
-  static std::vector<double> seed_sizes() { return {5.6e-3, 9.0e-3, 13.6e-3}; }  // reference study Table 6, absolute
+  std::vector<double> sizes = reference_sizes();
+  static std::vector<double> reference_sizes() { return {5.6e-3, 9.0e-3, 13.6e-3}; }  // reference study Table 6, absolute
 };
 
 struct Stat {
@@ -110,12 +111,13 @@ std::vector<SensitivityVariant> table6_variants(const Table6Base& base);
 // Fills change and the verdict from the rows.
 void evaluate(SensitivityStudy& s);
 
-// The reference study's finding 6 (validation/seed_findings.h) from a study; not testable without one. The
+// The reference study's finding 6 (validation/reference_findings.h) from a study; not testable without one. The
 // evidence names the study's dataset, and says so when it is not `validated` (the report's dataset).
-validation::SeedFinding sensitivity_finding(const SensitivityStudy* study, std::string_view validated = {});
+validation::ReferenceFinding sensitivity_finding(const SensitivityStudy* study, std::string_view validated = {});
 
-// "grima2010 (path)" — which dataset the study ran on, as the outputs name it.
-std::string dataset_text(const SensitivityStudy& s, bool markdown);
+// A diameter (m) as the study names it: in mm to 0.1 mm, "13.6"; the variants' keys and every
+// output use it, so that one size has one name.
+std::string mm_text(double m);
 // Notes on what really ran that a label cannot say: a step set by the Rayleigh cap, sizes left out.
 std::vector<std::string> run_notes(const SensitivityStudy& s);
 
@@ -127,9 +129,5 @@ std::string sensitivity_timing_csv(const SensitivityStudy& s);
 // Reads back what sensitivity_csv wrote (the report's "Sensitivity" section) and evaluates it again;
 // bad or missing columns and values throw InputError naming the file, line and column.
 SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file);
-// The chart of sensitivity_html: mean R with its standard error and the fluctuation, per variant.
-std::string sensitivity_chart(const SensitivityStudy& s, std::string_view id);
-std::string sensitivity_md(const SensitivityStudy& s);
-std::string sensitivity_html(const SensitivityStudy& s);
 
-}  // namespace chutelab::reports
+}  // namespace chutelab::studies
