@@ -42,7 +42,7 @@ int run_diagnose(const DiagnoseCli& o) {
   validation::DiagnoseOptions opt;
   opt.alpha = o.alpha;
   opt.pairs = !o.no_pairs;
-  // Resolved once: the load average may change between two readings.
+  // Resolved once: the free cores may change between two readings.
   const int jobs = resolve_jobs(o.jobs);
   opt.jobs = jobs;
   opt.progress = true;
@@ -105,7 +105,7 @@ void add_diagnose(CLI::App& app, Action& action) {
   cmd->add_flag("--no-pairs", o->no_pairs, "do not fit pairs of effects");
   cmd->add_option("--jobs", o->jobs,
                   "expensive (DEM) runs side by side, and threads of the analytical fits (default: one per core "
-                  "left free by the load average; results do not depend on it)")
+                  "other processes leave free; results do not depend on it)")
       ->check(CLI::Range(0, 256));  // 0: the default (one per idle core)
   with_rule(cmd->add_option("--self-check", o->self_check,
                             "also diagnose N replicas of this dataset's design (the analytical models with the "

@@ -52,7 +52,7 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
 void add_jobs_option(CLI::App& cmd, int& jobs) {
   with_rule(cmd.add_option("--jobs", jobs,
                            "independent DEM runs at a time in this process, each on one thread (under mpirun the "
-                           "ranks share the runs instead); default: one per core left free by the load average; "
+                           "ranks share the runs instead); default: one per core other processes leave free; "
                            "results do not depend on it"),
             options::rules::jobs);
 }

@@ -27,7 +27,7 @@ void add_dem_options(CLI::App& cmd, DemCli& o);
 
 // --jobs N: independent DEM runs side by side in one process (each on one thread unless the
 // command's thread flag says otherwise); under mpirun the ranks share the runs instead. 0 (the
-// default): one per core left free by the load average, as the DEM's own thread default.
+// default): one per core other processes leave free, as the DEM's own thread default.
 void add_jobs_option(CLI::App& cmd, int& jobs);
 int resolve_jobs(int jobs);
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "core/free_cores.h"
 #include "core/input_error.h"
 #include "core/toml_file.h"
 
@@ -107,13 +108,7 @@ void set_wear(WearInputs& w, const std::string& key, double value, const std::st
   throw InputError(file, line, where, "unknown key (known: " + known + ")");
 }
 
-int effective_threads(int threads) {
-  if (threads > 0) return threads;
-  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  double load[1] = {0.0};
-  if (getloadavg(load, 1) != 1) return 1;
-  return std::clamp(cores - static_cast<int>(std::lround(load[0])), 1, cores);
-}
+int effective_threads(int threads) { return threads > 0 ? threads : free_cores(); }
 
 namespace {
 

@@ -3,12 +3,14 @@
 #define BOOST_TEST_MODULE campaign
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <thread>
 
 #include "core/campaign.h"
+#include "core/free_cores.h"
 #include "core/input_error.h"
 #include "dem/station/cache.h"
 
@@ -159,4 +161,33 @@ BOOST_AUTO_TEST_CASE(cache_tolerates_concurrent_writers) {
   for (const auto& e : fs::directory_iterator(dir)) left += e.path().extension() == ".tmp";
   BOOST_TEST(left == 0);
   fs::remove_all(dir);
+}
+
+// The default thread and job counts leave out our own process's work: a thread of ours spinning
+// while the machine is sampled must not count as someone else's (the 1-minute load average counted
+// it, and a command after another got one job on an idle machine). The least of three samples each
+// way, because other processes come and go on a shared machine; a counted spin would add about 1.
+BOOST_AUTO_TEST_CASE(free_cores_leave_out_our_own_work) {
+  using namespace std::chrono_literals;
+  auto least = [] {
+    double b = 1e9;
+    for (int k = 0; k < 3; ++k) b = std::min(b, busy_cores_of_others(200ms));
+    return b;
+  };
+  const double quiet = least();
+  std::atomic<bool> stop{false};
+  std::atomic<unsigned long> spins{0};
+  std::thread spinner([&] {
+    while (!stop.load(std::memory_order_relaxed)) spins.fetch_add(1, std::memory_order_relaxed);
+  });
+  std::this_thread::sleep_for(50ms);
+  const double busy_self = least();
+  stop = true;
+  spinner.join();
+  BOOST_TEST(spins.load() > 0u);
+  BOOST_TEST(busy_self < quiet + 0.5, "our own spinning thread counted as another process's: " << busy_self << " vs "
+                                                                                              << quiet);
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  BOOST_TEST(free_cores() >= 1);
+  BOOST_TEST(free_cores() <= cores);
 }
