@@ -7,13 +7,15 @@
 
 #include "app/commands.h"
 #include "app/design/page.h"
-#include "app/output.h"
+#include "api/estimate_output.h"
 #include "core/input_error.h"
 #include "core/units.h"
 #include "validation/dataset.h"
 #include "validation/output_files.h"
 
 namespace chutelab::app {
+using api::json_number;
+using api::json_string;
 namespace {
 
 struct DesignOptions {

@@ -5,16 +5,12 @@
 #include <algorithm>
 #include <thread>
 
+#include "api/diagnose.h"
 #include "app/commands.h"
-#include "core/campaign.h"
 #include "app/dem_options.h"
 #include "app/option_checks.h"
-#include "app/effect_options.h"
 #include "core/input_error.h"
 #include "core/output_folder.h"
-#include "validation/diagnosis.h"
-#include "validation/self_check.h"
-#include "validation/output_files.h"
 
 namespace chutelab::app {
 namespace {
@@ -31,48 +27,28 @@ struct DiagnoseCli {
 
 int run_diagnose(const DiagnoseCli& o) {
   namespace fs = std::filesystem;
-  const fs::path dir(o.dataset);
-  const auto d = validation::read_dataset(dir);
-  auto inputs = dataset_inputs(dir);
-  for (auto& p : model_inputs(o.models)) inputs.push_back(std::move(p));
-  OutputFolder out(o.out, inputs);
-  own_validate_outputs(out);
-  check_entries(out, {"diagnosis.csv", "diagnosis.md", "self_check.md", "self_check.csv"});
-  const auto names = split_list(o.models);
-  validation::DiagnoseOptions opt;
+  api::DiagnoseOptions opt;
+  opt.dataset = o.dataset;
+  opt.models = split_list(o.models);
   opt.alpha = o.alpha;
   opt.pairs = !o.no_pairs;
-  // Resolved once: the free cores may change between two readings.
-  const int jobs = resolve_jobs(o.jobs);
-  opt.jobs = jobs;
+  opt.jobs = o.jobs;
+  opt.self_check = o.self_check;
+  opt.seed = o.seed;
+  opt.dem = dem_options(o.dem);
   opt.progress = true;
-  // An expensive model (the DEM) runs once per condition, and once more per condition for every
-  // candidate it can represent (its own signature); the others take the analytical models'
-  // signatures, and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
-  configure_dem_model(o.dem, o.dataset, "");
-  // The baseline and confirmation runs go as campaigns (core/campaign.h) with the same --jobs.
-  campaign::set_threads(jobs);
-  const auto models = validation::make_models(names);
-  if (models.empty()) throw InputError("", 0, "--models", "no model given");
-  const auto r = validation::diagnose(d, models, opt);
-  std::optional<validation::SelfCheckResult> sc;
-  if (o.self_check > 0) {
-    validation::SelfCheckOptions so;
-    so.replicas = o.self_check;
-    so.seed = o.seed;
-    so.diagnose = opt;
-    so.diagnose.progress = false;
-    sc = validation::self_check(d, r, so);
-  }
-  std::string md = validation::diagnosis_markdown(r);
-  if (sc) md += "\n" + validation::self_check_markdown(*sc, opt.alpha);
-  out.write("diagnosis.csv", validation::diagnosis_csv(r));
-  out.write("diagnosis.md", md);
-  if (sc) {
-    out.write("self_check.md", validation::self_check_markdown(*sc, opt.alpha));
-    out.write("self_check.csv", validation::self_check_csv(*sc));
-  }
-  out.commit();
+  std::optional<OutputFolder> out;
+  opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
+    out.emplace(o.out, plan.inputs);
+    own_validate_outputs(*out);
+    for (const auto& f : plan.files) out->check_entry(f, false);
+    return {};
+  };
+  const api::DiagnoseResult res = api::diagnose(opt);
+  for (const auto& [name, content] : res.files()) out->write(name, content);
+  out->commit();
+  const auto& r = res.diagnosis;
+  const auto& sc = res.self_check;
   std::cout << r.verdict << "\n";
   for (const auto& f : r.findings) std::cout << "- " << f << "\n";
   if (sc) {

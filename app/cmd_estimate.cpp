@@ -6,8 +6,8 @@
 
 #include "analytical/transfer_station.h"
 #include "app/commands.h"
-#include "app/estimate.h"
-#include "app/output.h"
+#include "api/estimate.h"
+#include "app/flag_names.h"
 #include "app/sweep.h"
 #include "core/input_error.h"
 #include "core/units.h"
@@ -22,18 +22,18 @@
 namespace chutelab::app {
 namespace {
 
-// The estimate's inputs (app/estimate.h) and what only the command line adds.
-struct EstimateOptions : EstimateInput {
+// The estimate's options (api/estimate.h) and what only the command line adds.
+struct EstimateCli : api::EstimateOptions {
   std::string format = "table", svg, sweep, dxf, points;
 };
 
 // --svg, --dxf, --points FILE: never over a file this run reads, and never half-written.
-void write_export(const EstimateOptions& o, const std::string& file, const char* flag, const std::string& content) {
+void write_export(const EstimateCli& o, const std::string& file, const char* flag, const std::string& content) {
   namespace fs = std::filesystem;
   const fs::path out = fs::absolute(file);
-  std::vector<fs::path> read = {o.setup_file.empty() ? fs::path() : fs::path(o.setup_file)};
-  if (o.setup_file.empty()) {
-    const fs::path dir = o.dataset.empty() ? o.default_dataset : fs::path(o.dataset);
+  std::vector<fs::path> read = {o.setup};
+  if (o.setup.empty()) {
+    const fs::path dir = o.dataset.empty() ? o.default_dataset : o.dataset;
     read = {dir / "setup.toml", dir / "conditions.csv"};
   }
   std::error_code ec;
@@ -48,17 +48,17 @@ void write_export(const EstimateOptions& o, const std::string& file, const char*
   validation::write_outputs(out.parent_path(), {{out.filename().string(), content}}, inputs);
 }
 
-void write_svg(const EstimateOptions& o, const std::string& svg) {
+void write_svg(const EstimateCli& o, const std::string& svg) {
   write_export(o, o.svg, "--svg", reports::standalone_svg(svg));
 }
 
-QuantityValues korzen_reading(const EstimatePoint& p) {
-  for (const auto& [m, v] : p.models)
+QuantityValues korzen_reading(const ModelValues& models) {
+  for (const auto& [m, v] : models)
     if (m == "korzen") return v;
   return {};
 }
 
-int run_sweep(const EstimateOptions& o, const analytical::EffectList& fixed,
+int run_sweep(const EstimateCli& o, const analytical::EffectList& fixed,
               const std::vector<effects::EffectSetting>& settings) {
   if (!o.dxf.empty() || !o.points.empty())
     throw InputError("", 0, o.dxf.empty() ? "--points" : "--dxf", "draws one design; leave it out with --sweep");
@@ -78,7 +78,7 @@ int run_sweep(const EstimateOptions& o, const analytical::EffectList& fixed,
                                                        spec.effect->name));
   std::vector<SweepRow> rows;
   for (double v : spec.values()) {
-    EstimateOptions at = o;
+    EstimateCli at = o;
     if (spec.kind == SweepSpec::Kind::condition) {
       std::optional<double>* slot = spec.flag == "--belt-speed"       ? &at.belt_speed
                                     : spec.flag == "--mass-flow"      ? &at.mass_flow
@@ -88,7 +88,7 @@ int run_sweep(const EstimateOptions& o, const analytical::EffectList& fixed,
       *slot = v;
     }
     // Inputs that are wrong at every point (a missing flag, a bad file) stop the sweep: exit 2.
-    Station st = resolve_station(at);
+    Station st = api::resolve_station(at);
     apply_sweep_value(spec, v, st);
     analytical::EffectList fx = fixed;
     if (spec.kind == SweepSpec::Kind::effect) fx.push_back(spec.effect->make(v));
@@ -97,11 +97,11 @@ int run_sweep(const EstimateOptions& o, const analytical::EffectList& fixed,
     try {
       // A design with no answer at this point (the stream misses the plate, the load no longer
       // fits the belt) is a result of the sweep, not bad input: the row says why.
-      row.point = estimate_point(st, fx);
+      row.point = api::estimate_point(st, fx);
       if (!row.point->analysis.line(analytical::Streamline::korzen_centroid).hit->on_plate)
         row.note = "the centroid meets the plate line off the plate";
     } catch (const InputError& e) {
-      row.note = e.problem();
+      row.note = problem_said(e);
       row.why = e.field();
     }
     rows.push_back(std::move(row));
@@ -118,38 +118,31 @@ int run_sweep(const EstimateOptions& o, const analytical::EffectList& fixed,
   return kExitOk;
 }
 
-int run_estimate(EstimateOptions o) {
+int run_estimate(EstimateCli o) {
   o.default_dataset = default_dataset();
-  std::vector<effects::EffectSetting> settings;
-  for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false));
-  const auto fx = effects::instantiate(settings);
-  if (!o.sweep.empty()) return run_sweep(o, fx, settings);
-  const Station st = resolve_station(o);
-  const EstimatePoint p = estimate_point(st, fx);
-  if (!o.svg.empty()) {
-    write_svg(o, reports::design_svg(p.analysis, korzen_reading(p)));
+  if (!o.sweep.empty()) {
+    std::vector<effects::EffectSetting> settings;
+    for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false));
+    return run_sweep(o, effects::instantiate(settings), settings);
   }
-  if (!o.dxf.empty()) write_export(o, o.dxf, "--dxf", reports::design_dxf(p.analysis));
-  if (!o.points.empty()) write_export(o, o.points, "--points", streamline_points_csv(p.analysis));
-  if (o.format == "json")
-    std::cout << estimate_json(p.analysis, p.models, settings);
-  else if (o.format == "csv")
-    std::cout << estimate_csv(p.analysis, p.models);
-  else
-    std::cout << estimate_table(p.analysis, p.models, settings);
+  const api::EstimateResult r = api::estimate(o);
+  if (!o.svg.empty()) write_svg(o, reports::design_svg(r.analysis, korzen_reading(r.models)));
+  if (!o.dxf.empty()) write_export(o, o.dxf, "--dxf", reports::design_dxf(r.analysis));
+  if (!o.points.empty()) write_export(o, o.points, "--points", api::streamline_points_csv(r.analysis));
+  std::cout << (o.format == "json" ? r.json() : o.format == "csv" ? r.csv() : r.table());
   return kExitOk;
 }
 
 }  // namespace
 
 void add_estimate(CLI::App& app, Action& action) {
-  auto o = std::make_shared<EstimateOptions>();
+  auto o = std::make_shared<EstimateCli>();
   auto* cmd = app.add_subcommand(
       "estimate",
       "Analytical answer (Booth/CEMA + Korzen) for one condition. Without --dataset or --setup the "
       "bundled rig datasets/grima2010 is used.");
   cmd->add_option("--dataset", o->dataset, "dataset folder whose setup.toml (and conditions) to use");
-  cmd->add_option("--setup", o->setup_file, "a setup.toml file");
+  cmd->add_option("--setup", o->setup, "a setup.toml file");
   cmd->add_option("--condition", o->condition, "start from this row of the dataset's conditions.csv");
   cmd->add_option("--belt-speed", o->belt_speed, "belt speed V_b, m/s");
   cmd->add_option("--mass-flow", o->mass_flow, "mass flow m_s, t/h");

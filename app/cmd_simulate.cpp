@@ -5,20 +5,15 @@
 #include <iostream>
 #include <map>
 
+#include "api/simulate.h"
 #include "app/commands.h"
 #include "app/dem_options.h"
 #include "app/option_checks.h"
-#include "core/campaign.h"
 #include "core/input_error.h"
 #include "core/message.h"
-#include "dem/station/cache.h"
-#include "dem/station/progress.h"
+#include "core/output_folder.h"
 #include "dem/station/run.h"
 #include "dem/world.h"
-#include "effects/registry.h"
-#include "core/output_folder.h"
-#include "validation/dataset.h"
-#include "validation/models/dem_model.h"
 
 namespace chutelab::app {
 namespace {
@@ -47,88 +42,47 @@ std::string row(const char* label, const st::Estimate& e, double scale, const ch
 
 int run_simulate(const SimulateCli& o) {
   namespace fs = std::filesystem;
-  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
-  const fs::path setup_file = dir / "setup.toml";
-  const Setup setup = validation::read_setup(setup_file);
-  std::vector<validation::SourceLine> lines;
-  const auto stations = validation::read_conditions(dir / "conditions.csv", setup, &lines);
-  const Station* station = &validation::condition_row(stations, o.condition, dir / "conditions.csv", "--condition");
-
-  st::SettingsOverrides ov;
-  if (!o.quality.empty()) {
-    ov.quality = st::parse_quality(o.quality);
-    if (!ov.quality) throw InputError("", 0, "--quality", "must be quick, standard or paper");
-  }
-  if (!o.contact.empty()) {
-    ov.contact = st::parse_contact(o.contact);
-    if (!ov.contact) throw InputError("", 0, "--contact", "must be one of " + dem::NormalLaw::keys());
-  }
-  if (!o.shape.empty()) {
-    ov.shape = st::parse_shape(o.shape);
-    if (!ov.shape) throw InputError("", 0, "--shape", "must be sphere or clump");
-  }
-  if (o.diameter_mm) ov.particle_diameter = *o.diameter_mm * 1e-3;
-  ov.shear_modulus_scale = o.shear_modulus_scale;
-  ov.dt_fraction = o.dt_fraction;
-  ov.threads = o.threads;
-  ov.seed = o.seed;
-  ov.max_time = o.max_time;
-  ov.plate_cells = o.plate_cells;
-  if (o.map_cell_mm) ov.map_cell = *o.map_cell_mm * 1e-3;
-  for (const auto& [k, v] : o.wear) ov.wear.emplace_back(k, v);
-  const st::DemTable table = st::read_dem_table(setup_file.string());
-  const st::RunSettings settings = st::resolve(table, ov);
-
-  std::vector<effects::EffectSetting> fx_settings;
-  for (const auto& e : o.effects) fx_settings.push_back(effects::parse_setting(e, false));
-  const auto fx = validation::dem_effect_inputs(*station, effects::instantiate(fx_settings));
-
-  if (campaign::ranks() > 1)
-    throw InputError("", 0, "mpirun",
-                     "simulate is one DEM run, which does not split over MPI ranks: run it as one process (--threads "
-                     "for OpenMP); validate, diagnose, sensitivity and calibrate spread their runs over the ranks");
-  if (o.vtk_every && !(*o.vtk_every > 0.0)) throw InputError("", 0, "--vtk-every", "must be > 0 s");
-  if (o.vtk_every && o.out.empty()) throw InputError("", 0, "--vtk-every", "needs --out DIR");
+  api::SimulateOptions opt;
+  opt.dataset = o.dataset;
+  opt.default_dataset = default_dataset();
+  opt.condition = o.condition;
+  opt.quality = o.quality;
+  opt.contact = o.contact;
+  opt.shape = o.shape;
+  opt.diameter_mm = o.diameter_mm;
+  opt.shear_modulus_scale = o.shear_modulus_scale;
+  opt.dt_fraction = o.dt_fraction;
+  opt.max_time = o.max_time;
+  opt.map_cell_mm = o.map_cell_mm;
+  opt.threads = o.threads;
+  opt.plate_cells = o.plate_cells;
+  opt.seed = o.seed;
+  opt.wear = o.wear;
+  opt.effects = o.effects;
+  opt.vtk_every = o.vtk_every;
+  opt.default_vtk_every = kSeriesEvery;
+  opt.store_in_cache = !o.no_cache;
+  opt.progress = true;
   // Series, side view and VTK are staged and placed in --out only when the run has finished.
   std::optional<OutputFolder> out;
-  if (!o.out.empty()) {
-    auto inputs = dataset_inputs(dir);
-    for (const auto* s : {&table.stl_plate, &table.stl_belt, &table.stl_pulley})
-      if (*s) inputs.emplace_back(**s);
-    for (const auto& w : table.stl_walls) inputs.emplace_back(w);
-    out.emplace(o.out, inputs);
-    out->owns({"timeseries.csv", "sensors.csv", "steady.csv", "trajectory.csv", "side_view.csv", "run.txt",
-               "plate_map.csv", "plate_map.vtk", "side_view.vtk", "vtk"});
-    check_entries(*out, {"timeseries.csv", "sensors.csv", "side_view.vtk"});
-    if (o.vtk_every) out->check_entry("vtk", true);
-  }
-  st::RunOptions ro;
-  ro.settings = settings;
-  ro.geometry = table;
-  ro.external = fx.external;
-  ro.progress = st::ProgressPrinter(fmt::format("dem {}", station->condition));
-  if (!o.out.empty()) {
-    ro.vtk_dir = (out->staging() / "vtk").string();
-    ro.vtk_every = o.vtk_every.value_or(kSeriesEvery);
-  }
-  st::StationResult r;
-  try {
-    r = st::run_station(fx.station, ro);
-  } catch (const dem::SimulationError& e) {
-    // Not the fault of one flag the user may not have typed: said as the run's, with the usual remedy.
-    throw InputError("", 0, "simulate",
-                     fmt::format("the DEM run failed: {} (a smaller --dt-fraction may help)", e.what()));
-  }
-  if (!o.out.empty()) {
-    st::write_result_files(out->staging().string(), r);
-    st::write_side_view_vtk((out->staging() / "side_view.vtk").string(), r.side_view);
+  if (!o.out.empty())
+    opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
+      out.emplace(o.out, plan.inputs);
+      out->owns({"timeseries.csv", "sensors.csv", "steady.csv", "trajectory.csv", "side_view.csv", "run.txt",
+                 "plate_map.csv", "plate_map.vtk", "side_view.vtk", "vtk"});
+      for (const auto& f : plan.files) out->check_entry(f, false);
+      if (o.vtk_every) out->check_entry("vtk", true);
+      return out->staging();
+    };
+  const api::SimulateResult res = api::simulate(opt);
+  if (out) {
+    res.write_files(out->staging());
     out->commit();
   }
-  if (!o.no_cache) {
-    // Same key as the harness model: a later `validate --models dem` with these settings is instant.
-    st::ResultCache(st::ResultCache::default_dir()).store(validation::dem_cache_key(fx, settings, table), r);
-  }
-
+  const Setup& setup = res.setup;
+  const Station* station = &res.station;
+  const st::RunSettings& settings = res.settings;
+  const st::StationResult& r = res.run;
   std::cout << fmt::format("DEM run of {} / {} ({} quality, {:.1f} mm {}s, dt {:.3g} s)\n", one_line(setup.name, 80),
                            one_line(station->condition, 80),
                            r.quality, r.diameter * 1e3, r.shape == "clump" ? "two-sphere clump" : "sphere", r.dt);
@@ -169,7 +123,7 @@ int run_simulate(const SimulateCli& o) {
         peak_w * 3.6e9, area > 0.0 ? wear_sum / area * 3.6e9 : 0.0, normal);
   }
   for (const auto& n : r.notes) std::cout << "note: " << n << "\n";
-  for (const auto& n : fx.notes) std::cout << "note: " << n << "\n";
+  for (const auto& n : res.effect_notes) std::cout << "note: " << n << "\n";
   if (!o.out.empty()) std::cout << fmt::format("files: {}\n", o.out);
   return kExitOk;
 }

@@ -2,13 +2,11 @@
 #include <fmt/format.h>
 #include <iostream>
 
+#include "api/synthesize.h"
 #include "app/commands.h"
-#include "app/effect_options.h"
 #include "app/option_checks.h"
 #include "core/output_folder.h"
-#include "effects/registry.h"
 #include "validation/dataset_output.h"
-#include "validation/synthesize.h"
 
 namespace chutelab::app {
 namespace {
@@ -24,27 +22,23 @@ struct SynthesizeCli {
 };
 
 int run_synthesize(const SynthesizeCli& o) {
-  namespace fs = std::filesystem;
-  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
-  const auto d = validation::read_dataset(dir, validation::MeasurementsRequired::no);
-  // Checked before any work (and again, the same way, where the dataset is written).
-  { OutputFolder check(o.out, dataset_inputs(dir)); }
-  std::vector<effects::EffectSetting> settings;
-  for (const auto& e : effects_and_inputs(o.effects, o.inputs))
-    settings.push_back(effects::parse_setting(e, false, o.out_of_range));
-  validation::SynthesizeOptions opt;
-  opt.effects = effects::instantiate(settings);
+  api::SynthesizeOptions opt;
+  opt.dataset = o.dataset;
+  opt.default_dataset = default_dataset();
+  opt.effects = o.effects;
+  opt.inputs = o.inputs;
   opt.seed = o.seed;
   opt.noise_scale = o.noise_scale;
   opt.noise_factor = o.noise_factor;
   opt.outliers = o.outliers;
-  opt.out_of_range = o.out_of_range;
-  std::vector<validation::ModelPtr> models;
-  for (const auto& n : validation::model_names()) {
-    auto m = validation::make_model(n);
-    if (!m->expensive()) models.push_back(m);
-  }
-  validation::write_dataset(o.out, validation::synthesize(d, models, opt), dir);
+  opt.allow_out_of_range = o.out_of_range;
+  // Checked before any work (and again, the same way, where the dataset is written).
+  opt.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
+    OutputFolder check(o.out, plan.inputs);
+    return {};
+  };
+  const api::SynthesizeResult r = api::synthesize(opt);
+  validation::write_dataset(o.out, r.files, r.source.dir);
   std::cout << fmt::format("synthetic dataset: {}\n", o.out);
   return 0;
 }

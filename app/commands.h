@@ -36,9 +36,6 @@ std::optional<std::string> misspelt(CLI::App& app, int argc, char** argv);
 // What a command reads from a dataset folder: the folder itself (--out may not be it) and its files.
 std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& dir);
 
-// The folders and files that --models external:NAME=DIR reads.
-std::vector<std::filesystem::path> model_inputs(const std::string& models);
-
 // What validate and diagnose may write in --out: one family (both write diagnosis.csv/.md), so either
 // one removes the other's earlier outputs it does not write (OutputFolder::owns).
 void own_validate_outputs(OutputFolder& out);

@@ -3,12 +3,7 @@
 #include <filesystem>
 
 #include "app/option_checks.h"
-#include "core/campaign.h"
-#include "core/input_error.h"
 #include "core/progress.h"
-#include "dem/station/settings.h"
-#include "validation/models/dem_model.h"
-#include "validation/models/liggghts_model.h"
 
 namespace chutelab::app {
 namespace {
@@ -62,36 +57,20 @@ void add_quiet_option(CLI::App& cmd) {
                         "no progress on stderr (results, warnings and errors still print)");
 }
 
-// Independent runs side by side scale better than one run's OpenMP threads (no barriers, no shared
-// sums: bench/STATION.md), so the idle cores go to jobs first; a run alone still gets them all.
-int resolve_jobs(int jobs) { return jobs > 0 ? jobs : dem::station::effective_threads(0); }
-
-void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir) {
-  namespace fs = std::filesystem;
-  validation::DemModelConfig dc;
-  dc.setup_file = (fs::path(dataset_dir) / "setup.toml").string();
-  if (!o.quality.empty()) {
-    dc.overrides.quality = dem::station::parse_quality(o.quality);
-    if (!dc.overrides.quality) throw InputError("", 0, "--dem-quality", "must be quick, standard or paper");
-  }
-  dc.overrides.threads = o.threads;
-  dc.overrides.plate_cells = o.plate_cells;
-  dc.use_cache = !o.no_cache;
-  dc.cache_only = o.cache_only;
-  dc.ladder = o.ladder != "off";
-  if (!o.signature_quality.empty()) dc.signature_quality = dem::station::parse_quality(o.signature_quality);
-  if (o.cache_only && o.no_cache) throw InputError("", 0, "--dem-cache-only", "contradicts --no-dem-cache");
-  dc.cache_dir = o.cache;
-  dc.progress = true;
-  dc.output_dir = output_dir;
-  validation::set_dem_model_config(dc);
-  campaign::set_threads(resolve_jobs(o.jobs));
-  validation::LiggghtsModelConfig lc;
-  lc.dem = dc;
-  lc.ranks = o.liggghts_ranks;
-  lc.command = o.liggghts_command;
-  lc.sim_time = o.liggghts_time;
-  validation::set_liggghts_model_config(lc);
+api::DemOptions dem_options(const DemCli& o) {
+  api::DemOptions d;
+  d.quality = o.quality;
+  d.threads = o.threads;
+  d.cache = o.cache;
+  d.no_cache = o.no_cache;
+  d.cache_only = o.cache_only;
+  d.ladder = o.ladder != "off";
+  d.signature_quality = o.signature_quality;
+  d.plate_cells = o.plate_cells;
+  d.liggghts_ranks = o.liggghts_ranks;
+  d.liggghts_command = o.liggghts_command;
+  d.liggghts_time = o.liggghts_time;
+  return d;
 }
 
 }  // namespace chutelab::app

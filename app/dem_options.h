@@ -8,7 +8,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include "api/dem_options.h"
+
 namespace chutelab::app {
+
+using api::resolve_jobs;
 
 struct DemCli {
   std::string quality, cache;
@@ -29,13 +33,11 @@ void add_dem_options(CLI::App& cmd, DemCli& o);
 // command's thread flag says otherwise); under mpirun the ranks share the runs instead. 0 (the
 // default): one per core other processes leave free, as the DEM's own thread default.
 void add_jobs_option(CLI::App& cmd, int& jobs);
-int resolve_jobs(int jobs);
 
 // --quiet: no progress lines on stderr (core/progress.h); results, warnings and errors still print.
 void add_quiet_option(CLI::App& cmd);
 
-// Configures the registry's "dem" model for a dataset folder; per-condition output (series, side
-// views, VTK) goes to `output_dir` when it is not empty.
-void configure_dem_model(const DemCli& o, const std::string& dataset_dir, const std::string& output_dir);
+// The library's DEM options (api/dem_options.h) as the flags set them.
+api::DemOptions dem_options(const DemCli& o);
 
 }  // namespace chutelab::app

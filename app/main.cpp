@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/flag_names.h"
 #include "app/option_checks.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
@@ -101,17 +102,6 @@ std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& d
   return validation::dataset_files(dir);
 }
 
-std::vector<std::filesystem::path> model_inputs(const std::string& models) {
-  std::vector<std::filesystem::path> out;
-  for (const auto& m : split_list(models))
-    if (m.rfind("external:", 0) == 0)
-      if (const auto eq = m.find('='); eq != std::string::npos) {
-        const std::filesystem::path d = m.substr(eq + 1);
-        for (const char* f : {"", "predictions.csv", "trajectory.csv", "README.md"}) out.push_back(*f ? d / f : d);
-      }
-  return out;
-}
-
 void own_validate_outputs(OutputFolder& out) {
   out.owns({"predictions.csv", "errors.csv", "summary.csv", "report.md", "report.html", "diagnosis.csv",
             "diagnosis.md", "self_check.md", "self_check.csv", "dem"});
@@ -189,7 +179,7 @@ int main(int argc, char** argv) {
     try {
       throw;
     } catch (const InputError& e) {
-      std::cerr << "chutelab: " << e.what() << "\n";
+      std::cerr << "chutelab: " << app::said(e) << "\n";
       return kExitBadInput;
     } catch (const std::filesystem::filesystem_error& e) {
       std::string where = e.path1().string();

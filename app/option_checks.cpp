@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 
+#include "app/flag_names.h"
 #include "core/input_error.h"
 
 namespace chutelab::app {
@@ -29,12 +30,12 @@ bool plain_integer(const std::string& s) {
 CLI::Validator validator(options::NumberRule rule, std::string description, std::string flag) {
   return CLI::Validator(
       [rule, flag = std::move(flag)](std::string& s) mutable -> std::string {
-        rule.flag = flag;
+        rule.key = flag;
         try {
           const double v = rule.check(std::string_view(s));
           if (rule.whole && !plain_integer(s)) s = fmt::format("{:.0f}", v);
         } catch (const InputError& e) {
-          return e.problem();
+          return problem_said(e);
         }
         return {};
       },

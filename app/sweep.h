@@ -5,12 +5,18 @@
 #include <string>
 #include <vector>
 
-#include "app/estimate.h"
-#include "app/output.h"
+#include "api/estimate.h"
 #include "core/rig.h"
 #include "effects/registry.h"
 
 namespace chutelab::app {
+
+using api::EstimatePoint;
+using api::estimate_json;
+using api::estimate_scalars;
+using api::json_number;
+using api::json_string;
+using api::ModelValues;
 
 struct SweepSpec {
   enum class Kind { condition, rig, effect };

@@ -9,6 +9,23 @@
 
 namespace chutelab {
 namespace {
+// A mention travels inside the problem text between two control characters, which no value shown
+// in a message can hold (core/message.h escapes them), so a file's text never reads as one.
+constexpr char kMentionOpen = '\x01', kMentionClose = '\x02';
+
+std::string render(const std::string& problem, const FieldNames& names) {
+  std::string out;
+  for (std::size_t at = 0;;) {
+    const std::size_t open = problem.find(kMentionOpen, at);
+    const std::size_t close = open == std::string::npos ? open : problem.find(kMentionClose, open);
+    if (close == std::string::npos) return out + problem.substr(at);
+    out += problem.substr(at, open - at);
+    const std::string key = problem.substr(open + 1, close - open - 1);
+    out += names ? names(key) : key;
+    at = close + 1;
+  }
+}
+
 std::string compose(const std::string& file, long line, const std::string& field,
                     const std::string& problem) {
   // Every part may come from the user (a file name with a line end, a 10 MB cell in the problem):
@@ -20,12 +37,23 @@ std::string compose(const std::string& file, long line, const std::string& field
 }
 }  // namespace
 
+std::string mention(std::string_view key) {
+  return std::string(1, kMentionOpen) + std::string(key) + kMentionClose;
+}
+
 InputError::InputError(std::string file, long line, std::string field, const std::string& problem)
-    : std::runtime_error(compose(file, line, field, problem)),
+    : std::runtime_error(compose(file, line, field, render(problem, {}))),
       file_(std::move(file)),
       line_(line),
       field_(std::move(field)),
       problem_(problem) {}
+
+std::string InputError::problem_said(const FieldNames& names) const { return render(problem_, names); }
+
+std::string InputError::said(const FieldNames& field_names, const FieldNames& mention_names) const {
+  return compose(file_, line_, field_.empty() || !field_names ? field_ : field_names(field_),
+                 render(problem_, mention_names));
+}
 
 InputError InputError::located(const std::string& file, long line) const {
   if (!file_.empty()) return *this;

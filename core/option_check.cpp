@@ -36,7 +36,7 @@ std::string NumberRule::describe() const {
 double NumberRule::check(double v) const {
   const bool ok = std::isfinite(v) && (!whole || v == std::floor(v)) && (lo_open ? v > lo : v >= lo) &&
                   (hi_open ? v < hi : v <= hi);
-  if (!ok) throw InputError("", 0, std::string(flag), fmt::format("must be {}, got {}", describe(), num(v)));
+  if (!ok) throw InputError("", 0, std::string(key), fmt::format("must be {}, got {}", describe(), num(v)));
   return v;
 }
 
@@ -44,7 +44,7 @@ double NumberRule::check(std::string_view typed) const {
   // A whole number typed as digits is checked exactly (a 64-bit seed has more digits than a
   // double holds; 2^64 - 1 is a seed, 2^64 is not).
   const auto fail = [&] {
-    return InputError("", 0, std::string(flag), fmt::format("must be {}, got {}", describe(), shown(typed)));
+    return InputError("", 0, std::string(key), fmt::format("must be {}, got {}", describe(), shown(typed)));
   };
   std::string_view digits = typed;
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
@@ -69,32 +69,32 @@ double NumberRule::check(std::string_view typed) const {
   }
   const auto v = parse_number(typed);
   if (!v || !std::isfinite(*v))
-    throw InputError("", 0, std::string(flag), fmt::format("must be {}, got {}", describe(), shown(typed)));
+    throw InputError("", 0, std::string(key), fmt::format("must be {}, got {}", describe(), shown(typed)));
   try {
     return check(*v);
   } catch (const InputError&) {
-    throw InputError("", 0, std::string(flag), fmt::format("must be {}, got {}", describe(), shown(typed)));
+    throw InputError("", 0, std::string(key), fmt::format("must be {}, got {}", describe(), shown(typed)));
   }
 }
 
-void non_empty(std::string_view flag, std::string_view value) {
+void non_empty(std::string_view key, std::string_view value) {
   if (value.empty())
-    throw InputError("", 0, std::string(flag), "is empty; give a value or leave the option out");
+    throw InputError("", 0, std::string(key), "is empty; give a value or leave the option out");
 }
 
-std::vector<std::string> list(std::string_view flag, std::string_view text) {
+std::vector<std::string> list(std::string_view key, std::string_view text) {
   std::vector<std::string> out;
   std::set<std::string> seen;
-  if (text.empty()) throw InputError("", 0, std::string(flag), "the list is empty");
+  if (text.empty()) throw InputError("", 0, std::string(key), "the list is empty");
   for (std::size_t start = 0;;) {
     const std::size_t end = text.find(',', start);
     const std::string item(text.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
     if (item.empty())
-      throw InputError("", 0, std::string(flag),
+      throw InputError("", 0, std::string(key),
                        fmt::format("{} has an empty item (item {}); separate the values by single commas",
                                    shown(text), out.size() + 1));
     if (!seen.insert(item).second)
-      throw InputError("", 0, std::string(flag), fmt::format("{} is given twice in {}", shown(item), shown(text)));
+      throw InputError("", 0, std::string(key), fmt::format("{} is given twice in {}", shown(item), shown(text)));
     out.push_back(item);
     if (end == std::string_view::npos) break;
     start = end + 1;
@@ -104,20 +104,20 @@ std::vector<std::string> list(std::string_view flag, std::string_view text) {
 
 std::vector<double> number_list(const NumberRule& rule, std::string_view text) {
   std::vector<double> out;
-  for (const auto& item : list(rule.flag, text)) {
+  for (const auto& item : list(rule.key, text)) {
     const double v = rule.check(std::string_view(item));
     for (double w : out)
       if (w == v)
-        throw InputError("", 0, std::string(rule.flag),
+        throw InputError("", 0, std::string(rule.key),
                          fmt::format("{} is given twice in {} (as the same number)", shown(item), shown(text)));
     out.push_back(v);
   }
   return out;
 }
 
-void at_most(std::string_view flag, std::size_t n, std::size_t max, std::string_view each) {
+void at_most(std::string_view key, std::size_t n, std::size_t max, std::string_view each) {
   if (n > max)
-    throw InputError("", 0, std::string(flag),
+    throw InputError("", 0, std::string(key),
                      fmt::format("{} values would be {} {}; at most {} are run by one command (split the list over "
                                  "several runs)",
                                  n, n, each, max));

@@ -22,7 +22,7 @@ class OutputFolder {
   // `out` is --out; `inputs` are the files and folders the command reads (a folder: --out may not
   // be it, nor hold it in a sub-folder the command replaces). Throws InputError for an unusable --out.
   OutputFolder(const std::filesystem::path& out, std::vector<std::filesystem::path> inputs = {},
-               std::string_view flag = "--out");
+               std::string_view flag = "out");
   ~OutputFolder();  // removes the staging folder unless committed
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;

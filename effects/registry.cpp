@@ -44,32 +44,32 @@ EffectSetting parse_setting(const std::string& text, bool allow_fit, bool outsid
   if (!info) {
     std::vector<std::string> names;
     for (const auto& e : library()) names.push_back(e.name);
-    throw InputError("", 0, "--effect",
+    throw InputError("", 0, "effect",
                      fmt::format("unknown effect '{}' (known: {})", name, fmt::join(names, ", ")));
   }
   if (eq == std::string::npos)
-    throw InputError("", 0, "--effect",
+    throw InputError("", 0, "effect",
                      fmt::format("'{}' needs a value: {}=VALUE{}", text, name,
                                  allow_fit ? " or " + name + "=fit" : ""));
   const std::string value = text.substr(eq + 1);
   if (value == "fit") {
     if (!allow_fit)
-      throw InputError("", 0, "--effect",
+      throw InputError("", 0, "effect",
                        fmt::format("'{}': fitting needs measurements; give a value here", text));
     return {info, std::nullopt};
   }
   const auto parsed = parse_number(value);
   const double v = parsed.value_or(0.0);
   if (!parsed || !std::isfinite(v))
-    throw InputError("", 0, "--effect", fmt::format("'{}': '{}' is not a number", text, value));
+    throw InputError("", 0, "effect", fmt::format("'{}': '{}' is not a number", text, value));
   if (outside_range) {
     const Range r = extended_range(*info);
     if (v < r.lower || v > r.upper)
-      throw InputError("", 0, "--effect",
+      throw InputError("", 0, "effect",
                        fmt::format("'{}': {} must lie in [{}, {}] {} (its physical range [{}, {}] widened by its span on each side)",
                                    text, info->parameter, r.lower, r.upper, info->unit, info->lower, info->upper));
   } else if (!in_physical_range(*info, v)) {
-    throw InputError("", 0, "--effect",
+    throw InputError("", 0, "effect",
                      fmt::format("'{}': {} must lie in its physical range [{}, {}] {}", text,
                                  info->parameter, info->lower, info->upper, info->unit));
   }

@@ -1,7 +1,8 @@
-// _chutelab: the compiled half of the Python package. It calls the functions the command line
-// calls (app/estimate.h, validation/, effects/) and hands back what those commands print or write
-// (the estimate's JSON, the CSV tables) so that Python sees the same names and the same numbers;
-// chutelab/__init__.py turns them into dicts, NumPy arrays and DataFrames. No physics here.
+// _chutelab: the compiled half of the Python package. It binds the library's functions (api/:
+// estimate, validate, diagnose, synthesize), the ones the command line calls, and hands back their
+// results (the estimate's JSON, the CSV tables, the numbers) so that Python sees the same names and
+// the same numbers; chutelab/__init__.py turns them into dicts, NumPy arrays and DataFrames. No
+// physics here, and nothing of the command line's.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -10,13 +11,15 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "app/dem_options.h"
-#include "app/effect_options.h"
-#include "app/estimate.h"
-#include "app/output.h"
+#include "api/diagnose.h"
+#include "api/effects.h"
+#include "api/estimate.h"
+#include "api/synthesize.h"
+#include "api/validate.h"
 #include "core/input_error.h"
 #include "core/message.h"
 #include "core/option_check.h"
+#include "core/output_folder.h"
 #include "core/units.h"
 #include "effects/registry.h"
 #include "validation/dataset.h"
@@ -36,39 +39,27 @@ namespace {
 
 constexpr double kDeg = 180.0 / 3.14159265358979323846;
 
-// The library names command-line flags ("--belt-speed"); in Python the same input is a keyword.
-std::string python_field(const std::string& field) {
-  if (field.rfind("--", 0) != 0) return field;
-  if (field == "--effect") return "effects";
-  std::string f = field.substr(2);
-  for (char& c : f)
-    if (c == '-') c = '_';
-  return f;
+// The library names an input by a neutral key ("dem.threads", core/input_error.h); here it is the
+// keyword of the package's function (dem_threads). Keys that are no keyword here (a column, a TOML
+// key, an option the package does not have) are shown as they are.
+std::string python_keyword(std::string_view key) {
+  static const std::pair<std::string_view, std::string_view> renamed[] = {
+      {"effect", "effects"}, {"dem.quality", "dem_quality"}, {"dem.threads", "dem_threads"},
+      {"dem.cache", "dem_cache"}, {"dem.no_cache", "no_dem_cache"}};
+  for (const auto& [k, word] : renamed)
+    if (k == key) return std::string(word);
+  return std::string(key);
 }
 
-// The same inside a message: "use --dataset" is "use dataset=" here, for the keywords this package
-// has (a flag it has not, e.g. --dem-cache-only, is left as the command line's).
-std::string python_text(std::string text) {
-  static const char* const keywords[] = {"dataset", "setup", "condition", "effect", "models", "tolerances",
-                                         "seed", "noise-scale", "out", "alpha", "dem-quality", "dem-threads",
-                                         "dem-cache", "no-dem-cache", "self-check", "belt-speed", "mass-flow", "plate-distance",
-                                         "plate-top", "stream-thickness"};
-  for (const char* k : keywords) {
-    const std::string flag = std::string("--") + k;
-    const std::string word = python_field(flag) + "=";
-    for (std::size_t at = 0; (at = text.find(flag, at)) != std::string::npos;) {
-      const std::size_t end = at + flag.size();
-      const bool whole = (at == 0 || text[at - 1] == ' ' || text[at - 1] == '(') &&
-                         (end == text.size() || !(std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '-'));
-      if (whole) {
-        text.replace(at, flag.size(), word);
-        at += word.size();
-      } else {
-        at = end;
-      }
-    }
-  }
-  return text;
+// Inside a message another input is named as it is typed here: "use dataset=".
+std::string python_mention(std::string_view key) {
+  static const std::string_view keywords[] = {"dataset", "setup", "condition", "effect", "models", "tolerances",
+                                              "seed", "noise_scale", "out", "alpha", "dem.quality", "dem.threads",
+                                              "dem.cache", "dem.no_cache", "self_check", "belt_speed", "mass_flow",
+                                              "plate_distance", "plate_top", "stream_thickness"};
+  for (const auto k : keywords)
+    if (k == key) return python_keyword(key) + "=";
+  return std::string(key);
 }
 
 // A whole number from Python: an int (not a bool), or a float that is whole; checked by `rule`, the
@@ -76,7 +67,7 @@ std::string python_text(std::string text) {
 double whole_number(const py::object& v, const options::NumberRule& rule) {
   if (py::isinstance<py::bool_>(v) || !(py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v) ||
                                          py::hasattr(v, "__index__")))
-    throw InputError("", 0, std::string(rule.flag),
+    throw InputError("", 0, std::string(rule.key),
                      fmt::format("must be {}, got {}", rule.describe(), std::string(py::str(py::repr(v)))));
   if (py::isinstance<py::float_>(v)) return rule.check(v.cast<double>());
   // An int of any size, checked exactly by its digits (as the command line checks what is typed), so a
@@ -86,10 +77,9 @@ double whole_number(const py::object& v, const options::NumberRule& rule) {
   return rule.check(std::string(py::repr(i)));
 }
 
-app::DemCli dem_cli(const std::string& quality, std::optional<int> threads, const std::string& cache,
-                    bool no_cache) {
-  if (threads) options::rules::dem_threads.check(static_cast<double>(*threads));
-  app::DemCli d;
+api::DemOptions dem_options(const std::string& quality, std::optional<int> threads, const std::string& cache,
+                            bool no_cache) {
+  api::DemOptions d;
   d.quality = quality;
   d.threads = threads;
   d.cache = cache;
@@ -174,33 +164,25 @@ py::dict validate(const validation::Dataset& d, const std::vector<std::string>& 
                   const std::vector<std::string>& effect_args, const std::string& tolerances,
                   const std::string& dem_quality, std::optional<int> dem_threads,
                   const std::string& dem_cache, bool no_dem_cache) {
-  std::optional<validation::Tolerances> tol;
-  std::optional<validation::ValidationResult> result;
-  app::AppliedEffects applied;
+  api::ValidateOptions o;
+  o.models = model_names;
+  o.effects = effect_args;
+  o.tolerances = tolerances;
+  o.diagnose_with_effects = false;
+  o.dem = dem_options(dem_quality, dem_threads, dem_cache, no_dem_cache);
+  std::optional<api::ValidateResult> v;
   {
     py::gil_scoped_release free;
-    app::configure_dem_model(dem_cli(dem_quality, dem_threads, dem_cache, no_dem_cache), d.dir.string(), "");
-    const auto models = validation::make_models(model_names);
-    if (models.empty()) throw InputError("", 0, "--models", "no model given");
-    if (!tolerances.empty()) tol = validation::Tolerances::read(tolerances);
-    std::vector<validation::ModelPtr> cheap;
-    for (const auto& m : models)
-      if (!m->expensive()) cheap.push_back(m);
-    std::vector<reports::EffectDescription> described;
-    applied = app::resolve_effects(effect_args, d, cheap, described);
-    validation::ValidateOptions opts;
-    opts.tolerances = tol ? &*tol : nullptr;
-    opts.effects = applied.effects;
-    opts.effect_labels = applied.labels;
-    result = validation::validate(d, models, opts);
+    v = api::validate(d, o);
   }
+  const validation::ValidationResult* result = &v->final_result();
   py::dict r;
   r["predictions"] = validation::predictions_csv(*result);
   r["errors"] = validation::errors_csv(*result);
   r["summary"] = validation::summary_csv(*result);
   r["models"] = result->models;
   r["effects"] = result->effects;
-  r["notes"] = applied.notes;
+  r["notes"] = v->notes;
   r["brief"] = result->brief();
   r["acceptance_checked"] = result->acceptance_checked;
   r["acceptance_failed"] = result->acceptance_failed;
@@ -269,31 +251,23 @@ py::dict diagnose(const validation::Dataset& d, const std::vector<std::string>& 
                   bool pairs, const std::string& dem_quality, std::optional<int> dem_threads,
                   const std::string& dem_cache, bool no_dem_cache, const py::object& self_check_arg,
                   const py::object& seed_arg) {
-  std::optional<validation::DiagnosisResult> res;
-  std::optional<validation::SelfCheckResult> sc;
-  const int self_check = static_cast<int>(whole_number(self_check_arg, options::rules::self_check));
+  api::DiagnoseOptions o;
+  o.self_check = static_cast<int>(whole_number(self_check_arg, options::rules::self_check));
   const double seed_checked = whole_number(seed_arg, options::rules::seed);
-  const std::uint64_t seed = py::isinstance<py::float_>(seed_arg) ? static_cast<std::uint64_t>(seed_checked)
-                                                                   : seed_arg.cast<std::uint64_t>();
+  o.seed = py::isinstance<py::float_>(seed_arg) ? static_cast<std::uint64_t>(seed_checked)
+                                                 : seed_arg.cast<std::uint64_t>();
+  o.models = model_names;
+  o.alpha = alpha;
+  o.pairs = pairs;
+  o.dem = dem_options(dem_quality, dem_threads, dem_cache, no_dem_cache);
+  std::optional<api::DiagnoseResult> diagnosed;
   {
     py::gil_scoped_release free;
-    app::configure_dem_model(dem_cli(dem_quality, dem_threads, dem_cache, no_dem_cache), d.dir.string(), "");
-    const auto models = validation::make_models(model_names);
-    if (models.empty()) throw InputError("", 0, "--models", "no model given");
-    options::rules::alpha.check(alpha);
-    validation::DiagnoseOptions opt;
-    opt.alpha = alpha;
-    opt.pairs = pairs;
-    res = validation::diagnose(d, models, opt);
-    if (self_check > 0) {
-      validation::SelfCheckOptions so;
-      so.replicas = self_check;
-      so.seed = seed;
-      so.diagnose = opt;
-      sc = validation::self_check(d, *res, so);
-    }
+    diagnosed = api::diagnose(d, o);
   }
-  const auto& x = *res;
+  const auto& res = diagnosed->diagnosis;
+  const auto& sc = diagnosed->self_check;
+  const auto& x = res;
   py::dict r;
   diagnosis_numbers(x, r);
   if (sc) {
@@ -342,27 +316,23 @@ py::dict diagnose(const validation::Dataset& d, const std::vector<std::string>& 
 
 void synthesize(const validation::Dataset& source, const std::vector<std::string>& effect_args,
                 const py::object& seed_arg, double noise_scale, const std::filesystem::path& out) {
-  // The command line's rules, before any work (core/option_check.h).
+  api::SynthesizeOptions o;
   const double seed_checked = whole_number(seed_arg, options::rules::seed);
-  const std::uint64_t seed = py::isinstance<py::float_>(seed_arg)
-                                 ? static_cast<std::uint64_t>(seed_checked)
-                                 : py::reinterpret_steal<py::int_>(PyNumber_Index(seed_arg.ptr())).cast<std::uint64_t>();
-  options::rules::noise_scale.check(noise_scale);
-  if (out.empty()) throw InputError("", 0, "--out", "is empty; give a folder");
+  o.seed = py::isinstance<py::float_>(seed_arg)
+               ? static_cast<std::uint64_t>(seed_checked)
+               : py::reinterpret_steal<py::int_>(PyNumber_Index(seed_arg.ptr())).cast<std::uint64_t>();
+  o.noise_scale = noise_scale;
+  o.effects = effect_args;
+  api::check(o);
+  if (out.empty()) throw InputError("", 0, "out", "is empty; give a folder");
+  // The same refusal as the command line's before any work: out may not be the source.
+  o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
+    OutputFolder check(out, plan.inputs);
+    return {};
+  };
   py::gil_scoped_release free;
-  std::vector<effects::EffectSetting> settings;
-  for (const auto& e : effect_args) settings.push_back(effects::parse_setting(e, false));
-  validation::SynthesizeOptions opt;
-  opt.effects = effects::instantiate(settings);
-  opt.seed = seed;
-  opt.noise_scale = noise_scale;
-  std::vector<validation::ModelPtr> models;
-  for (const auto& n : validation::model_names()) {
-    auto m = validation::make_model(n);
-    if (!m->expensive()) models.push_back(m);
-  }
-  // The command line's writer, with its protection of the source dataset (--out may not be it).
-  validation::write_dataset(out, validation::synthesize(source, models, opt), source.dir);
+  const api::SynthesizeResult r = api::synthesize(source, o);
+  validation::write_dataset(out, r.files, source.dir);
 }
 
 }  // namespace
@@ -377,12 +347,11 @@ PYBIND11_MODULE(_chutelab, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      const InputError shown(e.file(), e.line(), python_field(e.field()), python_text(e.problem()));
-      py::object err = py::reinterpret_borrow<py::object>(input_error)(py::str(shown.what()));
-      err.attr("file") = shown.file();
-      err.attr("line") = shown.line();
-      err.attr("field") = one_line(shown.field());
-      err.attr("problem") = one_line(shown.problem());
+      py::object err = py::reinterpret_borrow<py::object>(input_error)(py::str(e.said(python_keyword, python_mention)));
+      err.attr("file") = e.file();
+      err.attr("line") = e.line();
+      err.attr("field") = one_line(python_keyword(e.field()));
+      err.attr("problem") = one_line(e.problem_said(python_mention));
       PyErr_SetObject(input_error.ptr(), err.ptr());
     }
   });
@@ -395,9 +364,9 @@ PYBIND11_MODULE(_chutelab, m) {
          std::optional<double> plate_distance, std::optional<double> plate_top,
          std::optional<double> stream_thickness, const std::string& dataset, const std::string& setup,
          const std::string& condition, const std::vector<std::string>& effect_args) {
-        app::EstimateInput in;
+        api::EstimateOptions in;
         in.dataset = dataset;
-        in.setup_file = setup;
+        in.setup = setup;
         in.condition = condition;
         in.default_dataset = std::filesystem::path(CHUTELAB_DATASETS_DIR) / "grima2010";
         in.belt_speed = belt_speed;
@@ -406,8 +375,7 @@ PYBIND11_MODULE(_chutelab, m) {
         in.plate_top = plate_top;
         in.stream_thickness = stream_thickness;
         in.effects = effect_args;
-        const auto e = app::estimate(in);
-        return app::estimate_json(e.analysis, e.models, e.settings);
+        return api::estimate(in).json();
       },
       py::arg("belt_speed"), py::arg("mass_flow"), py::arg("plate_distance"), py::arg("plate_top"),
       py::arg("stream_thickness"), py::arg("dataset"), py::arg("setup"), py::arg("condition"),

@@ -59,6 +59,7 @@ void run_models(std::span<const ModelRun> runs, const RunModelsOptions& options)
   for (const auto& j : jobs) work.push_back(j.job);
   campaign::Options o;
   o.label = options.label;
+  o.threads = options.jobs;
   const std::vector<std::string> texts = campaign::run_campaign(work, o);
   for (std::size_t k = 0; k < jobs.size(); ++k) jobs[k].accept(texts[k]);
 }

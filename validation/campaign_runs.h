@@ -36,6 +36,7 @@ struct ModelRun {
 
 struct RunModelsOptions {
   std::string label = "runs";  // prefix of the campaign's progress lines
+  int jobs = 0;                // runs side by side in this process (campaign::Options::threads); 0: the process's
 };
 
 // Throws the first failing run's InputError (in list order) on every rank.

@@ -358,7 +358,7 @@ std::vector<DigitisedCurve> read_digitised(const fs::path& file) {
 DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
                                  const std::vector<DigitisedCurve>& curves) {
   const std::string mfile = mapping_path.string();
-  toml::table doc = read_toml_file(mfile, "--mapping");
+  toml::table doc = read_toml_file(mfile, "mapping");
   static const toml::table empty;
   const toml::table* defaults = doc["defaults"].as_table();
   Mapping top(mfile, doc, "", nullptr);

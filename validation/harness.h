@@ -96,6 +96,9 @@ struct ValidateOptions {
   std::vector<std::string> effect_labels;
   const Tolerances* tolerances = nullptr;
   bool quiet = true;             // progress on stderr for slow models
+  // Expensive runs side by side in this process (core/campaign.h); 0: the process's default. The
+  // numbers do not depend on it.
+  int jobs = 0;
 };
 
 // Throws InputError, located at the condition's line, when a model cannot handle a condition.

@@ -157,11 +157,20 @@ class Model {
 
 using ModelPtr = std::shared_ptr<const Model>;
 
+struct ModelSettings;  // validation/models/model_settings.h
+
 // All models chutelab knows, in report order.
 std::vector<std::string> model_names();
-// Throws InputError (field "--models") naming the unknown model and the known ones. Besides the
+// Throws InputError (field "models") naming the unknown model and the known ones. Besides the
 // registry's names: "external:NAME=DIR", another code's results (validation/models/external_model.h).
+// The expensive models ("dem", "liggghts") are made with `settings`; without them, with their
+// defaults (no dataset [dem] table, the default cache, no output folder).
 ModelPtr make_model(const std::string& name);
+// An empty list, an empty item ("korzen,,booth-cema") and a model named twice, before any is made.
+void check_model_names(const std::vector<std::string>& names);
+ModelPtr make_model(const std::string& name, const ModelSettings& settings);
+// Also refuses what check_model_names() refuses.
 std::vector<ModelPtr> make_models(const std::vector<std::string>& names);
+std::vector<ModelPtr> make_models(const std::vector<std::string>& names, const ModelSettings& settings);
 
 }  // namespace chutelab::validation

@@ -386,7 +386,7 @@ void PredictionSource::run_expensive(std::span<const analytical::EffectList> lis
         if (m->expensive() && m->runs_with_effects())
           runs.push_back({m, d_->stations[c], effects, d_->station_lines[c].file, d_->station_lines[c].line, signature,
                           discretisation});
-  run_models(runs, {"diagnose"});
+  run_models(runs, {"diagnose", threads_});
 }
 
 }  // namespace chutelab::validation

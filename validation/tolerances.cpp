@@ -45,7 +45,7 @@ long line_of(const toml::key& k, const toml::node& n) {
 Tolerances Tolerances::read(const std::filesystem::path& path) {
   Tolerances t;
   t.file_ = path.string();
-  toml::table doc = read_toml_file(t.file_, "--tolerances");
+  toml::table doc = read_toml_file(t.file_, "tolerances");
   const auto models = tolerance_models();
   const auto known_quantities = tolerance_quantities();
   for (const auto& [model, node] : doc) {

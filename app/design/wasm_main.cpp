@@ -8,8 +8,9 @@
 #include <sstream>
 
 #include "app/commands.h"
+#include "app/flag_names.h"
 #include "app/option_checks.h"
-#include "app/output.h"
+#include "api/estimate_output.h"
 #include "core/csv_field.h"
 #include "core/input_error.h"
 #include "core/message.h"
@@ -55,7 +56,7 @@ RunResult run(const std::vector<std::string>& args) {
       err << "chutelab: " << one_line(e.what()) << " (see --help)\n";
       r.code = kExitBadInput;
     } catch (const InputError& e) {
-      err << "chutelab: " << e.what() << "\n";
+      err << "chutelab: " << app::said(e) << "\n";
       r.code = kExitBadInput;
     }
   } catch (const std::exception& e) {
@@ -69,16 +70,16 @@ RunResult run(const std::vector<std::string>& args) {
   return r;
 }
 
-std::string number_or_null(std::optional<double> v) { return v ? app::json_number(*v) : "null"; }
+std::string number_or_null(std::optional<double> v) { return v ? api::json_number(*v) : "null"; }
 
 // The rig's parameters as the dataset reader knows them: the page builds its fields from this.
 std::string rig_fields_json() {
   std::string o = "[";
   for (const auto& f : rig_fields())
     o += fmt::format("{}{{\"section\": {}, \"key\": {}, \"label\": {}, \"column\": {}, \"min\": {}, \"max\": {}, \"required\": {}, \"fallback\": {}}}",
-                     o.size() > 1 ? "," : "", app::json_string(std::string(f.section)), app::json_string(std::string(f.key)),
-                     app::json_string(std::string(f.label)),
-                     app::json_string(std::string(f.column)), app::json_number(f.min), app::json_number(f.max),
+                     o.size() > 1 ? "," : "", api::json_string(std::string(f.section)), api::json_string(std::string(f.key)),
+                     api::json_string(std::string(f.label)),
+                     api::json_string(std::string(f.column)), api::json_number(f.min), api::json_number(f.max),
                      f.required ? "true" : "false", number_or_null(f.fallback));
   return o + "]";
 }
@@ -90,10 +91,10 @@ std::string effects_json() {
     if (e.kind == effects::EffectInfo::Kind::record) continue;
     o += fmt::format("{}{{\"name\": {}, \"parameter\": {}, \"unit\": {}, \"stage\": {}, \"physics\": {}, \"neutral\": {}, "
                      "\"lower\": {}, \"upper\": {}, \"typical\": {}}}",
-                     o.size() > 1 ? "," : "", app::json_string(e.name), app::json_string(e.parameter),
-                     app::json_string(e.unit), app::json_string(e.stage), app::json_string(e.physics),
-                     app::json_number(e.neutral), app::json_number(e.lower), app::json_number(e.upper),
-                     app::json_number(e.typical));
+                     o.size() > 1 ? "," : "", api::json_string(e.name), api::json_string(e.parameter),
+                     api::json_string(e.unit), api::json_string(e.stage), api::json_string(e.physics),
+                     api::json_number(e.neutral), api::json_number(e.lower), api::json_number(e.upper),
+                     api::json_number(e.typical));
   }
   return o + "]";
 }
@@ -103,17 +104,17 @@ std::string effects_json() {
 std::string setup_json(const std::string& path) {
   try {
     Setup s = validation::read_setup(path);
-    std::string o = fmt::format("{{\"name\": {}, \"source\": {}, \"values\": {{", app::json_string(s.name),
-                                app::json_string(s.source));
+    std::string o = fmt::format("{{\"name\": {}, \"source\": {}, \"values\": {{", api::json_string(s.name),
+                                api::json_string(s.source));
     bool first = true;
     for (const auto& f : rig_fields()) {
       o += fmt::format("{}\"{}{}{}\": {}", first ? "" : ", ", f.section, f.section.empty() ? "" : ".", f.key,
-                       app::json_number(f.ref(s) / f.to_si));
+                       api::json_number(f.ref(s) / f.to_si));
       first = false;
     }
     return o + "}}";
   } catch (const InputError& e) {
-    return fmt::format("{{\"error\": {}}}", app::json_string(e.what()));
+    return fmt::format("{{\"error\": {}}}", api::json_string(app::said(e)));
   }
 }
 

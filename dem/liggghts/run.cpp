@@ -81,9 +81,10 @@ st::StationResult run_station(const Station& station, const Options& o) {
   const std::string program = program_of(cmd);
   const std::string ver = version(program);
   if (ver.empty())
-    throw InputError("", 0, "--models",
+    throw InputError("", 0, "models",
                      fmt::format("the liggghts model needs LIGGGHTS, but '{}' does not run (install the Debian "
-                                 "package liggghts, or name the program with --liggghts-command)", program));
+                                 "package liggghts, or name the program with {})",
+                                 program, mention("dem.liggghts_command")));
   const fs::path dir(o.work_dir);
   std::error_code ec;
   for (const char* f : {Deck::plate_file, Deck::dump_file, Deck::log_file}) fs::remove(dir / f, ec);

@@ -101,19 +101,19 @@ InclineResult incline_from_text(const std::string& text) {
 CalibrationStudy run_calibration(const chutelab::Material& m, const CalibrationPlan& plan,
                                  const std::function<void(const CalibrationProgress&)>& progress) {
   const auto start = std::chrono::steady_clock::now();
-  if (plan.rolling.empty()) throw InputError("", 0, "--rolling", "give at least one rolling friction coefficient");
-  if (plan.density.empty()) throw InputError("", 0, "--density", "give at least one solid density");
-  if (plan.shapes.empty()) throw InputError("", 0, "--shape", "give at least one shape (sphere, clump)");
+  if (plan.rolling.empty()) throw InputError("", 0, "rolling", "give at least one rolling friction coefficient");
+  if (plan.density.empty()) throw InputError("", 0, "density", "give at least one solid density");
+  if (plan.shapes.empty()) throw InputError("", 0, "shape", "give at least one shape (sphere, clump)");
   for (double r : plan.rolling)
     if (!(r >= 0.0) || !std::isfinite(r) || r > 10.0)
-      throw InputError("", 0, "--rolling", fmt::format("rolling friction must be in [0, 10], got {}", r));
+      throw InputError("", 0, "rolling", fmt::format("rolling friction must be in [0, 10], got {}", r));
   for (double d : plan.density)
     if (!(d > 0.0) || !std::isfinite(d) || d > 3e4)
-      throw InputError("", 0, "--density", fmt::format("solid density must be in (0, 30000] kg/m^3, got {}", d));
+      throw InputError("", 0, "density", fmt::format("solid density must be in (0, 30000] kg/m^3, got {}", d));
   if (plan.targets.bulk_density && !(*plan.targets.bulk_density > 0.0 && std::isfinite(*plan.targets.bulk_density)))
-    throw InputError("", 0, "--target-bulk-density", "must be a finite number > 0 kg/m^3");
+    throw InputError("", 0, "target_bulk_density", "must be a finite number > 0 kg/m^3");
   if (plan.targets.pile_height && !(*plan.targets.pile_height > 0.0 && std::isfinite(*plan.targets.pile_height)))
-    throw InputError("", 0, "--target-pile-height", "must be a finite number > 0 mm");
+    throw InputError("", 0, "target_pile_height", "must be a finite number > 0 mm");
 
   CalibrationStudy st;
   st.plan = plan;

@@ -370,7 +370,7 @@ double pressure_centre_y(const PlateMap& m) {
 void write_plate_map_csv(const std::string& path, const std::vector<PlateMap>& maps, const WearInputs& w,
                          const std::string& condition) {
   std::ofstream f(path);
-  if (!f) throw InputError(path, 0, "--out", "cannot write this file");
+  if (!f) throw InputError(path, 0, "out", "cannot write this file");
   f << "condition,wall,triangle,x_mm,y_mm,z_mm,area_mm2,pressure_Pa,shear_stress_Pa,force_x_N,force_y_N,force_z_N,"
        "impact_energy_flux_Wm2,sliding_energy_flux_Wm2,impact_rate_per_s_m2,archard_wear_rate_um_per_h,"
        "finnie_wear_rate_um_per_h,wear_rate_um_per_h,window_s\n";
@@ -392,7 +392,7 @@ void write_plate_map_csv(const std::string& path, const std::vector<PlateMap>& m
 
 void write_plate_map_vtk(const std::string& path, const std::vector<PlateMap>& maps, const WearInputs& w) {
   std::ofstream f(path);
-  if (!f) throw InputError(path, 0, "--out", "cannot write this file");
+  if (!f) throw InputError(path, 0, "out", "cannot write this file");
   std::size_t n = 0;
   for (const auto& m : maps) n += m.cells.size();
   f << "# vtk DataFile Version 3.0\nchutelab plate pressure and wear maps (steady window means)\nASCII\n"

@@ -45,7 +45,7 @@ Estimate snapshot_mean(const std::vector<double>& t, const std::vector<double>& 
 
 std::ofstream open_out(const std::filesystem::path& p) {
   std::ofstream f(p);
-  if (!f) throw InputError(p.string(), 0, "--out", "cannot write this file");
+  if (!f) throw InputError(p.string(), 0, "out", "cannot write this file");
   return f;
 }
 
@@ -433,7 +433,7 @@ void write_result_files(const std::string& dir, const StationResult& r) {
 
 void write_side_view_vtk(const std::string& path, const std::vector<SidePoint>& pts) {
   std::ofstream f(path);
-  if (!f) throw InputError(path, 0, "--out", "cannot write this file");
+  if (!f) throw InputError(path, 0, "out", "cannot write this file");
   f << "# vtk DataFile Version 3.0\nchutelab DEM transfer station, side view\nASCII\nDATASET POLYDATA\n";
   f << fmt::format("POINTS {} float\n", pts.size());
   for (const auto& p : pts) f << fmt::format("{} {} {}\n", p.x, p.y, p.z);

@@ -323,7 +323,7 @@ RunSettings resolve(const DemTable& table, const SettingsOverrides& o, Quality f
   if (o.threads) s.threads = *o.threads;
   if (o.plate_cells) s.plate_cells = *o.plate_cells;
   if (o.map_cell) s.map_cell = *o.map_cell;
-  for (const auto& [k, v] : o.wear) set_wear(s.wear, k, v, "", 0, "--" + k);
+  for (const auto& [k, v] : o.wear) set_wear(s.wear, k, v, "", 0, "wear." + k);
   if (o.max_time) {
     s.max_time = *o.max_time;
     s.min_time = std::min(s.min_time, s.max_time);
@@ -337,16 +337,16 @@ void check(const RunSettings& s) {
   auto need = [](bool ok, const char* field, std::string problem) {
     if (!ok) throw InputError("", 0, field, problem);
   };
-  need(s.particle_diameter >= 0.0 && s.particle_diameter < 0.2, "--diameter-mm",
+  need(s.particle_diameter >= 0.0 && s.particle_diameter < 0.2, "diameter_mm",
        fmt::format("particle diameter must be in (0, 200) mm, got {} mm", s.particle_diameter * 1e3));
-  need(s.shear_modulus_scale > 0.0 && s.shear_modulus_scale <= 1e3, "--shear-modulus-scale",
+  need(s.shear_modulus_scale > 0.0 && s.shear_modulus_scale <= 1e3, "shear_modulus_scale",
        fmt::format("must be in (0, 1000], got {}", s.shear_modulus_scale));
-  need(s.dt_fraction > 0.0 && s.dt_fraction <= 0.5, "--dt-fraction",
+  need(s.dt_fraction > 0.0 && s.dt_fraction <= 0.5, "dt_fraction",
        fmt::format("must be in (0, 0.5] of the collision time, got {}", s.dt_fraction));
   need(s.particle_shape == ParticleShape::sphere || s.particle_shape == ParticleShape::clump, "shape",
        "must be sphere or clump");
-  need(s.threads >= 0 && s.threads <= 256, "--threads", "must be between 0 (all) and 256");
-  need(s.plate_cells >= 0 && s.plate_cells <= 400, "--plate-cells", fmt::format("must be from 0 to 400, got {}", s.plate_cells));
+  need(s.threads >= 0 && s.threads <= 256, "threads", "must be between 0 (all) and 256");
+  need(s.plate_cells >= 0 && s.plate_cells <= 400, "plate_cells", fmt::format("must be from 0 to 400, got {}", s.plate_cells));
   need(s.map_cell == 0.0 || (s.map_cell >= 1e-3 && s.map_cell <= 1.0), "map_cell_mm",
        fmt::format("must be 0 (the plate's own triangles) or from 1 to 1000 mm, got {} mm", s.map_cell * 1e3));
   need(s.max_time > 0.0 && s.max_time <= 100.0, "max_time_s", fmt::format("must be in (0, 100] s, got {}", s.max_time));

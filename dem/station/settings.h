@@ -24,7 +24,7 @@ struct WearInputs {
   double exposure_hours = 0.0;  // h of operation a measured wear depth covers; 0 = no wear_depth_um
 };
 
-// One settable wear input: its [dem.wear] key (= the flag without "--" and with '-' for '_'),
+// One settable wear input: its [dem.wear] key (= the command line's flag without its dashes and with '-' for '_'),
 // what it means, and where it lives.
 struct WearField {
   const char* key;

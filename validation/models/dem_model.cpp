@@ -25,11 +25,6 @@ namespace {
 
 namespace st = dem::station;
 
-DemModelConfig& config_storage() {
-  static DemModelConfig c;
-  return c;
-}
-
 std::string num(double v) { return fmt::format("{:.17g}", v); }
 
 // File contents enter the key by hash (an edited STL is a different rig).
@@ -186,7 +181,7 @@ class DemModel final : public Model {
         return std::move(*cached);
       }
     if (c_.cache_only)
-      throw InputError("", 0, "--dem-cache-only",
+      throw InputError("", 0, "dem.cache_only",
                        fmt::format("no cached DEM run of condition {} ({} mm particles) with these settings and "
                                    "effects in {} (expected {})",
                                    station.condition,
@@ -449,9 +444,6 @@ ModelPrediction dem_station_prediction(const st::StationResult& r, const DemEffe
   return p;
 }
 
-void set_dem_model_config(const DemModelConfig& c) { config_storage() = c; }
-const DemModelConfig& dem_model_config() { return config_storage(); }
-ModelPtr make_dem_model() { return std::make_shared<DemModel>(config_storage()); }
 ModelPtr make_dem_model(const DemModelConfig& c) { return std::make_shared<DemModel>(c); }
 
 std::string dem_cache_key(const DemEffectInputs& fx, const dem::station::RunSettings& settings,

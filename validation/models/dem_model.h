@@ -43,10 +43,7 @@ struct DemModelConfig {
   std::string output_dir;    // "" = none; else per condition: CSV series, side view, VTK
 };
 
-// The configuration the registry's "dem" model is made with (set by the command line).
-void set_dem_model_config(const DemModelConfig& c);
-const DemModelConfig& dem_model_config();
-ModelPtr make_dem_model();
+// The registry's "dem" model is made by make_model with ModelSettings::dem (models/model_settings.h).
 ModelPtr make_dem_model(const DemModelConfig& c);
 
 // What a list of effects changes in a DEM run of a station.

@@ -14,7 +14,7 @@ ExternalModel::ExternalModel(const std::string& spec) {
   const auto eq = spec.find('=');
   const std::string usage = "give external:NAME=DIR (DIR with predictions.csv, optional trajectory.csv, README.md)";
   if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
-    throw InputError("", 0, "--models", fmt::format("'external:{}': {}", spec, usage));
+    throw InputError("", 0, "models", fmt::format("'external:{}': {}", spec, usage));
   name_ = spec.substr(0, eq);
   dir_ = spec.substr(eq + 1);
   // The name becomes a CSV cell, a TOML table name and a heading: plain characters only.
@@ -22,13 +22,13 @@ ExternalModel::ExternalModel(const std::string& spec) {
     return std::isalnum(c) || c == '-' || c == '_' || c == '.';
   });
   if (!plain)
-    throw InputError("", 0, "--models",
+    throw InputError("", 0, "models",
                      fmt::format("external model name '{}' may hold only letters, digits, '-', '_' and '.'", name_));
   for (const auto& builtin : model_names())
     if (builtin == name_)
-      throw InputError("", 0, "--models",
+      throw InputError("", 0, "models",
                        fmt::format("external model name '{}' is a built-in model's; choose another", name_));
-  if (!fs::is_directory(dir_)) throw InputError(dir_.string(), 0, "--models", "external results folder not found");
+  if (!fs::is_directory(dir_)) throw InputError(dir_.string(), 0, "models", "external results folder not found");
   const fs::path readme = dir_ / "README.md";
   if (!fs::is_regular_file(readme))
     throw InputError(readme.string(), 0, "README.md",

@@ -16,11 +16,6 @@ namespace {
 namespace st = dem::station;
 namespace lg = dem::liggghts;
 
-LiggghtsModelConfig& config_storage() {
-  static LiggghtsModelConfig c;
-  return c;
-}
-
 class LiggghtsModel final : public Model {
  public:
   explicit LiggghtsModel(LiggghtsModelConfig c) : c_(std::move(c)) {}
@@ -100,9 +95,6 @@ class LiggghtsModel final : public Model {
 
 }  // namespace
 
-void set_liggghts_model_config(const LiggghtsModelConfig& c) { config_storage() = c; }
-const LiggghtsModelConfig& liggghts_model_config() { return config_storage(); }
-ModelPtr make_liggghts_model() { return std::make_shared<LiggghtsModel>(config_storage()); }
 ModelPtr make_liggghts_model(const LiggghtsModelConfig& c) { return std::make_shared<LiggghtsModel>(c); }
 
 }  // namespace chutelab::validation

@@ -19,9 +19,7 @@ struct LiggghtsModelConfig {
   double sim_time = 0.0;     // s simulated per condition; 0 = the quality's max_time
 };
 
-void set_liggghts_model_config(const LiggghtsModelConfig& c);
-const LiggghtsModelConfig& liggghts_model_config();
-ModelPtr make_liggghts_model();
+// The registry's "liggghts" model is made by make_model with ModelSettings::liggghts.
 ModelPtr make_liggghts_model(const LiggghtsModelConfig& c);
 
 }  // namespace chutelab::validation

@@ -1,4 +1,4 @@
-#include "app/output.h"
+#include "api/estimate_output.h"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -9,7 +9,7 @@
 #include "core/message.h"
 #include "core/units.h"
 
-namespace chutelab::app {
+namespace chutelab::api {
 namespace {
 using analytical::Streamline;
 constexpr double kDeg = 180.0 / 3.14159265358979323846;
@@ -276,4 +276,4 @@ std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValu
   return o;
 }
 
-}  // namespace chutelab::app
+}  // namespace chutelab::api

@@ -8,7 +8,7 @@
 #include "core/quantity.h"
 #include "effects/registry.h"
 
-namespace chutelab::app {
+namespace chutelab::api {
 
 using ModelValues = std::vector<std::pair<std::string, QuantityValues>>;
 
@@ -28,4 +28,4 @@ std::string streamline_points_csv(const analytical::TransferAnalysis& a);
 std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValues& models,
                           const std::vector<effects::EffectSetting>& fx);
 
-}  // namespace chutelab::app
+}  // namespace chutelab::api

@@ -1,6 +1,7 @@
 #pragma once
-// --effect NAME=VALUE|fit for validate: fixed strengths as given, "fit" ones calibrated on the
-// dataset (jointly, with the fixed ones applied).
+// Effects given as NAME=VALUE|fit ("effect" and "input" options of validate, diagnose's winner
+// with add_missing): fixed strengths as given, "fit" ones calibrated on the dataset (jointly, with
+// the fixed ones applied).
 #include <string>
 #include <vector>
 
@@ -8,7 +9,7 @@
 #include "validation/dataset.h"
 #include "validation/model.h"
 
-namespace chutelab::app {
+namespace chutelab::api {
 
 struct AppliedEffects {
   analytical::EffectList effects;
@@ -16,17 +17,24 @@ struct AppliedEffects {
   std::vector<std::string> notes;
 };
 
+// The arguments parsed: fixed strengths and those to fit. Throws InputError (key "effect") for an
+// unknown effect, a bad value, one given twice or more to fit at once than a fit can take.
+struct ParsedEffects {
+  std::vector<effects::EffectSetting> fixed, to_fit;
+};
+ParsedEffects parse_effects(const std::vector<std::string>& args);
+
 AppliedEffects resolve_effects(const std::vector<std::string>& args, const validation::Dataset& d,
                                const std::vector<validation::ModelPtr>& models,
                                std::vector<reports::EffectDescription>& described);
 
-// --input NAME=VALUE|fit: a recorded input's error (effects/registry.h, Kind::record), given as an
-// effect is; the arguments of --effect followed by those of --input. An --input that names a
-// physical effect is refused, naming the flag and the recorded inputs there are.
+// Inputs NAME=VALUE|fit: a recorded input's error (effects/registry.h, Kind::record), given as an
+// effect is; the effects followed by the inputs. An input that names a physical effect is refused
+// (key "input"), naming the recorded inputs there are.
 std::vector<std::string> effects_and_inputs(const std::vector<std::string>& effects,
                                             const std::vector<std::string>& inputs);
 
 // Models in registry order (where they overlap, fits take each quantity from the first).
 std::vector<validation::ModelPtr> in_registry_order(const std::vector<validation::ModelPtr>& models);
 
-}  // namespace chutelab::app
+}  // namespace chutelab::api

@@ -1,4 +1,4 @@
-#include "app/effect_options.h"
+#include "api/effects.h"
 
 #include <algorithm>
 #include <fmt/format.h>
@@ -6,7 +6,7 @@
 #include "core/input_error.h"
 #include "validation/strength_fit.h"
 
-namespace chutelab::app {
+namespace chutelab::api {
 
 std::vector<validation::ModelPtr> in_registry_order(const std::vector<validation::ModelPtr>& models) {
   const auto order = validation::model_names();
@@ -28,26 +28,26 @@ std::vector<std::string> effects_and_inputs(const std::vector<std::string>& effe
       std::vector<std::string> names;
       for (const auto& i : effects::library())
         if (i.kind == effects::EffectInfo::Kind::record) names.push_back(fmt::format("{} ({})", i.name, i.unit.empty() ? "fraction" : i.unit));
-      throw InputError("", 0, "--input",
-                       fmt::format("'{}' is {}; --input takes a recorded input and its error, truth minus record: {}",
-                                   name, e ? "a physical effect (give it with --effect)" : "not a recorded input",
-                                   fmt::join(names, ", ")));
+      throw InputError("", 0, "input",
+                       fmt::format("'{}' is {}; {} takes a recorded input and its error, truth minus record: {}",
+                                   name, e ? "a physical effect (give it with " + mention("effect") + ")" : "not a recorded input",
+                                   mention("input"), fmt::join(names, ", ")));
     }
     out.push_back(a);
   }
   return out;
 }
 
-AppliedEffects resolve_effects(const std::vector<std::string>& args, const validation::Dataset& d,
-                               const std::vector<validation::ModelPtr>& models,
-                               std::vector<reports::EffectDescription>& described) {
-  std::vector<effects::EffectSetting> fixed, to_fit;
+ParsedEffects parse_effects(const std::vector<std::string>& args) {
+  ParsedEffects parsed;
+  auto& fixed = parsed.fixed;
+  auto& to_fit = parsed.to_fit;
   for (const auto& a : args) {
     auto s = effects::parse_setting(a, true);
     for (const auto& seen : fixed)
-      if (seen.info == s.info) throw InputError("", 0, "--effect", fmt::format("{} given twice", s.info->name));
+      if (seen.info == s.info) throw InputError("", 0, "effect", fmt::format("{} given twice", s.info->name));
     for (const auto& seen : to_fit)
-      if (seen.info == s.info) throw InputError("", 0, "--effect", fmt::format("{} given twice", s.info->name));
+      if (seen.info == s.info) throw InputError("", 0, "effect", fmt::format("{} given twice", s.info->name));
     (s.value ? fixed : to_fit).push_back(s);
   }
   // The joint fit's time grows about five-fold with each effect fitted (measured on grima2010-sized
@@ -55,11 +55,18 @@ AppliedEffects resolve_effects(const std::vector<std::string>& args, const valid
   // left to run for hours without a word.
   constexpr std::size_t kMaxJointFit = 5;
   if (to_fit.size() > kMaxJointFit)
-    throw InputError("", 0, "--effect",
+    throw InputError("", 0, "effect",
                      fmt::format("{} effects to fit at once: the joint fit's time grows about five-fold with each "
                                  "(6 take a minute, 9 hours); fit at most {} together and give the others a value "
                                  "(NAME=VALUE)",
                                  to_fit.size(), kMaxJointFit));
+  return parsed;
+}
+
+AppliedEffects resolve_effects(const std::vector<std::string>& args, const validation::Dataset& d,
+                               const std::vector<validation::ModelPtr>& models,
+                               std::vector<reports::EffectDescription>& described) {
+  const auto [fixed, to_fit] = parse_effects(args);
   AppliedEffects out;
   out.effects = effects::instantiate(fixed);
   for (const auto& s : fixed) {
@@ -71,7 +78,7 @@ AppliedEffects resolve_effects(const std::vector<std::string>& args, const valid
 
   const validation::Misfit misfit(d, in_registry_order(models), out.effects);
   if (misfit.size() == 0)
-    throw InputError(d.dir.string(), 0, "--effect",
+    throw InputError(d.dir.string(), 0, "effect",
                      "nothing to fit: no measurement with an uncertainty that these models predict");
   std::vector<const effects::EffectInfo*> fx;
   for (const auto& s : to_fit) fx.push_back(s.info);
@@ -88,4 +95,4 @@ AppliedEffects resolve_effects(const std::vector<std::string>& args, const valid
   return out;
 }
 
-}  // namespace chutelab::app
+}  // namespace chutelab::api

@@ -1,0 +1,39 @@
+#pragma once
+// How the expensive models of validate and diagnose run: the DEM's quality, threads, cache and
+// ladder, and LIGGGHTS' launcher. Errors name these by the keys "dem.quality", "dem.threads", ...
+// (core/input_error.h), which each front end spells its own way.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "validation/models/model_settings.h"
+
+namespace chutelab::api {
+
+struct DemOptions {
+  std::string quality;                // "" (the dataset's [dem] table, else quick), quick, standard, paper
+  std::optional<int> threads;         // OpenMP threads of a run; unset or 0: one per idle core
+  std::string cache;                  // result cache folder; "" = $XDG_CACHE_HOME/chutelab/dem
+  bool no_cache = false;              // run again even when the cache holds the result
+  bool cache_only = false;            // never run: a run missing from the cache is an error
+  bool ladder = true;                 // u_num's discretisation part from more runs (validation/gci.h)
+  std::string signature_quality;      // "" = the predictions' quality
+  std::optional<int> plate_cells;     // rows of cells down the generated plate (0: two triangles)
+  int liggghts_ranks = 1;             // mpirun -n K liggghts
+  std::string liggghts_command;       // "" = mpirun -n K liggghts
+  double liggghts_time = 0.0;         // s simulated per LIGGGHTS run; 0 = the quality's maximum
+};
+
+// Throws InputError naming the option's key for a value out of its range, before any work.
+void check(const DemOptions& o);
+
+// The models' settings for a dataset folder (its setup.toml's [dem] table); the DEM's per-condition
+// files (series, side views, VTK) go to `output_dir` when it is not empty. Checks `o` first.
+validation::ModelSettings model_settings(const DemOptions& o, const std::filesystem::path& dataset_dir,
+                                         const std::filesystem::path& output_dir, bool progress);
+
+// Independent runs side by side in one process: `jobs`, or for 0 one per core other processes
+// leave free (the DEM's own thread default).
+int resolve_jobs(int jobs);
+
+}  // namespace chutelab::api

@@ -1,0 +1,73 @@
+#include "api/diagnose.h"
+
+#include "core/option_check.h"
+#include "validation/dataset_output.h"
+
+namespace chutelab::api {
+namespace {
+constexpr options::NumberRule kJobs{"jobs", 0.0, 256.0, false, false, true, ""};
+
+}  // namespace
+
+void check(const DiagnoseOptions& o) {
+  validation::check_model_names(o.models);
+  options::rules::alpha.check(o.alpha);
+  kJobs.check(static_cast<double>(o.jobs));
+  options::rules::self_check.check(static_cast<double>(o.self_check));
+  check(o.dem);
+}
+
+std::vector<validation::OutputFile> DiagnoseResult::files() const {
+  std::string md = validation::diagnosis_markdown(diagnosis);
+  if (self_check) md += "\n" + validation::self_check_markdown(*self_check, alpha);
+  std::vector<validation::OutputFile> out = {{"diagnosis.csv", validation::diagnosis_csv(diagnosis)},
+                                             {"diagnosis.md", md}};
+  if (self_check) {
+    out.emplace_back("self_check.md", validation::self_check_markdown(*self_check, alpha));
+    out.emplace_back("self_check.csv", validation::self_check_csv(*self_check));
+  }
+  return out;
+}
+
+DiagnoseResult diagnose(const DiagnoseOptions& o) {
+  check(o);
+  return diagnose(validation::read_dataset(o.dataset), o);
+}
+
+DiagnoseResult diagnose(validation::Dataset dataset, const DiagnoseOptions& o) {
+  check(o);
+  DiagnoseResult res;
+  res.dataset = std::move(dataset);
+  res.alpha = o.alpha;
+  const validation::Dataset& d = res.dataset;
+  if (o.prepare_output) {
+    OutputPlan plan;
+    plan.inputs = validation::dataset_files(d.dir);
+    for (auto& p : model_inputs(o.models)) plan.inputs.push_back(std::move(p));
+    plan.files = {"diagnosis.csv", "diagnosis.md", "self_check.md", "self_check.csv"};
+    o.prepare_output(plan);
+  }
+  validation::DiagnoseOptions opt;
+  opt.alpha = o.alpha;
+  opt.pairs = o.pairs;
+  // Resolved once: the free cores may change between two readings. The expensive runs (baseline,
+  // signatures, confirmation) go as campaigns with the same number side by side.
+  opt.jobs = resolve_jobs(o.jobs);
+  opt.progress = o.progress;
+  // An expensive model (the DEM) runs once per condition, and once more per condition for every
+  // candidate it can represent (its own signature); the others take the analytical models'
+  // signatures, and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
+  const auto models = validation::make_models(o.models, model_settings(o.dem, d.dir, {}, o.progress));
+  res.diagnosis = validation::diagnose(d, models, opt);
+  if (o.self_check > 0) {
+    validation::SelfCheckOptions so;
+    so.replicas = o.self_check;
+    so.seed = o.seed;
+    so.diagnose = opt;
+    so.diagnose.progress = false;
+    res.self_check = validation::self_check(d, res.diagnosis, so);
+  }
+  return res;
+}
+
+}  // namespace chutelab::api

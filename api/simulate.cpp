@@ -1,0 +1,118 @@
+#include "api/simulate.h"
+
+#include <fmt/format.h>
+
+#include "core/campaign.h"
+#include "core/input_error.h"
+#include "dem/station/cache.h"
+#include "dem/station/progress.h"
+#include "dem/world.h"
+#include "effects/registry.h"
+#include "validation/dataset.h"
+#include "validation/dataset_output.h"
+#include "validation/models/dem_model.h"
+
+namespace chutelab::api {
+namespace st = dem::station;
+namespace {
+
+st::SettingsOverrides overrides_of(const SimulateOptions& o) {
+  st::SettingsOverrides ov;
+  if (!o.quality.empty()) {
+    ov.quality = st::parse_quality(o.quality);
+    if (!ov.quality) throw InputError("", 0, "quality", "must be quick, standard or paper");
+  }
+  if (!o.contact.empty()) {
+    ov.contact = st::parse_contact(o.contact);
+    if (!ov.contact) throw InputError("", 0, "contact", "must be one of " + dem::NormalLaw::keys());
+  }
+  if (!o.shape.empty()) {
+    ov.shape = st::parse_shape(o.shape);
+    if (!ov.shape) throw InputError("", 0, "shape", "must be sphere or clump");
+  }
+  if (o.diameter_mm) ov.particle_diameter = *o.diameter_mm * 1e-3;
+  ov.shear_modulus_scale = o.shear_modulus_scale;
+  ov.dt_fraction = o.dt_fraction;
+  ov.threads = o.threads;
+  ov.seed = o.seed;
+  ov.max_time = o.max_time;
+  ov.plate_cells = o.plate_cells;
+  if (o.map_cell_mm) ov.map_cell = *o.map_cell_mm * 1e-3;
+  for (const auto& [k, v] : o.wear) ov.wear.emplace_back(k, v);
+  return ov;
+}
+
+std::vector<effects::EffectSetting> effect_settings(const SimulateOptions& o) {
+  std::vector<effects::EffectSetting> out;
+  for (const auto& e : o.effects) out.push_back(effects::parse_setting(e, false));
+  return out;
+}
+
+}  // namespace
+
+void check(const SimulateOptions& o) {
+  if (o.condition.empty()) throw InputError("", 0, "condition", "is empty; give a row of conditions.csv");
+  overrides_of(o);
+  effect_settings(o);
+  if (o.vtk_every && !(*o.vtk_every > 0.0)) throw InputError("", 0, "vtk_every", "must be > 0 s");
+  if (o.vtk_every && !o.prepare_output) throw InputError("", 0, "vtk_every", "needs " + mention("out") + " DIR");
+}
+
+void SimulateResult::write_files(const std::filesystem::path& dir) const {
+  st::write_result_files(dir.string(), run);
+  st::write_side_view_vtk((dir / "side_view.vtk").string(), run.side_view);
+}
+
+SimulateResult simulate(const SimulateOptions& o) {
+  namespace fs = std::filesystem;
+  check(o);
+  SimulateResult res;
+  const fs::path dir = o.dataset.empty() ? o.default_dataset : o.dataset;
+  const fs::path setup_file = dir / "setup.toml";
+  res.setup = validation::read_setup(setup_file);
+  const auto stations = validation::read_conditions(dir / "conditions.csv", res.setup);
+  res.station = validation::condition_row(stations, o.condition, dir / "conditions.csv", "condition");
+
+  const st::DemTable table = st::read_dem_table(setup_file.string());
+  res.settings = st::resolve(table, overrides_of(o));
+  const auto fx = validation::dem_effect_inputs(res.station, effects::instantiate(effect_settings(o)));
+  res.effect_notes = fx.notes;
+
+  if (campaign::ranks() > 1)
+    throw InputError("", 0, "mpirun",
+                     fmt::format("simulate is one DEM run, which does not split over MPI ranks: run it as one process "
+                                 "({} for OpenMP); validate, diagnose, sensitivity and calibrate spread their runs over "
+                                 "the ranks",
+                                 mention("threads")));
+  st::RunOptions ro;
+  ro.settings = res.settings;
+  ro.geometry = table;
+  ro.external = fx.external;
+  if (o.progress) ro.progress = st::ProgressPrinter(fmt::format("dem {}", res.station.condition));
+  if (o.prepare_output) {
+    OutputPlan plan;
+    plan.inputs = validation::dataset_files(dir);
+    for (const auto* s : {&table.stl_plate, &table.stl_belt, &table.stl_pulley})
+      if (*s) plan.inputs.emplace_back(**s);
+    for (const auto& w : table.stl_walls) plan.inputs.emplace_back(w);
+    plan.files = {"timeseries.csv", "sensors.csv", "side_view.vtk"};
+    plan.model_folder = true;  // the particle series, vtk/
+    if (const fs::path out = o.prepare_output(plan); !out.empty()) {
+      ro.vtk_dir = (out / "vtk").string();
+      ro.vtk_every = o.vtk_every.value_or(o.default_vtk_every);
+    }
+  }
+  try {
+    res.run = st::run_station(fx.station, ro);
+  } catch (const dem::SimulationError& e) {
+    // Not the fault of one option the user may not have set: said as the run's, with the usual remedy.
+    throw InputError("", 0, "simulate",
+                     fmt::format("the DEM run failed: {} (a smaller {} may help)", e.what(), mention("dt_fraction")));
+  }
+  // Same key as the harness model: a later validate of "dem" with these settings is instant.
+  if (o.store_in_cache)
+    st::ResultCache(st::ResultCache::default_dir()).store(validation::dem_cache_key(fx, res.settings, table), res.run);
+  return res;
+}
+
+}  // namespace chutelab::api

@@ -1,0 +1,57 @@
+#pragma once
+// simulate: one DEM run of one condition of a dataset (dem/station), its steady means with their
+// standard errors, and a cache entry that a later validate with the same settings finds.
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "api/output_plan.h"
+#include "core/rig.h"
+#include "dem/station/run.h"
+#include "dem/station/settings.h"
+
+namespace chutelab::api {
+
+// Errors name the keys "dataset", "condition", "quality", "contact", "shape", "diameter_mm",
+// "shear_modulus_scale", "dt_fraction", "threads", "seed", "max_time", "plate_cells", "map_cell_mm",
+// "wear.KEY", "effect", "vtk_every".
+struct SimulateOptions {
+  std::filesystem::path dataset;           // "" = default_dataset
+  std::filesystem::path default_dataset;
+  std::string condition;                   // a row of conditions.csv
+  std::string quality, contact, shape;     // "" = the dataset's [dem] table, else the preset's
+  std::optional<double> diameter_mm, shear_modulus_scale, dt_fraction, max_time, map_cell_mm;
+  std::optional<int> threads, plate_cells;
+  std::optional<std::uint64_t> seed;
+  std::map<std::string, double> wear;      // dem::station::wear_fields() key -> value
+  std::vector<std::string> effects;        // NAME=VALUE (those with a DEM counterpart act)
+  // Interval of the particle series (s) in the folder prepare_output returns (vtk/); unset: `every`
+  // below when there is a folder.
+  std::optional<double> vtk_every;
+  double default_vtk_every = 0.05;
+  bool store_in_cache = true;              // a later validate --models dem with these settings is instant
+  bool progress = false;                   // a progress bar on stderr
+  // Told the run's inputs; returns the folder for the particle series written during the run ("" =
+  // none). With vtk_every set it must be given.
+  PrepareOutput prepare_output;
+};
+
+// The options alone, before any file is read. Throws InputError naming the key.
+void check(const SimulateOptions& o);
+
+struct SimulateResult {
+  Setup setup;
+  Station station;                          // the condition after the effects
+  dem::station::RunSettings settings;
+  dem::station::StationResult run;
+  std::vector<std::string> effect_notes;    // which effects acted on the DEM, which did not
+  // The files of a finished run (timeseries.csv, ..., side_view.vtk) into `dir`.
+  void write_files(const std::filesystem::path& dir) const;
+};
+
+SimulateResult simulate(const SimulateOptions& o);
+
+}  // namespace chutelab::api

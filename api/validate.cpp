@@ -1,0 +1,143 @@
+#include "api/validate.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include "api/effects.h"
+#include "core/input_error.h"
+#include "core/option_check.h"
+#include "reports/report.h"
+#include "studies/sensitivity.h"
+#include "validation/dataset_output.h"
+
+namespace chutelab::api {
+namespace {
+
+constexpr options::NumberRule kJobs{"jobs", 0.0, 256.0, false, false, true, ""};
+
+
+}  // namespace
+
+void check(const ValidateOptions& o) {
+  validation::check_model_names(o.models);
+  const auto given = effects_and_inputs(o.effects, o.inputs);
+  parse_effects(given);
+  if (o.add_missing && !o.effects.empty())
+    throw InputError("", 0, "add_missing", "excludes " + mention("effect"));
+  kJobs.check(static_cast<double>(o.jobs));
+  check(o.dem);
+}
+
+reports::ReportInput ValidateResult::report() const {
+  reports::ReportInput in;
+  in.dataset = &dataset;
+  in.baseline = &baseline;
+  in.with_effects = with_effects ? &*with_effects : nullptr;
+  in.effects = effects;
+  in.diagnosis = diagnosis ? &*diagnosis : nullptr;
+  in.findings = &findings;
+  in.notes = notes;
+  in.studies = &studies;
+  return in;
+}
+
+std::vector<validation::OutputFile> ValidateResult::files() const {
+  const auto& r = final_result();
+  const reports::ReportInput in = report();
+  std::vector<validation::OutputFile> out = {{"predictions.csv", validation::predictions_csv(r)},
+                                             {"errors.csv", validation::errors_csv(r)},
+                                             {"summary.csv", validation::summary_csv(r)},
+                                             {"report.md", reports::report_markdown(in)},
+                                             {"report.html", reports::report_html(in)}};
+  if (diagnosis) {
+    out.emplace_back("diagnosis.csv", validation::diagnosis_csv(*diagnosis));
+    out.emplace_back("diagnosis.md", validation::diagnosis_markdown(*diagnosis));
+  }
+  return out;
+}
+
+ValidateResult validate(const ValidateOptions& o) {
+  check(o);
+  return validate(validation::read_dataset(o.dataset), o);
+}
+
+ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
+  namespace fs = std::filesystem;
+  check(o);
+  ValidateResult res;
+  res.dataset = std::move(dataset);
+  const validation::Dataset& d = res.dataset;
+  const fs::path dir = d.dir;
+  const std::vector<std::string> given = effects_and_inputs(o.effects, o.inputs);
+  // Read before any model runs: a bad study file ends the call before anything is written.
+  res.studies = reports::read_studies(o.studies, d.setup.name);
+  std::optional<studies::SensitivityStudy> sensitivity;  // the reference study's finding 6, when one was run
+  for (const auto& s : o.studies) {
+    const fs::path f = fs::is_directory(s) ? s / "sensitivity.csv" : s;
+    if (f.filename() == "sensitivity.csv" && fs::exists(f)) sensitivity = studies::read_sensitivity_csv(f);
+  }
+  if (!o.tolerances.empty()) res.tolerances = validation::Tolerances::read(o.tolerances);
+  else if (fs::exists(fs::symlink_status(dir / "tolerances.toml")))
+    res.tolerances = validation::Tolerances::read(dir / "tolerances.toml");
+  const bool diagnosing = o.diagnose || o.add_missing || (o.diagnose_with_effects && !given.empty());
+
+  // The models as named (an unknown one is bad input here), then the caller's output folder, then
+  // the models again with the folder their per-condition files go to.
+  auto models = validation::make_models(o.models, model_settings(o.dem, dir, {}, o.progress));
+  OutputPlan plan;
+  plan.inputs = validation::dataset_files(dir);
+  if (res.tolerances) plan.inputs.emplace_back(res.tolerances->file());
+  for (const auto& s : o.studies) {
+    plan.inputs.push_back(s / "calibration.csv");
+    plan.inputs.push_back(s / "sensitivity.csv");
+    if (!fs::is_directory(fs::symlink_status(s))) plan.inputs.push_back(s);
+  }
+  for (auto& p : model_inputs(o.models)) plan.inputs.push_back(std::move(p));
+  plan.files = {"predictions.csv", "errors.csv", "summary.csv", "report.md", "report.html"};
+  if (diagnosing) plan.files.insert(plan.files.end(), {"diagnosis.csv", "diagnosis.md"});
+  plan.model_folder = std::any_of(models.begin(), models.end(), [](const auto& m) { return m->expensive(); });
+  if (o.prepare_output)
+    if (const fs::path out = o.prepare_output(plan); !out.empty())
+      models = validation::make_models(o.models, model_settings(o.dem, dir, out, o.progress));
+
+  validation::ValidateOptions base;
+  base.tolerances = res.tolerances ? &*res.tolerances : nullptr;
+  base.quiet = !o.progress;
+  base.jobs = resolve_jobs(o.jobs);
+  res.baseline = validation::validate(d, models, base);
+  res.findings = validation::check_reference_findings(d, res.baseline);
+  res.findings.push_back(studies::sensitivity_finding(sensitivity ? &*sensitivity : nullptr, d.setup.name));
+
+  // Fits and the diagnosis call the models hundreds of times: they use the cheap ones (an expensive
+  // baseline enters the diagnosis as in DESIGN.md §5, not by re-running it per trial strength).
+  std::vector<validation::ModelPtr> cheap;
+  for (const auto& m : models)
+    if (!m->expensive()) cheap.push_back(m);
+  // "What is missing" comes from the models as they are, so the reader sees why an effect was added.
+  if (diagnosing) {
+    // Named by the option that asked for the diagnosis (effects, inputs and add_missing imply it).
+    if (cheap.empty())
+      throw InputError("", 0, o.diagnose ? "diagnose" : o.add_missing ? "add_missing" : o.effects.empty() ? "input" : "effect",
+                       "the diagnosis needs an analytical model in " + mention("models"));
+    validation::DiagnoseOptions dopt;
+    dopt.progress = o.progress;
+    res.diagnosis = validation::diagnose(d, in_registry_order(cheap), dopt);
+  }
+  // add_missing: what the diagnosis recommends, fitted (jointly, for a pair).
+  std::vector<std::string> effect_args = given;
+  res.added_missing = o.add_missing;
+  if (o.add_missing && res.diagnosis && res.diagnosis->best())
+    for (const auto& e : res.diagnosis->best()->effects) effect_args.push_back(e + "=fit");
+
+  const auto applied = resolve_effects(effect_args, d, cheap, res.effects);
+  if (!applied.effects.empty()) {
+    validation::ValidateOptions with = base;
+    with.effects = applied.effects;
+    with.effect_labels = applied.labels;
+    res.with_effects = validation::validate(d, models, with);
+  }
+  res.notes = applied.notes;
+  return res;
+}
+
+}  // namespace chutelab::api

@@ -1,0 +1,79 @@
+#pragma once
+// validate: every condition of a dataset through every model, compared with the measurements (ASME
+// V&V 20), optionally with the diagnosis and with effects added or fitted. The command line's
+// `validate` and the Python package's validate() are this function.
+//
+//   api::ValidateOptions o;
+//   o.dataset = "datasets/grima2010";
+//   o.models = {"korzen", "booth-cema"};
+//   o.effects = {"air_drag=fit"};
+//   api::check(o);                                  // optional: validate() checks first anyway
+//   const api::ValidateResult r = api::validate(o);
+//   r.final_result().brief();                       // one line; r.files(): the tables and the report
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "api/dem_options.h"
+#include "api/output_plan.h"
+#include "reports/report.h"
+#include "reports/studies.h"
+#include "validation/dataset.h"
+#include "validation/diagnosis.h"
+#include "validation/harness.h"
+#include "validation/output_files.h"
+#include "validation/reference_findings.h"
+#include "validation/tolerances.h"
+
+namespace chutelab::api {
+
+// Errors name the keys "dataset", "models", "effect", "input", "tolerances", "studies", "diagnose",
+// "add_missing", "jobs" and the DEM's "dem.*".
+struct ValidateOptions {
+  std::filesystem::path dataset;                      // folder with measurements
+  std::vector<std::string> models{"korzen", "booth-cema"};
+  std::vector<std::string> effects;                   // NAME=VALUE or NAME=fit
+  std::vector<std::string> inputs;                    // recorded inputs' errors, NAME=VALUE or NAME=fit
+  std::filesystem::path tolerances;                   // "" = the dataset's tolerances.toml when present
+  bool diagnose = false;                              // also rank the candidate missing effects
+  bool add_missing = false;                           // diagnose, then add what it points to (fitted)
+  // Effects and inputs imply the diagnosis, so that the report shows why they were added.
+  bool diagnose_with_effects = true;
+  std::vector<std::filesystem::path> studies;         // calibrate / sensitivity output folders or files
+  DemOptions dem;
+  int jobs = 0;                                       // expensive runs side by side; 0: one per idle core
+  bool progress = false;                              // progress lines on stderr (core/progress.h)
+  PrepareOutput prepare_output;                       // may be empty (api/output_plan.h)
+};
+
+// The options alone, before any file is read. Throws InputError naming the key.
+void check(const ValidateOptions& o);
+
+struct ValidateResult {
+  validation::Dataset dataset;
+  std::optional<validation::Tolerances> tolerances;
+  validation::ValidationResult baseline;                 // the models as they are
+  std::optional<validation::ValidationResult> with_effects;  // with the effects given or fitted
+  std::optional<validation::DiagnosisResult> diagnosis;
+  std::vector<reports::EffectDescription> effects;       // what with_effects added
+  std::vector<std::string> notes;                        // e.g. the fit's chi^2
+  std::vector<validation::ReferenceFinding> findings;    // the reference study's findings checked
+  std::vector<reports::StudySection> studies;
+  bool added_missing = false;
+
+  const validation::ValidationResult& final_result() const { return with_effects ? *with_effects : baseline; }
+  bool acceptance_failed() const { return final_result().acceptance_failed; }
+  // The report's input: views into this result (valid while it lives, unmoved).
+  reports::ReportInput report() const;
+  // predictions.csv, errors.csv, summary.csv, report.md, report.html and, with a diagnosis,
+  // diagnosis.csv and diagnosis.md.
+  std::vector<validation::OutputFile> files() const;
+};
+
+// check(o), the dataset and every other input read, prepare_output told, then the runs.
+ValidateResult validate(const ValidateOptions& o);
+// The same on a dataset already read (o.dataset is not used).
+ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o);
+
+}  // namespace chutelab::api
