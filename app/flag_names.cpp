@@ -35,6 +35,10 @@ constexpr auto kPlain = std::to_array<std::string_view>({
     "plate_cells", "map_cell_mm", "no_cache", "rolling", "density", "target_bulk_density",
     "target_pile_height", "sizes", "only", "limit"});
 
+// Options whose errors a model run places at the condition it was running (conditions.csv:2): their
+// keys are no file's column or TOML key, so they stay flags there.
+constexpr auto kLocated = std::to_array<std::string_view>({"models", "effect", "input", "dem.cache_only"});
+
 std::string plain_flag(std::string_view key) {
   std::string f = "--" + std::string(key);
   std::replace(f.begin(), f.end(), '_', '-');
@@ -54,8 +58,12 @@ std::string flag_for(std::string_view key) {
 }
 
 std::string said(const InputError& e) {
-  // A field in a file at a line is the file's (a column, a TOML key), never an option.
-  const FieldNames field = [&](std::string_view key) { return e.line() > 0 ? std::string(key) : flag_for(key); };
+  // A field in a file at a line is the file's (a column, a TOML key such as dem.quality), unless it is
+  // an option whose error a run placed there.
+  const FieldNames field = [&](std::string_view key) {
+    const bool option = e.line() == 0 || std::find(kLocated.begin(), kLocated.end(), key) != kLocated.end();
+    return option ? flag_for(key) : std::string(key);
+  };
   return e.said(field, flag_for);
 }
 

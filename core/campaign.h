@@ -60,7 +60,8 @@ std::vector<std::string> run_campaign(std::span<const Job> jobs, const Options& 
 std::vector<int> assign(std::span<const double> costs, int ranks);
 
 // The process's worker threads for campaigns (`--jobs N`); 1 runs jobs in order. The commands pass
-// one per idle core unless told (app/dem_options.h, resolve_jobs).
+// one per idle core unless told (api/dem_options.h, resolve_jobs); the library's functions pass their
+// jobs to each campaign instead (Options::threads).
 void set_threads(int n);
 int threads();
 

@@ -22,7 +22,10 @@ using SettingsFactory = std::pair<std::string, std::function<ModelPtr(const Mode
 const std::vector<SettingsFactory>& registry() {
   static const std::vector<SettingsFactory> models = [] {
     std::vector<SettingsFactory> all;
-    for (const auto& [n, f] : analytical_model_registry()) all.push_back({n, [f](const ModelSettings&) { return f(); }});
+    for (const auto& entry : analytical_model_registry()) {
+      auto make = entry.second;
+      all.push_back({entry.first, [make](const ModelSettings&) { return make(); }});
+    }
     all.push_back({"dem", [](const ModelSettings& s) { return make_dem_model(s.dem); }});
     all.push_back({"liggghts", [](const ModelSettings& s) { return make_liggghts_model(s.liggghts); }});
     return all;
