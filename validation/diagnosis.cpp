@@ -183,10 +183,15 @@ std::string signature_words(PredictionSource::Signature s) {
 struct Progress {
   bool on = false;
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  // Which pass of the noise model's rounds (validation/diagnosis.cpp, settle) the fits belong to:
+  // each round that leaves out a reading or adds a discrepancy fits every candidate again.
+  int round = 1;
   void operator()(const std::string& what, std::size_t k, std::size_t of) const {
     if (!on) return;
     const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - started;
-    std::cerr << fmt::format("diagnose: fitting {} ({}/{}, {:.0f} s so far)\n", what, k, of, spent.count());
+    std::cerr << fmt::format("diagnose: {}fitting {} ({}/{}, {:.0f} s so far)\n",
+                             round > 1 ? fmt::format("round {} of the noise model: ", round) : "", what, k, of,
+                             spent.count());
   }
 };
 
@@ -528,7 +533,9 @@ Settled settle(const Misfit& m, const DiagnoseOptions& opt, const Drivers& drive
   const int max_rounds = 4 + static_cast<int>(opt.max_outlier_share * static_cast<double>(m.size()));
   for (out.rounds = 1; out.rounds <= max_rounds; ++out.rounds) {
     const Stage s(m, opt, out.nm);
-    Explanations x = explain(s, drivers, out.rounds == 1 ? progress : Progress{}, 0, false);
+    Progress shown = progress;
+    shown.round = out.rounds;
+    Explanations x = explain(s, drivers, shown, 0, false);
     const auto r = x.any ? m.residuals(x.fx, x.strengths) : m.residuals({}, {});
     if (const auto o = find_outlier(m, out.nm, r, opt.alpha, opt.max_outlier_share)) {
       out.nm.excluded[*o] = 1;
