@@ -54,6 +54,9 @@ struct Reader {
 }  // namespace
 
 void World::save_checkpoint(const std::string& path) const {
+  const NeighborList& pairs = contacts_.pairs;
+  const WallContactList& wall_list = contacts_.walls;
+  const ContactLists::Reference& ref = contacts_.reference;
   Writer w{std::ofstream(path, std::ios::binary)};
   if (!w.out) throw InputError(path, 0, "", "cannot write checkpoint");
   w.out.write(kMagic, 8);
@@ -63,35 +66,36 @@ void World::save_checkpoint(const std::string& path) const {
   w.pod(static_cast<std::int32_t>(settings_.rolling));
   w.pod(static_cast<std::int32_t>(materials_.size()));
   w.pod(static_cast<std::uint64_t>(walls_.size()));
-  w.pod(static_cast<std::uint64_t>(inserters_.size()));
-  w.pod(static_cast<std::uint64_t>(sinks_.size()));
+  w.pod(static_cast<std::uint64_t>(sources_.inserters.size()));
+  w.pod(static_cast<std::uint64_t>(sources_.sinks.size()));
   w.pod(static_cast<std::uint8_t>(initialised_));
-  w.pod(time_);
-  w.pod(dt_);
-  w.pod(skin_);
+  w.pod(clock_.time);
+  w.pod(clock_.dt);
+  w.pod(contacts_.skin);
   w.pod(max_speed_);
-  w.pod(max_disp_);
-  w.pod(step_);
+  w.pod(contacts_.max_disp);
+  w.pod(clock_.step);
   w.pod(next_id_);
-  w.pod(rebuilds_);
-  w.pod(static_cast<std::uint8_t>(list_dirty_));
+  w.pod(contacts_.rebuilds);
+  w.pod(static_cast<std::uint8_t>(contacts_.dirty));
   w.vec(p_.x); w.vec(p_.v); w.vec(p_.w); w.vec(p_.f); w.vec(p_.t);
   w.vec(p_.radius); w.vec(p_.mass); w.vec(p_.inv_mass); w.vec(p_.inv_inertia);
   w.vec(p_.material); w.vec(p_.id);
-  w.vec(pair_list_.row_begin); w.vec(pair_list_.neighbor); w.vec(pair_list_.shear); w.vec(pair_list_.roll);
-  w.vec(pair_list_.touch);
-  w.vec(wall_list_.begin); w.vec(wall_list_.wall); w.vec(wall_list_.element); w.vec(wall_list_.shear); w.vec(wall_list_.roll); w.vec(wall_list_.touch);
-  w.vec(wall_list_.force); w.vec(wall_list_.torque); w.vec(wall_list_.point);
-  w.vec(reference_.x); w.vec(reference_.wall_time); w.vec(reference_.index_map);
+  w.vec(pairs.row_begin); w.vec(pairs.neighbor); w.vec(pairs.shear); w.vec(pairs.roll);
+  w.vec(pairs.touch);
+  w.vec(wall_list.begin); w.vec(wall_list.wall); w.vec(wall_list.element);
+  w.vec(wall_list.shear); w.vec(wall_list.roll); w.vec(wall_list.touch);
+  w.vec(wall_list.force); w.vec(wall_list.torque); w.vec(wall_list.point);
+  w.vec(ref.x); w.vec(ref.wall_time); w.vec(ref.index_map);
   for (const auto& wl : walls_) {
     w.pod(static_cast<std::uint64_t>(wl.element_count()));
     w.pod(wl.force); w.pod(wl.torque); w.vec(wl.element_force);
   }
-  for (const auto& in : inserters_) {
+  for (const auto& in : sources_.inserters) {
     w.pod(in.rng_state); w.pod(in.pending_mass); w.pod(in.inserted_mass); w.pod(in.next_time);
     w.pod(static_cast<std::uint8_t>(in.warned_full));
   }
-  for (const auto& s : sinks_) { w.pod(s.removed_mass); w.pod(s.removed_count); }
+  for (const auto& s : sources_.sinks) { w.pod(s.removed_mass); w.pod(s.removed_count); }
   // Clumps: member links and body state (shapes belong to the scene and are checked by count).
   w.vec(p_.clump); w.vec(p_.body_offset); w.vec(p_.contact_mass); w.vec(p_.held_by);
   w.pod(static_cast<std::uint64_t>(clumps_.shapes.size()));
@@ -106,6 +110,9 @@ void World::save_checkpoint(const std::string& path) const {
 }
 
 void World::load_checkpoint(const std::string& path) {
+  NeighborList& pairs = contacts_.pairs;
+  WallContactList& wall_list = contacts_.walls;
+  ContactLists::Reference& ref = contacts_.reference;
   Reader r{std::ifstream(path, std::ios::binary), path};
   if (!r.in) throw InputError(path, 0, "", "cannot open checkpoint");
   char magic[8];
@@ -126,12 +133,12 @@ void World::load_checkpoint(const std::string& path) {
   if (rm != static_cast<std::int32_t>(settings_.rolling)) mismatch("rolling model", rm, static_cast<int>(settings_.rolling));
   if (mats != materials_.size()) mismatch("materials", mats, materials_.size());
   if (nw != walls_.size()) mismatch("walls", nw, walls_.size());
-  if (ni != inserters_.size()) mismatch("inserters", ni, inserters_.size());
-  if (ns != sinks_.size()) mismatch("sinks", ns, sinks_.size());
+  if (ni != sources_.inserters.size()) mismatch("inserters", ni, sources_.inserters.size());
+  if (ns != sources_.sinks.size()) mismatch("sinks", ns, sources_.sinks.size());
   std::uint8_t init, dirty;
   r.pod(init, "state");
-  r.pod(time_, "time"); r.pod(dt_, "dt"); r.pod(skin_, "skin"); r.pod(max_speed_, "max speed");
-  r.pod(max_disp_, "displacement"); r.pod(step_, "step"); r.pod(next_id_, "next id"); r.pod(rebuilds_, "rebuilds");
+  r.pod(clock_.time, "time"); r.pod(clock_.dt, "dt"); r.pod(contacts_.skin, "skin"); r.pod(max_speed_, "max speed");
+  r.pod(contacts_.max_disp, "displacement"); r.pod(clock_.step, "step"); r.pod(next_id_, "next id"); r.pod(contacts_.rebuilds, "rebuilds");
   r.pod(dirty, "state");
   r.vec(p_.x, "x"); r.vec(p_.v, "v"); r.vec(p_.w, "w"); r.vec(p_.f, "f"); r.vec(p_.t, "t");
   r.vec(p_.radius, "radius"); r.vec(p_.mass, "mass"); r.vec(p_.inv_mass, "inv_mass"); r.vec(p_.inv_inertia, "inv_inertia");
@@ -143,50 +150,51 @@ void World::load_checkpoint(const std::string& path) {
     throw InputError(path, 0, "particles", "particle arrays have different lengths");
   for (auto m : p_.material)
     if (m < 0 || m >= materials_.size()) throw InputError(path, 0, "particles", "particle material index out of range");
-  r.vec(pair_list_.row_begin, "neighbour list"); r.vec(pair_list_.neighbor, "neighbour list"); r.vec(pair_list_.shear, "history");
-  r.vec(pair_list_.roll, "history");
-  r.vec(pair_list_.touch, "history");
-  r.vec(wall_list_.begin, "wall list"); r.vec(wall_list_.wall, "wall list"); r.vec(wall_list_.element, "wall list");
-  r.vec(wall_list_.shear, "wall history"); r.vec(wall_list_.roll, "wall history"); r.vec(wall_list_.touch, "wall history");
-  r.vec(wall_list_.force, "wall forces"); r.vec(wall_list_.torque, "wall forces"); r.vec(wall_list_.point, "wall forces");
-  wall_list_.wall_torque.resize(wall_list_.point.size());  // derived in every force evaluation; not saved
-  r.vec(reference_.x, "reference positions"); r.vec(reference_.wall_time, "wall times"); r.vec(reference_.index_map, "index map");
+  r.vec(pairs.row_begin, "neighbour list"); r.vec(pairs.neighbor, "neighbour list"); r.vec(pairs.shear, "history");
+  r.vec(pairs.roll, "history");
+  r.vec(pairs.touch, "history");
+  r.vec(wall_list.begin, "wall list"); r.vec(wall_list.wall, "wall list"); r.vec(wall_list.element, "wall list");
+  r.vec(wall_list.shear, "wall history"); r.vec(wall_list.roll, "wall history"); r.vec(wall_list.touch, "wall history");
+  r.vec(wall_list.force, "wall forces"); r.vec(wall_list.torque, "wall forces"); r.vec(wall_list.point, "wall forces");
+  wall_list.wall_torque.resize(wall_list.point.size());  // derived in every force evaluation; not saved
+  r.vec(ref.x, "reference positions"); r.vec(ref.wall_time, "wall times"); r.vec(ref.index_map, "index map");
   // The saving World listed each wall by its motion then, which the scene being restored repeats (a
   // list of an older version covers the whole skin for every wall: more than needed, still right).
-  reference_.wall_listed_moving.resize(walls_.size());
-  for (std::size_t k = 0; k < walls_.size(); ++k) reference_.wall_listed_moving[k] = walls_[k].motion.moving() ? 1 : 0;
-  sink_scan_.clearance.clear();  // derived at the next rebuild; until then the sinks scan every step
-  if (pair_list_.row_begin.size() != n + 1 || wall_list_.begin.size() != n + 1 || reference_.x.size() != n)
+  ref.wall_listed_moving.resize(walls_.size());
+  for (std::size_t k = 0; k < walls_.size(); ++k) ref.wall_listed_moving[k] = walls_[k].motion.moving() ? 1 : 0;
+  sources_.sink_scan.clearance.clear();  // derived at the next rebuild; until then the sinks scan every step
+  if (pairs.row_begin.size() != n + 1 || wall_list.begin.size() != n + 1 || ref.x.size() != n)
     throw InputError(path, 0, "neighbour list", "sizes do not match the particle count");
-  wall_list_.index_owners();
-  for (auto j : pair_list_.neighbor)
+  wall_list.index_owners();
+  for (auto j : pairs.neighbor)
     if (j < 0 || static_cast<std::size_t>(j) >= n) throw InputError(path, 0, "neighbour list", "neighbour index out of range");
-  if (pair_list_.row_begin.front() != 0 || static_cast<std::size_t>(pair_list_.row_begin.back()) != pair_list_.neighbor.size() ||
-      pair_list_.shear.size() != pair_list_.neighbor.size() || pair_list_.roll.size() != pair_list_.neighbor.size() || pair_list_.touch.size() != pair_list_.neighbor.size())
+  if (pairs.row_begin.front() != 0 || static_cast<std::size_t>(pairs.row_begin.back()) != pairs.neighbor.size() ||
+      pairs.shear.size() != pairs.neighbor.size() || pairs.roll.size() != pairs.neighbor.size() ||
+      pairs.touch.size() != pairs.neighbor.size())
     throw InputError(path, 0, "neighbour list", "inconsistent neighbour list");
-  pair_list_.index_slots(thread_count());
-  blocks_.layout(n, kForceBlocks, thread_count(), pair_list_.row_begin, pair_list_.neighbor, wall_list_.begin);
-  pair_list_.measure_gaps(reference_.x.data(), p_.radius.data(), n, thread_count());
+  pairs.index_slots(thread_count());
+  blocks_.layout(n, kForceBlocks, thread_count(), pairs.row_begin, pairs.neighbor, wall_list.begin);
+  pairs.measure_gaps(ref.x.data(), p_.radius.data(), n, thread_count());
   for (auto& wl : walls_) {
     std::uint64_t ne;
     r.pod(ne, "wall elements");
     if (ne != wl.element_count()) mismatch("wall elements", ne, wl.element_count());
     r.pod(wl.force, "wall force"); r.pod(wl.torque, "wall torque"); r.vec(wl.element_force, "wall element forces");
-    wl.set_time(time_);
+    wl.set_time(clock_.time);
   }
-  for (auto& in : inserters_) {
+  for (auto& in : sources_.inserters) {
     std::uint8_t warned;
     r.pod(in.rng_state, "inserter"); r.pod(in.pending_mass, "inserter"); r.pod(in.inserted_mass, "inserter");
     r.pod(in.next_time, "inserter"); r.pod(warned, "inserter");
     in.warned_full = warned != 0;
   }
-  for (auto& s : sinks_) { r.pod(s.removed_mass, "sink"); r.pod(s.removed_count, "sink"); }
+  for (auto& s : sources_.sinks) { r.pod(s.removed_mass, "sink"); r.pod(s.removed_count, "sink"); }
   r.vec(p_.clump, "clump links"); r.vec(p_.body_offset, "clump links"); r.vec(p_.contact_mass, "clump links");
   if (p_.clump.size() != n || p_.body_offset.size() != n || p_.contact_mass.size() != n) throw InputError(path, 0, "clumps", "clump link arrays have the wrong length");
   r.vec(p_.held_by, "held particles");
   if (p_.held_by.size() != n) throw InputError(path, 0, "held particles", "array has the wrong length");
   for (auto h : p_.held_by)
-    if (h >= static_cast<std::int32_t>(inserters_.size())) throw InputError(path, 0, "held particles", "inserter index out of range");
+    if (h >= static_cast<std::int32_t>(sources_.inserters.size())) throw InputError(path, 0, "held particles", "inserter index out of range");
   index_held();
   std::uint64_t nshapes;
   r.pod(nshapes, "clump shapes");
@@ -212,10 +220,10 @@ void World::load_checkpoint(const std::string& path) {
     b.q.emplace_back(qw[c], q3[c].x(), q3[c].y(), q3[c].z());
     b.rot.push_back(b.q.back().toRotationMatrix());
   }
-  if (settings_.dt > 0.0 && settings_.dt != dt_)
-    warn(fmt::format("checkpoint {} uses dt = {:.6g} s; the scene's dt {:.6g} s is ignored", path, dt_, settings_.dt));
+  if (settings_.dt > 0.0 && settings_.dt != clock_.dt)
+    warn(fmt::format("checkpoint {} uses dt = {:.6g} s; the scene's dt {:.6g} s is ignored", path, clock_.dt, settings_.dt));
   initialised_ = init != 0;
-  list_dirty_ = dirty != 0;
+  contacts_.dirty = dirty != 0;
 }
 
 }  // namespace chutelab::dem

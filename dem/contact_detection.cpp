@@ -11,20 +11,20 @@
 namespace chutelab::dem {
 
 bool World::needs_rebuild() const {
-  if (list_dirty_) return true;
-  if (2.0 * max_disp_ > skin_) return true;
+  if (contacts_.dirty) return true;
+  if (2.0 * contacts_.max_disp > contacts_.skin) return true;
   for (std::size_t k = 0; k < walls_.size(); ++k)
     if (walls_[k].motion.moving()) {
       // Set moving after the last rebuild: its elements were listed only for a still wall's reach.
-      if (!reference_.wall_listed_moving[k]) return true;
-      if (max_disp_ + wall_displacement_since_rebuild(walls_[k]) > skin_) return true;
+      if (!contacts_.reference.wall_listed_moving[k]) return true;
+      if (contacts_.max_disp + wall_displacement_since_rebuild(walls_[k]) > contacts_.skin) return true;
     }
   return false;
 }
 
 double World::wall_displacement_since_rebuild(const Wall& w) const {
   const std::size_t k = static_cast<std::size_t>(&w - walls_.data());
-  const double dt = time_ - reference_.wall_time[k];
+  const double dt = clock_.time - contacts_.reference.wall_time[k];
   return w.motion.velocity.norm() * std::abs(dt) +
          std::abs(w.motion.omega.norm() * dt) * reach_from_pivot(w);
 }
@@ -32,29 +32,29 @@ double World::wall_displacement_since_rebuild(const Wall& w) const {
 void World::rebuild() {
   const std::size_t n = p_.size();
   const int nt = thread_count();
-  history_.save(pair_list_, wall_list_, nt);
-  std::vector<std::int32_t> map = std::move(reference_.index_map);  // old list index -> current index
+  contacts_.history.save(contacts_.pairs, contacts_.walls, nt);
+  std::vector<std::int32_t> map = std::move(contacts_.reference.index_map);  // old list index -> current index
   CellGrid grid;
   std::vector<std::int32_t> order;
-  grid.build(p_, skin_, nt, order);
+  grid.build(p_, contacts_.skin, nt, order);
   if (settings_.sort_particles) sort_by_cell(grid, order, map);
-  pair_list_.build(grid, p_, skin_, settings_.sort_particles, nt);
-  wall_list_.build(grid, p_, walls_, skin_, nt);
-  blocks_.layout(n, kForceBlocks, nt, pair_list_.row_begin, pair_list_.neighbor, wall_list_.begin);
+  contacts_.pairs.build(grid, p_, contacts_.skin, settings_.sort_particles, nt);
+  contacts_.walls.build(grid, p_, walls_, contacts_.skin, nt);
+  blocks_.layout(n, kForceBlocks, nt, contacts_.pairs.row_begin, contacts_.pairs.neighbor, contacts_.walls.begin);
   // Each old contact lands in its own new slot, so the rows can be carried over in parallel.
-  pair_list_.carry_history(history_, map, nt);
-  wall_list_.carry_history(history_, map, nt);
+  contacts_.pairs.carry_history(contacts_.history, map, nt);
+  contacts_.walls.carry_history(contacts_.history, map, nt);
   take_reference(nt);
   scan_sinks();
-  list_dirty_ = false;
-  ++rebuilds_;
+  contacts_.dirty = false;
+  ++contacts_.rebuilds;
 }
 
 // Particles in cell order, for memory locality and the sorted search (NeighborList::build).
 void World::sort_by_cell(CellGrid& grid, const std::vector<std::int32_t>& order, std::vector<std::int32_t>& map) {
   const std::size_t n = order.size();
   p_.permute(order, thread_count());
-  if (!held_.empty()) index_held();
+  if (!sources_.held.empty()) index_held();
   std::vector<std::int32_t> inv(n);
   for (std::size_t k = 0; k < n; ++k) inv[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k);
   for (auto& m : map)
@@ -64,24 +64,24 @@ void World::sort_by_cell(CellGrid& grid, const std::vector<std::int32_t>& order,
 
 void World::take_reference(int nt) {
   const std::size_t n = p_.size();
-  reference_.index_map.resize(n);
-  reference_.x.resize(n);
+  contacts_.reference.index_map.resize(n);
+  contacts_.reference.x.resize(n);
   {
     const Vec3* __restrict px = p_.x.data();
-    Vec3* __restrict xr = reference_.x.data();
-    std::int32_t* __restrict im = reference_.index_map.data();
+    Vec3* __restrict xr = contacts_.reference.x.data();
+    std::int32_t* __restrict im = contacts_.reference.index_map.data();
 #pragma omp parallel for num_threads(nt) schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       im[i] = static_cast<std::int32_t>(i);
       xr[i] = px[i];
     }
   }
-  pair_list_.measure_gaps(reference_.x.data(), p_.radius.data(), n, nt);
+  contacts_.pairs.measure_gaps(contacts_.reference.x.data(), p_.radius.data(), n, nt);
   for (std::size_t k = 0; k < walls_.size(); ++k) {
-    reference_.wall_time[k] = time_;
-    reference_.wall_listed_moving[k] = walls_[k].motion.moving() ? 1 : 0;
+    contacts_.reference.wall_time[k] = clock_.time;
+    contacts_.reference.wall_listed_moving[k] = walls_[k].motion.moving() ? 1 : 0;
   }
-  max_disp_ = 0.0;
+  contacts_.max_disp = 0.0;
 }
 
 }  // namespace chutelab::dem

@@ -19,35 +19,35 @@ template <class Model>
 void World::compute_forces_impl(const BlockCallback& after_block) {
   const std::size_t n = p_.size();
   const int nt = thread_count();
-  const auto& table = std::get<std::vector<typename Model::Coeffs>>(pair_table_);
+  const auto& table = std::get<std::vector<typename Model::Coeffs>>(law_table_.pairs);
   const auto nmat = static_cast<std::size_t>(materials_.size());
   // Rounded up: a gap at or below the float limit goes to the full test.
-  const double gap_limit = 2.0 * max_disp_ + pair_list_.gap_eps;
+  const double gap_limit = 2.0 * contacts_.max_disp + contacts_.pairs.gap_eps;
   float gap_limit_f = static_cast<float>(gap_limit);
   if (static_cast<double>(gap_limit_f) < gap_limit) gap_limit_f = std::nextafter(gap_limit_f, std::numeric_limits<float>::infinity());
   // Contact laws see a clump sphere's whole body mass (its damping and time scale are those of the
   // body); gravity uses each sphere's share (finish_block). For free spheres the two are the same.
   const pair_loop::PairArrays<typename Model::Coeffs> pairs{p_.x.data(), p_.v.data(), p_.w.data(), p_.radius.data(), p_.contact_mass.data(),
-                                    p_.inv_inertia.data(), p_.material.data(), pair_list_.row_begin.data(),
-                                    pair_list_.neighbor.data(), pair_list_.slot_row.data(), pair_list_.shear.data(),
-                                    pair_list_.roll.data(), pair_list_.touch.data(), table.data(), nmat, dt_, pair_list_.gap.data(), gap_limit_f,
+                                    p_.inv_inertia.data(), p_.material.data(), contacts_.pairs.row_begin.data(),
+                                    contacts_.pairs.neighbor.data(), contacts_.pairs.slot_row.data(), contacts_.pairs.shear.data(),
+                                    contacts_.pairs.roll.data(), contacts_.pairs.touch.data(), table.data(), nmat, clock_.dt, contacts_.pairs.gap.data(), gap_limit_f,
                                     pair_loop::gather_in_law()};
   wall_frames_.resize(walls_.size());
-  wall_observed_.assign(walls_.size(), 0);
+  hooks_.wall_observed.assign(walls_.size(), 0);
   for (std::size_t k = 0; k < walls_.size(); ++k) {
     wall_frames_[k] = WallFrame::of(walls_[k]);
-    wall_observed_[k] = k < wall_observers_.size() && wall_observers_[k] ? 1 : 0;
+    hooks_.wall_observed[k] = k < hooks_.wall_observers.size() && hooks_.wall_observers[k] ? 1 : 0;
   }
-  if (!wall_observers_.empty()) {
-    wall_list_.observed_normal.resize(wall_list_.size());
-    wall_list_.observed_velocity.resize(wall_list_.size());
+  if (!hooks_.wall_observers.empty()) {
+    contacts_.walls.observed_normal.resize(contacts_.walls.size());
+    contacts_.walls.observed_velocity.resize(contacts_.walls.size());
   }
   const WallForceArrays<typename Model::Coeffs> wall_arrays{p_.x.data(), p_.v.data(), p_.w.data(), p_.radius.data(), p_.contact_mass.data(),
                                     p_.inv_inertia.data(), p_.material.data(), walls_.data(), wall_frames_.data(),
-                                    wall_observed_.data(), table.data(), nmat, dt_,
-                                    &wall_list_};
-  const std::int32_t* owners = wall_list_.owners.data();
-  const std::size_t n_owners = wall_list_.owners.size();
+                                    hooks_.wall_observed.data(), table.data(), nmat, clock_.dt,
+                                    &contacts_.walls};
+  const std::int32_t* owners = contacts_.walls.owners.data();
+  const std::size_t n_owners = contacts_.walls.owners.size();
   const std::size_t nblocks = blocks_.count();
   wall_loads_.prepare(walls_, nblocks, static_cast<std::size_t>(nt));
   // Each thread takes the blocks of its share (dem/force_blocks.h) in every phase: the wall contacts
@@ -92,8 +92,8 @@ void World::finish_block(std::size_t b, std::size_t thread, const BlockCallback&
   // loops. The body force and the held particles follow on the same particles while their forces
   // are in cache (each is per particle, so the split does not change a number).
   blocks_.reduce(b, f, t);
-  wall_loads_.finish_block(b, thread, lo, hi, wall_list_, p_.mass.data(), settings_.gravity, f, t);
-  if (body_force_) body_force_(p_, time_, lo, hi, p_.f);
+  wall_loads_.finish_block(b, thread, lo, hi, contacts_.walls, p_.mass.data(), settings_.gravity, f, t);
+  if (hooks_.body_force) hooks_.body_force(p_, clock_.time, lo, hi, p_.f);
   // A held particle (Inserter::hold_to_face) feels nothing: with no force the kicks leave its
   // velocity as set, so the drift moves it rigidly. Its partners still feel it.
   for (const std::int32_t h : held_between(lo, hi)) {
@@ -107,7 +107,7 @@ void World::finish_block(std::size_t b, std::size_t thread, const BlockCallback&
 
 void World::compute_forces(const BlockCallback& after_block) {
   derive_pair_table();
-  with_contact_model(settings_.normal, settings_.tangential, settings_.rolling, cohesive_,
+  with_contact_model(settings_.normal, settings_.tangential, settings_.rolling, law_table_.cohesive,
                      [&]<class Model>() { compute_forces_impl<Model>(after_block); });
 }
 

@@ -13,25 +13,25 @@ namespace chutelab::dem {
 
 void World::insert_and_delete() {
   // Sinks first, so that their mass counts and indices are settled before new particles arrive.
-  if (!sinks_.empty() && anything_behind_sinks()) remove_behind_sinks();
-  if (!held_.empty()) release_held();
-  for (std::size_t k = 0; k < inserters_.size(); ++k) insert_from(k);
+  if (!sources_.sinks.empty() && anything_behind_sinks()) remove_behind_sinks();
+  if (!sources_.held.empty()) release_held();
+  for (std::size_t k = 0; k < sources_.inserters.size(); ++k) insert_from(k);
 }
 
 bool World::anything_behind_sinks() const {
-  // Skipping the scan is exact: a particle within max_disp_ of where it stood at the rebuild is
+  // Skipping the scan is exact: a particle within contacts_.max_disp of where it stood at the rebuild is
   // still in front of a sink that every particle then cleared by more than that (the 1 nm margin
   // covers the rounding of the dot products). No clearance yet (a checkpoint, a new sink): scan.
   // A sink that cannot be skipped scans only the particles listed within a skin of it at the
-  // rebuild (the same margin argument), unless max_disp_ has reached that skin.
-  const bool listed = sink_scan_.clearance.size() == sinks_.size();
+  // rebuild (the same margin argument), unless contacts_.max_disp has reached that skin.
+  const bool listed = sources_.sink_scan.clearance.size() == sources_.sinks.size();
   bool any = false;
-  for (std::size_t k = 0; k < sinks_.size() && !any; ++k) {
-    const Sink& s = sinks_[k];
-    const double moved = max_disp_ * s.normal.norm();
-    if (listed && sink_scan_.clearance[k] - moved > 1e-9) continue;
-    if (listed && moved + 1e-9 < sink_scan_.reach[k]) {
-      for (const std::int32_t i : sink_scan_.near[k])
+  for (std::size_t k = 0; k < sources_.sinks.size() && !any; ++k) {
+    const Sink& s = sources_.sinks[k];
+    const double moved = contacts_.max_disp * s.normal.norm();
+    if (listed && sources_.sink_scan.clearance[k] - moved > 1e-9) continue;
+    if (listed && moved + 1e-9 < sources_.sink_scan.reach[k]) {
+      for (const std::int32_t i : sources_.sink_scan.near[k])
         if ((p_.x[static_cast<std::size_t>(i)] - s.point).dot(s.normal) < 0.0) any = true;
     } else {
       for (std::size_t i = 0; i < p_.size() && !any; ++i)
@@ -44,8 +44,8 @@ bool World::anything_behind_sinks() const {
 void World::remove_behind_sinks() {
   std::vector<int> sink_of(p_.size(), -1);
   for (std::size_t i = 0; i < p_.size(); ++i)
-    for (std::size_t k = 0; k < sinks_.size(); ++k)
-      if ((p_.x[i] - sinks_[k].point).dot(sinks_[k].normal) < 0.0) {
+    for (std::size_t k = 0; k < sources_.sinks.size(); ++k)
+      if ((p_.x[i] - sources_.sinks[k].point).dot(sources_.sinks[k].normal) < 0.0) {
         sink_of[i] = static_cast<int>(k);
         break;
       }
@@ -59,8 +59,8 @@ void World::remove_behind_sinks() {
   }
   for (std::size_t i = 0; i < p_.size(); ++i)
     if (sink_of[i] >= 0) {
-      sinks_[static_cast<std::size_t>(sink_of[i])].removed_mass += p_.mass[i];
-      ++sinks_[static_cast<std::size_t>(sink_of[i])].removed_count;
+      sources_.sinks[static_cast<std::size_t>(sink_of[i])].removed_mass += p_.mass[i];
+      ++sources_.sinks[static_cast<std::size_t>(sink_of[i])].removed_count;
     }
   remove_particles_if([&](std::size_t i) { return sink_of[i] >= 0; });
 }
@@ -76,7 +76,7 @@ void World::release_held() {
     const auto [lo, hi] = blocks_.thread_rows(np);
     for (const std::int32_t h : held_between(lo, hi)) {
       const auto i = static_cast<std::size_t>(h);
-      const Inserter& in = inserters_[static_cast<std::size_t>(p_.held_by[i])];
+      const Inserter& in = sources_.inserters[static_cast<std::size_t>(p_.held_by[i])];
       const int a = in.hold_axis;
       const bool through = in.velocity[a] < 0.0 ? p_.x[i][a] <= in.region.lo[a] : p_.x[i][a] >= in.region.hi[a];
       if (!through) continue;
@@ -86,14 +86,14 @@ void World::release_held() {
     }
   }
   if (released > 0)  // the released ones now have held_by = -1
-    std::erase_if(held_, [&](std::int32_t i) { return p_.held_by[static_cast<std::size_t>(i)] < 0; });
+    std::erase_if(sources_.held, [&](std::int32_t i) { return p_.held_by[static_cast<std::size_t>(i)] < 0; });
 }
 
 void World::insert_from(std::size_t k) {
-  Inserter& in = inserters_[k];
-  if (time_ < in.start_time || time_ - dt_ >= in.end_time) return;
-  in.pending_mass += in.mass_rate * dt_;
-  if (time_ + 0.5 * dt_ < in.next_time) return;
+  Inserter& in = sources_.inserters[k];
+  if (clock_.time < in.start_time || clock_.time - clock_.dt >= in.end_time) return;
+  in.pending_mass += in.mass_rate * clock_.dt;
+  if (clock_.time + 0.5 * clock_.dt < in.next_time) return;
   in.next_time += in.interval;
   // Nearby particles that a new one could overlap.
   std::vector<std::size_t> near;
@@ -111,7 +111,7 @@ void World::insert_from(std::size_t k) {
     if (!in.warned_full) {
       warn(fmt::format("inserter cannot place particles fast enough at t = {:.4g} s ({:.3g} kg owed): the "
                        "insertion region is full; enlarge it or lower the mass rate",
-                       time_, in.pending_mass));
+                       clock_.time, in.pending_mass));
       in.warned_full = true;
     }
     break;
@@ -119,7 +119,7 @@ void World::insert_from(std::size_t k) {
 }
 
 bool World::try_insert_sphere(std::size_t k, double r, std::vector<std::size_t>& near) {
-  Inserter& in = inserters_[k];
+  Inserter& in = sources_.inserters[k];
   for (int attempt = 0; attempt < in.max_attempts; ++attempt) {
     Vec3 pos;
     for (int d = 0; d < 3; ++d)
@@ -145,7 +145,7 @@ bool World::try_insert_sphere(std::size_t k, double r, std::vector<std::size_t>&
     add_particle(spec);
     if (in.hold_to_face) {
       p_.held_by.back() = static_cast<std::int32_t>(k);
-      held_.push_back(static_cast<std::int32_t>(p_.size() - 1));
+      sources_.held.push_back(static_cast<std::int32_t>(p_.size() - 1));
     }
     near.push_back(p_.size() - 1);
     const double rho = materials_.material(in.material).density;
@@ -158,24 +158,25 @@ bool World::try_insert_sphere(std::size_t k, double r, std::vector<std::size_t>&
 }
 
 // How far every particle is from each sink now: until one has moved that far, none can be behind it,
-// and insert_and_delete skips its scan (a particle moves at most max_disp_ from reference_.x). The
-// particles within one skin of a sink are listed: until max_disp_ reaches the skin no other can be
-// behind it, so the scan, when it cannot be skipped, looks at them only.
+// and insert_and_delete skips its scan (a particle moves at most contacts_.max_disp from
+// contacts_.reference.x). The particles within one skin of a sink are listed: until
+// contacts_.max_disp reaches the skin no other can be behind it, so the scan, when it cannot be
+// skipped, looks at them only.
 void World::scan_sinks() {
   const std::size_t n = p_.size();
-  sink_scan_.clearance.resize(sinks_.size());
-  sink_scan_.near.resize(sinks_.size());
-  sink_scan_.reach.resize(sinks_.size());
-  for (std::size_t k = 0; k < sinks_.size(); ++k) {
+  sources_.sink_scan.clearance.resize(sources_.sinks.size());
+  sources_.sink_scan.near.resize(sources_.sinks.size());
+  sources_.sink_scan.reach.resize(sources_.sinks.size());
+  for (std::size_t k = 0; k < sources_.sinks.size(); ++k) {
     // A local minimum: stored through the member each time, it was a store-to-load chain per
     // particle (aliasing), about a fifth of a station rebuild's serial time.
-    const Vec3 point = sinks_[k].point, normal = sinks_[k].normal;
-    const double reach = skin_ * normal.norm();
+    const Vec3 point = sources_.sinks[k].point, normal = sources_.sinks[k].normal;
+    const double reach = contacts_.skin * normal.norm();
     double c = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) c = std::min(c, (p_.x[i] - point).dot(normal));
-    sink_scan_.clearance[k] = c;
-    sink_scan_.reach[k] = reach;
-    std::vector<std::int32_t>& near = sink_scan_.near[k];
+    sources_.sink_scan.clearance[k] = c;
+    sources_.sink_scan.reach[k] = reach;
+    std::vector<std::int32_t>& near = sources_.sink_scan.near[k];
     near.clear();
     if (c <= reach)  // only a sink some particle is near needs the list
       for (std::size_t i = 0; i < n; ++i)

@@ -55,7 +55,7 @@ std::int64_t World::add_particle(const ParticleSpec& s) {
   const double m = rho * 4.0 / 3.0 * std::numbers::pi * s.radius * s.radius * s.radius;
   const std::int64_t id = next_id_++;
   p_.push_back(s.position, s.velocity, s.omega, s.radius, m, s.material, id);
-  list_dirty_ = true;
+  contacts_.dirty = true;
   return id;
 }
 
@@ -66,11 +66,11 @@ int World::add_wall(Wall w) {
   if (!w.motion.omega.isZero(0.0) && !std::isfinite(reach_from_pivot(w)))
     throw InputError("", 0, field,
                      "an unbounded plane or infinite cylinder cannot rotate (bound it or use a mesh)");
-  w.set_time(time_);
+  w.set_time(clock_.time);
   walls_.push_back(std::move(w));
-  reference_.wall_time.push_back(time_);
-  reference_.wall_listed_moving.push_back(0);
-  list_dirty_ = true;
+  contacts_.reference.wall_time.push_back(clock_.time);
+  contacts_.reference.wall_listed_moving.push_back(0);
+  contacts_.dirty = true;
   return static_cast<int>(walls_.size()) - 1;
 }
 
@@ -103,15 +103,15 @@ int World::add_inserter(Inserter in) {
     throw InputError("", 0, field, "insertion region is narrower than one particle diameter");
   in.rng_state = in.seed;
   in.next_time = in.start_time;
-  inserters_.push_back(in);
-  return static_cast<int>(inserters_.size()) - 1;
+  sources_.inserters.push_back(in);
+  return static_cast<int>(sources_.inserters.size()) - 1;
 }
 
 int World::add_sink(Sink s) {
   if (!(s.normal.norm() > 0.0)) throw InputError("", 0, "sink", "sink normal must be non-zero");
   s.normal.normalize();
-  sinks_.push_back(s);
-  return static_cast<int>(sinks_.size()) - 1;
+  sources_.sinks.push_back(s);
+  return static_cast<int>(sources_.sinks.size()) - 1;
 }
 
 void World::remove_particles_if(const std::function<bool(std::size_t)>& pred) {
@@ -129,16 +129,16 @@ void World::remove_particles_if(const std::function<bool(std::size_t)>& pred) {
     }
   if (keep.size() == n) return;
   p_.permute(keep);
-  if (!held_.empty()) index_held();
-  for (auto& m : reference_.index_map)
+  if (!sources_.held.empty()) index_held();
+  for (auto& m : contacts_.reference.index_map)
     if (m >= 0) m = remap[static_cast<std::size_t>(m)];
-  list_dirty_ = true;
+  contacts_.dirty = true;
 }
 
 double World::source_speed() const {
   double vmax = 0.0;
   for (const auto& vi : p_.v) vmax = std::max(vmax, vi.norm());
-  for (const auto& in : inserters_) vmax = std::max(vmax, in.velocity.norm());
+  for (const auto& in : sources_.inserters) vmax = std::max(vmax, in.velocity.norm());
   for (const auto& w : walls_) {
     double vw = w.motion.velocity.norm() + w.surface.linear.norm();
     vw += (w.motion.omega.norm() + w.surface.omega.norm()) * std::min(reach_from_pivot(w), 10.0);
@@ -164,7 +164,7 @@ TimeStepEstimate World::time_step_estimate() const {
     auto& r = rmin[static_cast<std::size_t>(p_.material[i])];
     r = std::min(r, p_.radius[i]);
   }
-  for (const auto& in : inserters_) {
+  for (const auto& in : sources_.inserters) {
     auto& r = rmin[static_cast<std::size_t>(in.material)];
     r = std::min(r, in.radius_min);
   }
@@ -203,7 +203,7 @@ void World::check_contact_law() const {
   };
   std::vector<char> used(static_cast<std::size_t>(materials_.size()), 0);
   for (auto m : p_.material) used[static_cast<std::size_t>(m)] = 1;
-  for (const auto& in : inserters_) used[static_cast<std::size_t>(in.material)] = 1;
+  for (const auto& in : sources_.inserters) used[static_cast<std::size_t>(in.material)] = 1;
   settings_.normal.visit([&]<class Law>() {
     for (int a = 0; a < materials_.size(); ++a)
       for (int b = 0; b < materials_.size(); ++b)
@@ -233,13 +233,13 @@ void World::check_contact_law() const {
 }
 
 void World::derive_pair_table() {
-  if (pair_table_revision_ == materials_.revision()) return;
+  if (law_table_.revision == materials_.revision()) return;
   settings_.normal.visit([&]<class Law>() {
     auto table = pair_table<Law>(materials_);
-    cohesive_ = std::any_of(table.begin(), table.end(), [](const PairCoeffs<Law>& c) { return c.cohesion > 0.0; });
-    pair_table_ = std::move(table);
+    law_table_.cohesive = std::any_of(table.begin(), table.end(), [](const PairCoeffs<Law>& c) { return c.cohesion > 0.0; });
+    law_table_.pairs = std::move(table);
   });
-  pair_table_revision_ = materials_.revision();
+  law_table_.revision = materials_.revision();
 }
 
 void World::initialise() {
@@ -250,23 +250,23 @@ void World::initialise() {
   derive_pair_table();
   const TimeStepEstimate est = time_step_estimate();
   if (settings_.dt > 0.0) {
-    dt_ = settings_.dt;
-    if (std::isfinite(est.unsafe_above) && dt_ > est.unsafe_above)
+    clock_.dt = settings_.dt;
+    if (std::isfinite(est.unsafe_above) && clock_.dt > est.unsafe_above)
       warn(fmt::format(
           "time step {:.3g} s is unsafe: the shortest collision lasts {:.3g} s ({:.1f} steps; need >= 4) and the "
           "Rayleigh time is {:.3g} s (dt/t_R = {:.2f}; need <= {}); recommended dt = {:.3g} s",
-          dt_, est.collision, est.collision / dt_, est.rayleigh, dt_ / est.rayleigh, kUnsafeFractionOfRayleigh,
+          clock_.dt, est.collision, est.collision / clock_.dt, est.rayleigh, clock_.dt / est.rayleigh, kUnsafeFractionOfRayleigh,
           est.recommended));
   } else {
     if (!std::isfinite(est.recommended))
       throw InputError("", 0, "dt", "cannot derive a time step: no particles and no inserters; set dt");
-    dt_ = est.recommended;
+    clock_.dt = est.recommended;
   }
   double rmax = 0.0;
   for (double r : p_.radius) rmax = std::max(rmax, r);
-  for (const auto& in : inserters_) rmax = std::max(rmax, in.radius_max);
-  skin_ = settings_.skin > 0.0 ? settings_.skin : 0.25 * rmax;
-  if (!(skin_ > 0.0)) skin_ = 1e-3;
+  for (const auto& in : sources_.inserters) rmax = std::max(rmax, in.radius_max);
+  contacts_.skin = settings_.skin > 0.0 ? settings_.skin : 0.25 * rmax;
+  if (!(contacts_.skin > 0.0)) contacts_.skin = 1e-3;
   if (settings_.max_speed > 0.0) {
     max_speed_ = settings_.max_speed;
   } else {
@@ -275,7 +275,7 @@ void World::initialise() {
     max_speed_ = 2.0 * (source_speed() + fall_speed()) + 1.0;
   }
   initialised_ = true;
-  for (auto& w : walls_) w.set_time(time_);
+  for (auto& w : walls_) w.set_time(clock_.time);
   rebuild();
   compute_forces();
   if (clumps_.size() > 0) clumps_.gather(p_, settings_.gravity);
@@ -291,45 +291,46 @@ void World::step(std::int64_t n) {
   bool opened = false;  // this step's first half kick and drift were done by the last closing pass
   double maxd2_next = 0.0;
   for (std::int64_t s = 0; s < n; ++s) {
-    if (list_dirty_) {  // particles added or removed by the caller since the last step (never after an opening pass)
+    // Particles added or removed by the caller since the last step (never after an opening pass).
+    if (contacts_.dirty) {
       rebuild();
       compute_forces();
     }
-    double maxd2 = opened ? maxd2_next : verlet_pass({.open = true}, max_disp_ * max_disp_).second;
-    if (clumps_.size() > 0) clumps_after_drift(dt_, maxd2);
-    max_disp_ = std::sqrt(maxd2);
+    double maxd2 = opened ? maxd2_next : verlet_pass({.open = true}, contacts_.max_disp * contacts_.max_disp).second;
+    if (clumps_.size() > 0) clumps_after_drift(clock_.dt, maxd2);
+    contacts_.max_disp = std::sqrt(maxd2);
     advance_time();
-    if (!inserters_.empty() || !sinks_.empty()) insert_and_delete();
+    if (!sources_.inserters.empty() || !sources_.sinks.empty()) insert_and_delete();
     if (needs_rebuild()) rebuild();
     const bool fused = clumps_.size() == 0;
     opened = fused && s + 1 < n;
-    const VerletPass closing{.close = true, .check = (step_ + 1) % settings_.check_every == 0, .open = opened};
+    const VerletPass closing{.close = true, .check = (clock_.step + 1) % settings_.check_every == 0, .open = opened};
     std::size_t first_bad = p_.size();
     if (fused) {
       BlockClosing close_block(verlet_state(), closing, state_limits(), static_cast<std::size_t>(thread_count()),
                                p_.size());
       compute_forces(std::ref(close_block));
       first_bad = close_block.first_bad();
-      maxd2_next = std::max(max_disp_ * max_disp_, close_block.maxd2());
+      maxd2_next = std::max(contacts_.max_disp * contacts_.max_disp, close_block.maxd2());
     } else {
       compute_forces();
     }
     // The observers read what each contact saw, stored with it: the particles may have moved on.
-    if (!wall_observers_.empty()) report_wall_contacts();
-    if (load_observer_) load_observer_();
+    if (!hooks_.wall_observers.empty()) report_wall_contacts();
+    if (hooks_.load_observer) hooks_.load_observer();
     if (!fused) {
       first_bad = verlet_pass(closing, 0.0).first;
-      clumps_after_forces(dt_);
+      clumps_after_forces(clock_.dt);
     }
-    ++step_;
+    ++clock_.step;
     if (first_bad < p_.size()) report_bad(first_bad);
   }
 }
 
 void World::advance_time() {
-  time_ = static_cast<double>(step_ + 1) * dt_;  // no accumulated round-off in time
+  clock_.time = static_cast<double>(clock_.step + 1) * clock_.dt;  // no accumulated round-off in time
   for (auto& w : walls_)
-    if (w.motion.moving()) w.set_time(time_);
+    if (w.motion.moving()) w.set_time(clock_.time);
 }
 
 std::pair<std::size_t, double> World::verlet_pass(const VerletPass& pass, double maxd2) {
@@ -353,10 +354,10 @@ void World::check_state() const {
 }
 
 void World::report_bad(std::size_t i) const {
-  const std::string where = fmt::format("DEM stopped at step {} (t = {:.6g} s): particle id {} ", step_, time_, p_.id[i]);
+  const std::string where = fmt::format("DEM stopped at step {} (t = {:.6g} s): particle id {} ", clock_.step, clock_.time, p_.id[i]);
   const TimeStepEstimate est = time_step_estimate();
   const std::string hint = fmt::format(
-      " Time step {:.3g} s; collision time {:.3g} s, Rayleigh time {:.3g} s, recommended dt {:.3g} s.", dt_,
+      " Time step {:.3g} s; collision time {:.3g} s, Rayleigh time {:.3g} s, recommended dt {:.3g} s.", clock_.dt,
       est.collision, est.rayleigh, est.recommended);
   if (!p_.x[i].allFinite() || !p_.v[i].allFinite() || !p_.w[i].allFinite())
     throw SimulationError(where + fmt::format("has a non-finite state (x = {}, v = {}): the integration blew up.",
@@ -371,20 +372,20 @@ void World::report_bad(std::size_t i) const {
 }
 
 void World::index_held() {
-  held_.clear();
+  sources_.held.clear();
   for (std::size_t i = 0; i < p_.held_by.size(); ++i)
-    if (p_.held_by[i] >= 0) held_.push_back(static_cast<std::int32_t>(i));
+    if (p_.held_by[i] >= 0) sources_.held.push_back(static_cast<std::int32_t>(i));
 }
 
 std::size_t World::contact_count() const {
   std::size_t n = 0;
-  for (auto t : pair_list_.touch) n += t;
+  for (auto t : contacts_.pairs.touch) n += t;
   return n;
 }
 
 std::size_t World::wall_contact_count() const {
   std::size_t n = 0;
-  for (auto t : wall_list_.touch) n += t;
+  for (auto t : contacts_.walls.touch) n += t;
   return n;
 }
 
@@ -412,21 +413,21 @@ double World::elastic_energy() const {
       return table[static_cast<std::size_t>(a) * nmat + static_cast<std::size_t>(b)].normal;
     };
     double sum = 0.0;
-    for (std::size_t i = 0; i + 1 < pair_list_.row_begin.size(); ++i)
-      for (auto s = pair_list_.row_begin[i]; s < pair_list_.row_begin[i + 1]; ++s) {
-        const auto j = static_cast<std::size_t>(pair_list_.neighbor[static_cast<std::size_t>(s)]);
+    for (std::size_t i = 0; i + 1 < contacts_.pairs.row_begin.size(); ++i)
+      for (auto s = contacts_.pairs.row_begin[i]; s < contacts_.pairs.row_begin[i + 1]; ++s) {
+        const auto j = static_cast<std::size_t>(contacts_.pairs.neighbor[static_cast<std::size_t>(s)]);
         const double rs = p_.radius[i] + p_.radius[j];
         const double delta = rs - (p_.x[j] - p_.x[i]).norm();
         if (delta <= 0.0) continue;
         const double r_eff = p_.radius[i] * p_.radius[j] / rs;
         sum += Law::elastic_energy(pair(p_.material[i], p_.material[j]), delta, r_eff);
       }
-    for (std::size_t q = 0; q < wall_list_.touch.size(); ++q) {
-      if (!wall_list_.touch[q]) continue;
-      const auto i = static_cast<std::size_t>(wall_list_.owner[q]);
-      const double delta = p_.radius[i] - (wall_list_.point[q] - p_.x[i]).norm();
+    for (std::size_t q = 0; q < contacts_.walls.touch.size(); ++q) {
+      if (!contacts_.walls.touch[q]) continue;
+      const auto i = static_cast<std::size_t>(contacts_.walls.owner[q]);
+      const double delta = p_.radius[i] - (contacts_.walls.point[q] - p_.x[i]).norm();
       if (delta <= 0.0) continue;
-      const Wall& w = walls_[static_cast<std::size_t>(wall_list_.wall[q])];
+      const Wall& w = walls_[static_cast<std::size_t>(contacts_.walls.wall[q])];
       sum += Law::elastic_energy(pair(p_.material[i], w.material), delta, p_.radius[i]);
     }
     return sum;

@@ -107,14 +107,14 @@ class World {
   int add_wall(Wall wall);
   int add_inserter(Inserter inserter);
   int add_sink(Sink sink);
-  void set_body_force(BodyForceHook hook) { body_force_ = std::move(hook); }
+  void set_body_force(BodyForceHook hook) { hooks_.body_force = std::move(hook); }
   // Calls `fn` for every contact on wall `wall` at the end of every step (dem/walls/wall_contact.h).
   void observe_wall(int wall, WallContactObserver fn);
   // Calls `fn` once per step when that step's wall loads (Wall::force, torque, element_force) are
   // final, after the wall observers. For sampling loads every step inside one step(n) call; the
   // particles have by then moved on (their closing kick, and the next step's drift, run with the
   // forces), so read loads only.
-  void observe_wall_loads(std::function<void()> fn) { load_observer_ = std::move(fn); }
+  void observe_wall_loads(std::function<void()> fn) { hooks_.load_observer = std::move(fn); }
   // Removes particles for which pred(index) is true (e.g. by id or region); a clump goes as a whole
   // when any of its spheres is selected.
   void remove_particles_if(const std::function<bool(std::size_t)>& pred);
@@ -124,9 +124,9 @@ class World {
   // Validates the scene, picks dt and computes the initial forces; step() calls it when needed.
   void initialise();
 
-  double time() const { return time_; }
-  std::int64_t step_count() const { return step_; }
-  double dt() const { return dt_; }
+  double time() const { return clock_.time; }
+  std::int64_t step_count() const { return clock_.step; }
+  double dt() const { return clock_.dt; }
   const Settings& settings() const { return settings_; }
   // Results do not depend on the thread count, at any step: it may change between calls to step()
   // (a campaign's last runs take the cores its other workers free).
@@ -135,27 +135,27 @@ class World {
   const Particles& particles() const { return p_; }
   // Mutable access; call mark_changed() after editing positions or radii by hand.
   Particles& particles() { return p_; }
-  void mark_changed() { list_dirty_ = true; }
+  void mark_changed() { contacts_.dirty = true; }
   // Forgets all tangential/rolling contact history (as when a state is imported without it).
   void reset_contact_history() {
-    std::fill(pair_list_.shear.begin(), pair_list_.shear.end(), Vec3::Zero());
-    std::fill(pair_list_.roll.begin(), pair_list_.roll.end(), Vec3::Zero());
-    std::fill(pair_list_.touch.begin(), pair_list_.touch.end(), std::uint8_t{0});
-    std::fill(wall_list_.shear.begin(), wall_list_.shear.end(), Vec3::Zero());
-    std::fill(wall_list_.roll.begin(), wall_list_.roll.end(), Vec3::Zero());
-    std::fill(wall_list_.touch.begin(), wall_list_.touch.end(), std::uint8_t{0});
+    std::fill(contacts_.pairs.shear.begin(), contacts_.pairs.shear.end(), Vec3::Zero());
+    std::fill(contacts_.pairs.roll.begin(), contacts_.pairs.roll.end(), Vec3::Zero());
+    std::fill(contacts_.pairs.touch.begin(), contacts_.pairs.touch.end(), std::uint8_t{0});
+    std::fill(contacts_.walls.shear.begin(), contacts_.walls.shear.end(), Vec3::Zero());
+    std::fill(contacts_.walls.roll.begin(), contacts_.walls.roll.end(), Vec3::Zero());
+    std::fill(contacts_.walls.touch.begin(), contacts_.walls.touch.end(), std::uint8_t{0});
   }
   const std::vector<Wall>& walls() const { return walls_; }
   Wall& wall(int i) { return walls_.at(static_cast<std::size_t>(i)); }
-  const std::vector<Inserter>& inserters() const { return inserters_; }
-  const std::vector<Sink>& sinks() const { return sinks_; }
+  const std::vector<Inserter>& inserters() const { return sources_.inserters; }
+  const std::vector<Sink>& sinks() const { return sources_.sinks; }
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   TimeStepEstimate time_step_estimate() const;
   Energy energy() const;
-  std::int64_t rebuild_count() const { return rebuilds_; }
+  std::int64_t rebuild_count() const { return contacts_.rebuilds; }
   std::size_t contact_count() const;      // particle-particle contacts touching now
-  std::size_t neighbor_pair_count() const { return pair_list_.neighbor.size(); }  // pairs in the Verlet list
+  std::size_t neighbor_pair_count() const { return contacts_.pairs.neighbor.size(); }  // pairs in the Verlet list
   std::size_t wall_contact_count() const;
   double max_speed_limit() const { return max_speed_; }
 
@@ -175,19 +175,19 @@ class World {
   // Block b's particles once its pair loop is done: the block buffers, wall contacts and weight, the
   // body force, held particles, then after_block.
   void finish_block(std::size_t b, std::size_t thread, const BlockCallback& after_block);
-  void index_held();  // held_ from p_.held_by
-  // The held particles with index in [lo, hi) (held_ ascends).
+  void index_held();  // sources_.held from p_.held_by
+  // The held particles with index in [lo, hi) (sources_.held ascends).
   std::span<const std::int32_t> held_between(std::size_t lo, std::size_t hi) const {
-    const auto a = std::lower_bound(held_.begin(), held_.end(), static_cast<std::int32_t>(lo));
-    const auto b = std::lower_bound(a, held_.end(), static_cast<std::int32_t>(hi));
+    const auto a = std::lower_bound(sources_.held.begin(), sources_.held.end(), static_cast<std::int32_t>(lo));
+    const auto b = std::lower_bound(a, sources_.held.end(), static_cast<std::int32_t>(hi));
     return {a, b};
   }
   // Contact detection (dem/contact_detection.cpp): whether the lists must be rebuilt, and the rebuild.
   bool needs_rebuild() const;
   void rebuild();
   void sort_by_cell(CellGrid& grid, const std::vector<std::int32_t>& order, std::vector<std::int32_t>& map);
-  void take_reference(int threads);  // reference_ and the pair gaps from the current state
-  void scan_sinks();                 // sink_scan_ from the current state (dem/sources_and_sinks.cpp)
+  void take_reference(int threads);  // contacts_.reference and the pair gaps from the current state
+  void scan_sinks();                 // sources_.sink_scan from the current state (dem/sources_and_sinks.cpp)
   // Sources and sinks (dem/sources_and_sinks.cpp), once per step after the drift.
   void insert_and_delete();
   bool anything_behind_sinks() const;
@@ -210,9 +210,9 @@ class World {
   // A Verlet pass over all particles in a parallel region of its own, each thread on the rows of its
   // force blocks; returns the first bad particle (size() if none) and maxd2 raised by the drift.
   std::pair<std::size_t, double> verlet_pass(const VerletPass& pass, double maxd2);
-  VerletState verlet_state() { return VerletState::of(p_, reference_.x, dt_); }
+  VerletState verlet_state() { return VerletState::of(p_, contacts_.reference.x, clock_.dt); }
   StateLimits state_limits() const { return {max_speed_, settings_.domain}; }
-  void advance_time();  // to the end of the step being taken: time_ and the moving walls' poses
+  void advance_time();  // to the end of the step being taken: clock_.time and the moving walls' poses
   // Clumps (dem/world_clumps.cpp): body half kick + drift + member placement (raises maxd2 to the
   // members' displacement since the last rebuild); gather + half kick + member velocities; removal of
   // whole bodies; insertion of one body by an inserter.
@@ -229,52 +229,79 @@ class World {
   MaterialTable materials_;
   Particles p_;
   std::vector<Wall> walls_;
-  std::vector<Inserter> inserters_;
-  std::vector<Sink> sinks_;
-  BodyForceHook body_force_;
-  std::function<void()> load_observer_;
-  NormalLaws::PairTables pair_table_;  // the law's coefficients per material pair, row-major
-  std::uint64_t pair_table_revision_ = ~std::uint64_t{0};  // materials_.revision() it was derived at
-  bool cohesive_ = false;              // some pair has cohesion: the contact model's cohesion part runs
+  ClumpBodies clumps_;
+  std::int64_t next_id_ = 0;        // the next particle's persistent id
+  std::int64_t next_clump_id_ = 0;  // the next clump body's
+
+  // The time: the end of the last step taken, the step, their count.
+  struct Clock {
+    double time = 0.0;
+    double dt = 0.0;
+    std::int64_t step = 0;
+  };
+  Clock clock_;
+
+  // Sources and sinks (dem/sources_and_sinks.cpp).
+  struct SourcesAndSinks {
+    std::vector<Inserter> inserters;
+    std::vector<Sink> sinks;
+    // Per sink, from the last rebuild: the least (x - point) . normal, one skin in those units, and
+    // the particles within that skin.
+    struct SinkScan {
+      std::vector<double> clearance, reach;
+      std::vector<std::vector<std::int32_t>> near;
+    } sink_scan;
+    // The particles held by a stream inserter (Inserter::hold_to_face), ascending: a few hundred of
+    // thousands, which the force and release passes visit without scanning every particle.
+    std::vector<std::int32_t> held;
+  };
+  SourcesAndSinks sources_;
+
+  // The contact law (dem/contact/normal_laws.h): its coefficients per material pair, row-major,
+  // derived again when the materials change, and whether the cohesion part runs.
+  struct ContactLawTable {
+    NormalLaws::PairTables pairs;
+    std::uint64_t revision = ~std::uint64_t{0};  // materials_.revision() it was derived at
+    bool cohesive = false;                       // some pair has cohesion
+  };
+  ContactLawTable law_table_;
+
+  // Contact detection (dem/contact_detection.cpp): the pair and wall lists, rebuilt together, and
+  // what they were built from (needs_rebuild() measures the displacements since against it).
+  struct ContactLists {
+    NeighborList pairs;
+    WallContactList walls;
+    TouchingHistory history;  // scratch of rebuild()
+    struct Reference {
+      std::vector<Vec3> x;                  // positions at the last rebuild
+      std::vector<std::int32_t> index_map;  // index at the last rebuild -> current index (-1 removed)
+      std::vector<double> wall_time;        // wall pose times at the last rebuild
+      std::vector<std::uint8_t> wall_listed_moving;  // per wall: listed with the whole skin (it moved then)
+    } reference;
+    double skin = 0.0;
+    double max_disp = 0.0;  // largest particle displacement since the rebuild
+    std::int64_t rebuilds = 0;
+    bool dirty = true;      // rebuild at the next step whatever the displacements
+  };
+  ContactLists contacts_;
+
+  // The force evaluation (dem/forces.cpp): the blocks and their thread cut, each block's share of
+  // the wall loads, each wall's frame.
   ForceBlocks blocks_;
   WallLoads wall_loads_;
-  std::vector<WallFrame> wall_frames_;      // per wall, each force evaluation (dem/wall_forces.h)
-  std::vector<std::uint8_t> wall_observed_;  // per wall, each force evaluation: has an observer
-  std::vector<WallContactObserver> wall_observers_;  // by wall; empty = none observed
-  ClumpBodies clumps_;
-  std::int64_t next_clump_id_ = 0;
-  // Contact detection (dem/contact_detection.cpp): the pair and wall lists, rebuilt together.
-  NeighborList pair_list_;
-  WallContactList wall_list_;
-  TouchingHistory history_;  // scratch of rebuild()
-  // What the lists were built from: needs_rebuild() measures the displacements since against it.
-  struct ListReference {
-    std::vector<Vec3> x;                // positions at the last rebuild
-    std::vector<std::int32_t> index_map;  // index at the last rebuild -> current index (-1 removed)
-    std::vector<double> wall_time;      // wall pose times at the last rebuild
-    std::vector<std::uint8_t> wall_listed_moving;  // per wall: listed with the whole skin (it moved then)
+  std::vector<WallFrame> wall_frames_;  // per wall, each force evaluation (dem/wall_forces.h)
+
+  // What the scene adds to a step: the body force, and who reads the walls' contacts and loads.
+  struct Hooks {
+    BodyForceHook body_force;
+    std::function<void()> load_observer;
+    std::vector<WallContactObserver> wall_observers;  // by wall; empty = none observed
+    std::vector<std::uint8_t> wall_observed;          // per wall, each force evaluation: has an observer
   };
-  ListReference reference_;
-  // Per sink, from the last rebuild (dem/sources_and_sinks.cpp): the least (x - point) . normal, one
-  // skin in those units, and the particles within that skin.
-  struct SinkScan {
-    std::vector<double> clearance, reach;
-    std::vector<std::vector<std::int32_t>> near;
-  };
-  SinkScan sink_scan_;
-  double time_ = 0.0;
-  double dt_ = 0.0;
-  double skin_ = 0.0;
-  double max_speed_ = 0.0;
-  double max_disp_ = 0.0;                // largest particle displacement since the rebuild
-  std::int64_t step_ = 0;
-  // The particles held by a stream inserter (Inserter::hold_to_face), ascending: a few hundred of
-  // thousands, which the force and release passes visit without scanning every particle.
-  std::vector<std::int32_t> held_;
-  std::int64_t next_id_ = 0;
-  std::int64_t rebuilds_ = 0;
+  Hooks hooks_;
+
+  double max_speed_ = 0.0;  // m/s, the blow-up check's limit
   bool initialised_ = false;
-  bool list_dirty_ = true;
   std::vector<std::string> warnings_;
 };
 

@@ -47,7 +47,7 @@ std::int64_t World::add_clump(const ClumpSpec& s) {
     p_.inv_inertia.back() = inv_i;
     p_.contact_mass.back() = clumps_.mass[cs];
   }
-  list_dirty_ = true;
+  contacts_.dirty = true;
   return body_id;
 }
 
@@ -56,7 +56,7 @@ void World::clumps_after_drift(double dt, double& maxd2) {
   clumps_.drift(dt);
   clumps_.place_members(p_);
   for (std::size_t i = 0; i < p_.size(); ++i)
-    if (p_.clump[i] >= 0) maxd2 = std::max(maxd2, (p_.x[i] - reference_.x[i]).squaredNorm());
+    if (p_.clump[i] >= 0) maxd2 = std::max(maxd2, (p_.x[i] - contacts_.reference.x[i]).squaredNorm());
 }
 
 void World::clumps_after_forces(double dt) {

@@ -58,6 +58,8 @@ void check(const DiagnoseOptions& o) {
        fmt::format("must lie in [0, 0.5], got {}", o.max_outlier_share));
   need(o.jobs >= 0 && o.jobs <= 4096, "jobs", fmt::format("must lie in [0, 4096], got {}", o.jobs));
   need(o.confirm >= 0 && o.confirm <= 64, "confirm", fmt::format("must lie in [0, 64], got {}", o.confirm));
+  need(o.screened_pairs >= 0 && o.screened_pairs <= 10000, "screened_pairs",
+       fmt::format("must lie in [0, 10000], got {}", o.screened_pairs));
   need(o.profile_runs == 0 || (o.profile_runs >= 3 && o.profile_runs <= 12), "profile_runs",
        fmt::format("must be 0 or lie in [3, 12], got {}", o.profile_runs));
 }
@@ -181,10 +183,15 @@ std::string signature_words(PredictionSource::Signature s) {
 struct Progress {
   bool on = false;
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  // Which pass of the noise model's rounds (validation/diagnosis.cpp, settle) the fits belong to:
+  // each round that leaves out a reading or adds a discrepancy fits every candidate again.
+  int round = 1;
   void operator()(const std::string& what, std::size_t k, std::size_t of) const {
     if (!on) return;
     const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - started;
-    std::cerr << fmt::format("diagnose: fitting {} ({}/{}, {:.0f} s so far)\n", what, k, of, spent.count());
+    std::cerr << fmt::format("diagnose: {}fitting {} ({}/{}, {:.0f} s so far)\n",
+                             round > 1 ? fmt::format("round {} of the noise model: ", round) : "", what, k, of,
+                             spent.count());
   }
 };
 
@@ -328,6 +335,60 @@ std::vector<Leftover> leftovers_of(const Stage& s, const std::vector<double>& r,
 // single: its extra parameter is tested against it (likelihood ratio, one degree of freedom),
 // Bonferroni over all pairs, and by a clear BIC margin.
 // `jobs` 0: no expensive confirmation (while the noise model settles).
+// The pairs worth a real fit. Each single's fitted change of the weighted residuals is a direction
+// the data can move along; the least-squares combination of two such directions is the pair's fit
+// to first order (it equals either single's chi^2 at (1, 0) and (0, 1), so it is never worse than
+// the better single). The pairs whose combination leaves the least chi^2 are fitted for real; the
+// multiple-testing correction still counts every pair, as all were looked at.
+std::vector<std::pair<std::size_t, std::size_t>> screen_pairs(const Stage& s, const std::vector<EffectFit>& singles) {
+  const auto& lib = effects::library();
+  std::vector<std::pair<std::size_t, std::size_t>> all;
+  for (std::size_t i = 0; i < lib.size(); ++i)
+    for (std::size_t j = i + 1; j < lib.size(); ++j) all.emplace_back(i, j);
+  const auto keep = static_cast<std::size_t>(s.opt.screened_pairs);
+  if (keep == 0 || all.size() <= keep) return all;
+  const auto r0 = s.cost.weighted(s.m.residuals({}, {}));
+  std::vector<std::vector<double>> d(lib.size());
+  for (const auto& f : singles) {
+    const auto at = std::find_if(lib.begin(), lib.end(), [&](const auto& e) { return e.name == f.effects[0]; });
+    if (at == lib.end()) continue;
+    auto r = s.cost.weighted(s.m.residuals(infos_of(f), f.estimate));
+    for (std::size_t k = 0; k < r.size(); ++k) r[k] -= r0[k];
+    d[static_cast<std::size_t>(at - lib.begin())] = std::move(r);
+  }
+  const auto dot = [](const std::vector<double>& a, const std::vector<double>& b) {
+    double t = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) t += a[k] * b[k];
+    return t;
+  };
+  const double c00 = dot(r0, r0);
+  std::vector<std::pair<double, std::pair<std::size_t, std::size_t>>> scored;
+  for (const auto& [i, j] : all) {
+    double chi2 = c00;
+    if (!d[i].empty() && !d[j].empty()) {
+      // min over (a, b) of |r0 + a d_i + b d_j|^2: the normal equations of two unknowns, or the
+      // better single where the two directions are parallel.
+      const double aa = dot(d[i], d[i]), bb = dot(d[j], d[j]), ab = dot(d[i], d[j]);
+      const double ra = dot(r0, d[i]), rb = dot(r0, d[j]);
+      const double det = aa * bb - ab * ab;
+      if (det > 1e-12 * aa * bb) {
+        const double a = (-ra * bb + rb * ab) / det, b = (-rb * aa + ra * ab) / det;
+        chi2 = c00 + a * a * aa + b * b * bb + 2.0 * a * b * ab + 2.0 * a * ra + 2.0 * b * rb;
+      } else {
+        if (aa > 0.0) chi2 = std::min(chi2, c00 - ra * ra / aa);
+        if (bb > 0.0) chi2 = std::min(chi2, c00 - rb * rb / bb);
+      }
+    }
+    scored.push_back({chi2, {i, j}});
+  }
+  std::stable_sort(scored.begin(), scored.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (std::size_t k = 0; k < keep; ++k) out.push_back(scored[k].second);
+  // Fitted in the library's order, as before the screen, so that ties resolve the same way.
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 std::vector<EffectFit> fit_pairs(const Stage& s, const std::vector<EffectFit>& singles, const Progress& progress,
                                  int jobs) {
   const auto& lib = effects::library();
@@ -341,21 +402,21 @@ std::vector<EffectFit> fit_pairs(const Stage& s, const std::vector<EffectFit>& s
     f.significant = f.p_adjusted < s.opt.alpha && f.delta_bic < top.delta_bic - s.opt.pair_margin_bic;
   };
   std::vector<EffectFit> out;
+  const auto chosen = screen_pairs(s, singles);
   std::size_t tried = 0;
-  for (std::size_t i = 0; i < lib.size(); ++i)
-    for (std::size_t j = i + 1; j < lib.size(); ++j) {
-      progress(fmt::format("the pair {} + {}", lib[i].name, lib[j].name), ++tried, static_cast<std::size_t>(npairs));
-      const Fx fx = {&lib[i], &lib[j]};
-      const std::vector<std::vector<double>> starts = {{single_estimate[lib[i].name], lib[j].neutral},
-                                                       {lib[i].neutral, single_estimate[lib[j].name]},
-                                                       {single_estimate[lib[i].name], single_estimate[lib[j].name]}};
-      EffectFit f = make_fit(fx, fit_strengths(s.cost, fx, {StrengthRange::physical, starts}), s);
-      if (s.m.source().has_expensive())
-        f.signature = signature_words(s.m.source().signature(lib[i])) + " + " +
-                      signature_words(s.m.source().signature(lib[j]));
-      test_pair(f);
-      if (f.significant) out.push_back(f);
-    }
+  for (const auto& [i, j] : chosen) {
+    progress(fmt::format("the pair {} + {}", lib[i].name, lib[j].name), ++tried, chosen.size());
+    const Fx fx = {&lib[i], &lib[j]};
+    const std::vector<std::vector<double>> starts = {{single_estimate[lib[i].name], lib[j].neutral},
+                                                     {lib[i].neutral, single_estimate[lib[j].name]},
+                                                     {single_estimate[lib[i].name], single_estimate[lib[j].name]}};
+    EffectFit f = make_fit(fx, fit_strengths(s.cost, fx, {StrengthRange::physical, starts}), s);
+    if (s.m.source().has_expensive())
+      f.signature = signature_words(s.m.source().signature(lib[i])) + " + " +
+                    signature_words(s.m.source().signature(lib[j]));
+    test_pair(f);
+    if (f.significant) out.push_back(f);
+  }
   std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.ranked_chi2() < b.ranked_chi2(); });
   if (jobs > 0 && s.m.source().reruns_expensive() && !out.empty()) {
     // Only a pair whose real runs still beat the best single by the same tests is kept.
@@ -459,6 +520,8 @@ struct Settled {
   ScaleEstimate scale;
   int rounds = 0;
   bool settled = false;
+  // The explanations fitted under the settled noise model, in its last round.
+  std::optional<Explanations> last;
 };
 
 Settled settle(const Misfit& m, const DiagnoseOptions& opt, const Drivers& drivers, const Progress& progress) {
@@ -470,7 +533,9 @@ Settled settle(const Misfit& m, const DiagnoseOptions& opt, const Drivers& drive
   const int max_rounds = 4 + static_cast<int>(opt.max_outlier_share * static_cast<double>(m.size()));
   for (out.rounds = 1; out.rounds <= max_rounds; ++out.rounds) {
     const Stage s(m, opt, out.nm);
-    const Explanations x = explain(s, drivers, out.rounds == 1 ? progress : Progress{}, 0, false);
+    Progress shown = progress;
+    shown.round = out.rounds;
+    Explanations x = explain(s, drivers, shown, 0, false);
     const auto r = x.any ? m.residuals(x.fx, x.strengths) : m.residuals({}, {});
     if (const auto o = find_outlier(m, out.nm, r, opt.alpha, opt.max_outlier_share)) {
       out.nm.excluded[*o] = 1;
@@ -490,6 +555,7 @@ Settled settle(const Misfit& m, const DiagnoseOptions& opt, const Drivers& drive
     NoiseModel next = assess_noise(m, out.nm, r, static_cast<int>(x.fx.size()), opt.alpha, &out.scale);
     if (next.settled_with(out.nm)) {
       out.settled = true;
+      out.last = std::move(x);
       return out;
     }
     out.nm = std::move(next);
@@ -1019,10 +1085,13 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
   }
   Progress progress{opt.progress && d.stations.size() >= 500};
   const Drivers drivers = drivers_of(m);
-  const Settled settled = settle(m, opt, drivers, progress);
+  Settled settled = settle(m, opt, drivers, progress);
   const Stage s(m, opt, settled.nm);
   out.noise_rounds = settled.rounds;
-  Explanations x = explain(s, drivers, Progress{}, jobs, true);
+  // Without an expensive model to re-run, the final fits are the settled round's: the same stage,
+  // and nothing to confirm (a third of a diagnosis that settles in two rounds).
+  Explanations x = settled.last && !m.source().reruns_expensive() ? std::move(*settled.last)
+                                                                   : explain(s, drivers, Progress{}, jobs, true);
   out.singles = std::move(x.singles);
   out.pairs = std::move(x.pairs);
   const EffectFit* outside = nullptr;

@@ -87,8 +87,10 @@ std::string rig_fields_json() {
 std::string effects_json() {
   std::string o = "[";
   for (const auto& e : effects::library()) {
-    // A designer changes an input itself; a recorded input's error is for measured data.
-    if (e.kind == effects::EffectInfo::Kind::record) continue;
+    // A designer changes an input itself; a recorded input's error is for measured data. The load
+    // cells' records stay listed as measurement effects, so that the page can say why it ignores
+    // one in an address.
+    if (e.kind == effects::EffectInfo::Kind::record && e.stage != "measurement") continue;
     o += fmt::format("{}{{\"name\": {}, \"parameter\": {}, \"unit\": {}, \"stage\": {}, \"physics\": {}, \"neutral\": {}, "
                      "\"lower\": {}, \"upper\": {}, \"typical\": {}}}",
                      o.size() > 1 ? "," : "", api::json_string(e.name), api::json_string(e.parameter),

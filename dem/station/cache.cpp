@@ -12,6 +12,7 @@
 #include <vector>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -149,6 +150,199 @@ std::string to_text(const StationResult& r) {
   return o;
 }
 
+namespace {
+
+// The readers of from_text, one per line tag: each reads the rest of its line into the result and
+// returns false when the line cannot be read (the entry is then a miss).
+using LineReader = bool (*)(std::istringstream& in, const std::string& rest, StationResult& r);
+
+bool read_run(std::istringstream& in, const std::string&, StationResult& r) {
+  int early = 0;
+  r.diameter = rd(in); r.dt = rd(in); r.collision_time = rd(in); r.rayleigh_time = rd(in);
+  r.simulated_time = rd(in);
+  in >> r.steps;
+  r.wall_seconds = rd(in);
+  in >> early >> r.peak_particles;
+  r.side_view_time = rd(in);
+  r.early_stop = early != 0;
+  if (!(in >> r.rebuilds)) r.rebuilds = -1;
+  return true;
+}
+
+bool read_window(std::istringstream& in, const std::string&, StationResult& r) {
+  int found = 0;
+  in >> found;
+  r.window.start = rd(in); r.window.end = rd(in);
+  in >> r.window.blocks;
+  r.window.found = found != 0;
+  return true;
+}
+
+bool read_mass(std::istringstream& in, const std::string&, StationResult& r) {
+  r.inserted = rd(in); r.discharged = rd(in); r.escaped = rd(in); r.in_domain = rd(in);
+  return true;
+}
+
+bool read_scalar(std::istringstream& in, const std::string&, StationResult& r) {
+  std::string n;
+  in >> n;
+  Estimate* e = n == "normal_force" ? &r.normal_force : n == "shear_force" ? &r.shear_force
+              : n == "resultant_force" ? &r.resultant_force : n == "impact_point_y" ? &r.impact_point_y
+              : n == "impact_velocity" ? &r.impact_velocity : n == "impact_velocity_fast" ? &r.impact_velocity_fast
+              : n == "exit_velocity" ? &r.exit_velocity : n == "layer_speed" ? &r.layer_speed
+              : n == "stream_thickness" ? &r.stream_thickness : n == "mass_flux" ? &r.mass_flux
+              : n == "layer_height" ? &r.layer_height : n == "momentum_balance" ? &r.momentum_balance
+              : nullptr;
+  return e && read_estimate(in, *e);
+}
+
+bool read_trajectory_row(std::istringstream& in, const std::string&, StationResult& r) {
+  TrajectoryRow t;
+  t.x = rd(in);
+  if (!read_estimate(in, t.upper) || !read_estimate(in, t.lower) || !read_estimate(in, t.centre)) return false;
+  r.trajectory.push_back(t);
+  return true;
+}
+
+bool read_force_sample(std::istringstream& in, const std::string&, StationResult& r) {
+  ForceSample f;
+  f.t = rd(in); f.normal = rd(in); f.shear = rd(in); f.moment = rd(in);
+  f.mass_through = rd(in); f.momentum_in = rd(in); f.momentum_floor = rd(in); f.momentum_content = rd(in);
+  r.forces.push_back(f);
+  return true;
+}
+
+bool read_snapshot(std::istringstream& in, const std::string&, StationResult& r) {
+  SnapshotStats s;
+  s.t = rd(in);
+  in >> s.particles;
+  s.vp_sum = rd(in);
+  in >> s.vp_n;
+  s.vp_fast_sum = rd(in);
+  in >> s.vp_fast_n;
+  s.layer_speed_sum = rd(in);
+  s.layer_height_sum = rd(in);
+  in >> s.layer_n;
+  s.stream_thickness = rd(in);
+  if (!in) return false;
+  r.snapshots.push_back(s);
+  return true;
+}
+
+Vec3 read_vec3(std::istringstream& in) {
+  const double x = rd(in), y = rd(in), z = rd(in);  // in order: function arguments are evaluated in no fixed order
+  return Vec3(x, y, z);
+}
+
+bool read_map(std::istringstream& in, const std::string&, StationResult& r) {
+  PlateMap m;
+  m.duration = rd(in);
+  in >> std::ws;
+  std::getline(in, m.wall);
+  r.maps.push_back(std::move(m));
+  return true;
+}
+
+// A grid map's geometry: its cells are rebuilt empty, and its gcell lines fill those with a contact.
+bool read_grid(std::istringstream& in, const std::string&, StationResult& r) {
+  if (r.maps.empty()) return false;
+  MapGrid g;
+  g.origin = read_vec3(in);
+  g.down = read_vec3(in);
+  g.across = read_vec3(in);
+  g.height = rd(in);
+  g.width = rd(in);
+  std::size_t nb = 0;
+  in >> g.rows >> g.cols >> nb;
+  if (!in || g.rows < 1 || g.cols < 1 || g.rows > 400 || g.cols > 400 || nb > 10000) return false;
+  PlateMap& m = r.maps.back();
+  m.grid = g;
+  for (const auto& t : g.triangles()) m.cells.push_back(empty_cell(t, false, nb));
+  return true;
+}
+
+// One grid cell with a contact: its two triangles' sums.
+bool read_grid_cell(std::istringstream& in, const std::string&, StationResult& r) {
+  if (r.maps.empty() || !r.maps.back().grid) return false;
+  PlateMap& m = r.maps.back();
+  std::size_t b = 0;
+  int flip = 0;
+  in >> b >> flip;
+  if (!in || 2 * b + 1 >= m.cells.size()) return false;
+  const double fx = rd(in), fy = rd(in), fz = rd(in);
+  const double ip = rd(in), sp = rd(in), ls = rd(in), fm = rd(in), im = rd(in);
+  const std::size_t nb = m.cells[2 * b].block_normal.size();
+  std::vector<double> bn(nb), bl(nb), bf(nb);
+  for (std::size_t k = 0; k < nb; ++k) bn[k] = rd(in), bl[k] = rd(in), bf[k] = rd(in);
+  if (!in) return false;
+  for (std::size_t t = 2 * b; t < 2 * b + 2; ++t) {
+    MapCell& c = m.cells[t];
+    if (flip) c.normal = -c.normal;
+    c.force = Vec3(fx, fy, fz);
+    c.impact_power = ip; c.sliding_power = sp; c.load_slip = ls; c.finnie_measure = fm; c.impacts = im;
+    c.block_normal = bn; c.block_load_slip = bl; c.block_finnie = bf;
+  }
+  return true;
+}
+
+// One triangle of a map of any mesh, with its geometry.
+bool read_cell(std::istringstream& in, const std::string&, StationResult& r) {
+  if (r.maps.empty()) return false;
+  MapCell c;
+  for (auto& p : c.corners) p = read_vec3(in);
+  c.normal = read_vec3(in);
+  c.area = rd(in);
+  c.force = read_vec3(in);
+  c.impact_power = rd(in); c.sliding_power = rd(in); c.load_slip = rd(in); c.finnie_measure = rd(in);
+  c.impacts = rd(in);
+  std::size_t nb = 0;
+  in >> nb;
+  if (!in || nb > 10000) return false;
+  for (std::size_t b = 0; b < nb; ++b) {
+    const double fn = rd(in), ls = rd(in), fi = rd(in);
+    c.block_normal.push_back(fn);
+    c.block_load_slip.push_back(ls);
+    c.block_finnie.push_back(fi);
+  }
+  if (!in) return false;
+  r.maps.back().cells.push_back(c);
+  return true;
+}
+
+bool read_side_point(std::istringstream& in, const std::string&, StationResult& r) {
+  SidePoint p{};
+  in >> p.x >> p.y >> p.z >> p.speed;
+  if (!in) return false;
+  r.side_view.push_back(p);
+  return true;
+}
+
+struct TaggedReader {
+  std::string_view tag;
+  LineReader read;
+};
+
+constexpr TaggedReader kReaders[] = {
+    {"condition", [](std::istringstream&, const std::string& rest, StationResult& r) { r.condition = rest; return true; }},
+    {"quality", [](std::istringstream&, const std::string& rest, StationResult& r) { r.quality = rest; return true; }},
+    {"shape", [](std::istringstream&, const std::string& rest, StationResult& r) { r.shape = rest; return true; }},
+    {"note", [](std::istringstream&, const std::string& rest, StationResult& r) { r.notes.push_back(rest); return true; }},
+    {"run", read_run},
+    {"window", read_window},
+    {"mass", read_mass},
+    {"scalar", read_scalar},
+    {"traj", read_trajectory_row},
+    {"force", read_force_sample},
+    {"snap", read_snapshot},
+    {"map", read_map},
+    {"grid", read_grid},
+    {"gcell", read_grid_cell},
+    {"cell", read_cell},
+    {"side", read_side_point},
+};
+
+}  // namespace
+
 std::optional<StationResult> from_text(const std::string& text) {
   StationResult r;
   std::istringstream all(text);
@@ -158,140 +352,11 @@ std::optional<StationResult> from_text(const std::string& text) {
     const auto sp = line.find(' ');
     const std::string tag = line.substr(0, sp);
     const std::string rest = sp == std::string::npos ? std::string() : line.substr(sp + 1);
+    const auto reader = std::find_if(std::begin(kReaders), std::end(kReaders),
+                                     [&](const TaggedReader& t) { return t.tag == tag; });
+    if (reader == std::end(kReaders)) return std::nullopt;  // a file of another version: a miss
     std::istringstream in(rest);
-    if (tag == "condition") r.condition = rest;
-    else if (tag == "quality") r.quality = rest;
-    else if (tag == "shape") r.shape = rest;
-    else if (tag == "note") r.notes.push_back(rest);
-    else if (tag == "run") {
-      int early = 0;
-      r.diameter = rd(in); r.dt = rd(in); r.collision_time = rd(in); r.rayleigh_time = rd(in);
-      r.simulated_time = rd(in);
-      in >> r.steps;
-      r.wall_seconds = rd(in);
-      in >> early >> r.peak_particles;
-      r.side_view_time = rd(in);
-      r.early_stop = early != 0;
-      if (!(in >> r.rebuilds)) r.rebuilds = -1;
-    } else if (tag == "window") {
-      int found = 0;
-      in >> found;
-      r.window.start = rd(in); r.window.end = rd(in);
-      in >> r.window.blocks;
-      r.window.found = found != 0;
-    } else if (tag == "mass") {
-      r.inserted = rd(in); r.discharged = rd(in); r.escaped = rd(in); r.in_domain = rd(in);
-    } else if (tag == "scalar") {
-      std::string n;
-      in >> n;
-      Estimate* e = n == "normal_force" ? &r.normal_force : n == "shear_force" ? &r.shear_force
-                  : n == "resultant_force" ? &r.resultant_force : n == "impact_point_y" ? &r.impact_point_y
-                  : n == "impact_velocity" ? &r.impact_velocity : n == "impact_velocity_fast" ? &r.impact_velocity_fast
-                  : n == "exit_velocity" ? &r.exit_velocity : n == "layer_speed" ? &r.layer_speed
-                  : n == "stream_thickness" ? &r.stream_thickness : n == "mass_flux" ? &r.mass_flux
-                  : n == "layer_height" ? &r.layer_height : n == "momentum_balance" ? &r.momentum_balance
-                  : nullptr;
-      if (!e || !read_estimate(in, *e)) return std::nullopt;
-    } else if (tag == "traj") {
-      TrajectoryRow t;
-      t.x = rd(in);
-      if (!read_estimate(in, t.upper) || !read_estimate(in, t.lower) || !read_estimate(in, t.centre)) return std::nullopt;
-      r.trajectory.push_back(t);
-    } else if (tag == "force") {
-      ForceSample f;
-      f.t = rd(in); f.normal = rd(in); f.shear = rd(in); f.moment = rd(in);
-      f.mass_through = rd(in); f.momentum_in = rd(in); f.momentum_floor = rd(in); f.momentum_content = rd(in);
-      r.forces.push_back(f);
-    } else if (tag == "snap") {
-      SnapshotStats s;
-      s.t = rd(in);
-      in >> s.particles;
-      s.vp_sum = rd(in);
-      in >> s.vp_n;
-      s.vp_fast_sum = rd(in);
-      in >> s.vp_fast_n;
-      s.layer_speed_sum = rd(in);
-      s.layer_height_sum = rd(in);
-      in >> s.layer_n;
-      s.stream_thickness = rd(in);
-      if (!in) return std::nullopt;
-      r.snapshots.push_back(s);
-    } else if (tag == "map") {
-      PlateMap m;
-      m.duration = rd(in);
-      in >> std::ws;
-      std::getline(in, m.wall);
-      r.maps.push_back(std::move(m));
-    } else if (tag == "grid") {
-      if (r.maps.empty()) return std::nullopt;
-      MapGrid g;
-      auto v3 = [&] {
-        const double x = rd(in), y = rd(in), z = rd(in);
-        return Vec3(x, y, z);
-      };
-      g.origin = v3();
-      g.down = v3();
-      g.across = v3();
-      g.height = rd(in);
-      g.width = rd(in);
-      std::size_t nb = 0;
-      in >> g.rows >> g.cols >> nb;
-      if (!in || g.rows < 1 || g.cols < 1 || g.rows > 400 || g.cols > 400 || nb > 10000) return std::nullopt;
-      PlateMap& m = r.maps.back();
-      m.grid = g;
-      for (const auto& t : g.triangles()) m.cells.push_back(empty_cell(t, false, nb));
-    } else if (tag == "gcell") {
-      if (r.maps.empty() || !r.maps.back().grid) return std::nullopt;
-      PlateMap& m = r.maps.back();
-      std::size_t b = 0;
-      int flip = 0;
-      in >> b >> flip;
-      if (!in || 2 * b + 1 >= m.cells.size()) return std::nullopt;
-      const double fx = rd(in), fy = rd(in), fz = rd(in);
-      const double ip = rd(in), sp = rd(in), ls = rd(in), fm = rd(in), im = rd(in);
-      const std::size_t nb = m.cells[2 * b].block_normal.size();
-      std::vector<double> bn(nb), bl(nb), bf(nb);
-      for (std::size_t k = 0; k < nb; ++k) bn[k] = rd(in), bl[k] = rd(in), bf[k] = rd(in);
-      if (!in) return std::nullopt;
-      for (std::size_t t = 2 * b; t < 2 * b + 2; ++t) {
-        MapCell& c = m.cells[t];
-        if (flip) c.normal = -c.normal;
-        c.force = Vec3(fx, fy, fz);
-        c.impact_power = ip; c.sliding_power = sp; c.load_slip = ls; c.finnie_measure = fm; c.impacts = im;
-        c.block_normal = bn; c.block_load_slip = bl; c.block_finnie = bf;
-      }
-    } else if (tag == "cell") {
-      if (r.maps.empty()) return std::nullopt;
-      MapCell c;
-      auto v3 = [&] {  // in order: function arguments are evaluated in no fixed order
-        const double x = rd(in), y = rd(in), z = rd(in);
-        return Vec3(x, y, z);
-      };
-      for (auto& p : c.corners) p = v3();
-      c.normal = v3();
-      c.area = rd(in);
-      c.force = v3();
-      c.impact_power = rd(in); c.sliding_power = rd(in); c.load_slip = rd(in); c.finnie_measure = rd(in);
-      c.impacts = rd(in);
-      std::size_t nb = 0;
-      in >> nb;
-      if (!in || nb > 10000) return std::nullopt;
-      for (std::size_t b = 0; b < nb; ++b) {
-        const double fn = rd(in), ls = rd(in), fi = rd(in);
-        c.block_normal.push_back(fn);
-        c.block_load_slip.push_back(ls);
-        c.block_finnie.push_back(fi);
-      }
-      if (!in) return std::nullopt;
-      r.maps.back().cells.push_back(c);
-    } else if (tag == "side") {
-      SidePoint p{};
-      in >> p.x >> p.y >> p.z >> p.speed;
-      if (!in) return std::nullopt;
-      r.side_view.push_back(p);
-    } else {
-      return std::nullopt;  // a file of another version: a miss
-    }
+    if (!reader->read(in, rest, r)) return std::nullopt;
   }
   return r;
 }

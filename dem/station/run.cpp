@@ -49,13 +49,26 @@ std::ofstream open_out(const std::filesystem::path& p) {
   return f;
 }
 
-}  // namespace
+// How a run is cut: steps per sample (the plate load's averaging), samples per snapshot (the
+// sensors), and the most steps max_time allows.
+struct Schedule {
+  long long steps_per_sample = 1;
+  double sample_dt = 0.0;  // s
+  long long samples_per_snapshot = 1;
+  long long max_steps = 0;
 
-StationResult run_station(const Station& st, const RunOptions& o) {
-  const RunSettings& s = o.settings;
-  Scene sc = build_scene(st, s, o.geometry, o.external);
-  World& w = *sc.world;
-  Sensors sensors(sc, s.momentum_plane_fraction);
+  static Schedule of(const RunSettings& s, double dt) {
+    Schedule c;
+    c.steps_per_sample = std::max<long long>(1, std::llround(s.sample_interval / dt));
+    c.sample_dt = static_cast<double>(c.steps_per_sample) * dt;
+    c.samples_per_snapshot = std::max<long long>(1, std::llround(s.snapshot_interval / c.sample_dt));
+    c.max_steps = static_cast<long long>(std::ceil(s.max_time / dt - 1e-9));
+    return c;
+  }
+};
+
+// What the result says of the run before it starts: the condition, the particles and the time step.
+StationResult describe_run(const Station& st, const RunSettings& s, const Scene& sc) {
   StationResult r;
   r.condition = st.condition;
   r.quality = std::string(name(s.quality));
@@ -65,58 +78,92 @@ StationResult run_station(const Station& st, const RunOptions& o) {
   r.collision_time = sc.collision_time;
   r.rayleigh_time = sc.rayleigh_time;
   r.notes = sc.notes;
-  const double t_start = now();
-  w.initialise();
+  return r;
+}
 
-  const long long steps_per_sample = std::max<long long>(1, std::llround(s.sample_interval / sc.dt));
-  const double sample_dt = static_cast<double>(steps_per_sample) * sc.dt;
-  const long long samples_per_snapshot = std::max<long long>(1, std::llround(s.snapshot_interval / sample_dt));
-  const long long max_steps = static_cast<long long>(std::ceil(s.max_time / sc.dt - 1e-9));
-  const SteadyParams sp{s.detect_block, s.detect_tail, s.mean_block};
-
-  std::vector<double> ts, fn, fs, mz;
-  // Maps of the plate and the [dem.stl] walls, from every contact of every step (plate_map.h).
+// Maps of the plate and the [dem.stl] walls, from every contact of every step (plate_map.h).
+std::vector<std::unique_ptr<PlateMapRecorder>> record_maps(const RunOptions& o, const Schedule& schedule, Scene& sc) {
+  const RunSettings& s = o.settings;
+  World& w = *sc.world;
+  std::vector<int> mapped = {sc.plate_wall};
+  mapped.insert(mapped.end(), sc.map_walls.begin(), sc.map_walls.end());
+  const auto max_samples = static_cast<std::size_t>(schedule.max_steps / schedule.steps_per_sample + 2);
+  // The generated plate, not meshed for the maps, gets the map grid (plate_map.h MapGrid).
+  std::optional<MapGrid> grid;
+  if (!o.geometry.stl_plate && s.plate_cells == 0 && s.map_cell > 0.0)
+    grid = MapGrid::on_face(sc.plate.top_edge, sc.plate.down, sc.plate.height, sc.plate.width, s.map_cell);
   std::vector<std::unique_ptr<PlateMapRecorder>> maps;
-  {
-    std::vector<int> mapped = {sc.plate_wall};
-    mapped.insert(mapped.end(), sc.map_walls.begin(), sc.map_walls.end());
-    const auto max_samples = static_cast<std::size_t>(max_steps / steps_per_sample + 2);
-    // The generated plate, not meshed for the maps, gets the map grid (plate_map.h MapGrid).
-    std::optional<MapGrid> grid;
-    if (!o.geometry.stl_plate && s.plate_cells == 0 && s.map_cell > 0.0)
-      grid = MapGrid::on_face(sc.plate.top_edge, sc.plate.down, sc.plate.height, sc.plate.width, s.map_cell);
-    for (int wi : mapped) {
-      auto rec = std::make_unique<PlateMapRecorder>(w.walls()[static_cast<std::size_t>(wi)], s.wear.finnie, max_samples,
-                                                    wi == sc.plate_wall && grid ? &*grid : nullptr);
-      w.observe_wall(wi, [p = rec.get()](const WallContact& c) { p->observe(c); });
-      maps.push_back(std::move(rec));
-    }
+  for (int wi : mapped) {
+    auto rec = std::make_unique<PlateMapRecorder>(w.walls()[static_cast<std::size_t>(wi)], s.wear.finnie, max_samples,
+                                                  wi == sc.plate_wall && grid ? &*grid : nullptr);
+    w.observe_wall(wi, [p = rec.get()](const WallContact& c) { p->observe(c); });
+    maps.push_back(std::move(rec));
   }
-  std::vector<FaceParticle> face;
-  namespace fs_ = std::filesystem;
-  // The particles as a ParaView time series (dem/io/vtk_series.h), with each particle's contact
-  // force: its force less its weight and the flight force (air drag) the run adds.
-  std::optional<VtkSeries> series;
-  if (!o.vtk_dir.empty()) {
-    fs_::create_directories(o.vtk_dir);
-    write_vtk_walls((fs_::path(o.vtk_dir) / "walls.vtk").string(), w.walls());
-    series.emplace(o.vtk_dir, "particles");
+  return maps;
+}
+
+// The particles as a ParaView time series (dem/io/vtk_series.h), with each particle's contact
+// force: its force less its weight and the flight force (air drag) the run adds.
+class ParticleFrames {
+ public:
+  ParticleFrames(const RunOptions& o, const Scene& sc) : sc_(sc), every_(o.vtk_every) {
+    if (o.vtk_dir.empty()) return;
+    std::filesystem::create_directories(o.vtk_dir);
+    write_vtk_walls((std::filesystem::path(o.vtk_dir) / "walls.vtk").string(), sc.world->walls());
+    series_.emplace(o.vtk_dir, "particles");
+    if (o.vtk_every > 0.0) next_ = 0.0;
   }
-  auto frame = [&] {
+  // After a sample ending at t: a frame, when one is due.
+  void after_sample(double t) {
+    if (t + 1e-12 < next_) return;
+    write();
+    next_ += every_;
+  }
+  // The series ends on the final state (the side view's instant).
+  void finish() {
+    if (series_ && series_->last_time() < sc_.world->time() - 1e-12) write();
+  }
+
+ private:
+  void write() {
+    const World& w = *sc_.world;
     const Particles& p = w.particles();
     std::vector<Vec3> flight(p.size(), Vec3::Zero());
-    sc.flight.add(p, 0, p.size(), flight);
+    sc_.flight.add(p, 0, p.size(), flight);
     const Vec3 g = w.settings().gravity;
     std::vector<double> contact(p.size());
     for (std::size_t i = 0; i < p.size(); ++i) contact[i] = (p.f[i] - p.mass[i] * g - flight[i]).norm();
-    series->write(w.time(), p, contact);
-  };
-  double next_vtk = series && o.vtk_every > 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+    series_->write(w.time(), p, contact);
+  }
+
+  const Scene& sc_;
+  double every_;
+  double next_ = std::numeric_limits<double>::infinity();
+  std::optional<VtkSeries> series_;
+};
+
+// What the time loop leaves besides the result's samples and snapshots.
+struct Marched {
+  StationSeries series;
+  std::size_t peak_bodies = 0;  // clumps (peak_particles counts their spheres)
+};
+
+// The time loop, a sample at a time: the plate's load averaged over the sample's steps, the maps'
+// samples, the plane crossings, the snapshot sensors, frames and progress; until max_time, or until the plate's
+// normal load has been steady long enough (steady_state.h).
+Marched march(const RunOptions& o, const Schedule& schedule, Scene& sc, Sensors& sensors,
+              const std::vector<std::unique_ptr<PlateMapRecorder>>& maps, ParticleFrames& frames, double t_start,
+              StationResult& r) {
+  const RunSettings& s = o.settings;
+  World& w = *sc.world;
+  const SteadyParams sp{s.detect_block, s.detect_tail, s.mean_block};
+  Marched m;
+  StationSeries& series = m.series;
+  series.sample_dt = schedule.sample_dt;
   double next_check = std::max(s.min_time, s.detect_tail + s.min_window);
   double next_progress = 0.0;
   const double progress_step = 0.01 * s.max_time;
   long long sample_index = 0;
-  std::size_t peak_bodies = 0;  // clumps (peak_particles counts their spheres)
 
   // The plate's load is averaged over every step of a sample, read as each step's loads are final:
   // the sample's steps then run as one call, which lets the integrator fuse its passes.
@@ -128,72 +175,60 @@ StationResult run_station(const Station& st, const RunOptions& o) {
     moment += plate.torque.z();
   });
   const int base_threads = w.threads();
-  while (w.step_count() < max_steps) {
+  while (w.step_count() < schedule.max_steps) {
     force = Vec3::Zero();
     moment = 0.0;
     if (s.extra_threads) w.set_threads(base_threads + s.extra_threads->load(std::memory_order_relaxed));
-    w.step(steps_per_sample);
+    w.step(schedule.steps_per_sample);
     sc.discharge();
-    force /= static_cast<double>(steps_per_sample);
-    moment /= static_cast<double>(steps_per_sample);
+    force /= static_cast<double>(schedule.steps_per_sample);
+    moment /= static_cast<double>(schedule.steps_per_sample);
     const double t = w.time();
     for (auto& m : maps) m->end_sample(t);
-    ts.push_back(t);
-    fn.push_back(force.dot(sc.plate.into));
-    fs.push_back(force.dot(sc.plate.down));
-    mz.push_back(moment);
-    ForceSample sample{t, fn.back(), fs.back(), mz.back()};
+    series.t.push_back(t);
+    series.normal.push_back(force.dot(sc.plate.into));
+    series.shear.push_back(force.dot(sc.plate.down));
+    series.moment.push_back(moment);
+    ForceSample sample{t, series.normal.back(), series.shear.back(), series.moment.back()};
     sensors.count_crossings(w, sample);
     r.forces.push_back(sample);
     ++sample_index;
-    if (sample_index % samples_per_snapshot == 0) {
-      r.snapshots.push_back(sensors.measure(w, face));
+    if (sample_index % schedule.samples_per_snapshot == 0) {
+      r.snapshots.push_back(sensors.measure(w, series.face));
       r.peak_particles = std::max(r.peak_particles, w.particles().size());
-      peak_bodies = std::max(peak_bodies, w.clumps().size());
+      m.peak_bodies = std::max(m.peak_bodies, w.clumps().size());
     }
-    if (t + 1e-12 >= next_vtk) {
-      frame();
-      next_vtk += o.vtk_every;
-    }
+    frames.after_sample(t);
     if (o.progress && t >= next_progress) {
       o.progress({t, s.max_time, now() - t_start, w.particles().size(), false});
       next_progress += progress_step;
     }
     if (t + 1e-12 >= next_check) {
       next_check += s.detect_block;
-      const SteadyWindow win = detect_steady(ts, fn, sp);
+      const SteadyWindow win = detect_steady(series.t, series.normal, sp);
       if (win.found && win.end - win.start >= s.min_window - 1e-9 &&
-          !drifting(ts, fn, win.start, win.end, s.mean_block)) {
+          !drifting(series.t, series.normal, win.start, win.end, s.mean_block)) {
         r.early_stop = true;
         break;
       }
     }
   }
   w.observe_wall_loads(nullptr);  // it refers to this function's locals
-  r.simulated_time = w.time();
-  r.steps = w.step_count();
-  r.rebuilds = w.rebuild_count();
-  r.peak_particles = std::max(r.peak_particles, w.particles().size());
+  return m;
+}
 
-  reduce_series(sc, sensors, s, StationSeries{std::move(ts), std::move(fn), std::move(fs), std::move(mz),
-                                              std::move(face), sample_dt},
-                r);
-  const double a = r.window.start, b = r.window.end, blk = s.mean_block;
-  // --- maps over the steady window ---
-  for (const auto& m : maps) r.maps.push_back(m->reduce(a, b, blk));
-
-  // --- mass accounting ---
+// Where the fed mass went: discharged below the plate, escaped through the domain's faces, or
+// still in the domain.
+void account_mass(const Scene& sc, StationResult& r) {
+  const World& w = *sc.world;
   r.inserted = w.inserters()[static_cast<std::size_t>(sc.inserter)].inserted_mass;
   r.discharged = sc.discharged + w.sinks()[static_cast<std::size_t>(sc.plate_sink)].removed_mass;
   for (int k : sc.boundary_sinks) r.escaped += w.sinks()[static_cast<std::size_t>(k)].removed_mass;
   for (double m : w.particles().mass) r.in_domain += m;
+}
 
-  r.side_view = sensors.side_view(w, o.side_view_points);
-  r.side_view_time = w.time();
-  // The series ends on the final state (the side view's instant).
-  if (series && series->last_time() < w.time() - 1e-12) frame();
-
-  // --- notes ---
+// The run's summary line, escaped mass and the World's warnings as notes.
+void note_run(const Scene& sc, const RunSettings& s, std::size_t peak_bodies, StationResult& r) {
   r.notes.push_back(fmt::format(
       "DEM {}: {}, dt {:.3g} s ({:.2f} of the collision time {:.3g} s, {:.2f} of the Rayleigh time), "
       "{:.2f} s simulated{}, steady window {:.2f}-{:.2f} s ({} blocks of {:.1f} s)",
@@ -203,45 +238,43 @@ StationResult run_station(const Station& st, const RunOptions& o) {
                         peak_bodies)
           : fmt::format("{:.1f} mm spheres", r.diameter * 1e3),
       r.dt, r.dt / r.collision_time, r.collision_time, r.dt / r.rayleigh_time,
-      r.simulated_time, r.early_stop ? " (stopped when steady)" : "", a, b, r.window.blocks, blk));
+      r.simulated_time, r.early_stop ? " (stopped when steady)" : "", r.window.start, r.window.end, r.window.blocks,
+      s.mean_block));
   if (r.escaped > 0.0)
     r.notes.push_back(fmt::format("{:.3g} kg left the rig through the domain's faces (not the discharge)", r.escaped));
   for (const auto& m : *sc.warnings) r.notes.push_back("DEM warning: " + m);
-
-  r.wall_seconds = now() - t_start;
-  if (o.progress) o.progress({r.simulated_time, s.max_time, r.wall_seconds, w.particles().size(), true});
-  return r;
 }
 
-void reduce_series(const Scene& sc, const Sensors& sensors, const RunSettings& s, const StationSeries& series,
-                   StationResult& r) {
-  const std::vector<double>& ts = series.t;
-  const std::vector<double>& fn = series.normal;
-  const std::vector<double>& fs = series.shear;
-  const std::vector<double>& mz = series.moment;
-  const std::vector<FaceParticle>& face = series.face;
-  const double sample_dt = series.sample_dt;
+// The averaging window of the steady means: the detected steady window (steady_state.h), or, when
+// none long enough was found before the time limit, the run's last min_window (with a note).
+void find_window(const StationSeries& series, const RunSettings& s, StationResult& r) {
   const SteadyParams sp{s.detect_block, s.detect_tail, s.mean_block};
+  r.window = detect_steady(series.t, series.normal, sp);
+  if (r.window.found && r.window.end - r.window.start >= s.min_window - 1e-9) return;
+  const bool none = !r.window.found;
+  const int n = std::max(1, static_cast<int>(std::floor(s.min_window / s.mean_block + 1e-9)));
+  r.window.end = r.simulated_time;
+  r.window.start = std::max(0.0, r.window.end - n * s.mean_block);
+  r.window.blocks = static_cast<int>(std::floor((r.window.end - r.window.start) / s.mean_block + 1e-9));
+  r.notes.push_back(none ? fmt::format("no steady state detected within {:.2f} s: means over the last {:.1f} s, "
+                                       "uncertain", r.simulated_time, r.window.end - r.window.start)
+                         : fmt::format("steady window shorter than {:.1f} s at the time limit: means over the "
+                                       "last {:.1f} s", s.min_window, r.window.end - r.window.start));
+}
 
-  // --- the steady window ---
-  r.window = detect_steady(ts, fn, sp);
-  if (!r.window.found || r.window.end - r.window.start < s.min_window - 1e-9) {
-    const bool none = !r.window.found;
-    const int n = std::max(1, static_cast<int>(std::floor(s.min_window / s.mean_block + 1e-9)));
-    r.window.end = r.simulated_time;
-    r.window.start = std::max(0.0, r.window.end - n * s.mean_block);
-    r.window.blocks = static_cast<int>(std::floor((r.window.end - r.window.start) / s.mean_block + 1e-9));
-    r.notes.push_back(none ? fmt::format("no steady state detected within {:.2f} s: means over the last {:.1f} s, "
-                                         "uncertain", r.simulated_time, r.window.end - r.window.start)
-                           : fmt::format("steady window shorter than {:.1f} s at the time limit: means over the "
-                                         "last {:.1f} s", s.min_window, r.window.end - r.window.start));
-  }
-  const double a = r.window.start, b = r.window.end, blk = s.mean_block;
+// The steady window's bounds and the length of its blocks, s.
+struct Window {
+  double a, b, block;
+};
 
-  // --- plate load cell ---
+// The plate's load cell: normal and shear force, their resultant, and the impact point from the
+// moment about the reference.
+void reduce_plate_load(const Scene& sc, const StationSeries& series, const Window& win, StationResult& r) {
+  const auto [a, b, blk] = win;
+  const std::vector<double>& ts = series.t;
   const std::vector<double> ones(ts.size(), 1.0);
-  r.normal_force = block_mean(ts, fn, ones, a, b, blk);
-  r.shear_force = block_mean(ts, fs, ones, a, b, blk);
+  r.normal_force = block_mean(ts, series.normal, ones, a, b, blk);
+  r.shear_force = block_mean(ts, series.shear, ones, a, b, blk);
   if (r.normal_force.ok() && r.shear_force.ok()) {
     const double R = std::hypot(r.normal_force.value, r.shear_force.value);
     r.resultant_force.value = R;
@@ -249,24 +282,28 @@ void reduce_series(const Scene& sc, const Sensors& sensors, const RunSettings& s
     if (R > 0.0)
       r.resultant_force.se = std::hypot(r.normal_force.value * r.normal_force.se, r.shear_force.value * r.shear_force.se) / R;
   }
-  {
-    std::vector<double> minus_m(mz.size());
-    for (std::size_t k = 0; k < mz.size(); ++k) minus_m[k] = -mz[k];
-    const Estimate up = block_ratio(ts, minus_m, fn, a, b, blk);  // along the face above the reference
-    r.impact_point_y = up;
-    if (up.ok()) {
-      r.impact_point_y.value = sc.plate.y_at(up.value);
-      r.impact_point_y.se = up.se * std::cos(sc.plate.angle);
-    }
+  std::vector<double> minus_m(series.moment.size());
+  for (std::size_t k = 0; k < series.moment.size(); ++k) minus_m[k] = -series.moment[k];
+  const Estimate up = block_ratio(ts, minus_m, series.normal, a, b, blk);  // along the face above the reference
+  r.impact_point_y = up;
+  if (up.ok()) {
+    r.impact_point_y.value = sc.plate.y_at(up.value);
+    r.impact_point_y.se = up.se * std::cos(sc.plate.angle);
   }
+}
 
-  // --- maps over the steady window ---
-  r.wear = s.wear;
+std::vector<double> snapshot_times(const StationResult& r) {
+  std::vector<double> tn;
+  for (const auto& sn : r.snapshots) tn.push_back(sn.t);
+  return tn;
+}
 
-  // --- snapshot sensors ---
-  std::vector<double> tn, vp, vpw, vpf, vpfw, ls, lh, lsw, th;
+// The snapshot sensors' means: impact velocity, the layer's speed and height at the pulley, the
+// stream's thickness.
+void reduce_snapshots(const Window& win, StationResult& r) {
+  const auto [a, b, blk] = win;
+  std::vector<double> vp, vpw, vpf, vpfw, ls, lh, lsw, th;
   for (const auto& sn : r.snapshots) {
-    tn.push_back(sn.t);
     vp.push_back(sn.vp_n ? sn.vp_sum / sn.vp_n : kNaN);
     vpw.push_back(sn.vp_n);
     vpf.push_back(sn.vp_fast_n ? sn.vp_fast_sum / sn.vp_fast_n : kNaN);
@@ -276,53 +313,63 @@ void reduce_series(const Scene& sc, const Sensors& sensors, const RunSettings& s
     lsw.push_back(sn.layer_n);
     th.push_back(sn.stream_thickness);
   }
+  const std::vector<double> tn = snapshot_times(r);
   const std::vector<double> snap_ones(tn.size(), 1.0);
   r.impact_velocity = block_mean(tn, vp, vpw, a, b, blk);
   r.impact_velocity_fast = block_mean(tn, vpf, vpfw, a, b, blk);
   r.layer_speed = block_mean(tn, ls, lsw, a, b, blk);
   r.layer_height = block_mean(tn, lh, lsw, a, b, blk);
   r.stream_thickness = block_mean(tn, th, snap_ones, a, b, blk);
+}
 
-  // --- plane crossings: mass flux and momentum balance, block by block ---
-  {
-    std::vector<double> mass_rate, mom_rate;
-    for (std::size_t k = 0; k < r.forces.size(); ++k) {
-      const ForceSample& f = r.forces[k];
-      mass_rate.push_back(f.mass_through / sample_dt);
-      // Rate of change of the content between samples enters as its difference.
-      const double dp = k > 0 ? f.momentum_content - r.forces[k - 1].momentum_content : 0.0;
-      mom_rate.push_back((f.momentum_in - f.momentum_floor - dp) / sample_dt);
-    }
-    r.mass_flux = block_mean(ts, mass_rate, ones, a, b, blk);
-    r.momentum_balance = block_mean(ts, mom_rate, ones, a, b, blk);
+// Plane crossings: the free stream's mass flux and the plate's momentum balance, block by block.
+void reduce_plane_crossings(const StationSeries& series, const Window& win, StationResult& r) {
+  const auto [a, b, blk] = win;
+  std::vector<double> mass_rate, mom_rate;
+  for (std::size_t k = 0; k < r.forces.size(); ++k) {
+    const ForceSample& f = r.forces[k];
+    mass_rate.push_back(f.mass_through / series.sample_dt);
+    // Rate of change of the content between samples enters as its difference.
+    const double dp = k > 0 ? f.momentum_content - r.forces[k - 1].momentum_content : 0.0;
+    mom_rate.push_back((f.momentum_in - f.momentum_floor - dp) / series.sample_dt);
   }
+  const std::vector<double> ones(series.t.size(), 1.0);
+  r.mass_flux = block_mean(series.t, mass_rate, ones, a, b, blk);
+  r.momentum_balance = block_mean(series.t, mom_rate, ones, a, b, blk);
+}
 
-  // V_a: down the face, 30-150 mm below the impact point, once that is known.
-  if (r.impact_point_y.ok()) {
-    const double a_imp = (r.impact_point_y.value - sc.plate.reference.y()) / std::cos(sc.plate.angle);
-    std::vector<double> tv, vv, wv;
-    std::size_t k = 0;
-    for (const auto& sn : r.snapshots) {
-      double sum = 0.0;
-      int n = 0;
-      const auto t = static_cast<float>(sn.t);
-      for (; k < face.size() && face[k].t <= t; ++k) {
-        const FaceParticle& fp = face[k];
-        if (fp.t != t) continue;
-        if (fp.v_into <= -0.5f || fp.v_into >= 0.3f) continue;
-        const double below = a_imp - fp.up;
-        if (below < 0.030 || below > 0.150) continue;
-        sum += fp.v_down;
-        ++n;
-      }
-      tv.push_back(sn.t);
-      vv.push_back(n ? sum / n : kNaN);
-      wv.push_back(n);
+// V_a: down the face, 30-150 mm below the impact point, once that is known.
+void reduce_exit_velocity(const Scene& sc, const std::vector<FaceParticle>& face, const Window& win, StationResult& r) {
+  if (!r.impact_point_y.ok()) return;
+  const auto [a, b, blk] = win;
+  const double a_imp = (r.impact_point_y.value - sc.plate.reference.y()) / std::cos(sc.plate.angle);
+  std::vector<double> tv, vv, wv;
+  std::size_t k = 0;
+  for (const auto& sn : r.snapshots) {
+    double sum = 0.0;
+    int n = 0;
+    const auto t = static_cast<float>(sn.t);
+    for (; k < face.size() && face[k].t <= t; ++k) {
+      const FaceParticle& fp = face[k];
+      if (fp.t != t) continue;
+      if (fp.v_into <= -0.5f || fp.v_into >= 0.3f) continue;
+      const double below = a_imp - fp.up;
+      if (below < 0.030 || below > 0.150) continue;
+      sum += fp.v_down;
+      ++n;
     }
-    r.exit_velocity = block_mean(tv, vv, wv, a, b, blk);
+    tv.push_back(sn.t);
+    vv.push_back(n ? sum / n : kNaN);
+    wv.push_back(n);
   }
+  r.exit_velocity = block_mean(tv, vv, wv, a, b, blk);
+}
 
-  // --- stream limits ---
+// The stream's upper and lower limits and centre line at the sensors' stations, where the stream
+// is there in most of the window's snapshots.
+void reduce_stream_limits(const Sensors& sensors, const Window& win, StationResult& r) {
+  const auto [a, b, blk] = win;
+  const std::vector<double> tn = snapshot_times(r);
   const auto& xq = sensors.stations();
   std::size_t in_window = 0;
   for (double t : tn) in_window += (t > a && t <= b + 1e-12);
@@ -342,13 +389,63 @@ void reduce_series(const Scene& sc, const Sensors& sensors, const RunSettings& s
     if (2 * static_cast<std::size_t>(row.centre.n) < in_window) continue;
     r.trajectory.push_back(row);
   }
+}
 
+// A layer that does not reach the pulley at belt speed, or a free stream that does not carry the
+// feed, says the scene is not what the condition describes.
+void note_feed_mismatch(const Scene& sc, StationResult& r) {
   if (r.layer_speed.ok() && std::abs(r.layer_speed.value / sc.belt_speed - 1.0) > 0.02)
     r.notes.push_back(fmt::format("the layer reaches the pulley at {:.3f} m/s, not at belt speed {:.3f} m/s",
                                   r.layer_speed.value, sc.belt_speed));
   if (r.mass_flux.ok() && std::abs(r.mass_flux.value / sc.mass_flow - 1.0) > 0.05)
     r.notes.push_back(fmt::format("free-stream mass flux {:.3f} kg/s differs from the feed {:.3f} kg/s",
                                   r.mass_flux.value, sc.mass_flow));
+}
+
+}  // namespace
+
+StationResult run_station(const Station& st, const RunOptions& o) {
+  const RunSettings& s = o.settings;
+  Scene sc = build_scene(st, s, o.geometry, o.external);
+  World& w = *sc.world;
+  Sensors sensors(sc, s.momentum_plane_fraction);
+  StationResult r = describe_run(st, s, sc);
+  const double t_start = now();
+  w.initialise();
+  const Schedule schedule = Schedule::of(s, sc.dt);
+  const auto maps = record_maps(o, schedule, sc);
+  ParticleFrames frames(o, sc);
+
+  const Marched marched = march(o, schedule, sc, sensors, maps, frames, t_start, r);
+  r.simulated_time = w.time();
+  r.steps = w.step_count();
+  r.rebuilds = w.rebuild_count();
+  r.peak_particles = std::max(r.peak_particles, w.particles().size());
+
+  reduce_series(sc, sensors, s, marched.series, r);
+  for (const auto& m : maps) r.maps.push_back(m->reduce(r.window.start, r.window.end, s.mean_block));
+  account_mass(sc, r);
+  r.side_view = sensors.side_view(w, o.side_view_points);
+  r.side_view_time = w.time();
+  frames.finish();
+  note_run(sc, s, marched.peak_bodies, r);
+
+  r.wall_seconds = now() - t_start;
+  if (o.progress) o.progress({r.simulated_time, s.max_time, r.wall_seconds, w.particles().size(), true});
+  return r;
+}
+
+void reduce_series(const Scene& sc, const Sensors& sensors, const RunSettings& s, const StationSeries& series,
+                   StationResult& r) {
+  find_window(series, s, r);
+  const Window win{r.window.start, r.window.end, s.mean_block};
+  reduce_plate_load(sc, series, win, r);
+  r.wear = s.wear;
+  reduce_snapshots(win, r);
+  reduce_plane_crossings(series, win, r);
+  reduce_exit_velocity(sc, series.face, win, r);
+  reduce_stream_limits(sensors, win, r);
+  note_feed_mismatch(sc, r);
 }
 
 void write_result_files(const std::string& dir, const StationResult& r) {

@@ -1,4 +1,4 @@
-// estimate's exports for designers (issue 35): the streamline points in its JSON and in --points
+// estimate's exports for designers: the streamline points in its JSON and in --points
 // (CSV) are the same numbers; the drawing has mm ticks, dimensions, a scale bar of 1, 2 or 5 x 10^k
 // mm and, for a troughed belt, the trough's section; the sweep chart's force axis starts at 0 and
 // marks the plate and the range where the belt is overfilled.

@@ -237,7 +237,7 @@ BOOST_AUTO_TEST_CASE(map_sums_to_the_plate_force_and_R_n) {
   BOOST_TEST(above < 0.01 * peak_p);
 }
 
-// The default map (issue 35): the contacts on the generated plate binned on 10 mm cells while the
+// The default map: the contacts on the generated plate binned on 10 mm cells while the
 // World keeps the plate as two triangles. The grid only reads contacts, so the load cell's numbers
 // equal those of a run with the coarse map bit for bit; the map resolves the loaded band over
 // several rows, and its centre of pressure lies within one cell of the DEM's impact point y_R (the
