@@ -4,7 +4,7 @@
 // check itself on replicas of the dataset's design (validation/self_check.h).
 //
 //   api::DiagnoseOptions o;
-//   o.dataset = "datasets/grima2010_hidden";
+//   o.dataset = "datasets/hidden-effect";
 //   const api::DiagnoseResult r = api::diagnose(o);
 //   r.diagnosis.verdict;        // one sentence; r.files(): diagnosis.csv, diagnosis.md, ...
 #include <cstdint>
