@@ -65,9 +65,12 @@ std::string record_words(const EffectFit& f) {
       const double w = f.prior_width[i] * scale, ratio = std::abs(v) / w;
       s += fmt::format(" ({:.1f} times its {} of {:.3g} {}: {})", ratio,
                        f.prior_stated[i] ? "stated uncertainty" : "plausible error (the documented default)", w, unit,
-                       ratio >= 10.0 ? "a wrong entry or a changed rig rather than a tolerance"
+                       ratio >= 10.0  ? "a wrong entry or a changed rig rather than a tolerance"
                        : ratio >= 3.0 ? "more than a tolerance"
-                                      : "within about a tolerance, so the record may be right and this a stand-in");
+                       : ratio >= 1.0 ? "beyond its tolerance, though not far: a difference in the models of this "
+                                        "size could look the same"
+                                      : "within its tolerance, so the record may be right and this a difference in "
+                                        "the models");
     }
     parts.push_back(s);
   }
