@@ -16,18 +16,13 @@ EffectInfo info() {
                "V_true = (1 + e) V_recorded: the stream leaves faster or slower, thinner or thicker.",
                "",
                0.0, -20.0, 20.0, 5.0,
-               [](double v) {
-                 return std::make_shared<RecordedInput>("belt_speed", v, [](Station& s, double x) { s.belt_speed *= 1.0 + x * kPercent; });
-               },
+               recorded_input("belt_speed", [](Station& s, double x) { s.belt_speed *= 1.0 + x * kPercent; }),
                "a tachometer on the belt or a timed mark over a measured length"};
   e.kind = EffectInfo::Kind::record;
   e.per_condition = true;
   e.prior_width = 2.0;
   e.input = "belt_speed";
-  e.width_in_unit = [](const Station& s, double u) {
-    (void)s;
-    return u / s.belt_speed / kPercent;
-  };
+  e.width_in_unit = relative_width([](const Station& s) { return s.belt_speed; });
   return e;
 }
 

@@ -16,17 +16,12 @@ EffectInfo info() {
                "t_true = t_recorded + dt: the discharge radius R_b = D/2 + t_b grows by dt.",
                "",
                0.0, -10.0, 20.0, 5.0,
-               [](double v) {
-                 return std::make_shared<RecordedInput>("belt_thickness", v, [](Station& s, double x) { s.belt.belt_thickness += x * kMm; });
-               },
+               recorded_input("belt_thickness", [](Station& s, double x) { s.belt.belt_thickness += x * kMm; }),
                "a thickness gauge on the belt's edge"};
   e.kind = EffectInfo::Kind::record;
   e.prior_width = 2.0;
   e.input = "belt.belt_thickness_mm";
-  e.width_in_unit = [](const Station& s, double u) {
-    (void)s;
-    return u / kMm;
-  };
+  e.width_in_unit = offset_width(kMm);
   return e;
 }
 

@@ -17,17 +17,12 @@ EffectInfo info() {
                "rho_true = (1 + e) rho_recorded: h_b from continuity shrinks by 1 / (1 + e).",
                "",
                0.0, -30.0, 30.0, 10.0,
-               [](double v) {
-                 return std::make_shared<RecordedInput>("bulk_density", v, [](Station& s, double x) { s.material.bulk_density *= 1.0 + x * kPercent; });
-               },
+               recorded_input("bulk_density", [](Station& s, double x) { s.material.bulk_density *= 1.0 + x * kPercent; }),
                "a weighed sample of the layer cut from a stopped belt (or a bulk density test of the material as it ran)"};
   e.kind = EffectInfo::Kind::record;
   e.prior_width = 5.0;
   e.input = "material.bulk_density_kgm3";
-  e.width_in_unit = [](const Station& s, double u) {
-    (void)s;
-    return u / s.material.bulk_density / kPercent;
-  };
+  e.width_in_unit = relative_width([](const Station& s) { return s.material.bulk_density; });
   return e;
 }
 

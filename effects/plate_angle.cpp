@@ -16,18 +16,13 @@ EffectInfo info() {
                "beta_true = beta_recorded + d_beta: the stream's momentum splits differently into R_n and R_s.",
                "",
                0.0, -15.0, 15.0, 4.0,
-               [](double v) {
-                 return std::make_shared<RecordedInput>("plate_angle", v, [](Station& s, double x) { s.plate.angle += x * kDeg; });
-               },
+               recorded_input("plate_angle", [](Station& s, double x) { s.plate.angle += x * kDeg; }),
                "an inclinometer on the plate face"};
   e.kind = EffectInfo::Kind::record;
   e.per_condition = true;
   e.prior_width = 1.0;
   e.input = "plate.angle_deg";
-  e.width_in_unit = [](const Station& s, double u) {
-    (void)s;
-    return u / kDeg;
-  };
+  e.width_in_unit = offset_width(kDeg);
   return e;
 }
 

@@ -18,18 +18,13 @@ EffectInfo info() {
                "Z_true = Z_recorded + dZ: the stream strikes the plate further along its flight (lower, faster).",
                "",
                0.0, -150.0, 150.0, 25.0,
-               [](double v) {
-                 return std::make_shared<RecordedInput>("plate_distance", v, [](Station& s, double x) { s.plate_distance += x * kMm; });
-               },
+               recorded_input("plate_distance", [](Station& s, double x) { s.plate_distance += x * kMm; }),
                "a tape or laser distance from the pulley axis to the plate face at its top edge"};
   e.kind = EffectInfo::Kind::record;
   e.per_condition = true;
   e.prior_width = 10.0;
   e.input = "plate_distance";
-  e.width_in_unit = [](const Station& s, double u) {
-    (void)s;
-    return u / kMm;
-  };
+  e.width_in_unit = offset_width(kMm);
   return e;
 }
 

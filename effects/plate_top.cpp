@@ -16,18 +16,13 @@ EffectInfo info() {
                "y_top,true = y_top,recorded + dy: the plate sits higher or lower in the stream.",
                "",
                0.0, -150.0, 150.0, 25.0,
-               [](double v) {
-                 return std::make_shared<RecordedInput>("plate_top", v, [](Station& s, double x) { s.plate_top += x * kMm; });
-               },
+               recorded_input("plate_top", [](Station& s, double x) { s.plate_top += x * kMm; }),
                "a tape or level from the pulley axis to the plate's top edge"};
   e.kind = EffectInfo::Kind::record;
   e.per_condition = true;
   e.prior_width = 10.0;
   e.input = "plate_top";
-  e.width_in_unit = [](const Station& s, double u) {
-    (void)s;
-    return u / kMm;
-  };
+  e.width_in_unit = offset_width(kMm);
   return e;
 }
 

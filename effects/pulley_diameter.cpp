@@ -17,17 +17,12 @@ EffectInfo info() {
                "D_true = D_recorded + dD: the discharge radius R_b = D/2 + t_b grows by dD/2.",
                "",
                0.0, -100.0, 100.0, 25.0,
-               [](double v) {
-                 return std::make_shared<RecordedInput>("pulley_diameter", v, [](Station& s, double x) { s.belt.pulley_diameter += x * kMm; });
-               },
+               recorded_input("pulley_diameter", [](Station& s, double x) { s.belt.pulley_diameter += x * kMm; }),
                "a tape round the lagged pulley (circumference / pi)"};
   e.kind = EffectInfo::Kind::record;
   e.prior_width = 5.0;
   e.input = "belt.pulley_diameter_mm";
-  e.width_in_unit = [](const Station& s, double u) {
-    (void)s;
-    return u / kMm;
-  };
+  e.width_in_unit = offset_width(kMm);
   return e;
 }
 

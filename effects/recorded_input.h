@@ -30,4 +30,23 @@ inline constexpr double kMm = 1e-3;
 inline constexpr double kDeg = 3.14159265358979323846 / 180.0;
 inline constexpr double kPercent = 1e-2;
 
+// EffectInfo::make of a record: the station with `apply` done at the strength asked for.
+inline std::function<std::shared_ptr<const analytical::Effect>(double)> recorded_input(std::string name,
+                                                                                       RecordedInput::Apply apply) {
+  return [name = std::move(name), apply = std::move(apply)](double strength) {
+    return std::make_shared<RecordedInput>(name, strength, apply);
+  };
+}
+
+// EffectInfo::width_in_unit of an offset whose unit is `unit` in SI (kMm, kDeg): a stated
+// uncertainty does not depend on the station.
+inline std::function<double(const Station&, double)> offset_width(double unit) {
+  return [unit](const Station&, double u) { return u / unit; };
+}
+
+// ... of a relative error in %: the stated uncertainty against the recorded value at that station.
+inline std::function<double(const Station&, double)> relative_width(double (*recorded)(const Station&)) {
+  return [recorded](const Station& s, double u) { return u / recorded(s) / kPercent; };
+}
+
 }  // namespace chutelab::effects

@@ -16,18 +16,13 @@ EffectInfo info() {
                "h_true = h_recorded + dh, where h_b is stated: the stream's upper limit and centre move.",
                "",
                0.0, -30.0, 30.0, 8.0,
-               [](double v) {
-                 return std::make_shared<RecordedInput>("stream_thickness", v, [](Station& s, double x) { if (s.stream_thickness) *s.stream_thickness += x * kMm; });
-               },
+               recorded_input("stream_thickness", [](Station& s, double x) { if (s.stream_thickness) *s.stream_thickness += x * kMm; }),
                "a profile gauge or a photograph of the layer against a scale"};
   e.kind = EffectInfo::Kind::record;
   e.per_condition = true;
   e.prior_width = 3.0;
   e.input = "stream_thickness";
-  e.width_in_unit = [](const Station& s, double u) {
-    (void)s;
-    return u / kMm;
-  };
+  e.width_in_unit = offset_width(kMm);
   return e;
 }
 
