@@ -19,11 +19,12 @@ void check(const DiagnoseOptions& o) {
 
 std::vector<validation::OutputFile> DiagnoseResult::files() const {
   std::string md = validation::diagnosis_markdown(diagnosis);
-  if (self_check) md += "\n" + validation::self_check_markdown(*self_check, alpha);
+  const std::string check_md = self_check ? validation::self_check_markdown(*self_check, alpha) : "";
+  if (self_check) md += "\n" + check_md;
   std::vector<validation::OutputFile> out = {{"diagnosis.csv", validation::diagnosis_csv(diagnosis)},
                                              {"diagnosis.md", md}};
   if (self_check) {
-    out.emplace_back("self_check.md", validation::self_check_markdown(*self_check, alpha));
+    out.emplace_back("self_check.md", check_md);
     out.emplace_back("self_check.csv", validation::self_check_csv(*self_check));
   }
   return out;
