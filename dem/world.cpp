@@ -223,7 +223,7 @@ void World::check_contact_law() const {
       if (!used[static_cast<std::size_t>(a)]) continue;
       auto check = [&](int b) {
         const std::string why = Law::check(Law::mix(materials_.material(a), materials_.material(b), materials_.interaction(a, b)));
-        if (!why.empty()) throw InputError("", 0, field(a, b), why);
+        if (!why.empty()) throw InputError("", 0, field(a, b), fmt::format("the {} contact law {}", Law::key, why));
       };
       for (int b = 0; b < materials_.size(); ++b)
         if (used[static_cast<std::size_t>(b)]) check(b);

@@ -1,7 +1,8 @@
 #pragma once
-// A contact model composed at compile time from a normal law (with its damping and tangential
-// stiffness; dem/contact/normal_laws.h), a tangential friction law, a rolling law and a cohesion part,
-// so the hot loop has no virtual call and no branch on the model.
+// A contact model composed at compile time from a normal law (a spring and a damping part, which also
+// give the tangential spring its stiffness and dashpot; dem/contact/spring_and_damping.h, the registry
+// in dem/contact/normal_laws.h), a tangential friction law, a rolling law and a cohesion part, so the
+// hot loop has no virtual call and no branch on the model.
 #include <utility>
 
 #include "dem/contact/cohesion_sjkr.h"

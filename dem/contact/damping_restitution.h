@@ -1,13 +1,20 @@
 #pragma once
-// Viscous normal damping set by a coefficient of restitution, the damping of both the Hertz-Mindlin
-// and the linear spring-dashpot law: F_d = c_n d(delta)/dt with c_n = factor sqrt(k m*), k the normal
-// stiffness at the overlap and m* the effective mass. For a linear spring the factor 2 beta, with
-// beta = -ln e / sqrt(ln^2 e + pi^2), is the exact damping ratio of an oscillator that rebounds with
-// e; for Hertz the reference study's (Tsuji-type) 2 sqrt(5/6) beta gives e at every impact speed (checked by
-// tests/dem/test_normal_impact.cpp). The tangential spring's damping uses its own stiffness.
+// Viscous damping set by a coefficient of restitution, the damping part of both the Hertz-Mindlin and
+// the linear spring-dashpot law: c = 2 zeta sqrt(k m*), k the stiffness at the overlap (normal, and
+// the tangential spring's for the tangential dashpot) and m* the effective mass, with the damping
+// ratio zeta = s beta, beta = -ln e / sqrt(ln^2 e + pi^2), and s the spring's restitution_scale().
+// For a linear spring (s = 1) beta is the exact damping ratio of an oscillator that rebounds with e;
+// for Hertz the reference study's (Tsuji-type) s = sqrt(5/6) gives e at every impact speed (checked
+// by tests/dem/test_normal_impact.cpp).
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <string_view>
 
+#include "dem/contact/kinematics.h"
+#include "dem/contact/law_parameters.h"
+#include "dem/material.h"
 #include "dem/types.h"
 
 namespace chutelab::dem {
@@ -23,5 +30,31 @@ inline double damping_ratio_from_restitution(double e) {
 CHUTELAB_INLINE double restitution_damping(double factor, double stiffness, double m_eff) {
   return factor * std::sqrt(stiffness * m_eff);
 }
+
+struct RestitutionDamping {
+  static constexpr std::string_view key = "restitution";
+  static constexpr std::string_view title = "damping from the restitution";
+  static constexpr std::array<LawParameter, 0> parameters{};  // the interaction's restitution
+
+  struct Coeffs {
+    double factor = 0.0;  // 2 zeta
+  };
+  template <class Spring>
+  static Coeffs set(const Interaction& in) {
+    return {2.0 * Spring::restitution_scale() * damping_ratio_from_restitution(in.restitution)};
+  }
+  static std::string check(const Coeffs&) { return {}; }  // e is checked where it is set
+
+  // A spring that keeps sqrt(kt / kn) per pair (Hertz-Mindlin) saves a square root per contact:
+  // sqrt(kt m*) = sqrt(kn m*) sqrt(kt / kn).
+  template <class Spring>
+  CHUTELAB_INLINE static Dashpot dashpot(const Coeffs& c, const SpringForce& s, double m_eff) {
+    const double cn = restitution_damping(c.factor, s.kn, m_eff);
+    if constexpr (Spring::fixed_tangential_ratio) return {cn, cn * s.tangential_ratio};
+    else return {cn, restitution_damping(c.factor, s.kt, m_eff)};
+  }
+  static double ratio(const Coeffs& c, double /*stiffness*/, double /*m_eff*/) { return 0.5 * c.factor; }
+  static LawParameters matched_parameters(double /*zeta*/, double /*m_eff*/, double /*w0*/) { return {}; }
+};
 
 }  // namespace chutelab::dem

@@ -56,6 +56,20 @@ struct NormalResult {
   double ct;     // tangential damping coefficient, N s/m
 };
 
+// The two parts of a normal law (spring_and_damping.h): a spring's answer at an overlap.
+struct SpringForce {
+  double force;             // elastic normal force, N (> 0 pushes the bodies apart)
+  double kn;                // tangent normal stiffness dF/d(delta), N/m
+  double kt;                // tangential stiffness, N/m
+  double tangential_ratio;  // sqrt(kt / kn), when the spring keeps it per pair (fixed_tangential_ratio)
+};
+
+// A damping part's answer at an overlap: the dashpots' coefficients, N s/m.
+struct Dashpot {
+  double cn;  // normal: F_d = cn d(delta)/dt
+  double ct;  // tangential, for the tangential spring
+};
+
 // Force on i (the force on j is its negative) and torques on i and j about their centres.
 struct ContactForce {
   LaneVec force;

@@ -1,13 +1,16 @@
 #pragma once
-// The registry of normal contact laws. A law is one header under dem/contact/ (hertz_mindlin.h is
-// the model to follow) that declares, as LAMMPS' granular sub-models and Chrono DEM-Engine's force
-// models do, everything the engine and the tools ask of it:
+// The registry of normal contact laws. A law is a spring and a damping part side by side
+// (SpringAndDamping, dem/contact/spring_and_damping.h: hertz_mindlin.h is the model to follow) and
+// declares, as LAMMPS' granular sub-models and Chrono DEM-Engine's force models do, everything the
+// engine and the tools ask of it:
 //   key, title          its name in configuration and on the command line, and in prose
 //   liggghts            LIGGGHTS' pair model of the same law ("" if none: no LIGGGHTS deck)
 //   hertz_elastic       its elastic force grows as delta^{3/2} (the sJKR belt adhesion assumes it)
-//   parameters          the numbers it reads from Interaction::law (LawParameter)
+//   parameters          the numbers it reads from Interaction::law (LawParameter): its spring's and
+//                       its damping part's
 //   Coeffs, mix         its coefficients per material pair and the mixing rule that derives them
-//   check               why a pair's coefficients cannot run ("" if they can)
+//   check               what a pair's coefficients need to run ("" if they have it); the World
+//                       names the law before it
 //   normal              force, normal and tangential stiffness, tangential damping at an overlap
 //   collision_time      a binary collision's duration (the default time step)
 //   elastic_energy      the energy in the normal spring (World::energy)
@@ -16,9 +19,10 @@
 //   liggghts_pair_properties  what LIGGGHTS' model reads per type pair beyond the moduli,
 //                       restitution and friction every deck writes (property name -> value)
 // NormalContactLaw below states this contract, so a law that misses a part does not compile.
-// Registering it is its include and its place in NormalLaws below. From this list come the
-// dispatch of the contact loop (dem/contact/contact_model.h), the names the station's configuration
-// and the command line accept, the LIGGGHTS deck's model, the time step and the energy.
+// Registering it is its include and its place in NormalLaws below; a spring with a damping part
+// other than its law's own is registered as Composed<Spring, Damping>, one line. From this list come
+// the dispatch of the contact loop (dem/contact/contact_model.h), the names the station's
+// configuration and the command line accept, the LIGGGHTS deck's model, the time step and the energy.
 #include <algorithm>
 #include <concepts>
 #include <cstddef>
@@ -34,6 +38,7 @@
 #include "dem/contact/hooke.h"
 #include "dem/contact/linear_spring_dashpot.h"
 #include "dem/contact/pair_coeffs.h"
+#include "dem/contact/spring_and_damping.h"
 
 namespace chutelab::dem {
 
