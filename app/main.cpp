@@ -16,6 +16,7 @@
 #include "core/input_error.h"
 #include "core/message.h"
 #include "core/output_folder.h"
+#include "core/progress.h"
 #include "validation/dataset_output.h"
 
 namespace chutelab::app {
@@ -120,6 +121,7 @@ int main(int argc, char** argv) {
   using namespace chutelab;
   // Before any thread exists (MPI's included), so every worker inherits the mask (core/output_folder.h).
   install_interrupt_cleanup();
+  progress::set_mention_names(app::flag_for);  // progress lines name other inputs by their flags
   // Last resort for an exception that cannot reach the barrier below (a worker thread, a noexcept
   // path): one line and its own exit code, never an abort and its core dump.
   std::set_terminate([] {

@@ -41,6 +41,8 @@ std::string mention(std::string_view key) {
   return std::string(1, kMentionOpen) + std::string(key) + kMentionClose;
 }
 
+std::string said_text(const std::string& text, const FieldNames& names) { return render(text, names); }
+
 InputError::InputError(std::string file, long line, std::string field, const std::string& problem)
     : std::runtime_error(compose(file, line, field, render(problem, {}))),
       file_(std::move(file)),

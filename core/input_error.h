@@ -19,6 +19,10 @@ using FieldNames = std::function<std::string(std::string_view key)>;
 // what() as the key itself and by said() in the front end's words.
 std::string mention(std::string_view key);
 
+// Any text that holds mentions (a progress line, a note) with each shown by `names` (the key itself
+// when no names are given).
+std::string said_text(const std::string& text, const FieldNames& names = {});
+
 class InputError : public std::runtime_error {
  public:
   // file may be empty for an option; line 0 means "no line" (e.g. a TOML key or an option). field is

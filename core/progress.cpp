@@ -8,11 +8,13 @@
 #include <map>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 namespace chutelab::progress {
 namespace {
 
 std::atomic<bool> g_quiet{false};
+FieldNames g_mention_names;
 thread_local bool t_in_job = false;
 
 struct Screen {
@@ -82,12 +84,15 @@ Mode mode() {
 void set_quiet(bool q) { g_quiet = q; }
 bool quiet() { return g_quiet; }
 
+void set_mention_names(FieldNames names) { g_mention_names = std::move(names); }
+
 void line(const std::string& text) {
   if (mode() == Mode::quiet) return;
+  const std::string shown = said_text(text, g_mention_names);
   Screen& s = screen();
   const std::lock_guard<std::mutex> lock(s.m);
   erase(s);
-  std::fprintf(stderr, "%s\n", text.c_str());
+  std::fprintf(stderr, "%s\n", shown.c_str());
   if (mode() == Mode::terminal && (!s.prefix.empty() || !s.parts.empty())) draw(s);
   std::fflush(stderr);
 }

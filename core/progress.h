@@ -7,6 +7,8 @@
 // Thread-safe: campaign workers (core/campaign.h) update their own parts of the status line.
 #include <string>
 
+#include "core/input_error.h"
+
 namespace chutelab::progress {
 
 enum class Mode { terminal, log, quiet };
@@ -15,7 +17,12 @@ Mode mode();
 void set_quiet(bool quiet);  // --quiet
 bool quiet();
 
-// A permanent line (the status line is cleared first and drawn again below it).
+// How a line shows a mention of an input (core/input_error.h: mention("dem.ladder")): the command
+// line's flag, Python's keyword. The key itself until a front end sets it (once, before any thread).
+void set_mention_names(FieldNames names);
+
+// A permanent line (the status line is cleared first and drawn again below it), mentions shown by
+// the front end's names.
 void line(const std::string& text);
 
 // This thread's part of the status line (terminal only); empty text removes it.

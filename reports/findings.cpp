@@ -36,7 +36,7 @@ Table findings_table(const std::vector<validation::ReferenceFinding>& findings) 
                     "2 standard uncertainties). "
                     "Agreement means |E| ≤ 2 u_val (or 5 % where no uncertainty is known); \"varies\" means a chi-square "
                     "test rejects a constant ratio at p < 0.01 (or a spread above 5 % without uncertainties). Finding 6 "
-                    "comes from a sensitivity study (chutelab sensitivity) given with --studies.");
+                    "comes from a sensitivity study (chutelab sensitivity) given to the validation among its studies.");
   return t;
 }
 

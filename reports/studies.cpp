@@ -158,15 +158,15 @@ std::vector<StudySection> read_studies(const std::vector<fs::path>& paths, std::
       if (f == "calibration.csv") add_cal(path);
       else if (f == "sensitivity.csv") add_sens(path);
       else
-        throw InputError(path.string(), 0, "--studies",
+        throw InputError(path.string(), 0, "studies",
                          "not a study file (give the folder of a calibrate or sensitivity run, or its calibration.csv "
                          "/ sensitivity.csv)");
       continue;
     }
     if (!fs::is_directory(path))
-      throw InputError(path.string(), 0, "--studies", "no such folder (the --out of chutelab calibrate or sensitivity)");
+      throw InputError(path.string(), 0, "studies", "no such folder (the output folder of a calibrate or sensitivity study)");
     const bool cal = fs::exists(path / "calibration.csv"), sens = fs::exists(path / "sensitivity.csv");
-    if (!cal && !sens) throw InputError(path.string(), 0, "--studies", "holds neither calibration.csv nor sensitivity.csv");
+    if (!cal && !sens) throw InputError(path.string(), 0, "studies", "holds neither calibration.csv nor sensitivity.csv");
     if (cal) add_cal(path / "calibration.csv");
     if (sens) add_sens(path / "sensitivity.csv");
   }

@@ -26,8 +26,8 @@ void explain(const std::vector<ModelJob>& jobs, const RunModelsOptions& options)
   if (rungs.size() > 4) rungs.resize(4);
   progress::line(fmt::format(
       "{}{} model runs: {} predictions, and {} more at coarser settings ({}) whose differences estimate the "
-      "discretisation uncertainty u_num of each prediction (ASME V&V 20; --dem-ladder off leaves them out)",
-      head, jobs.size(), main_runs, jobs.size() - main_runs, fmt::join(rungs, "; ")));
+      "discretisation uncertainty u_num of each prediction (ASME V&V 20; {} off leaves them out)",
+      head, jobs.size(), main_runs, jobs.size() - main_runs, fmt::join(rungs, "; "), mention("dem.ladder")));
 }
 
 }  // namespace

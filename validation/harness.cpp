@@ -354,8 +354,8 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
     for (const auto& [key, line] : tol.entries())
       if (!used.count(key))
         r.acceptance_problems.push_back(fmt::format(
-            "{}:{}: {}.{}: this limit checked no value (no model of --models {} predicts {} for a measured value)",
-            tol.file(), line, key.first, key.second, fmt::join(r.models, ","), key.second));
+            "{}:{}: {}.{}: this limit checked no value (no model run here predicts {} for a measured value; the models: {})",
+            tol.file(), line, key.first, key.second, key.second, fmt::join(r.models, ", ")));
     if (!r.acceptance_problems.empty()) r.acceptance_failed = true;
   }
 

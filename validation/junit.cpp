@@ -140,7 +140,7 @@ std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSum
   // Nothing checked is not a pass: one test case in error says why.
   if (sum.tests == sum.skipped) {
     const std::string why =
-        !tol ? "no tolerances given (no tolerances.toml in the dataset and no --tolerances): nothing was checked"
+        !tol ? "no tolerances given (the dataset has no tolerances.toml and none were given): nothing was checked"
              : fmt::format("no tolerance in {} applies to a value these models predict ({}): nothing was checked",
                            tol->file(), fmt::format("{}", fmt::join(r.models, ", ")));
     ++sum.tests;
