@@ -34,6 +34,7 @@
 #include <variant>
 #include <vector>
 
+#include "dem/contact/damping_ratio.h"
 #include "dem/contact/hertz_mindlin.h"
 #include "dem/contact/hooke.h"
 #include "dem/contact/linear_spring_dashpot.h"
@@ -108,7 +109,8 @@ struct LawList {
 };
 
 // The registry. Checkpoints store a law's place: append new laws at the end.
-using NormalLaws = LawList<HertzMindlin, LinearSpringDashpot, Hooke>;
+using NormalLaws = LawList<HertzMindlin, LinearSpringDashpot, Hooke,
+                           Composed<HertzMindlinSpring, DampingRatio>>;
 
 // Which registered law a scene runs.
 class NormalLaw {

@@ -118,7 +118,8 @@ struct SpringAndDamping {
     const double zeta = Spring::restitution_scale() * damping_ratio_from_restitution(restitution);
     double w0 = 0.0;
     LawParameters p = Spring::matched_stiffness(zeta, m_eff, duration, w0);
-    for (const auto& [key, value] : Damping::matched_parameters(zeta, m_eff, w0).values()) p.set(key, value);
+    const LawParameters damping = Damping::matched_parameters(zeta, m_eff, w0);  // the loop reads into it
+    for (const auto& [key, value] : damping.values()) p.set(key, value);
     return p;
   }
 };
