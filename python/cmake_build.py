@@ -1,9 +1,12 @@
 """Builds the extension module _chutelab with this repository's CMake build, for meson.build.
 
 meson-python (pyproject.toml) calls it through meson.build's custom target; it configures a CMake
-build of its own (unless --build-dir names an existing one of this checkout), builds the one
-target _chutelab there, and copies the module to where meson installs it from. The module is thus
-compiled by the same CMakeLists.txt, with the same flags, as `cmake --build build` makes it.
+build of its own, build-pip/ beside build/ (unless --build-dir names an existing one of this
+checkout), builds the one target _chutelab there, and copies the module to where meson installs it
+from. The module is thus compiled by the same CMakeLists.txt, with the same flags, as `cmake --build
+build` makes it. build-pip/ stays, so a second `pip install .` compiles only what changed; and as it
+lies as deep as build/, ccache (base_dir set to a folder above the checkout) finds the objects
+build/ already compiled.
 """
 
 import argparse
@@ -56,7 +59,7 @@ def main():
         if home is None or os.path.realpath(home) != source:
             fail(f"cmake_build_dir {build} is the build of {home}, not of {source}")
     else:
-        build = os.path.join(os.path.dirname(os.path.abspath(a.output)), "cmake-build")
+        build = os.path.join(source, "build-pip")
         if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
             args = [a.cmake, "-S", source, "-B", build, "-DCMAKE_BUILD_TYPE=Release",
                     f"-DCHUTELAB_NATIVE={'ON' if a.native == 'true' else 'OFF'}",
