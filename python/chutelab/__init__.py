@@ -443,7 +443,9 @@ class Validation:
     def write_report(self, out: PathLike) -> None:
         """Writes predictions.csv, errors.csv, summary.csv, report.md and report.html (and, with a
         diagnosis, diagnosis.csv and diagnosis.md) into the folder `out`: the files
-        `chutelab validate --out` writes for the same inputs, all or none, never onto an input."""
+        `chutelab validate --out` writes for the same inputs, all or none, never onto an input.
+        With the "dem" model the command line also keeps each condition's series under dem/;
+        these are not written here (the DEM cache, dem_cache=, keeps the runs)."""
         self._core.write(_path("out", out, optional=False))
 
     def __repr__(self) -> str:
