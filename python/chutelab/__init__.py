@@ -11,9 +11,10 @@ as the `chutelab` command line, with results as pandas DataFrames and typed valu
     after = chutelab.validate(ds, effects={"air_drag": "fit"})
     after.write_report("out/report")     # report.html, report.md and the CSV files, as validate --out
 
-Units are the command line's and the files': m/s, t/h, mm, N, degrees; every column name that
-holds a dimensional number ends in its unit, as in the CSV files; quantities() gives each
-quantity's symbol, label and unit. Numbers are the C++ doubles themselves, not rounded text.
+Units are the command line's and the files': m/s, t/h, mm, N, degrees. A column's unit is in its
+name (x_mm, t_s) or, in the long tables (value, measured, predicted, error, ...), in the row's
+quantity (normal_force_N), as in the CSV files; quantities() gives each quantity's symbol, label
+and unit. Numbers are the C++ doubles themselves, not rounded text.
 
 Tables are pandas DataFrames; without pandas (python3-pandas) they are NumPy record arrays with
 the same column names. NumPy is required.
