@@ -60,7 +60,7 @@ std::string python_mention(std::string_view key) {
   static const std::string_view keywords[] = {"dataset", "setup", "condition", "effect", "models", "tolerances",
                                               "seed", "noise_scale", "out", "alpha", "dem.quality", "dem.threads",
                                               "dem.cache", "dem.no_cache", "self_check", "belt_speed", "mass_flow",
-                                              "plate_distance", "plate_top", "stream_thickness"};
+                                              "plate_distance", "plate_top", "stream_thickness", "diagnose"};
   for (const auto k : keywords)
     if (k == key) return python_keyword(key) + "=";
   return std::string(key);

@@ -271,7 +271,7 @@ def test_validate_gives_the_tables_validate_writes(tmp_path):
     assert _files(tmp_path / "py") == _files(out)
     with pytest.raises(chutelab.InputError) as e:
         chutelab.write_report(v, RIG)  # onto the dataset it read
-    assert e.value.field == "out" or "input" in str(e.value)
+    assert e.value.field == "out" and "is the input folder" in str(e.value)
     # E = S - D row by row, in the columns' own units.
     e = v.errors.dropna(subset=["predicted"])
     assert np.allclose(e.error, e.predicted - e.measured, atol=1e-3, rtol=1e-5)
