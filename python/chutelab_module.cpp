@@ -1,16 +1,20 @@
 // _chutelab: the compiled half of the Python package. It binds the library's functions (api/:
-// estimate, validate, diagnose, synthesize), the ones the command line calls, and hands back their
-// results (the estimate's JSON, the CSV tables, the numbers) so that Python sees the same names and
-// the same numbers; chutelab/__init__.py turns them into dicts, NumPy arrays and DataFrames. No
-// physics here, and nothing of the command line's.
+// estimate, validate, diagnose, synthesize), the ones the command line calls, keeps their result
+// structs, and hands their doubles to Python as NumPy arrays (no text in between), with the
+// columns of the files the command line writes; chutelab/__init__.py makes DataFrames and typed
+// values of them. No physics here, and nothing of the command line's (app/ is not included).
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
 #include <cctype>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <fmt/format.h>
 
+#include "analytical/streamline_path.h"
 #include "api/diagnose.h"
 #include "api/effects.h"
 #include "api/estimate.h"
@@ -56,7 +60,7 @@ std::string python_mention(std::string_view key) {
   static const std::string_view keywords[] = {"dataset", "setup", "condition", "effect", "models", "tolerances",
                                               "seed", "noise_scale", "out", "alpha", "dem.quality", "dem.threads",
                                               "dem.cache", "dem.no_cache", "self_check", "belt_speed", "mass_flow",
-                                              "plate_distance", "plate_top", "stream_thickness"};
+                                              "plate_distance", "plate_top", "stream_thickness", "diagnose"};
   for (const auto k : keywords)
     if (k == key) return python_keyword(key) + "=";
   return std::string(key);
@@ -87,64 +91,78 @@ api::DemOptions dem_options(const std::string& quality, std::optional<int> threa
   return d;
 }
 
-// Columns of a table in boundary units, named as in the dataset's CSV files.
-using Columns = std::vector<std::pair<std::string, py::list>>;
-Columns columns(std::initializer_list<const char*> names) {
-  Columns c;
-  for (const char* n : names) c.emplace_back(n, py::list());
-  return c;
-}
-py::dict as_dict(const Columns& cols) {
-  py::dict d;
-  for (const auto& [name, values] : cols) d[py::str(name)] = values;
-  return d;
-}
+// A table for the Python layer: {column: values} in column order, numbers as NumPy arrays of the
+// C++ doubles themselves (no text in between), flags as bool arrays, names as lists of str.
+class Table {
+ public:
+  void text(const char* name, std::vector<std::string> v) { d_[name] = py::cast(std::move(v)); }
+  void real(const char* name, const std::vector<double>& v) { d_[name] = py::array_t<double>(v.size(), v.data()); }
+  void whole(const char* name, const std::vector<long long>& v) {
+    d_[name] = py::array_t<long long>(v.size(), v.data());
+  }
+  void flag(const char* name, const std::vector<bool>& v) {
+    py::array_t<bool> a(v.size());
+    auto m = a.mutable_unchecked<1>();
+    for (std::size_t i = 0; i < v.size(); ++i) m(static_cast<py::ssize_t>(i)) = v[i];
+    d_[name] = a;
+  }
+  py::dict dict() const { return d_; }
+
+ private:
+  py::dict d_;
+};
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+double or_nan(const std::optional<double>& v, double scale = 1.0) { return v ? *v * scale : kNan; }
+
 // A file's value went to SI and back; 15 significant digits drop the conversion's last-bit noise,
 // so a table shows the number the file holds (41.9, not 41.900000000000006).
 double as_written(double v) { return std::isfinite(v) ? std::stod(fmt::format("{:.15g}", v)) : v; }
-py::object number_or_nan(const std::optional<double>& v) {
-  return py::float_(v ? as_written(*v) : std::nan(""));
-}
+double written_or_nan(const std::optional<double>& v, double scale) { return v ? as_written(*v * scale) : kNan; }
 
 py::dict conditions_table(const validation::Dataset& d) {
-  Columns c = columns({"condition", "belt_speed_mps", "mass_flow_tph", "plate_distance_mm", "plate_top_mm",
-                       "stream_thickness_mm", "plate_angle_deg", "belt_incline_deg"});
+  std::vector<std::string> condition;
+  std::vector<double> speed, flow, distance, top, thickness, angle, incline;
   for (const auto& s : d.stations) {
-    c[0].second.append(s.condition);
-    c[1].second.append(as_written(s.belt_speed));
-    c[2].second.append(as_written(s.mass_flow / units::tph));
-    c[3].second.append(as_written(s.plate_distance / units::mm));
-    c[4].second.append(as_written(s.plate_top / units::mm));
-    c[5].second.append(number_or_nan(s.stream_thickness ? std::optional(*s.stream_thickness / units::mm)
-                                                        : std::nullopt));
-    c[6].second.append(as_written(s.plate.angle * kDeg));
-    c[7].second.append(as_written(s.belt.incline * kDeg));
+    condition.push_back(s.condition);
+    speed.push_back(as_written(s.belt_speed)), flow.push_back(as_written(s.mass_flow / units::tph));
+    distance.push_back(as_written(s.plate_distance / units::mm)), top.push_back(as_written(s.plate_top / units::mm));
+    thickness.push_back(written_or_nan(s.stream_thickness, 1.0 / units::mm));
+    angle.push_back(as_written(s.plate.angle * kDeg)), incline.push_back(as_written(s.belt.incline * kDeg));
   }
-  return as_dict(c);
+  Table t;
+  t.text("condition", condition), t.real("belt_speed_mps", speed), t.real("mass_flow_tph", flow);
+  t.real("plate_distance_mm", distance), t.real("plate_top_mm", top), t.real("stream_thickness_mm", thickness);
+  t.real("plate_angle_deg", angle), t.real("belt_incline_deg", incline);
+  return t.dict();
 }
 
 py::dict measurements_table(const validation::Dataset& d) {
-  Columns c = columns({"condition", "quantity", "value", "uncertainty"});
+  std::vector<std::string> condition, quantity;
+  std::vector<double> value, uncertainty;
   for (const auto& m : d.measurements) {
     const double s = info(m.quantity).to_boundary;
-    c[0].second.append(m.condition);
-    c[1].second.append(std::string(name(m.quantity)));
-    c[2].second.append(as_written(m.value * s));
-    c[3].second.append(number_or_nan(m.uncertainty ? std::optional(*m.uncertainty * s) : std::nullopt));
+    condition.push_back(m.condition), quantity.emplace_back(name(m.quantity));
+    value.push_back(as_written(m.value * s)), uncertainty.push_back(written_or_nan(m.uncertainty, s));
   }
-  return as_dict(c);
+  Table t;
+  t.text("condition", condition), t.text("quantity", quantity), t.real("value", value);
+  t.real("uncertainty", uncertainty);
+  return t.dict();
 }
 
 py::dict trajectory_table(const validation::Dataset& d) {
-  Columns c = columns({"condition", "boundary", "x_mm", "y_mm", "uncertainty_mm"});
+  std::vector<std::string> condition, boundary;
+  std::vector<double> x, y, u;
   for (const auto& p : d.trajectory) {
-    c[0].second.append(p.condition);
-    c[1].second.append(std::string(name(p.boundary)));
-    c[2].second.append(as_written(p.x / units::mm));
-    c[3].second.append(as_written(p.y / units::mm));
-    c[4].second.append(number_or_nan(p.uncertainty ? std::optional(*p.uncertainty / units::mm) : std::nullopt));
+    condition.push_back(p.condition), boundary.emplace_back(name(p.boundary));
+    x.push_back(as_written(p.x / units::mm)), y.push_back(as_written(p.y / units::mm));
+    u.push_back(written_or_nan(p.uncertainty, 1.0 / units::mm));
   }
-  return as_dict(c);
+  Table t;
+  t.text("condition", condition), t.text("boundary", boundary), t.real("x_mm", x), t.real("y_mm", y);
+  t.real("uncertainty_mm", u);
+  return t.dict();
 }
 
 // setup.toml as "section.key" -> value in the file's units (the rig-field table says which).
@@ -160,37 +178,144 @@ py::dict setup_dict(const Setup& setup) {
   return d;
 }
 
-py::dict validate(const validation::Dataset& d, const std::vector<std::string>& model_names,
-                  const std::vector<std::string>& effect_args, const std::string& tolerances,
-                  const std::string& dem_quality, std::optional<int> dem_threads,
-                  const std::string& dem_cache, bool no_dem_cache) {
-  api::ValidateOptions o;
-  o.models = model_names;
-  o.effects = effect_args;
-  o.tolerances = tolerances;
-  o.diagnose_with_effects = false;
-  o.dem = dem_options(dem_quality, dem_threads, dem_cache, no_dem_cache);
-  std::optional<api::ValidateResult> v;
-  {
-    py::gil_scoped_release free;
-    v = api::validate(d, o);
+// predictions.csv's rows, as numbers.
+py::dict predictions_table(const validation::ValidationResult& r) {
+  std::vector<std::string> condition, model, quantity;
+  std::vector<double> value, uncertainty, x_mm;
+  for (const auto& p : r.predictions)
+    for (Quantity q : kAllQuantities) {
+      const auto& v = p.prediction.values[q];
+      if (!v) continue;
+      const double s = info(q).to_boundary;
+      condition.push_back(p.condition), model.push_back(p.model), quantity.emplace_back(name(q));
+      value.push_back(*v * s), uncertainty.push_back(or_nan(p.prediction.uncertainty[q], s));
+      x_mm.push_back(kNan);
+    }
+  for (const auto& c : r.comparisons)
+    if (c.boundary && c.predicted) {
+      condition.push_back(c.condition), model.push_back(c.model), quantity.push_back(c.quantity);
+      value.push_back(*c.predicted * c.scale), uncertainty.push_back(or_nan(c.u_num_stat(), c.scale));
+      x_mm.push_back(c.x * 1e3);
+    }
+  Table t;
+  t.text("condition", condition), t.text("model", model), t.text("quantity", quantity);
+  t.real("value", value), t.real("uncertainty", uncertainty), t.real("x_mm", x_mm);
+  return t.dict();
+}
+
+// errors.csv's rows, as numbers; the tolerance verdict as flags and the limits as numbers.
+py::dict errors_table(const validation::ValidationResult& r, const validation::Tolerances* tol) {
+  std::vector<std::string> condition, model, quantity, limit;
+  std::vector<double> measured, uncertainty, predicted, error, relative, normalised, x_mm, u_val, ratio, stat, disc,
+      input, y_mm, z_mm, t_rel, t_abs, t_norm;
+  std::vector<bool> checked, within;
+  for (const auto& c : r.comparisons) {
+    const double s = c.scale;
+    condition.push_back(c.condition), model.push_back(c.model), quantity.push_back(c.quantity);
+    measured.push_back(c.measured * s), uncertainty.push_back(or_nan(c.uncertainty, s));
+    predicted.push_back(or_nan(c.predicted, s));
+    error.push_back(c.predicted ? c.error() * s : kNan);
+    relative.push_back(or_nan(c.relative_error())), normalised.push_back(or_nan(c.normalised_error()));
+    x_mm.push_back(c.boundary ? c.x * 1e3 : kNan);
+    u_val.push_back(or_nan(c.validation_uncertainty(), s)), ratio.push_back(or_nan(c.vv20_ratio()));
+    // The parts of u_val only beside a prediction: without one nothing was propagated.
+    stat.push_back(c.predicted ? or_nan(c.u_num_stat(), s) : kNan);
+    disc.push_back(c.predicted ? or_nan(c.u_num_disc, s) : kNan);
+    input.push_back(c.predicted ? or_nan(c.u_input, s) : kNan);
+    y_mm.push_back(or_nan(c.plate_y, 1e3)), z_mm.push_back(or_nan(c.plate_z, 1e3));
+    checked.push_back(c.verdict.checked), within.push_back(c.verdict.passed);
+    limit.push_back(c.verdict.passed ? std::string() : c.verdict.limit);
+    const validation::Tolerance* t = c.verdict.checked && tol ? tol->find(c.model, c.quantity) : nullptr;
+    t_rel.push_back(t ? or_nan(t->relative) : kNan), t_abs.push_back(t ? or_nan(t->absolute) : kNan);
+    t_norm.push_back(t ? or_nan(t->normalised) : kNan);
   }
-  const validation::ValidationResult* result = &v->final_result();
-  py::dict r;
-  r["predictions"] = validation::predictions_csv(*result);
-  r["errors"] = validation::errors_csv(*result);
-  r["summary"] = validation::summary_csv(*result);
-  r["models"] = result->models;
-  r["effects"] = result->effects;
-  r["notes"] = v->notes;
-  r["brief"] = result->brief();
-  r["acceptance_checked"] = result->acceptance_checked;
-  r["acceptance_failed"] = result->acceptance_failed;
-  r["combined_rms_normalised_error"] = number_or_nan(result->combined_rms_normalised());
-  py::dict overall;
-  for (const auto& m : result->models) overall[py::str(m)] = number_or_nan(result->overall_rms_normalised(m));
-  r["rms_normalised_error"] = overall;
-  return r;
+  Table t;
+  t.text("condition", condition), t.text("model", model), t.text("quantity", quantity);
+  t.real("measured", measured), t.real("uncertainty", uncertainty), t.real("predicted", predicted);
+  t.real("error", error), t.real("relative_error", relative), t.real("normalised_error", normalised);
+  t.real("x_mm", x_mm), t.real("validation_uncertainty", u_val), t.real("vv20_ratio", ratio);
+  t.flag("tolerance_checked", checked), t.flag("within_tolerance", within), t.text("tolerance_failed", limit);
+  t.real("tolerance_relative", t_rel), t.real("tolerance_absolute", t_abs), t.real("tolerance_normalised", t_norm);
+  t.real("u_num_stat", stat), t.real("u_num_disc", disc), t.real("u_input", input);
+  t.real("y_mm", y_mm), t.real("z_mm", z_mm);
+  return t.dict();
+}
+
+py::dict summary_table(const validation::ValidationResult& r) {
+  std::vector<std::string> model, quantity;
+  std::vector<long long> n;
+  std::vector<double> rms, rms_norm, max_rel;
+  std::vector<bool> checked, within;
+  for (const auto& s : r.summary) {
+    model.push_back(s.model), quantity.push_back(s.quantity), n.push_back(s.n);
+    rms.push_back(s.rms_error), rms_norm.push_back(or_nan(s.rms_normalised_error));
+    max_rel.push_back(or_nan(s.max_abs_relative_error));
+    checked.push_back(s.within_tolerance.has_value()), within.push_back(s.within_tolerance.value_or(true));
+  }
+  Table t;
+  t.text("model", model), t.text("quantity", quantity), t.whole("n", n);
+  t.real("rms_error", rms), t.real("rms_normalised_error", rms_norm), t.real("max_abs_relative_error", max_rel);
+  t.flag("tolerance_checked", checked), t.flag("within_tolerance", within);
+  return t.dict();
+}
+
+// A strength as the Python layer's Strength wants it.
+py::dict strength(const std::string& effect, const std::string& parameter, double value,
+                  std::optional<double> sd, bool fitted) {
+  py::dict d;
+  d["effect"] = effect, d["parameter"] = parameter, d["value"] = value;
+  d["sd"] = sd ? py::object(py::float_(*sd)) : py::object(py::none());
+  const effects::EffectInfo* e = effects::find(effect);
+  d["unit"] = e ? e->unit : std::string();
+  d["fitted"] = fitted;
+  return d;
+}
+
+// The ranking of diagnosis.csv as numbers: the single effects, and the pairs with one column per
+// member (diagnosis.csv joins a pair's two values with "+").
+py::dict ranking_table(const std::vector<validation::EffectFit>& fits, bool pairs) {
+  const std::size_t k = pairs ? 2 : 1;
+  std::vector<std::vector<std::string>> effect(k), parameter(k);
+  std::vector<std::vector<double>> estimate(k), uncertainty(k);
+  std::vector<long long> rank;
+  std::vector<double> chi2_before, chi2_after, bic, explained, p, p_adj, ub_est, ub_unc;
+  std::vector<bool> significant, wants_outside;
+  std::vector<std::string> signature, beaten;
+  for (const auto& f : fits) {
+    for (std::size_t i = 0; i < k; ++i) {
+      effect[i].push_back(i < f.effects.size() ? f.effects[i] : "");
+      parameter[i].push_back(i < f.parameters.size() ? f.parameters[i] : "");
+      estimate[i].push_back(i < f.estimate.size() ? f.estimate[i] : kNan);
+      uncertainty[i].push_back(i < f.uncertainty.size() ? f.uncertainty[i] : kNan);
+    }
+    rank.push_back(f.rank);
+    chi2_before.push_back(f.chi2_before), chi2_after.push_back(f.chi2_after), bic.push_back(f.delta_bic);
+    explained.push_back(f.explained_fraction), p.push_back(f.p_value), p_adj.push_back(f.p_adjusted);
+    significant.push_back(f.significant), signature.push_back(f.signature);
+    ub_est.push_back(f.unbounded ? f.unbounded->estimate : kNan);
+    ub_unc.push_back(f.unbounded ? f.unbounded->uncertainty : kNan);
+    wants_outside.push_back(f.unbounded && f.unbounded->wants_outside);
+    beaten.push_back(f.beaten_outside_range_by);
+  }
+  Table t;
+  if (pairs) {
+    t.text("effect_1", effect[0]), t.text("effect_2", effect[1]);
+    t.text("parameter_1", parameter[0]), t.text("parameter_2", parameter[1]);
+    t.real("estimate_1", estimate[0]), t.real("uncertainty_1", uncertainty[0]);
+    t.real("estimate_2", estimate[1]), t.real("uncertainty_2", uncertainty[1]);
+  } else {
+    t.whole("rank", rank), t.text("effect", effect[0]), t.text("parameter", parameter[0]);
+    t.real("estimate", estimate[0]), t.real("uncertainty", uncertainty[0]);
+  }
+  t.real("chi2_before", chi2_before), t.real("chi2_after", chi2_after), t.real("delta_bic", bic);
+  t.real("explained_fraction", explained), t.flag("significant", significant), t.real("p_value", p);
+  t.real("p_adjusted", p_adj), t.text("signature", signature);
+  if (!pairs) {
+    t.real("outside_range_estimate", ub_est), t.real("outside_range_uncertainty", ub_unc);
+    t.flag("wants_outside_range", wants_outside);
+  }
+  t.text("beaten_outside_range_by", beaten);
+  return t.dict();
 }
 
 const char* verdict_name(validation::Verdict v) {
@@ -206,7 +331,8 @@ const char* verdict_name(validation::Verdict v) {
 }
 
 // The numbers behind the verdict, as plain Python values.
-void diagnosis_numbers(const validation::DiagnosisResult& x, py::dict& r) {
+py::dict diagnosis_numbers(const validation::DiagnosisResult& x) {
+  py::dict r;
   r["verdict_code"] = verdict_name(x.verdict_code);
   r["goodness_of_fit"] = x.goodness_of_fit;
   r["thin_data"] = x.thin_data;
@@ -233,57 +359,13 @@ void diagnosis_numbers(const validation::DiagnosisResult& x, py::dict& r) {
   scale["factor"] = x.scale.factor, scale["dof"] = x.scale.dof, scale["applied"] = x.scale.applied;
   scale["too_large"] = x.scale.too_large, scale["p_high"] = x.scale.p_high, scale["p_low"] = x.scale.p_low;
   r["uncertainty_scale"] = scale;
-  if (const auto* b = x.best()) {
-    py::dict fit;
-    for (std::size_t i = 0; i < b->effects.size(); ++i) {
-      py::dict e;
-      e["value"] = b->estimate[i];
-      e["uncertainty"] = b->uncertainty[i];
-      fit[py::str(b->effects[i])] = e;
-    }
-    r["best_fit"] = fit;
-  } else {
-    r["best_fit"] = py::none();
-  }
-}
-
-py::dict diagnose(const validation::Dataset& d, const std::vector<std::string>& model_names, double alpha,
-                  bool pairs, const std::string& dem_quality, std::optional<int> dem_threads,
-                  const std::string& dem_cache, bool no_dem_cache, const py::object& self_check_arg,
-                  const py::object& seed_arg) {
-  api::DiagnoseOptions o;
-  o.self_check = static_cast<int>(whole_number(self_check_arg, options::rules::self_check));
-  const double seed_checked = whole_number(seed_arg, options::rules::seed);
-  o.seed = py::isinstance<py::float_>(seed_arg) ? static_cast<std::uint64_t>(seed_checked)
-                                                 : seed_arg.cast<std::uint64_t>();
-  o.models = model_names;
-  o.alpha = alpha;
-  o.pairs = pairs;
-  o.dem = dem_options(dem_quality, dem_threads, dem_cache, no_dem_cache);
-  std::optional<api::DiagnoseResult> diagnosed;
-  {
-    py::gil_scoped_release free;
-    diagnosed = api::diagnose(d, o);
-  }
-  const auto& res = diagnosed->diagnosis;
-  const auto& sc = diagnosed->self_check;
-  const auto& x = res;
-  py::dict r;
-  diagnosis_numbers(x, r);
-  if (sc) {
-    py::dict c;
-    c["null_replicas"] = sc->null_replicas, c["false_alarms"] = sc->false_alarms;
-    c["false_alarm_rate"] = sc->false_alarm_rate(), c["false_alarm_upper"] = sc->false_alarm_upper;
-    c["truth"] = sc->truth, c["truth_strength"] = sc->truth_strength;
-    c["effect_replicas"] = sc->effect_replicas, c["named"] = sc->named, c["named_other"] = sc->named_other;
-    c["covered"] = sc->covered, c["power"] = sc->power(), c["coverage"] = sc->coverage();
-    c["markdown"] = validation::self_check_markdown(*sc, alpha);
-    r["self_check"] = c;
-  } else {
-    r["self_check"] = py::none();
-  }
-  r["ranking"] = validation::diagnosis_csv(x);
-  r["markdown"] = validation::diagnosis_markdown(x);
+  py::list fit;
+  if (const auto* b = x.best())
+    for (std::size_t i = 0; i < b->effects.size(); ++i)
+      fit.append(strength(b->effects[i], b->parameters[i], b->estimate[i], b->uncertainty[i], true));
+  r["best_fit"] = fit;
+  r["ranking"] = ranking_table(x.singles, false);
+  r["pairs"] = ranking_table(x.pairs, true);
   r["verdict"] = x.verdict;
   r["models"] = x.models;
   r["n_data"] = x.n_data;
@@ -298,20 +380,189 @@ py::dict diagnose(const validation::Dataset& d, const std::vector<std::string>& 
   r["indistinguishable"] = x.indistinguishable;
   r["discriminators"] = x.discriminators;
   r["caveats"] = x.caveats;
-  Columns p = columns({"model", "quantity", "driver", "n", "mean_normalised", "rms_normalised", "correlation",
-                       "notable"});
+  Table p;
+  std::vector<std::string> pm, pq, pd;
+  std::vector<long long> pn;
+  std::vector<double> mean, rms, corr;
+  std::vector<bool> notable;
   for (const auto& q : x.patterns) {
-    p[0].second.append(q.model);
-    p[1].second.append(q.quantity);
-    p[2].second.append(q.driver);
-    p[3].second.append(q.n);
-    p[4].second.append(q.mean_normalised);
-    p[5].second.append(q.rms_normalised);
-    p[6].second.append(q.correlation);
-    p[7].second.append(q.notable);
+    pm.push_back(q.model), pq.push_back(q.quantity), pd.push_back(q.driver), pn.push_back(q.n);
+    mean.push_back(q.mean_normalised), rms.push_back(q.rms_normalised), corr.push_back(q.correlation);
+    notable.push_back(q.notable);
   }
-  r["patterns"] = as_dict(p);
+  p.text("model", pm), p.text("quantity", pq), p.text("driver", pd), p.whole("n", pn);
+  p.real("mean_normalised", mean), p.real("rms_normalised", rms), p.real("correlation", corr);
+  p.flag("notable", notable);
+  r["patterns"] = p.dict();
+  r["markdown"] = validation::diagnosis_markdown(x);
   return r;
+}
+
+// What validate() keeps: the library's result (for the tables, and the report when asked) and the
+// inputs it read (which write_report never overwrites).
+struct Validated {
+  api::ValidateResult result;
+  std::vector<std::filesystem::path> inputs;
+};
+
+py::dict validation_numbers(const Validated& v) {
+  const api::ValidateResult& res = v.result;
+  const validation::ValidationResult& result = res.final_result();
+  const validation::Tolerances* tol = res.tolerances ? &*res.tolerances : nullptr;
+  py::dict r;
+  r["predictions"] = predictions_table(result);
+  r["errors"] = errors_table(result, tol);
+  r["summary"] = summary_table(result);
+  r["models"] = result.models;
+  py::list fx;
+  for (const auto& e : res.effects) fx.append(strength(e.name, e.parameter, e.value, e.uncertainty, e.fitted));
+  r["effects"] = fx;
+  r["notes"] = res.notes;
+  r["brief"] = result.brief();
+  r["acceptance_checked"] = result.acceptance_checked;
+  r["acceptance_failed"] = result.acceptance_failed;
+  r["acceptance_problems"] = result.acceptance_problems;
+  r["combined_rms_normalised_error"] = or_nan(result.combined_rms_normalised());
+  py::dict overall;
+  for (const auto& m : result.models) overall[py::str(m)] = or_nan(result.overall_rms_normalised(m));
+  r["rms_normalised_error"] = overall;
+  r["diagnosis"] = res.diagnosis ? py::object(diagnosis_numbers(*res.diagnosis)) : py::object(py::none());
+  return r;
+}
+
+std::unique_ptr<Validated> validate(const validation::Dataset& d, const std::vector<std::string>& model_names,
+                                    const std::vector<std::string>& effect_args, const std::string& tolerances,
+                                    bool diagnose, const std::string& dem_quality, std::optional<int> dem_threads,
+                                    const std::string& dem_cache, bool no_dem_cache) {
+  api::ValidateOptions o;
+  o.models = model_names;
+  o.effects = effect_args;
+  o.tolerances = tolerances;
+  o.diagnose = diagnose;
+  o.dem = dem_options(dem_quality, dem_threads, dem_cache, no_dem_cache);
+  std::vector<std::filesystem::path> inputs;
+  o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
+    inputs = plan.inputs;
+    return {};
+  };
+  py::gil_scoped_release free;
+  return std::make_unique<Validated>(Validated{api::validate(d, o), std::move(inputs)});
+}
+
+struct Diagnosed {
+  api::DiagnoseResult result;
+  std::vector<std::filesystem::path> inputs;
+};
+
+py::dict diagnosed_numbers(const Diagnosed& diagnosed) {
+  py::dict r = diagnosis_numbers(diagnosed.result.diagnosis);
+  const auto& sc = diagnosed.result.self_check;
+  if (sc) {
+    py::dict c;
+    c["null_replicas"] = sc->null_replicas, c["false_alarms"] = sc->false_alarms;
+    c["false_alarm_rate"] = sc->false_alarm_rate(), c["false_alarm_upper"] = sc->false_alarm_upper;
+    c["truth"] = sc->truth, c["truth_strength"] = sc->truth_strength;
+    c["effect_replicas"] = sc->effect_replicas, c["named"] = sc->named, c["named_other"] = sc->named_other;
+    c["covered"] = sc->covered, c["power"] = sc->power(), c["coverage"] = sc->coverage();
+    c["markdown"] = validation::self_check_markdown(*sc, diagnosed.result.alpha);
+    r["self_check"] = c;
+  } else {
+    r["self_check"] = py::none();
+  }
+  return r;
+}
+
+std::unique_ptr<Diagnosed> diagnose(const validation::Dataset& d, const std::vector<std::string>& model_names,
+                                    double alpha, bool pairs, const std::string& dem_quality,
+                                    std::optional<int> dem_threads, const std::string& dem_cache, bool no_dem_cache,
+                                    const py::object& self_check_arg, const py::object& seed_arg) {
+  api::DiagnoseOptions o;
+  o.self_check = static_cast<int>(whole_number(self_check_arg, options::rules::self_check));
+  const double seed_checked = whole_number(seed_arg, options::rules::seed);
+  o.seed = py::isinstance<py::float_>(seed_arg)
+               ? static_cast<std::uint64_t>(seed_checked)
+               : py::reinterpret_steal<py::int_>(PyNumber_Index(seed_arg.ptr())).cast<std::uint64_t>();
+  o.models = model_names;
+  o.alpha = alpha;
+  o.pairs = pairs;
+  o.dem = dem_options(dem_quality, dem_threads, dem_cache, no_dem_cache);
+  std::vector<std::filesystem::path> inputs;
+  o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
+    inputs = plan.inputs;
+    return {};
+  };
+  py::gil_scoped_release free;
+  return std::make_unique<Diagnosed>(Diagnosed{api::diagnose(d, o), std::move(inputs)});
+}
+
+// Writes a result's files into `out` as the command line's --out does: all or nothing, never onto
+// a file the run read.
+void write_files(const std::vector<validation::OutputFile>& files, const std::vector<std::filesystem::path>& inputs,
+                 const std::filesystem::path& out) {
+  if (out.empty()) throw InputError("", 0, "out", "is empty; give a folder");
+  py::gil_scoped_release free;
+  validation::write_outputs(out, files, inputs);
+}
+
+// estimate(): the library's result, kept for its views.
+struct Estimated {
+  api::EstimateResult result;
+};
+
+py::dict estimate_values(const Estimated& e) {
+  py::dict r;
+  for (const auto& [n, v] : api::estimate_scalars(e.result.analysis)) r[py::str(n)] = v;
+  return r;
+}
+
+py::dict estimate_models(const Estimated& e) {
+  std::vector<std::string> model, quantity;
+  std::vector<double> value;
+  for (const auto& [m, vals] : e.result.models)
+    for (Quantity q : kAllQuantities)
+      if (vals[q]) {
+        model.push_back(m), quantity.emplace_back(name(q));
+        value.push_back(*vals[q] * info(q).to_boundary);
+      }
+  Table t;
+  t.text("model", model), t.text("quantity", quantity), t.real("value", value);
+  return t.dict();
+}
+
+// The streamlines as drawn (the same points as estimate's JSON, CSV and DXF), mm.
+py::dict estimate_paths(const Estimated& e) {
+  py::dict r;
+  for (analytical::Streamline s : analytical::kAllStreamlines) {
+    const auto pts = analytical::streamline_path(e.result.analysis, s);
+    py::array_t<double> a({static_cast<py::ssize_t>(pts.size()), py::ssize_t{2}});
+    auto m = a.mutable_unchecked<2>();
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      m(static_cast<py::ssize_t>(k), 0) = pts[k].x() * 1e3;
+      m(static_cast<py::ssize_t>(k), 1) = pts[k].y() * 1e3;
+    }
+    r[py::str(std::string(name(s)))] = a;
+  }
+  return r;
+}
+
+// Each streamline's flight from its release to the plate line (1 s when it never gets there) at
+// `points` equal time steps: the model's own trajectory (closed form, or RK4 with a flight force).
+py::dict estimate_flight(const Estimated& e, int points) {
+  std::vector<std::string> line;
+  std::vector<double> t, x, y, vx, vy;
+  for (analytical::Streamline s : analytical::kAllStreamlines) {
+    const auto& l = e.result.analysis.line(s);
+    const double t_end = l.hit ? l.hit->point.t : 1.0;
+    for (const auto& f : l.trajectory.sample(t_end, points - 1)) {
+      line.emplace_back(name(s));
+      t.push_back(f.t), x.push_back(f.position.x() * 1e3), y.push_back(f.position.y() * 1e3);
+      vx.push_back(f.velocity.x()), vy.push_back(f.velocity.y());
+    }
+  }
+  Table tb;
+  tb.text("streamline", line), tb.real("t_s", t), tb.real("x_mm", x), tb.real("y_mm", y);
+  tb.real("vx_mps", vx), tb.real("vy_mps", vy);
+  return tb.dict();
 }
 
 void synthesize(const validation::Dataset& source, const std::vector<std::string>& effect_args,
@@ -356,30 +607,44 @@ PYBIND11_MODULE(_chutelab, m) {
     }
   });
 
-  m.attr("default_dataset") = std::string(CHUTELAB_DATASETS_DIR) + "/grima2010";
+  m.attr("source_datasets") = std::string(CHUTELAB_DATASETS_DIR);
+
+  py::class_<Estimated>(m, "Estimated")
+      .def("json", [](const Estimated& e) { return e.result.json(); })
+      .def("values", &estimate_values)
+      .def("models", &estimate_models)
+      .def("effects",
+           [](const Estimated& e) {
+             py::dict d;
+             for (const auto& s : e.result.settings)
+               if (s.value) d[py::str(s.info->name)] = *s.value;
+             return d;
+           })
+      .def("paths", &estimate_paths)
+      .def("flight", &estimate_flight, py::arg("points"));
 
   m.def(
-      "estimate_json",
-      [](std::optional<double> belt_speed, std::optional<double> mass_flow,
-         std::optional<double> plate_distance, std::optional<double> plate_top,
-         std::optional<double> stream_thickness, const std::string& dataset, const std::string& setup,
-         const std::string& condition, const std::vector<std::string>& effect_args) {
+      "estimate",
+      [](std::optional<double> belt_speed, std::optional<double> mass_flow, std::optional<double> plate_distance,
+         std::optional<double> plate_top, std::optional<double> stream_thickness, const std::string& dataset,
+         const std::string& setup, const std::string& condition, const std::vector<std::string>& effect_args,
+         const std::string& default_dataset) {
         api::EstimateOptions in;
         in.dataset = dataset;
         in.setup = setup;
         in.condition = condition;
-        in.default_dataset = std::filesystem::path(CHUTELAB_DATASETS_DIR) / "grima2010";
+        in.default_dataset = default_dataset;
         in.belt_speed = belt_speed;
         in.mass_flow = mass_flow;
         in.plate_distance = plate_distance;
         in.plate_top = plate_top;
         in.stream_thickness = stream_thickness;
         in.effects = effect_args;
-        return api::estimate(in).json();
+        return std::make_unique<Estimated>(Estimated{api::estimate(in)});
       },
       py::arg("belt_speed"), py::arg("mass_flow"), py::arg("plate_distance"), py::arg("plate_top"),
       py::arg("stream_thickness"), py::arg("dataset"), py::arg("setup"), py::arg("condition"),
-      py::arg("effects"));
+      py::arg("effects"), py::arg("default_dataset"));
 
   py::class_<validation::Dataset>(m, "Dataset")
       .def_property_readonly("dir", [](const validation::Dataset& d) { return d.dir.string(); })
@@ -397,14 +662,40 @@ PYBIND11_MODULE(_chutelab, m) {
       },
       py::arg("dir"), py::arg("measurements_required"));
 
-  m.def("validate", &validate, py::arg("dataset"), py::arg("models"), py::arg("effects"),
-        py::arg("tolerances"), py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"),
+  py::class_<Validated>(m, "Validated")
+      .def("numbers", &validation_numbers)
+      .def("write", [](const Validated& v, const std::filesystem::path& out) {
+        write_files(v.result.files(), v.inputs, out);
+      });
+  py::class_<Diagnosed>(m, "Diagnosed")
+      .def("numbers", &diagnosed_numbers)
+      .def("write", [](const Diagnosed& d, const std::filesystem::path& out) {
+        write_files(d.result.files(), d.inputs, out);
+      });
+
+  m.def("validate", &validate, py::arg("dataset"), py::arg("models"), py::arg("effects"), py::arg("tolerances"),
+        py::arg("diagnose"), py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"),
         py::arg("no_dem_cache"));
   m.def("diagnose", &diagnose, py::arg("dataset"), py::arg("models"), py::arg("alpha"), py::arg("pairs"),
         py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"), py::arg("no_dem_cache"),
         py::arg("self_check"), py::arg("seed"));
   m.def("synthesize", &synthesize, py::arg("source"), py::arg("effects"), py::arg("seed"),
         py::arg("noise_scale"), py::arg("out"));
+
+  // The quantity vocabulary (core/quantity.h) and the stream boundaries trajectory.csv compares, for
+  // axis labels: name (as in the tables), symbol, label, unit.
+  m.def("quantities", [] {
+    py::list out;
+    for (Quantity q : kAllQuantities) {
+      const auto& i = info(q);
+      out.append(py::make_tuple(std::string(i.name), std::string(i.symbol), std::string(i.label), std::string(i.unit)));
+    }
+    for (Boundary b : kAllBoundaries) {
+      const std::string n(name(b));
+      out.append(py::make_tuple(trajectory_quantity(b), "y_" + n, "height of the stream's " + n + " line at x", "mm"));
+    }
+    return out;
+  });
 
   m.def("model_names", &validation::model_names);
   m.def("effect_library", [] {

@@ -1,77 +1,114 @@
-"""chutelab from Python: the same C++ models, dataset reader, harness and diagnosis as the
-`chutelab` command line, with results as dicts, NumPy arrays and pandas DataFrames.
+"""chutelab from Python: the same C++ library (models, dataset reader, V&V 20 harness, diagnosis)
+as the `chutelab` command line, with results as pandas DataFrames and typed values.
 
     import chutelab
-    chutelab.estimate(belt_speed=4, mass_flow=35, plate_distance=450)   # dict, as estimate --format json
-    ds = chutelab.read_dataset("datasets/grima2010")
-    v = chutelab.validate(ds)                       # v.errors: errors.csv as a DataFrame
-    d = chutelab.diagnose(ds)                       # d.ranking: diagnosis.csv as a DataFrame
+    e = chutelab.estimate(belt_speed=4, mass_flow=35, plate_distance=450)
+    e.predictions                        # DataFrame: model, quantity, value (full double precision)
+    e.trajectory()                       # DataFrame: the streamlines' flight, t_s, x_mm, y_mm, ...
+    ds = chutelab.read_dataset(chutelab.DATASETS + "/hidden-effect")
+    v = chutelab.validate(ds)            # v.errors: E = S - D, u_val, tolerance flags, per value
+    d = chutelab.diagnose(ds)            # d.ranking; d.best_fit["air_drag"]: Strength(value, sd, unit)
     after = chutelab.validate(ds, effects={"air_drag": "fit"})
+    after.write_report("out/report")     # report.html, report.md and the CSV files, as validate --out
 
-Units are the command line's and the files': m/s, t/h, mm, N, degrees. Tables carry the column
-names and numbers of the CSV files the commands write (each number as written there: the shortest
-decimal that reads back as the computed double).
-Bad input raises chutelab.InputError (a ValueError) with .file, .line (0 = none) and .field.
-NumPy and pandas are optional: without pandas a table is a dict of NumPy arrays, without NumPy a
-dict of lists.
+Units are the command line's and the files': m/s, t/h, mm, N, degrees. A column's unit is in its
+name (x_mm, t_s) or, in the long tables (value, measured, predicted, error, ...), in the row's
+quantity (normal_force_N), as in the CSV files; quantities() gives each quantity's symbol, label
+and unit. Numbers are the C++ doubles themselves, not rounded text.
+
+Tables are pandas DataFrames; without pandas (python3-pandas) they are NumPy record arrays with
+the same column names. NumPy is required.
+Bad input raises chutelab.InputError (a ValueError) with .file, .line (0 = none) and .field (the
+keyword of the argument, or the file's column).
 """
 
 import json as _json
 import math as _math
 import os as _os
 import tempfile as _tempfile
+from collections.abc import Mapping as _Mapping
+from typing import Any, Dict, Iterable, Iterator, List, Optional, Sequence, Union
 
+from ._tables import table as _table, np as _np
+from ._types import Quantity, Strength
 from . import _chutelab
-from ._tables import parse_csv as _parse_csv, table as _table
 
 InputError = _chutelab.InputError
+InputError.__doc__ = ("Bad input: a ValueError with .file and .line (\"\", 0 when an argument, not a file, "
+                      "is wrong), .field (the keyword or the file's column) and .problem.")
 
-__all__ = ["estimate", "read_dataset", "validate", "diagnose", "synthesize", "models", "effects",
-           "Dataset", "Validation", "Diagnosis", "InputError", "DEFAULT_DATASET"]
+__all__ = ["estimate", "read_dataset", "validate", "diagnose", "synthesize", "write_report", "models",
+           "effects", "quantities", "Estimate", "Dataset", "Validation", "Diagnosis", "Strength", "Quantity",
+           "InputError", "DATASETS", "DEFAULT_DATASET"]
 
-DEFAULT_DATASET = _chutelab.default_dataset
+PathLike = Union[str, _os.PathLike]
+# A table: a pandas DataFrame, or a NumPy record array (same columns) without pandas.
+TABLE = "pandas.DataFrame | numpy.recarray"
+EffectsArg = Union[None, str, Sequence[str], _Mapping]
+
+_here = _os.path.dirname(_os.path.abspath(__file__))
+DATASETS: str = (_os.path.join(_here, "datasets") if _os.path.isdir(_os.path.join(_here, "datasets"))
+                 else _chutelab.source_datasets)
+"""The bundled datasets (grima2010, hidden-effect, liggghts-rig, ...): installed with the package,
+or the checkout's datasets/ when the package is used from the build folder."""
+
+DEFAULT_DATASET: str = _os.path.join(DATASETS, "grima2010")
 """The bundled rig (datasets/grima2010) that estimate() and synthesize() use by default."""
 
 
-def _path(p):
-    return "" if p is None else _os.fspath(p)
+# ---- arguments: the right type, or InputError naming the keyword ---------------------------------
 
-
-def _refuse(field, problem):
+def _refuse(field: str, problem: str) -> Exception:
     """An InputError as the library raises them (file "", line 0, the keyword as field)."""
     e = InputError(f"{field}: {problem}")
     e.file, e.line, e.field, e.problem = "", 0, field, problem
     return e
 
 
-def _flag(field, value):
+def _flag(field, value) -> bool:
     """A yes/no keyword takes True or False, not "no" (which bool() would read as True)."""
-    if not isinstance(value, bool) and type(value).__name__ != "bool_":
+    if not isinstance(value, (bool, _np.bool_)):
         raise _refuse(field, f"must be True or False, got {value!r}")
     return bool(value)
 
 
 def _real(field, value, optional=False):
     """A number keyword takes a real number (int, float, NumPy scalar), not a text or a bool; the
-    library then checks that it is finite and in range, as the command line's flag."""
+    library then checks that it is finite and in range."""
     if value is None and optional:
         return None
-    if isinstance(value, (bool, str, bytes)) or not hasattr(value, "__float__"):
+    if isinstance(value, (bool, _np.bool_, str, bytes)) or not hasattr(value, "__float__"):
         raise _refuse(field, f"must be a number, got {value!r}")
-    return float(value)
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise _refuse(field, f"must be a number, got {value!r}") from None
 
 
 def _whole(field, value, optional=False):
     """A count keyword takes a whole number: 2 or 2.0, not 1.5, "2" or True."""
     if value is None and optional:
         return None
-    f = None if isinstance(value, (bool, str, bytes)) or not hasattr(value, "__float__") else float(value)
+    f = None
+    if not isinstance(value, (bool, _np.bool_, str, bytes)) and hasattr(value, "__float__"):
+        try:
+            f = float(value)
+        except (TypeError, ValueError, OverflowError):
+            f = None
     if f is None or not _math.isfinite(f) or f != int(f):
         raise _refuse(field, f"must be a whole number, got {value!r}")
     return int(f)
 
 
-def _text(field, value):
+def _seed_like(field, value):
+    """seed and self_check go to the library's own check (whole, in range, exact for huge ints)."""
+    if isinstance(value, (str, bytes, bool, _np.bool_)) or not (hasattr(value, "__index__") or
+                                                                  hasattr(value, "__float__")):
+        raise _refuse(field, f"must be a whole number, got {value!r}")
+    return value
+
+
+def _text(field, value) -> str:
     """A text keyword (a quality, a condition) takes a str; None is the default."""
     if value is None:
         return ""
@@ -80,183 +117,413 @@ def _text(field, value):
     return value
 
 
-def _effect_args(effects):
-    """{"air_drag": 0.7, "belt_slip": "fit"}, ["air_drag=0.7"], "air_drag=fit" or None ->
-    the command line's NAME=VALUE strings."""
+def _path(field, value, optional=True) -> str:
+    """A file or folder keyword takes a str or a path (pathlib.Path); None is "not given"."""
+    if value is None and optional:
+        return ""
+    if isinstance(value, (str, _os.PathLike)):
+        p = _os.fspath(value)
+        if isinstance(p, str):
+            return p
+    raise _refuse(field, f"must be a path (str or pathlib.Path), got {value!r}")
+
+
+def _effect_args(effects: EffectsArg) -> List[str]:
+    """{"air_drag": 0.7, "belt_slip": "fit"}, ["air_drag=0.7"], "air_drag=fit" or None -> the
+    library's NAME=VALUE strings."""
     if effects is None:
         return []
     if isinstance(effects, str):
         return [effects]
-    if isinstance(effects, dict):
+    if isinstance(effects, _Mapping):
         out = []
         for name, value in effects.items():
+            if not isinstance(name, str):
+                raise _refuse("effects", f"names an effect by {name!r}; use its name as a text")
             if isinstance(value, str):
                 out.append(f"{name}={value}")
             else:
-                out.append(f"{name}={float(value)!r}")
+                out.append(f"{name}={_real('effects', value)!r}")
         return out
-    return [str(e) for e in effects]
+    if isinstance(effects, Iterable):
+        items = list(effects)
+        if all(isinstance(e, str) for e in items):
+            return items
+    raise _refuse("effects", f"must be {{name: value or \"fit\"}} or a list of \"name=value\", got {effects!r}")
 
 
-def _model_list(models):
-    """"korzen,booth-cema" or a list; an empty item is passed on for the library to refuse."""
+def _model_list(models) -> List[str]:
+    """"korzen,booth-cema" or a list of names; an empty item is passed on for the library to refuse."""
     if isinstance(models, str):
         return models.split(",") if models else []
-    return list(models)
+    if isinstance(models, Iterable):
+        items = list(models)
+        if all(isinstance(m, str) for m in items):
+            return items
+    raise _refuse("models", f"must be model names (a list of texts), got {models!r}")
 
 
-def estimate(belt_speed=None, mass_flow=None, plate_distance=None, plate_top=None,
-             stream_thickness=None, *, dataset=None, setup=None, condition=None, effects=None):
-    """The analytical answer (Booth/CEMA + Korzen) for one condition, in the units of the
-    command-line flags: belt_speed in m/s, mass_flow in t/h, plate_distance, plate_top and
-    stream_thickness in mm. dataset (a folder) or setup (a setup.toml) picks the rig (default:
-    the bundled grima2010); condition starts from a row of the dataset's conditions.csv; effects
-    as {"air_drag": 0.5}. Returns the object `chutelab estimate --format json` prints."""
-    text = _chutelab.estimate_json(_real("belt_speed", belt_speed, True), _real("mass_flow", mass_flow, True),
-                                   _real("plate_distance", plate_distance, True),
-                                   _real("plate_top", plate_top, True),
-                                   _real("stream_thickness", stream_thickness, True), _path(dataset),
-                                   _path(setup), _text("condition", condition), _effect_args(effects))
-    return _json.loads(text)
+def _new(cls):
+    """An instance made by this module's functions (the classes have no public constructor)."""
+    return cls.__new__(cls)
 
+
+# ---- estimate ------------------------------------------------------------------------------------
+
+class Estimate(_Mapping):
+    """The analytical answer (Booth/CEMA + Korzen) for one condition, from estimate().
+
+    As a mapping it is the object `chutelab estimate --format json` prints (e["models"]["korzen"]
+    ["normal_force_N"]). Its attributes hold the C++ doubles themselves:
+
+    values       {name: float}: the condition as resolved and the analysis (belt_speed_mps,
+                 stream_thickness_mm, release_angle_deg, impact_velocity_mps, normal_force_N, ...,
+                 impact_zone_*_mm, mean_pressure_Pa)
+    predictions  table model, quantity, value: every analytical model's quantities (units in the
+                 quantity's name; quantities() for labels)
+    effects      {effect: strength} as applied
+    streamlines  {"lower"|"upper"|"cema_centroid"|"korzen_centroid": array (n, 2) of x_mm, y_mm}:
+                 the paths as drawn and exported (DESIGN.md frame: origin at the pulley centre,
+                 x towards the plate, y up), round the pulley then in flight to the plate
+    trajectory() a dense table of the same lines' flight, with time and velocity
+    """
+
+    _core: Any
+    _dict: Optional[dict]
+
+    @classmethod
+    def _make(cls, core) -> "Estimate":
+        self = _new(cls)
+        self._core = core
+        self._dict = None
+        self.values: Dict[str, float] = dict(core.values())
+        self.predictions = _table(core.models())
+        self.effects: Dict[str, float] = dict(core.effects())
+        self.streamlines: Dict[str, Any] = dict(core.paths())
+        return self
+
+    def trajectory(self, points: int = 200) -> TABLE:
+        """Each streamline's flight from its release to the plate line (to 1 s of flight when it
+        misses the plate), at `points` (>= 2) equal time steps: a table with columns streamline
+        (lower, upper, cema_centroid, korzen_centroid), t_s (from the release), x_mm, y_mm,
+        vx_mps, vy_mps. The model's own trajectory (closed form, or its RK4 path when an effect
+        adds a force in flight), so any density gives points on the same curve."""
+        n = _whole("points", points)
+        if n < 2 or n > 1_000_000:
+            raise _refuse("points", f"must be from 2 to 1000000, got {points!r}")
+        return _table(self._core.flight(n))
+
+    def as_dict(self) -> dict:
+        """The object `chutelab estimate --format json` prints (a new dict each call)."""
+        return _json.loads(self._core.json())
+
+    def _mapping(self) -> dict:
+        if self._dict is None:
+            self._dict = self.as_dict()
+        return self._dict
+
+    def __getitem__(self, key: str) -> Any:
+        return self._mapping()[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._mapping())
+
+    def __len__(self) -> int:
+        return len(self._mapping())
+
+    def __repr__(self) -> str:
+        v = self.values
+        return (f"chutelab.Estimate(belt_speed_mps={v['belt_speed_mps']!r}, mass_flow_tph={v['mass_flow_tph']!r}, "
+                f"plate_distance_mm={v['plate_distance_mm']!r}, normal_force_N={v['normal_force_N']!r})")
+
+
+def estimate(belt_speed: Optional[float] = None, mass_flow: Optional[float] = None,
+             plate_distance: Optional[float] = None, plate_top: Optional[float] = None,
+             stream_thickness: Optional[float] = None, *, dataset: Optional[PathLike] = None,
+             setup: Optional[PathLike] = None, condition: Optional[str] = None,
+             effects: EffectsArg = None) -> Estimate:
+    """The analytical answer (Booth/CEMA + Korzen) for one condition, in milliseconds.
+
+    belt_speed in m/s, mass_flow in t/h, plate_distance, plate_top and stream_thickness in mm.
+    dataset (a folder) or setup (a setup.toml) picks the rig (default: the bundled grima2010);
+    condition starts from a row of the dataset's conditions.csv, the numbers given replace its
+    values; effects as {"air_drag": 0.5}. Returns an Estimate (see help(chutelab.Estimate)).
+    Raises InputError naming the keyword for a missing, impossible or mistyped value."""
+    core = _chutelab.estimate(_real("belt_speed", belt_speed, True), _real("mass_flow", mass_flow, True),
+                              _real("plate_distance", plate_distance, True), _real("plate_top", plate_top, True),
+                              _real("stream_thickness", stream_thickness, True), _path("dataset", dataset),
+                              _path("setup", setup), _text("condition", condition), _effect_args(effects),
+                              DEFAULT_DATASET)
+    return Estimate._make(core)
+
+
+# ---- datasets ------------------------------------------------------------------------------------
 
 class Dataset:
-    """A dataset folder read by the strict reader (DESIGN.md §2).
+    """A dataset folder read by the strict reader (docs/datasets.md), from read_dataset().
 
-    name, dir, setup (dict "section.key" -> value in the file's units), and the tables
-    conditions (resolved per condition, plate_angle_deg and belt_incline_deg included),
-    measurements and trajectory, with the files' column names and units."""
+    name, dir, setup ({"section.key": value} in the file's units), and the tables conditions
+    (resolved per condition: plate_angle_deg and belt_incline_deg included), measurements and
+    trajectory, with the files' column names and units (a number as the file holds it)."""
 
-    def __init__(self, core):
+    name: str
+    dir: str
+    setup: Dict[str, Any]
+
+    @classmethod
+    def _make(cls, core) -> "Dataset":
+        self = _new(cls)
         self._core = core
         self.name = core.name
         self.dir = core.dir
         self.setup = core.setup
-        self.conditions = _table(core.conditions(), text_columns=("condition",))
-        self.measurements = _table(core.measurements(), text_columns=("condition", "quantity"))
-        self.trajectory = _table(core.trajectory(), text_columns=("condition", "boundary"))
+        self.conditions = _table(core.conditions())
+        self.measurements = _table(core.measurements())
+        self.trajectory = _table(core.trajectory())
+        return self
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"chutelab.Dataset({self.name!r}, dir={self.dir!r})"
 
 
-def read_dataset(path, measurements_required=False):
+def read_dataset(path: PathLike, measurements_required: bool = False) -> Dataset:
     """Reads a dataset folder; raises InputError naming file, line and field on bad input.
-    measurements.csv may be absent (a rig and its conditions, e.g. datasets/grima2010) unless
+
+    measurements.csv may be absent (a rig and its conditions, e.g. DEFAULT_DATASET) unless
     measurements_required; validate() and diagnose() need it."""
-    return Dataset(_chutelab.read_dataset(_os.fspath(path), _flag("measurements_required", measurements_required)))
+    return Dataset._make(_chutelab.read_dataset(_path("path", path, optional=False),
+                                                _flag("measurements_required", measurements_required)))
 
 
-def _dataset(d, measurements_required=True):
+def _dataset(d, measurements_required=True, field="dataset") -> Dataset:
     if isinstance(d, Dataset):
         if measurements_required and not _os.path.exists(_os.path.join(d.dir, "measurements.csv")):
             read_dataset(d.dir, True)  # raises the reader's InputError
         return d
-    return read_dataset(d, measurements_required)
+    return read_dataset(_path(field, d, optional=False), measurements_required)
 
+
+def _strengths(rows) -> List[Strength]:
+    return [Strength(effect=r["effect"], parameter=r["parameter"], value=r["value"], sd=r["sd"], unit=r["unit"],
+                     fitted=r["fitted"]) for r in rows]
+
+
+# ---- diagnose ------------------------------------------------------------------------------------
+
+class Diagnosis:
+    """Which candidate effect the models miss, from diagnose() (or validate()'s .diagnosis).
+
+    ranking      table of the single effects, best first (diagnosis.csv's columns: rank, effect,
+                 parameter, estimate, uncertainty (one sd, in the effect's unit; effects() has
+                 it), chi2_before, chi2_after, delta_bic, explained_fraction, significant (bool),
+                 p_value, p_adjusted, signature, outside_range_*, wants_outside_range (bool), ...)
+    pairs        the pairs of effects fitted together, one column per member (effect_1,
+                 estimate_1, uncertainty_1, effect_2, ...)
+    best_fit     {effect: Strength} of the recommended fit (empty when nothing is named)
+    best         the recommended effect ("air_drag", "a+b" for a pair) or None
+    verdict      the verdict in words; verdict_code: "consistent", "missing_effect",
+                 "partial_explanation", "out_of_range", "outside_library" or "no_data"
+    any_significant, convincing, thin_data (bools); n_data, chi2_baseline, baseline_p_value
+    patterns     table of the residuals' trends per model, quantity and driver
+    outliers, model_form (lists of dicts), uncertainty_scale (dict), caveats, findings,
+    failure_summary, discriminators (lists of text), markdown (diagnosis.md),
+    self_check (dict of the replicas' rates, or None)
+    """
+
+    ranking: Any
+    pairs: Any
+    patterns: Any
+    best_fit: Dict[str, Strength]
+    best: Optional[str]
+    verdict: str
+    verdict_code: str
+
+    _FIELDS = ("markdown", "verdict", "models", "n_data", "n_without_uncertainty", "chi2_baseline",
+               "baseline_p_value", "any_significant", "convincing", "best", "failure_summary", "indistinguishable",
+               "discriminators", "caveats", "verdict_code", "goodness_of_fit", "thin_data", "findings",
+               "wants_outside", "outliers", "model_form", "uncertainty_scale")
+
+    @classmethod
+    def _make(cls, raw, core=None) -> "Diagnosis":
+        self = _new(cls)
+        self._core = core
+        self.ranking = _table(raw["ranking"])
+        self.pairs = _table(raw["pairs"])
+        self.patterns = _table(raw["patterns"])
+        self.best_fit = {s.effect: s for s in _strengths(raw["best_fit"])}
+        for key in cls._FIELDS:
+            setattr(self, key, raw[key])
+        self.self_check = raw.get("self_check")
+        return self
+
+    def write_report(self, out: PathLike) -> None:
+        """Writes diagnosis.csv and diagnosis.md (and the self-check's files) into the folder
+        `out`, as `chutelab diagnose --out` does: all files or none, never onto the dataset."""
+        if self._core is None:
+            raise _refuse("out", "this diagnosis is part of a validation: use that Validation's write_report()")
+        self._core.write(_path("out", out, optional=False))
+
+    def __repr__(self) -> str:
+        return f"chutelab.Diagnosis({self.verdict!r})"
+
+
+def diagnose(dataset: Union[Dataset, PathLike], models: Union[str, Sequence[str]] = ("booth-cema", "korzen"), *,
+             alpha: float = 0.01, pairs: bool = True, dem_quality: Optional[str] = None,
+             dem_threads: Optional[int] = None, dem_cache: Optional[PathLike] = None, no_dem_cache: bool = False,
+             self_check: int = 0, seed: int = 1) -> Diagnosis:
+    """Ranks the candidate physical effects (and recorded inputs) by how much of the models'
+    misfit each explains, as `chutelab diagnose`.
+
+    dataset: a Dataset or a folder with measurements. alpha: the family-wise false-alarm rate;
+    pairs: also fit pairs of effects. self_check=N also diagnoses N replicas of the dataset's
+    design (replicas from `seed` on) and reports the false-alarm rate and power. Models include
+    "dem" (dem_quality "quick"/"standard"/..., dem_threads, dem_cache; slow, cached)."""
+    d = _dataset(dataset)
+    core = _chutelab.diagnose(d._core, _model_list(models), _real("alpha", alpha), _flag("pairs", pairs),
+                              _text("dem_quality", dem_quality), _whole("dem_threads", dem_threads, True),
+                              _path("dem_cache", dem_cache), _flag("no_dem_cache", no_dem_cache),
+                              _seed_like("self_check", self_check), _seed_like("seed", seed))
+    return Diagnosis._make(core.numbers(), core)
+
+
+# ---- validate ------------------------------------------------------------------------------------
 
 class Validation:
-    """What `chutelab validate` writes, as tables: predictions, errors (E = S - D, E/u, u_val,
-    tolerance verdicts) and summary, with the CSV files' columns. effects lists the effects as
-    applied ("air_drag=0.61 (fitted)"); brief is the command's one-line summary."""
+    """Every condition through the models, compared with the measurements (ASME V&V 20), from
+    validate(). The tables have the columns of the files `chutelab validate` writes, with the
+    verdicts as flags and the limits as numbers:
 
-    def __init__(self, raw):
-        text = ("condition", "model", "quantity", "tolerance", "within_tolerance")
-        self.predictions = _table(_parse_csv(raw["predictions"]), text_columns=text)
-        self.errors = _table(_parse_csv(raw["errors"]), text_columns=text)
-        self.summary = _table(_parse_csv(raw["summary"]), text_columns=text)
+    predictions  condition, model, quantity, value, uncertainty, x_mm
+    errors       condition, model, quantity, measured, uncertainty, predicted, error (E = S - D),
+                 relative_error, normalised_error (E/u_val), x_mm, validation_uncertainty (u_val),
+                 vv20_ratio, tolerance_checked (bool: a limit applied), within_tolerance (bool;
+                 True where none applied), tolerance_failed (the first limit exceeded, in words),
+                 tolerance_relative, tolerance_absolute, tolerance_normalised (the limits; NaN
+                 where not set), u_num_stat, u_num_disc, u_input, y_mm, z_mm
+    summary      model, quantity, n, rms_error, rms_normalised_error, max_abs_relative_error,
+                 tolerance_checked, within_tolerance
+
+    effects      [Strength]: the effects added, fitted ones with their ± (empty without effects)
+    brief        the command's one-line summary; notes: e.g. the fit's chi^2
+    rms_normalised_error {model: float}; combined_rms_normalised_error: float
+    acceptance_checked, acceptance_failed (bools), acceptance_problems (texts)
+    diagnosis    the Diagnosis validate ran (with effects, or diagnose=True), or None
+    write_report(out) writes report.html, report.md and the CSV files, as validate --out
+    """
+
+    predictions: Any
+    errors: Any
+    summary: Any
+    effects: List[Strength]
+    brief: str
+    acceptance_checked: bool
+    acceptance_failed: bool
+    combined_rms_normalised_error: float
+    diagnosis: Optional[Diagnosis]
+
+    @classmethod
+    def _make(cls, core) -> "Validation":
+        raw = core.numbers()
+        self = _new(cls)
+        self._core = core
+        self.predictions = _table(raw["predictions"])
+        self.errors = _table(raw["errors"])
+        self.summary = _table(raw["summary"])
         self.models = list(raw["models"])
-        self.effects = list(raw["effects"])
+        self.effects = _strengths(raw["effects"])
         self.notes = list(raw["notes"])
         self.brief = raw["brief"]
         self.acceptance_checked = raw["acceptance_checked"]
         self.acceptance_failed = raw["acceptance_failed"]
+        self.acceptance_problems = list(raw["acceptance_problems"])
         self.rms_normalised_error = dict(raw["rms_normalised_error"])
         self.combined_rms_normalised_error = raw["combined_rms_normalised_error"]
+        self.diagnosis = Diagnosis._make(raw["diagnosis"]) if raw["diagnosis"] is not None else None
+        return self
 
-    def __repr__(self):
+    def write_report(self, out: PathLike) -> None:
+        """Writes predictions.csv, errors.csv, summary.csv, report.md and report.html (and, with a
+        diagnosis, diagnosis.csv and diagnosis.md) into the folder `out`: the files
+        `chutelab validate --out` writes for the same inputs, all or none, never onto an input.
+        With the "dem" model the command line also keeps each condition's series under dem/;
+        these are not written here (the DEM cache, dem_cache=, keeps the runs)."""
+        self._core.write(_path("out", out, optional=False))
+
+    def __repr__(self) -> str:
         return f"chutelab.Validation({self.brief!r})"
 
 
-def validate(dataset, models=("korzen", "booth-cema"), effects=None, *, tolerances=None,
-             dem_quality="", dem_threads=None, dem_cache=None, no_dem_cache=False):
+def validate(dataset: Union[Dataset, PathLike], models: Union[str, Sequence[str]] = ("korzen", "booth-cema"),
+             effects: EffectsArg = None, *, tolerances: Optional[PathLike] = None, diagnose: bool = False,
+             dem_quality: Optional[str] = None, dem_threads: Optional[int] = None,
+             dem_cache: Optional[PathLike] = None, no_dem_cache: bool = False) -> Validation:
     """Every condition of `dataset` (a Dataset or a folder) through `models`, compared with its
-    measurements, as `chutelab validate`. effects: {"air_drag": 0.7} fixed or {"air_drag": "fit"}
-    calibrated on the dataset; the result is then the models with the effects (call once without
-    effects for "before"). tolerances: a tolerances.toml; acceptance_failed says whether any
-    limit was exceeded."""
+    measurements, as `chutelab validate`.
+
+    effects: {"air_drag": 0.7} fixed or {"air_drag": "fit"} calibrated on the dataset; the tables
+    are then those of the models with the effects (call once without effects for "before"), and
+    the diagnosis runs too, as on the command line. diagnose=True ranks the candidate effects
+    without adding any. tolerances: a tolerances.toml (default: the dataset's own when present).
+    Models include "dem" (dem_quality, dem_threads, dem_cache, no_dem_cache; slow, cached as on
+    the command line)."""
     d = _dataset(dataset)
-    raw = _chutelab.validate(d._core, _model_list(models), _effect_args(effects), _path(tolerances),
-                             _text("dem_quality", dem_quality), _whole("dem_threads", dem_threads, True),
-                             _path(dem_cache),
-                             _flag("no_dem_cache", no_dem_cache))
-    return Validation(raw)
+    core = _chutelab.validate(d._core, _model_list(models), _effect_args(effects), _path("tolerances", tolerances),
+                              _flag("diagnose", diagnose), _text("dem_quality", dem_quality),
+                              _whole("dem_threads", dem_threads, True), _path("dem_cache", dem_cache),
+                              _flag("no_dem_cache", no_dem_cache))
+    return Validation._make(core)
 
 
-class Diagnosis:
-    """What `chutelab diagnose` finds: ranking (diagnosis.csv; its first row is the best single
-    effect), patterns (residual trends per
-    model, quantity and driver), verdict, best (the recommended effect or None), markdown
-    (diagnosis.md) and the numbers behind them."""
-
-    def __init__(self, raw):
-        # A pair's row joins its two values with "+" (as diagnosis.csv does), which leaves rank,
-        # estimate and uncertainty as text when the ranking holds a pair.
-        self.ranking = _table(_parse_csv(raw["ranking"]),
-                              text_columns=("effect", "parameter", "significant", "signature",
-                                            "wants_outside_range", "beaten_outside_range_by"))
-        self.patterns = _table(raw["patterns"], text_columns=("model", "quantity", "driver"))
-        # verdict_code: "consistent", "missing_effect", "partial_explanation", "out_of_range",
-        # "outside_library" or "no_data"; best_fit: {effect: {"value", "uncertainty"}} or None;
-        # outliers, model_form: lists of dicts; uncertainty_scale: what the scatter says of the
-        # stated uncertainties; self_check: the replicas' rates (diagnose(..., self_check=N)).
-        for key in ("markdown", "verdict", "models", "n_data", "n_without_uncertainty",
-                    "chi2_baseline", "baseline_p_value", "any_significant", "convincing", "best",
-                    "failure_summary", "indistinguishable", "discriminators", "caveats",
-                    "verdict_code", "goodness_of_fit", "thin_data", "findings", "wants_outside",
-                    "outliers", "model_form", "uncertainty_scale", "best_fit", "self_check"):
-            setattr(self, key, raw[key])
-
-    def __repr__(self):
-        return f"chutelab.Diagnosis({self.verdict!r})"
+def write_report(result: Union[Validation, Diagnosis], out: PathLike) -> None:
+    """Writes a validation's or a diagnosis's files into the folder `out`, the same files the
+    command line's --out gets (result.write_report(out))."""
+    if not isinstance(result, (Validation, Diagnosis)):
+        raise _refuse("result", f"must be what validate() or diagnose() returned, got {type(result).__name__}")
+    result.write_report(out)
 
 
-def diagnose(dataset, models=("booth-cema", "korzen"), *, alpha=0.01, pairs=True, dem_quality="",
-             dem_threads=None, dem_cache=None, no_dem_cache=False, self_check=0, seed=1):
-    """Ranks the candidate physical effects by how much of the models' misfit each explains, as
-    `chutelab diagnose`; self_check=N also diagnoses N replicas of the dataset's design (as
-    `--self-check N`, replicas from `seed` on)."""
-    d = _dataset(dataset)
-    raw = _chutelab.diagnose(d._core, _model_list(models), _real("alpha", alpha), _flag("pairs", pairs),
-                             _text("dem_quality", dem_quality), _whole("dem_threads", dem_threads, True),
-                             _path(dem_cache),
-                             _flag("no_dem_cache", no_dem_cache), self_check, seed)
-    return Diagnosis(raw)
+# ---- synthesize ----------------------------------------------------------------------------------
 
-
-def synthesize(dataset=None, effects=None, *, seed=1, noise_scale=1.0, out=None):
+def synthesize(dataset: Union[Dataset, PathLike, None] = None, effects: EffectsArg = None, *, seed: int = 1,
+               noise_scale: float = 1.0, out: Optional[PathLike] = None) -> Dataset:
     """A synthetic dataset, as `chutelab synthesize`: the analytical models plus hidden effects
     plus Gaussian noise on the rig and conditions of `dataset` (default: the bundled grima2010).
+
     Written to `out` when given (and read back from there); otherwise to a temporary folder that
     is removed once the dataset is read, so the returned Dataset's dir no longer exists."""
     source = _dataset(DEFAULT_DATASET if dataset is None else dataset, measurements_required=False)
     args = _effect_args(effects)
+    seed = _seed_like("seed", seed)
+    scale = _real("noise_scale", noise_scale)
     if out is not None:
-        _chutelab.synthesize(source._core, args, seed, _real("noise_scale", noise_scale), _os.fspath(out))
-        return read_dataset(out)
+        target = _path("out", out, optional=False)
+        _chutelab.synthesize(source._core, args, seed, scale, target)
+        return read_dataset(target)
     with _tempfile.TemporaryDirectory(prefix="chutelab-synthetic-") as tmp:
-        _chutelab.synthesize(source._core, args, seed, _real("noise_scale", noise_scale), tmp)
+        _chutelab.synthesize(source._core, args, seed, scale, tmp)
         return read_dataset(tmp)
 
 
-def models():
-    """The model names --models accepts, in report order."""
+# ---- the registry --------------------------------------------------------------------------------
+
+def models() -> List[str]:
+    """The model names validate() and diagnose() accept, in report order."""
     return list(_chutelab.model_names())
 
 
-def effects():
-    """The registered candidate effects: name, parameter, unit, stage, neutral value, physical
-    range, typical strength, physics and source."""
+def effects() -> TABLE:
+    """The registered candidate effects as a table: effect, parameter, unit, stage, kind
+    ("physics", or "record" for a recorded input that may be wrong), neutral, lower, upper
+    (physical range), typical (strength), physics and source."""
     rows = _chutelab.effect_library()
-    cols = {k: [r[k] for r in rows] for k in (rows[0].keys() if rows else [])}
-    return _table(cols, text_columns=("effect", "parameter", "unit", "stage", "physics", "source"))
+    keys = ("effect", "parameter", "unit", "stage", "kind", "neutral", "lower", "upper", "typical", "physics", "source")
+    numeric = {"neutral", "lower", "upper", "typical"}
+    return _table({k: (_np.array([r[k] for r in rows], dtype=float) if k in numeric else [r[k] for r in rows])
+                   for k in keys})
+
+
+def quantities() -> Dict[str, Quantity]:
+    """{name: Quantity(name, symbol, label, unit)} for every quantity the tables' `quantity`
+    column can hold (normal_force_N, ..., trajectory_upper_y_mm): axis labels for plots,
+    e.g. quantities()["normal_force_N"].axis_label == "plate normal force R_n [N]"."""
+    return {n: Quantity(n, s, label, unit) for n, s, label, unit in _chutelab.quantities()}
