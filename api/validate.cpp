@@ -28,9 +28,8 @@ void check(const ValidateOptions& o) {
   check(o.dem);
 }
 
-reports::ReportInput ValidateResult::report(const FieldNames& names) const {
+reports::ReportInput ValidateResult::report() const {
   reports::ReportInput in;
-  in.names = names;
   in.dataset = &dataset;
   in.baseline = &baseline;
   in.with_effects = with_effects ? &*with_effects : nullptr;
@@ -42,9 +41,9 @@ reports::ReportInput ValidateResult::report(const FieldNames& names) const {
   return in;
 }
 
-std::vector<validation::OutputFile> ValidateResult::files(const FieldNames& names) const {
+std::vector<validation::OutputFile> ValidateResult::files() const {
   const auto& r = final_result();
-  const reports::ReportInput in = report(names);
+  const reports::ReportInput in = report();
   std::vector<validation::OutputFile> out = {{"predictions.csv", validation::predictions_csv(r)},
                                              {"errors.csv", validation::errors_csv(r)},
                                              {"summary.csv", validation::summary_csv(r)},

@@ -64,12 +64,11 @@ struct ValidateResult {
 
   const validation::ValidationResult& final_result() const { return with_effects ? *with_effects : baseline; }
   bool acceptance_failed() const { return final_result().acceptance_failed; }
-  // The report's input: views into this result (valid while it lives, unmoved); the inputs it
-  // suggests named by `names` (the front end's: --add-missing, add_missing=; the key if empty).
-  reports::ReportInput report(const FieldNames& names = {}) const;
+  // The report's input: views into this result (valid while it lives, unmoved).
+  reports::ReportInput report() const;
   // predictions.csv, errors.csv, summary.csv, report.md, report.html and, with a diagnosis,
   // diagnosis.csv and diagnosis.md.
-  std::vector<validation::OutputFile> files(const FieldNames& names = {}) const;
+  std::vector<validation::OutputFile> files() const;
 };
 
 // check(o), the dataset and every other input read, prepare_output told, then the runs.

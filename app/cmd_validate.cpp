@@ -6,7 +6,6 @@
 #include "api/validate.h"
 #include "app/commands.h"
 #include "app/dem_options.h"
-#include "app/flag_names.h"
 #include "app/validate_console.h"
 #include "core/input_error.h"
 #include "core/output_folder.h"
@@ -70,7 +69,7 @@ int run_validate(const ValidateCli& o) {
   };
   const api::ValidateResult r = api::validate(opt);
   const auto& final_result = r.final_result();
-  for (const auto& [name, content] : r.files(app::flag_for)) out->write(name, content);
+  for (const auto& [name, content] : r.files()) out->write(name, content);
   out->commit();
   progress::clear();
   for (const auto& p : final_result.acceptance_problems) std::cerr << "chutelab: acceptance: " << p << "\n";
@@ -81,7 +80,7 @@ int run_validate(const ValidateCli& o) {
                               {{f.filename().string(),
                                 validation::junit_xml(final_result, r.tolerances ? &*r.tolerances : nullptr, &junit)}});
   }
-  std::cout << validate_console(r.report(app::flag_for), o.add_missing, (fs::path(o.out) / "report.html").string());
+  std::cout << validate_console(r.report(), o.add_missing, (fs::path(o.out) / "report.html").string());
   if (!o.junit.empty()) {
     std::cout << fmt::format("junit: {} ({} test case{}, {} failed, {} skipped{})\n", o.junit, junit.tests,
                              junit.tests == 1 ? "" : "s", junit.failures, junit.skipped,

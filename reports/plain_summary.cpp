@@ -69,10 +69,12 @@ std::string record_checks(const std::vector<EffectDescription>& effects) {
   return join_words(s);
 }
 
+// " with effect air_drag=0.752": what an estimate takes, by the inputs' neutral key (a report reads
+// the same whichever front end wrote it).
 std::string estimate_flags(const std::vector<EffectDescription>& effects) {
-  std::string s;
-  for (const auto& e : effects) s += fmt::format(" {} {}={:.3g}", mention("effect"), e.name, e.value);
-  return s;
+  std::vector<std::string> s;
+  for (const auto& e : effects) s.push_back(fmt::format("{}={:.3g}", e.name, e.value));
+  return fmt::format(" with effect{} {}", s.size() > 1 ? "s" : "", fmt::join(s, ", "));
 }
 
 }  // namespace
@@ -210,9 +212,9 @@ std::vector<std::string> in_short(const ReportInput& in) {
                           ? fmt::format("{} ({} {:.3g})", spaced(best->effects[i]), spaced(best->parameters[i]),
                                         best->estimate[i])
                           : spaced(best->effects[i]));
-    out.push_back(fmt::format("The measurements point to {} as what the models miss: validate with {} "
-                              "(or {} {}=fit) to see the models with it.",
-                              join_words(named), mention("add_missing"), mention("effect"), best->effects.front()));
+    out.push_back(fmt::format("The measurements point to {} as what the models miss: validate with add_missing "
+                              "(or the effect {}=fit) to see the models with it.",
+                              join_words(named), best->effects.front()));
   } else if (in.diagnosis && !bad.empty()) {
     out.push_back("No effect in chutelab's library explains this misfit well; \"What is missing\" in the report "
                   "shows where it lies.");
@@ -225,9 +227,9 @@ std::vector<std::string> in_short(const ReportInput& in) {
                               "\"Outside tolerance\").",
                               last->failed_count(), last->checked_count()));
   } else if (in.with_effects && !in.effects.empty() && best && !effect_choice_warning(in).empty()) {
-    out.push_back(fmt::format("The measurements point to {} instead: validate with {} to see the models "
+    out.push_back(fmt::format("The measurements point to {} instead: validate with add_missing to see the models "
                               "with it.",
-                              spaced(best->label()), mention("add_missing")));
+                              spaced(best->label())));
   } else if (in.with_effects && !in.effects.empty() && !bad.empty()) {
     const auto& w = bad.front();
     if (left.empty() && all_records(in.effects))
@@ -246,9 +248,8 @@ std::vector<std::string> in_short(const ReportInput& in) {
                                 "measurements' uncertainty.",
                                 left.front().label, short_effects(in.effects)));
   } else if (!in.diagnosis && !bad.empty()) {
-    out.push_back("Validate with " + mention("diagnose") + " to see which physical effect would explain it.");
+    out.push_back("Validate with diagnose to see which physical effect would explain it.");
   }
-  for (auto& sentence : out) sentence = said_text(sentence, in.names);
   return out;
 }
 

@@ -269,7 +269,7 @@ void what_is_missing(Doc& d, const Context& c) {
                                   [&](const EffectDescription& x) { return x.name == nm; });
       if (e == c.in.effects.end()) {
         d.definition(nm, fit + " It is described in the effect library (effects/" + nm + ".cpp); validate with " +
-                             said_text(mention(best->is_record() ? "input" : "effect"), c.in.names) + " " + nm +
+                             (best->is_record() ? "the recorded input " : "the effect ") + nm +
                              "=fit to see the models with it.");
         continue;
       }

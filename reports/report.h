@@ -5,7 +5,6 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.h"
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
@@ -31,9 +30,6 @@ struct ReportInput {
   const std::vector<validation::ReferenceFinding>* findings = nullptr;  // optional: the reference study's findings checked
   std::vector<std::string> notes;                           // provenance of numbers, warnings
   const std::vector<StudySection>* studies = nullptr;       // optional: calibrate / sensitivity sections
-  // How the front end names an input the report suggests (core/input_error.h's mention): the command
-  // line's flag, Python's keyword; the key itself if empty.
-  FieldNames names;
 };
 
 std::string report_markdown(const ReportInput& in);

@@ -91,7 +91,7 @@ BOOST_AUTO_TEST_CASE(the_main_job_shows_the_loop_in_a_few_lines) {
   const auto [before, after] = fall(words);
   BOOST_TEST(before > 1.5);
   BOOST_TEST(after < 1.2);
-  BOOST_TEST(words.find("estimate --effect air_drag=0.") != std::string::npos, words);
+  BOOST_TEST(words.find("estimate with effect air_drag=0.") != std::string::npos, words);
   // A unit is never cut from its number at a line break.
   for (const auto& l : lines)
     for (const char* unit : {"% ", "mm ", "m/s", "t/h"}) BOOST_TEST(!l.starts_with(unit), l);
