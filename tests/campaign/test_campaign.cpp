@@ -165,28 +165,33 @@ BOOST_AUTO_TEST_CASE(cache_tolerates_concurrent_writers) {
 
 // The default thread and job counts leave out our own process's work: a thread of ours spinning
 // while the machine is sampled must not count as someone else's (the 1-minute load average counted
-// it, and a command after another got one job on an idle machine). The least of three samples each
-// way, because other processes come and go on a shared machine; a counted spin would add about 1.
+// it, and a command after another got one job on an idle machine). Other processes come and go on a
+// shared machine (ctest starts the MPI test beside this one), so a sample without the spin and one
+// with it are taken side by side, four times: a counted spin would add about 1 to every pair's
+// difference, while another process starting between two samples moves one pair only.
 BOOST_AUTO_TEST_CASE(free_cores_leave_out_our_own_work) {
   using namespace std::chrono_literals;
-  auto least = [] {
-    double b = 1e9;
-    for (int k = 0; k < 3; ++k) b = std::min(b, busy_cores_of_others(200ms));
-    return b;
-  };
-  const double quiet = least();
-  std::atomic<bool> stop{false};
+  double least_gap = 1e9, quiet = 0.0, busy_self = 0.0;
   std::atomic<unsigned long> spins{0};
-  std::thread spinner([&] {
-    while (!stop.load(std::memory_order_relaxed)) spins.fetch_add(1, std::memory_order_relaxed);
-  });
-  std::this_thread::sleep_for(50ms);
-  const double busy_self = least();
-  stop = true;
-  spinner.join();
+  for (int pair = 0; pair < 4; ++pair) {
+    const double q = busy_cores_of_others(200ms);
+    std::atomic<bool> stop{false};
+    std::thread spinner([&] {
+      while (!stop.load(std::memory_order_relaxed)) spins.fetch_add(1, std::memory_order_relaxed);
+    });
+    std::this_thread::sleep_for(50ms);
+    const double b = busy_cores_of_others(200ms);
+    stop = true;
+    spinner.join();
+    if (b - q < least_gap) {
+      least_gap = b - q;
+      quiet = q;
+      busy_self = b;
+    }
+  }
   BOOST_TEST(spins.load() > 0u);
-  BOOST_TEST(busy_self < quiet + 0.5, "our own spinning thread counted as another process's: " << busy_self << " vs "
-                                                                                              << quiet);
+  BOOST_TEST(least_gap < 0.5, "our own spinning thread counted as another process's: " << busy_self << " vs "
+                                                                                         << quiet);
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   BOOST_TEST(free_cores() >= 1);
   BOOST_TEST(free_cores() <= cores);
