@@ -24,6 +24,7 @@
 #include "core/message.h"
 #include "core/option_check.h"
 #include "core/output_folder.h"
+#include "core/progress.h"
 #include "core/units.h"
 #include "effects/registry.h"
 #include "validation/dataset.h"
@@ -590,6 +591,8 @@ void synthesize(const validation::Dataset& source, const std::vector<std::string
 
 PYBIND11_MODULE(_chutelab, m) {
   m.doc() = "chutelab's C++ core (use the chutelab package, not this module)";
+  // Progress lines name other inputs as they are typed here, as errors do (set once, before any thread).
+  progress::set_mention_names(python_mention);
 
   // InputError(ValueError) carrying file, line (0 = none) and field, as the command line's
   // one-line message names them.
