@@ -593,15 +593,19 @@ struct ConditionFit {
 
 // Each condition's error of one input, fitted on its own: the conditions' residuals depend on their
 // own station only, so the joint fit of n errors is n fits of one, and its chi^2 falls by the sum.
+// Each fit reads its condition's points alone (a fit over the whole dataset would cost n times
+// more, n^2 in all).
 ConditionFit fit_per_condition(const Stage& s, const effects::EffectInfo& e) {
   ConditionFit out;
-  for (const auto& st : s.m.dataset().stations) {
-    const effects::EffectInfo c = at_condition(e, st.condition);
+  const auto& stations = s.m.dataset().stations;
+  for (std::size_t ci = 0; ci < stations.size(); ++ci) {
+    const effects::EffectInfo c = at_condition(e, stations[ci].condition);
     const Fx fx = {&c};
-    const StrengthFit f = fit_strengths(s.cost, fx);
+    const Cost part = s.cost.only({ci});
+    const StrengthFit f = fit_strengths(part, fx);
     out.estimate.push_back(f.estimate[0]);
     out.uncertainty.push_back(f.uncertainty[0]);
-    out.drop.push_back(std::max(0.0, s.chi2_0 - f.chi2));
+    out.drop.push_back(std::max(0.0, part.chi2({}, {}) - f.chi2));
   }
   return out;
 }

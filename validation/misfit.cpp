@@ -1,7 +1,9 @@
 #include "validation/misfit.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <unordered_map>
 
 #include "core/input_error.h"
@@ -112,19 +114,43 @@ std::vector<double> Misfit::residuals_exact(std::span<const effects::EffectInfo*
   }
 }
 
+double Misfit::residual(const Predictions& pred, std::size_t i) const {
+  const auto& p = points_[i];
+  const ModelPrediction& mp = pred[p.condition][p.model];
+  std::optional<double> v;
+  if (p.q) v = mp.values[*p.q];
+  else if (p.query < mp.trajectory.size()) v = mp.trajectory[p.query];
+  // A prediction that an effect makes vanish (Korzen's V_a when stationary flow stops) counts as
+  // zero: the effect has to explain the measurement, not remove it.
+  return (v.value_or(0.0) - p.measured) / p.uncertainty;
+}
+
 std::vector<double> Misfit::residuals_of(const Predictions& pred) const {
   std::vector<double> r(points_.size());
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    const auto& p = points_[i];
-    const ModelPrediction& mp = pred[p.condition][p.model];
-    std::optional<double> v;
-    if (p.q) v = mp.values[*p.q];
-    else if (p.query < mp.trajectory.size()) v = mp.trajectory[p.query];
-    // A prediction that an effect makes vanish (Korzen's V_a when stationary flow stops) counts as
-    // zero: the effect has to explain the measurement, not remove it.
-    r[i] = (v.value_or(0.0) - p.measured) / p.uncertainty;
-  }
+  for (std::size_t i = 0; i < points_.size(); ++i) r[i] = residual(pred, i);
   return r;
+}
+
+MisfitPart Misfit::part(std::vector<std::size_t> conditions) const {
+  MisfitPart out;
+  std::sort(conditions.begin(), conditions.end());
+  conditions.erase(std::unique(conditions.begin(), conditions.end()), conditions.end());
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    if (std::binary_search(conditions.begin(), conditions.end(), points_[i].condition)) out.rows.push_back(i);
+  out.conditions = std::move(conditions);
+  return out;
+}
+
+std::vector<double> Misfit::residuals(std::span<const effects::EffectInfo* const> fx,
+                                      std::span<const double> strengths, const MisfitPart& part) const {
+  try {
+    const auto pred = source_->predict(fx, strengths, PredictionSource::Evaluation::surrogate, part.conditions);
+    std::vector<double> r(part.rows.size());
+    for (std::size_t i = 0; i < r.size(); ++i) r[i] = residual(pred, part.rows[i]);
+    return r;
+  } catch (const InputError&) {
+    return std::vector<double>(part.rows.size(), kInfeasible);
+  }
 }
 
 double Misfit::chi2(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const {
@@ -139,24 +165,39 @@ Cost::Cost(const Misfit& m, std::vector<double> weights) : m_(&m), w_(std::move(
   for (double w : w_) counted_ += w > 0.0 ? 1 : 0;
 }
 
+Cost Cost::only(std::vector<std::size_t> conditions) const {
+  Cost c = *this;
+  c.part_ = std::make_shared<const MisfitPart>(m_->part(std::move(conditions)));
+  c.counted_ = 0;
+  for (std::size_t row = 0; row < c.rows(); ++row) c.counted_ += c.weight(row) > 0.0 ? 1 : 0;
+  return c;
+}
+
+std::vector<std::size_t> Cost::conditions() const {
+  if (part_) return part_->conditions;
+  std::vector<std::size_t> all(m_->dataset().stations.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  return all;
+}
+
 std::vector<double> Cost::weighted(std::vector<double> r) const {
-  for (std::size_t i = 0; i < r.size(); ++i) r[i] *= w_[i];
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] *= weight(i);
   return r;
 }
 
 std::vector<double> Cost::residuals(std::span<const effects::EffectInfo* const> fx,
                                     std::span<const double> strengths) const {
-  return weighted(m_->residuals(fx, strengths));
+  return weighted(part_ ? m_->residuals(fx, strengths, *part_) : m_->residuals(fx, strengths));
 }
 
 double Cost::chi2_of(const std::vector<double>& r) const {
   double s = 0.0;
-  for (std::size_t i = 0; i < r.size(); ++i) s += std::pow(r[i] * w_[i], 2);
+  for (std::size_t i = 0; i < r.size(); ++i) s += std::pow(r[i] * weight(i), 2);
   return s;
 }
 
 double Cost::chi2(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const {
-  return chi2_of(m_->residuals(fx, strengths));
+  return chi2_of(part_ ? m_->residuals(fx, strengths, *part_) : m_->residuals(fx, strengths));
 }
 
 }  // namespace chutelab::validation

@@ -37,6 +37,13 @@ struct MisfitGroup {
   std::vector<std::size_t> points;
 };
 
+// A part of the misfit: the points of some conditions. A condition's points depend on its own
+// predictions only, so a part costs what its conditions cost, not what the dataset does.
+struct MisfitPart {
+  std::vector<std::size_t> conditions;  // ascending
+  std::vector<std::size_t> rows;        // the points of those conditions, ascending
+};
+
 class Misfit {
  public:
   // Points the baseline (fixed effects only) cannot predict, or without uncertainty, are left out.
@@ -57,6 +64,10 @@ class Misfit {
   // plate, ...) gives a large misfit, not an error.
   std::vector<double> residuals(std::span<const effects::EffectInfo* const> fx,
                                 std::span<const double> strengths) const;
+  // The same for a part's points alone (one residual per part row), from its conditions alone.
+  std::vector<double> residuals(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
+                                const MisfitPart& part) const;
+  MisfitPart part(std::vector<std::size_t> conditions) const;
   // The same from real runs of the expensive models (PredictionSource::prepare_exact runs them).
   std::vector<double> residuals_exact(std::span<const effects::EffectInfo* const> fx,
                                       std::span<const double> strengths) const;
@@ -71,6 +82,8 @@ class Misfit {
   static constexpr double kInfeasible = 1e3;
 
  private:
+  double residual(const Predictions& pred, std::size_t i) const;
+
   std::shared_ptr<const PredictionSource> source_;
   std::vector<MisfitPoint> points_;
   std::vector<MisfitGroup> groups_;
@@ -82,18 +95,26 @@ class Misfit {
 class Cost {
  public:
   explicit Cost(const Misfit& m, std::vector<double> weights = {});
+  // The same cost over the points of these conditions alone: where a strength moves only their
+  // predictions (one condition's recorded input), a fit of it reads them and nothing else.
+  Cost only(std::vector<std::size_t> conditions) const;
   const Misfit& misfit() const { return *m_; }
-  const std::vector<double>& weights() const { return w_; }
-  std::size_t rows() const { return m_->size(); }
-  std::size_t size() const { return counted_; }  // points that count
+  // The conditions whose points it reads (ascending).
+  std::vector<std::size_t> conditions() const;
+  const std::vector<double>& weights() const { return w_; }  // of every point of the misfit
+  std::size_t rows() const { return part_ ? part_->rows.size() : m_->size(); }  // residuals() gives one per row
+  std::size_t size() const { return counted_; }  // rows that count
   std::vector<double> residuals(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
   std::vector<double> weighted(std::vector<double> residuals) const;
   double chi2(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
-  double chi2_of(const std::vector<double>& residuals) const;  // unweighted residuals in, weighted chi^2 out
+  double chi2_of(const std::vector<double>& residuals) const;  // unweighted residuals of the rows in, weighted chi^2 out
 
  private:
+  double weight(std::size_t row) const { return w_[part_ ? part_->rows[row] : row]; }
+
   const Misfit* m_;
   std::vector<double> w_;
+  std::shared_ptr<const MisfitPart> part_;  // null: every point
   std::size_t counted_ = 0;
 };
 

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <exception>
 #include <fmt/format.h>
+#include <numeric>
 #include <thread>
 #include <unordered_map>
 
@@ -36,7 +37,7 @@ std::string strengths_key(std::span<const effects::EffectInfo* const> fx, std::s
 PredictionSource::PredictionSource(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed,
                                    int threads)
     : d_(&d), models_(std::move(models)), fixed_(std::move(fixed)), threads_(std::max(1, threads)),
-      queries_(d.stations.size()), memo_(d.stations.size()) {
+      queries_(d.stations.size()), memo_(d.stations.size()), raw_fixed_(d.stations.size()) {
   // Look-ups by hash, once per row: a diagnosis stays linear in the size of the dataset.
   std::unordered_map<std::string, std::size_t> index;
   for (std::size_t i = 0; i < d.stations.size(); ++i) index.emplace(d.stations[i].condition, i);
@@ -70,10 +71,9 @@ analytical::EffectList PredictionSource::with(std::span<const effects::EffectInf
   return list;
 }
 
-void PredictionSource::predict_condition(std::size_t c, const analytical::EffectList& list,
-                                         std::span<const effects::EffectInfo* const> fx,
-                                         std::span<const double> strengths, Evaluation how,
-                                         std::vector<ModelPrediction>& out) const {
+std::vector<ConditionResult> PredictionSource::raw_condition(std::size_t c, const analytical::EffectList& list,
+                                                             std::span<const effects::EffectInfo* const> fx,
+                                                             std::span<const double> strengths, Evaluation how) const {
   const Station& st = d_->stations[c];
   std::vector<ConditionResult> same(models_.size());
   // The models that read the analytical chain share one analysis of the condition.
@@ -87,6 +87,44 @@ void PredictionSource::predict_condition(std::size_t c, const analytical::Effect
     } else if (how == Evaluation::exact) {
       same[k] = {st.condition, models_[k]->name(), exact_run(c, k, fx, strengths)};
     }
+  }
+  return same;
+}
+
+bool PredictionSource::on_measurement_only(std::span<const effects::EffectInfo* const> fx) const {
+  if (fx.empty() || has_expensive() || d_->stations.empty()) return false;
+  auto same_numbers = [](const std::vector<ConditionResult>& a, const std::vector<ConditionResult>& b) {
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      const ModelPrediction &x = a[k].prediction, &y = b[k].prediction;
+      if (x.values.value != y.values.value || x.trajectory != y.trajectory || x.plate != y.plate) return false;
+    }
+    return true;
+  };
+  for (const auto* e : fx) {
+    auto [it, fresh] = measurement_only_.try_emplace(e->name, false);
+    if (fresh && e->stage == "measurement") try {
+        analytical::EffectList on = fixed_;
+        on.push_back(e->make(e->upper));
+        it->second = same_numbers(raw_condition(0, fixed_, {}, {}, Evaluation::surrogate),
+                                  raw_condition(0, on, {}, {}, Evaluation::surrogate));
+      } catch (const InputError&) {
+      }
+    if (!it->second) return false;
+  }
+  return true;
+}
+
+void PredictionSource::predict_condition(std::size_t c, const analytical::EffectList& list,
+                                         std::span<const effects::EffectInfo* const> fx,
+                                         std::span<const double> strengths, Evaluation how, bool reuse_raw,
+                                         std::vector<ModelPrediction>& out) const {
+  const Station& st = d_->stations[c];
+  std::vector<ConditionResult> same;
+  if (reuse_raw) {
+    if (!raw_fixed_[c]) raw_fixed_[c] = raw_condition(c, fixed_, {}, {}, how);
+    same = *raw_fixed_[c];
+  } else {
+    same = raw_condition(c, list, fx, strengths, how);
   }
   if (how == Evaluation::surrogate && has_expensive()) {
     // Each candidate's shift of an expensive model, summed over the candidates (superposition):
@@ -116,14 +154,22 @@ void PredictionSource::predict_condition(std::size_t c, const analytical::Effect
 }
 
 Predictions PredictionSource::predict(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
-                                      Evaluation how) const {
+                                      Evaluation how, std::span<const std::size_t> only) const {
   const analytical::EffectList list = with(fx, strengths);
-  const std::size_t n = d_->stations.size();
-  Predictions out(n);
+  const bool reuse_raw = on_measurement_only(fx);
+  Predictions out(d_->stations.size());
+  std::vector<std::size_t> all;
+  if (only.empty()) {
+    all.resize(d_->stations.size());
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    only = all;
+  }
+  const std::size_t n = only.size();
   // A model that cannot take a condition says which line of conditions.csv, as validate does.
-  auto condition = [&](std::size_t c) {
+  auto condition = [&](std::size_t i) {
+    const std::size_t c = only[i];
     try {
-      predict_condition(c, list, fx, strengths, how, out[c]);
+      predict_condition(c, list, fx, strengths, how, reuse_raw, out[c]);
     } catch (const InputError& e) {
       if (c < d_->station_lines.size()) throw e.located(d_->station_lines[c].file, d_->station_lines[c].line);
       throw;
@@ -131,12 +177,12 @@ Predictions PredictionSource::predict(std::span<const effects::EffectInfo* const
   };
   // Conditions are independent and each writes only its own slot and memo, so they may go side by
   // side; the expensive models' caches are shared maps, so with one of them they go in order. A
-  // failure is the first in condition order, as in order: every condition before the first failure
+  // failure is the first in the order asked, as in order: every condition before the first failure
   // found is still predicted. Workers take small blocks of conditions as they come free (a busy
   // machine may stall one of them), and the caller works too.
   const int threads = has_expensive() ? 1 : std::min<int>(threads_, static_cast<int>(n / kConditionsPerThread));
   if (threads <= 1) {
-    for (std::size_t c = 0; c < n; ++c) condition(c);
+    for (std::size_t i = 0; i < n; ++i) condition(i);
     return out;
   }
   std::vector<std::exception_ptr> failure(n);
@@ -144,11 +190,11 @@ Predictions PredictionSource::predict(std::span<const effects::EffectInfo* const
   constexpr std::size_t kBlock = 16;
   auto work = [&] {
     for (std::size_t b; (b = next_block.fetch_add(kBlock)) < n;)
-      for (std::size_t c = b; c < std::min(n, b + kBlock) && c < first_failure.load(); ++c) try {
-          condition(c);
+      for (std::size_t i = b; i < std::min(n, b + kBlock) && i < first_failure.load(); ++i) try {
+          condition(i);
         } catch (...) {
-          failure[c] = std::current_exception();
-          for (std::size_t f = first_failure.load(); c < f && !first_failure.compare_exchange_weak(f, c);) {
+          failure[i] = std::current_exception();
+          for (std::size_t f = first_failure.load(); i < f && !first_failure.compare_exchange_weak(f, i);) {
           }
         }
   };

@@ -17,6 +17,7 @@
 #include "analytical/transfer_station.h"
 #include "effects/registry.h"
 #include "validation/dataset.h"
+#include "validation/harness.h"
 #include "validation/model.h"
 
 namespace chutelab::validation {
@@ -51,10 +52,11 @@ class PredictionSource {
 
   // Every model's prediction of every condition with these effects: expensive models by their
   // signatures (`surrogate`) or by real runs at these strengths (`exact`, run on demand; call
-  // prepare_exact first to run them as one campaign).
+  // prepare_exact first to run them as one campaign). `only`: these conditions alone (the others'
+  // slots stay empty), for a cost that reads a part of the dataset; empty: every condition.
   enum class Evaluation { surrogate, exact };
   Predictions predict(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
-                      Evaluation how = Evaluation::surrogate) const;
+                      Evaluation how = Evaluation::surrogate, std::span<const std::size_t> only = {}) const;
 
   // Runs every probe run the candidates need (`jobs` at a time), so that fits find them ready.
   void prepare_signatures(std::span<const effects::EffectInfo* const> candidates, int jobs) const;
@@ -66,7 +68,15 @@ class PredictionSource {
   analytical::EffectList with(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
   void predict_condition(std::size_t c, const analytical::EffectList& list,
                          std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
-                         Evaluation how, std::vector<ModelPrediction>& out) const;
+                         Evaluation how, bool reuse_raw, std::vector<ModelPrediction>& out) const;
+  // Every model's prediction of a condition before the measurement effects act.
+  std::vector<ConditionResult> raw_condition(std::size_t c, const analytical::EffectList& list,
+                                             std::span<const effects::EffectInfo* const> fx,
+                                             std::span<const double> strengths, Evaluation how) const;
+  // The candidates act on the measurement alone (EffectInfo::stage "measurement", checked once per
+  // effect on the first condition: its raw prediction with the effect is the one without), so the
+  // raw predictions with the fixed effects serve every strength of theirs.
+  bool on_measurement_only(std::span<const effects::EffectInfo* const> fx) const;
   // The expensive models' runs of every condition with each list of effects, as one campaign:
   // `discretisation` adds their ladders (the baseline), `signature` runs them at the signature
   // quality (probes).
@@ -105,6 +115,8 @@ class PredictionSource {
   std::vector<ModelPtr> signature_;  // cheap models whose response to an effect shifts an expensive one
   // The run cache. Per condition: what its analyses keep from one to the next.
   mutable std::vector<analytical::TransferMemo> memo_;
+  mutable std::vector<std::optional<std::vector<ConditionResult>>> raw_fixed_;  // per condition, cheap models only
+  mutable std::map<std::string, bool> measurement_only_;
   mutable std::map<std::pair<std::size_t, std::size_t>, std::optional<ModelPrediction>> expensive_cache_;
   mutable std::map<std::pair<std::size_t, std::string>, std::optional<ModelPrediction>> cheap_cache_;
   // Probe runs of expensive models: (condition, model, effect name).

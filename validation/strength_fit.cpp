@@ -18,6 +18,10 @@ double to_u(double p, double lo, double hi) {
   return std::log(f / (1.0 - f));
 }
 
+// The sample's lowest grid basins judged on the whole data: two basins of similar depth may swap
+// between a sample and the whole.
+constexpr std::size_t kSampleBasins = 3;
+
 struct Bounds {
   std::vector<double> lo, hi;
 };
@@ -47,23 +51,62 @@ int gsl_residuals(const gsl_vector* u, void* params, gsl_vector* f) {
   return GSL_SUCCESS;
 }
 
-// Grid over the range, finer for one parameter than for two.
+// The grid over the range, finer for one parameter than for two: each point with its index.
+template <class Visit>
+void for_each_grid_point(std::size_t k, const Bounds& b, Visit&& visit) {
+  const int n = k == 1 ? 40 : 5;
+  std::vector<double> p(k);
+  std::vector<int> idx(k, 0);
+  while (true) {
+    for (std::size_t i = 0; i < k; ++i) p[i] = b.lo[i] + (b.hi[i] - b.lo[i]) * idx[i] / n;
+    visit(idx, p);
+    std::size_t j = 0;
+    while (j < idx.size() && ++idx[j] > n) idx[j++] = 0;
+    if (j == idx.size()) break;
+  }
+}
+
 void grid_scan(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
                std::vector<double>& best, double& best_chi2) {
-  const int n = fx.size() == 1 ? 40 : 5;
-  std::vector<double> p(fx.size());
-  std::vector<int> idx(fx.size(), 0);
-  while (true) {
-    for (std::size_t i = 0; i < fx.size(); ++i) p[i] = b.lo[i] + (b.hi[i] - b.lo[i]) * idx[i] / n;
+  for_each_grid_point(fx.size(), b, [&](const std::vector<int>&, const std::vector<double>& p) {
     const double c = cost.chi2(fx, p);
     if (c < best_chi2) {
       best_chi2 = c;
       best = p;
     }
-    std::size_t k = 0;
-    while (k < idx.size() && ++idx[k] > n) idx[k++] = 0;
-    if (k == idx.size()) break;
+  });
+}
+
+// The grid's local minima (no neighbour, diagonals included, lower), lowest first, at most `most`:
+// where a sample's grid may rank two basins differently from the whole data, each is tried.
+std::vector<std::vector<double>> grid_basins(const Cost& cost, std::span<const effects::EffectInfo* const> fx,
+                                             const Bounds& b, std::size_t most) {
+  struct Point {
+    std::vector<int> idx;
+    std::vector<double> p;
+    double chi2;
+  };
+  std::vector<Point> grid;
+  for_each_grid_point(fx.size(), b, [&](const std::vector<int>& idx, const std::vector<double>& p) {
+    grid.push_back({idx, p, cost.chi2(fx, p)});
+  });
+  std::vector<const Point*> minima;
+  for (const auto& a : grid) {
+    bool lowest = true;
+    for (const auto& o : grid) {
+      bool near = &o != &a;
+      for (std::size_t i = 0; near && i < a.idx.size(); ++i) near = std::abs(o.idx[i] - a.idx[i]) <= 1;
+      if (near && o.chi2 < a.chi2) {
+        lowest = false;
+        break;
+      }
+    }
+    if (lowest) minima.push_back(&a);
   }
+  std::stable_sort(minima.begin(), minima.end(), [](const Point* x, const Point* y) { return x->chi2 < y->chi2; });
+  std::vector<std::vector<double>> out;
+  for (std::size_t i = 0; i < minima.size() && i < most; ++i) out.push_back(minima[i]->p);
+  return out;
 }
 
 // Trust-region refinement from `best`; returns the status and updates best where it improved.
@@ -96,20 +139,28 @@ FitStatus refine(const Cost& cost, std::span<const effects::EffectInfo* const> f
   return status == GSL_SUCCESS ? FitStatus::converged : FitStatus::stopped;
 }
 
+// The weighted residuals' Jacobian by central differences (one-sided at an edge of the range).
+Eigen::MatrixXd jacobian(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
+                         const std::vector<double>& at) {
+  const std::size_t k = fx.size();
+  Eigen::MatrixXd J(cost.rows(), k);
+  for (std::size_t j = 0; j < k; ++j) {
+    const double h = 1e-4 * (fx[j]->upper - fx[j]->lower);
+    std::vector<double> lo = at, hi = at;
+    lo[j] = std::max(b.lo[j], at[j] - h);
+    hi[j] = std::min(b.hi[j], at[j] + h);
+    const auto rl = cost.residuals(fx, lo), rh = cost.residuals(fx, hi);
+    for (std::size_t i = 0; i < cost.rows(); ++i) J(i, j) = (rh[i] - rl[i]) / (hi[j] - lo[j]);
+  }
+  return J;
+}
+
 // Uncertainty in the parameters' own units: central differences of the weighted residuals give J,
 // and the covariance of a weighted least-squares estimate is (J^T J)^-1.
 std::vector<double> covariance_sd(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
                                   const std::vector<double>& best) {
   const std::size_t k = fx.size();
-  Eigen::MatrixXd J(cost.rows(), k);
-  for (std::size_t j = 0; j < k; ++j) {
-    const double h = 1e-4 * (fx[j]->upper - fx[j]->lower);
-    std::vector<double> lo = best, hi = best;
-    lo[j] = std::max(b.lo[j], best[j] - h);
-    hi[j] = std::min(b.hi[j], best[j] + h);
-    const auto rl = cost.residuals(fx, lo), rh = cost.residuals(fx, hi);
-    for (std::size_t i = 0; i < cost.rows(); ++i) J(i, j) = (rh[i] - rl[i]) / (hi[j] - lo[j]);
-  }
+  const Eigen::MatrixXd J = jacobian(cost, fx, b, best);
   const Eigen::MatrixXd JtJ = J.transpose() * J;
   Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
   std::vector<double> sd(k, std::numeric_limits<double>::infinity());
@@ -120,6 +171,83 @@ std::vector<double> covariance_sd(const Cost& cost, std::span<const effects::Eff
   return sd;
 }
 
+enum class Polish { converged, stopped, failed };
+
+// Gauss-Newton steps on the whole cost from a point already in the minimum's basin, halving a step
+// that does not lower chi^2, until every step is below a hundredth of its sd. A strength at an edge
+// that the data push beyond is held there (an active set), as the bounds of the grid's range
+// demand. `failed`: no step could be taken at all (a singular or non-descending system), so the
+// caller falls back to the trust region.
+Polish polish(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
+              std::vector<double>& best, double& best_chi2) {
+  const std::size_t k = fx.size();
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const auto rv = cost.residuals(fx, best);
+    const Eigen::Map<const Eigen::VectorXd> r(rv.data(), static_cast<Eigen::Index>(rv.size()));
+    const Eigen::MatrixXd J = jacobian(cost, fx, b, best);
+    const Eigen::VectorXd g = J.transpose() * r;
+    std::vector<Eigen::Index> free;
+    for (std::size_t j = 0; j < k; ++j) {
+      const double span = b.hi[j] - b.lo[j];
+      const bool held = (best[j] <= b.lo[j] + 1e-9 * span && g(j) > 0.0) || (best[j] >= b.hi[j] - 1e-9 * span && g(j) < 0.0);
+      if (!held) free.push_back(static_cast<Eigen::Index>(j));
+    }
+    if (free.empty()) return Polish::converged;
+    const auto f = static_cast<Eigen::Index>(free.size());
+    Eigen::MatrixXd H(f, f);
+    Eigen::VectorXd gf(f);
+    for (Eigen::Index a = 0; a < f; ++a) {
+      gf(a) = g(free[a]);
+      for (Eigen::Index c = 0; c < f; ++c) H(a, c) = J.col(free[a]).dot(J.col(free[c]));
+    }
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(H);
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.rcond() < 1e-12) return iteration ? Polish::stopped : Polish::failed;
+    const Eigen::VectorXd d = ldlt.solve(-gf);
+    const Eigen::MatrixXd cov = ldlt.solve(Eigen::MatrixXd::Identity(f, f));
+    bool small = true;
+    for (Eigen::Index a = 0; a < f; ++a) small = small && std::abs(d(a)) < 0.01 * std::sqrt(std::max(0.0, cov(a, a)));
+    bool moved = false;
+    for (double t = 1.0; t > 1e-3 && !moved; t /= 2.0) {
+      std::vector<double> trial = best;
+      for (Eigen::Index a = 0; a < f; ++a) {
+        const auto j = static_cast<std::size_t>(free[a]);
+        trial[j] = std::clamp(best[j] + t * d(a), b.lo[j], b.hi[j]);
+      }
+      if (const double c = cost.chi2(fx, trial); c < best_chi2) {
+        best_chi2 = c;
+        best = trial;
+        moved = true;
+      }
+    }
+    if (small) return Polish::converged;
+    if (!moved) return iteration ? Polish::stopped : Polish::failed;
+  }
+  return Polish::stopped;
+}
+
+// Many conditions: the grid and a first refinement on an even sample of them, each of the sample's
+// lowest basins judged on all, then the polish on all.
+FitStatus fit_sampled(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
+                      std::size_t sample_size, std::vector<double>& best, double& best_chi2) {
+  const auto all = cost.conditions();
+  std::vector<std::size_t> pick(sample_size);
+  for (std::size_t i = 0; i < sample_size; ++i) pick[i] = all[(2 * i + 1) * all.size() / (2 * sample_size)];
+  const Cost sample = cost.only(std::move(pick));
+  for (auto p : grid_basins(sample, fx, b, kSampleBasins)) {
+    double c = sample.chi2(fx, p);
+    if (sample.size() > fx.size()) refine(sample, fx, b, p, c);
+    if (const double whole = cost.chi2(fx, p); whole < best_chi2) {
+      best_chi2 = whole;
+      best = p;
+    }
+  }
+  switch (polish(cost, fx, b, best, best_chi2)) {
+    case Polish::converged: return FitStatus::converged;
+    case Polish::stopped: return FitStatus::stopped;
+    case Polish::failed: break;
+  }
+  return refine(cost, fx, b, best, best_chi2);
+}
 }  // namespace
 
 StrengthFit fit_strengths(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const FitOptions& opt) {
@@ -139,8 +267,12 @@ StrengthFit fit_strengths(const Cost& cost, std::span<const effects::EffectInfo*
         best = p;
       }
     }
-  grid_scan(cost, fx, b, best, best_chi2);
-  if (cost.size() > k) out.status = refine(cost, fx, b, best, best_chi2);
+  if (const std::size_t g = opt.grid_conditions; g > 0 && cost.conditions().size() > 2 * g && cost.size() > k) {
+    out.status = fit_sampled(cost, fx, b, g, best, best_chi2);
+  } else {
+    grid_scan(cost, fx, b, best, best_chi2);
+    if (cost.size() > k) out.status = refine(cost, fx, b, best, best_chi2);
+  }
   out.estimate = best;
   out.chi2 = best_chi2;
   out.uncertainty = covariance_sd(cost, fx, b, best);

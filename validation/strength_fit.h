@@ -1,7 +1,8 @@
 #pragma once
 // The strengths of candidate effects that minimise a cost (validation/misfit.h): a grid scan
 // (effects with a threshold have no gradient at their neutral value) followed by GSL's
-// trust-region least squares, with the covariance of a weighted least-squares estimate. And, for
+// trust-region least squares, with the covariance of a weighted least-squares estimate. On many
+// conditions the grid runs on a sample of them and a Gauss-Newton polish on all finishes. And, for
 // an expensive model whose own response is not linear in the strength, the minimum and its
 // uncertainty from a few real evaluations (a profile of chi^2).
 #include <algorithm>
@@ -18,9 +19,15 @@ namespace chutelab::validation {
 // ask what strength the data want whatever physics allows.
 enum class StrengthRange { physical, extended };
 
+// A grid only has to find the basin of the minimum, which an even sample of the conditions shows
+// as well as all of them: above twice this many conditions a fit scans the grid on that many and
+// polishes the minimum on all (validation/strength_fit.cpp).
+inline constexpr std::size_t kGridConditions = 250;
+
 struct FitOptions {
   StrengthRange range = StrengthRange::physical;
   std::vector<std::vector<double>> starts = {};  // extra starting points, one vector per start
+  std::size_t grid_conditions = kGridConditions;  // 0: the grid reads every condition
 };
 
 enum class FitStatus {

@@ -11,6 +11,8 @@
 #include "analytical/transfer_station.h"
 #include "effects/registry.h"
 #include "validation/diagnosis.h"
+#include "validation/misfit.h"
+#include "validation/prediction_source.h"
 #include "validation/synthesize.h"
 
 using namespace chutelab;
@@ -155,6 +157,64 @@ BOOST_AUTO_TEST_CASE(a_rig_wide_record_error_is_said_to_be_the_rigs) {
   // conditions raises chi^2 by ~8 (below detection), and 80-120 mm there is taken for excess scatter
   // by the noise model (docs/diagnosis.md, "What it cannot tell yet"); bench/DIAGNOSIS.md counts the
   // one-condition class.
+}
+
+// A condition's error is fitted on that condition's points alone (fit_per_condition): a part of the
+// cost gives exactly the whole cost's rows of those conditions, weights and infeasible strengths
+// included, so the fit over the part is the fit over the whole but for a constant.
+BOOST_AUTO_TEST_CASE(a_part_of_the_cost_is_its_conditions_rows_of_the_whole) {
+  const Misfit m(design(), cheap());
+  std::vector<double> w(m.size());
+  for (std::size_t i = 0; i < w.size(); ++i) w[i] = i % 3 == 0 ? 0.0 : 1.0 / (1.0 + 0.1 * static_cast<double>(i % 7));
+  const Cost whole(m, w);
+  const std::vector<std::size_t> some = {5, 2};
+  const Cost part = whole.only(some);
+  const auto* angle = effects::find("plate_angle");
+  const std::vector<const effects::EffectInfo*> fx = {angle};
+  for (double v : {0.0, 3.0, angle->upper, 1e3}) {  // 1e3 deg: a plate the models cannot take
+    const std::vector<double> at = {v};
+    const auto all = whole.residuals(fx, at), mine = part.residuals(fx, at);
+    std::vector<double> expected;
+    std::size_t counted = 0;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (m.points()[i].condition == 2 || m.points()[i].condition == 5) {
+        expected.push_back(all[i]);
+        counted += w[i] > 0.0;
+      }
+    BOOST_REQUIRE(!expected.empty());
+    BOOST_TEST(mine == expected, boost::test_tools::per_element());
+    BOOST_TEST(part.rows() == expected.size());
+    BOOST_TEST(part.size() == counted);
+    double chi2 = 0.0;
+    for (double r : expected) chi2 += r * r;
+    BOOST_TEST(part.chi2(fx, at) == chi2, boost::test_tools::tolerance(1e-12));
+  }
+}
+
+// A measurement-only candidate (a load cell's gain or offset) reuses each condition's raw chain and
+// changes only the readings: its predictions are those of the whole chain run with it, to the bit.
+// A candidate that says it acts on the measurement but changes the physics is caught by the check
+// and run through the whole chain.
+BOOST_AUTO_TEST_CASE(a_record_only_candidate_costs_the_same_as_the_whole_chain) {
+  effects::EffectInfo lying = *effects::find("plate_angle");
+  lying.stage = "measurement";
+  for (const effects::EffectInfo* e : {effects::find("load_cell_gain"), effects::find("load_cell_offset"),
+                                       static_cast<const effects::EffectInfo*>(&lying)}) {
+    BOOST_REQUIRE(e);
+    const PredictionSource candidates(design(), cheap());
+    const std::vector<const effects::EffectInfo*> fx = {e};
+    for (double v : {e->lower, 0.5 * e->upper, e->upper}) {
+      const std::vector<double> at = {v};
+      const Predictions reused = candidates.predict(fx, at);
+      const Predictions whole = PredictionSource(design(), cheap(), {e->make(v)}).predict({}, {});
+      BOOST_REQUIRE(reused.size() == whole.size());
+      for (std::size_t c = 0; c < whole.size(); ++c)
+        for (std::size_t k = 0; k < whole[c].size(); ++k) {
+          BOOST_TEST((reused[c][k].values.value == whole[c][k].values.value), e->name << " at " << v);
+          BOOST_TEST((reused[c][k].trajectory == whole[c][k].trajectory), e->name << " at " << v);
+        }
+    }
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()
