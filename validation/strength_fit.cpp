@@ -155,12 +155,10 @@ Eigen::MatrixXd jacobian(const Cost& cost, std::span<const effects::EffectInfo* 
   return J;
 }
 
-// Uncertainty in the parameters' own units: central differences of the weighted residuals give J,
-// and the covariance of a weighted least-squares estimate is (J^T J)^-1.
-std::vector<double> covariance_sd(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
-                                  const std::vector<double>& best) {
-  const std::size_t k = fx.size();
-  const Eigen::MatrixXd J = jacobian(cost, fx, b, best);
+// Uncertainty in the parameters' own units: the covariance of a weighted least-squares estimate is
+// (J^T J)^-1, J the weighted residuals' Jacobian.
+std::vector<double> sd_of(const Eigen::MatrixXd& J) {
+  const auto k = static_cast<std::size_t>(J.cols());
   const Eigen::MatrixXd JtJ = J.transpose() * J;
   Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
   std::vector<double> sd(k, std::numeric_limits<double>::infinity());
@@ -171,20 +169,49 @@ std::vector<double> covariance_sd(const Cost& cost, std::span<const effects::Eff
   return sd;
 }
 
+std::vector<double> covariance_sd(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
+                                  const std::vector<double>& best) {
+  return sd_of(jacobian(cost, fx, b, best));
+}
+
+// A forward-difference Jacobian from the residuals at `at` (backward at the upper edge): half the
+// evaluations of the central one, precise enough for a Gauss-Newton step and an sd.
+Eigen::MatrixXd forward_jacobian(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
+                                 const std::vector<double>& at, const std::vector<double>& r_at) {
+  Eigen::MatrixXd J(cost.rows(), fx.size());
+  for (std::size_t j = 0; j < fx.size(); ++j) {
+    const double h = 1e-4 * (fx[j]->upper - fx[j]->lower);
+    std::vector<double> p = at;
+    p[j] = at[j] + h <= b.hi[j] ? at[j] + h : at[j] - h;
+    const double step = p[j] - at[j];
+    const auto r = cost.residuals(fx, p);
+    for (std::size_t i = 0; i < cost.rows(); ++i) J(i, j) = (r[i] - r_at[i]) / step;
+  }
+  return J;
+}
+
+double squared_norm(const std::vector<double>& r) {
+  double s = 0.0;
+  for (double x : r) s += x * x;
+  return s;
+}
+
 enum class Polish { converged, stopped, failed };
 
 // Gauss-Newton steps on the whole cost from a point already in the minimum's basin, halving a step
 // that does not lower chi^2, until every step is below a hundredth of its sd. A strength at an edge
 // that the data push beyond is held there (an active set), as the bounds of the grid's range
 // demand. `failed`: no step could be taken at all (a singular or non-descending system), so the
-// caller falls back to the trust region.
+// caller falls back to the trust region. On convergence `J` is the Jacobian at a point within a
+// hundredth of an sd of the estimate, which gives its sd without evaluating it again.
 Polish polish(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
-              std::vector<double>& best, double& best_chi2) {
+              std::vector<double>& best, double& best_chi2, Eigen::MatrixXd& J) {
   const std::size_t k = fx.size();
+  std::vector<double> rv = cost.residuals(fx, best);
+  best_chi2 = squared_norm(rv);
   for (int iteration = 0; iteration < 30; ++iteration) {
-    const auto rv = cost.residuals(fx, best);
     const Eigen::Map<const Eigen::VectorXd> r(rv.data(), static_cast<Eigen::Index>(rv.size()));
-    const Eigen::MatrixXd J = jacobian(cost, fx, b, best);
+    J = forward_jacobian(cost, fx, b, best, rv);
     const Eigen::VectorXd g = J.transpose() * r;
     std::vector<Eigen::Index> free;
     for (std::size_t j = 0; j < k; ++j) {
@@ -213,11 +240,14 @@ Polish polish(const Cost& cost, std::span<const effects::EffectInfo* const> fx, 
         const auto j = static_cast<std::size_t>(free[a]);
         trial[j] = std::clamp(best[j] + t * d(a), b.lo[j], b.hi[j]);
       }
-      if (const double c = cost.chi2(fx, trial); c < best_chi2) {
+      auto rt = cost.residuals(fx, trial);
+      if (const double c = squared_norm(rt); c < best_chi2) {
         best_chi2 = c;
-        best = trial;
+        best = std::move(trial);
+        rv = std::move(rt);
         moved = true;
       }
+      if (small) break;  // a step this small is not worth halving
     }
     if (small) return Polish::converged;
     if (!moved) return iteration ? Polish::stopped : Polish::failed;
@@ -227,8 +257,9 @@ Polish polish(const Cost& cost, std::span<const effects::EffectInfo* const> fx, 
 
 // Many conditions: the grid and a first refinement on an even sample of them, each of the sample's
 // lowest basins judged on all, then the polish on all.
+// `J`: as polish leaves it on convergence, else empty.
 FitStatus fit_sampled(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
-                      std::size_t sample_size, std::vector<double>& best, double& best_chi2) {
+                      std::size_t sample_size, std::vector<double>& best, double& best_chi2, Eigen::MatrixXd& J) {
   const auto all = cost.conditions();
   std::vector<std::size_t> pick(sample_size);
   for (std::size_t i = 0; i < sample_size; ++i) pick[i] = all[(2 * i + 1) * all.size() / (2 * sample_size)];
@@ -241,12 +272,15 @@ FitStatus fit_sampled(const Cost& cost, std::span<const effects::EffectInfo* con
       best = p;
     }
   }
-  switch (polish(cost, fx, b, best, best_chi2)) {
+  switch (polish(cost, fx, b, best, best_chi2, J)) {
     case Polish::converged: return FitStatus::converged;
-    case Polish::stopped: return FitStatus::stopped;
-    case Polish::failed: break;
+    case Polish::stopped: break;
+    case Polish::failed:
+      J.resize(0, 0);
+      return refine(cost, fx, b, best, best_chi2);
   }
-  return refine(cost, fx, b, best, best_chi2);
+  J.resize(0, 0);
+  return FitStatus::stopped;
 }
 }  // namespace
 
@@ -267,15 +301,16 @@ StrengthFit fit_strengths(const Cost& cost, std::span<const effects::EffectInfo*
         best = p;
       }
     }
+  Eigen::MatrixXd J;
   if (const std::size_t g = opt.grid_conditions; g > 0 && cost.conditions().size() > 2 * g && cost.size() > k) {
-    out.status = fit_sampled(cost, fx, b, g, best, best_chi2);
+    out.status = fit_sampled(cost, fx, b, g, best, best_chi2, J);
   } else {
     grid_scan(cost, fx, b, best, best_chi2);
     if (cost.size() > k) out.status = refine(cost, fx, b, best, best_chi2);
   }
   out.estimate = best;
   out.chi2 = best_chi2;
-  out.uncertainty = covariance_sd(cost, fx, b, best);
+  out.uncertainty = J.size() ? sd_of(J) : covariance_sd(cost, fx, b, best);
   for (std::size_t i = 0; i < k; ++i) {
     const double span = b.hi[i] - b.lo[i];
     out.at_bound.push_back(best[i] <= b.lo[i] + 1e-3 * span || best[i] >= b.hi[i] - 1e-3 * span);
