@@ -514,7 +514,7 @@ std::string diagnosis_markdown(const DiagnosisResult& r) {
   o += fmt::format("| rank | effect | estimate ± sd | chi^2 after | delta BIC | explained | p (adjusted) | significant "
                    "| outside its range |{}\n",
                    sig ? " signature |" : "");
-  o += fmt::format("|---|---|---|---|---|---|---|---|---|{}\n", sig ? "---|" : "");
+  o += fmt::format("|---|---|---|---|---|---|---|---|---{}|\n", sig ? "|---" : "");
   auto est = [](const EffectFit& f) {
     std::vector<std::string> v;
     for (std::size_t i = 0; i < f.estimate.size(); ++i)
