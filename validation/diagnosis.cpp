@@ -110,6 +110,9 @@ struct Stage {
   std::size_t candidates = 0;
 
   std::map<std::string, std::pair<double, bool>> prior;  // recorded input -> (width, stated)
+  // A single's estimate and the weighted residuals there, where its fit kept them (many conditions):
+  // the pair screen reads them instead of evaluating every single again.
+  mutable std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> at_estimate;
 
   Stage(const Misfit& misfit, const DiagnoseOptions& o, NoiseModel noise)
       : m(misfit), opt(o), nm(std::move(noise)), cost(misfit, nm.weights(misfit)) {
@@ -203,7 +206,9 @@ std::vector<EffectFit> fit_singles(const Stage& s, const Progress& progress) {
   for (const auto& e : lib) {
     progress(e.name, static_cast<std::size_t>(&e - lib.data()) + 1, lib.size());
     const Fx fx = {&e};
-    EffectFit f = make_fit(fx, fit_strengths(s.cost, fx), s);
+    StrengthFit fit = fit_strengths(s.cost, fx);
+    if (!fit.residuals.empty()) s.at_estimate[e.name] = {fit.estimate, std::move(fit.residuals)};
+    EffectFit f = make_fit(fx, fit, s);
     if (s.m.source().has_expensive()) f.signature = signature_words(s.m.source().signature(e));
     out.push_back(std::move(f));
   }
@@ -352,7 +357,10 @@ std::vector<std::pair<std::size_t, std::size_t>> screen_pairs(const Stage& s, co
   for (const auto& f : singles) {
     const auto at = std::find_if(lib.begin(), lib.end(), [&](const auto& e) { return e.name == f.effects[0]; });
     if (at == lib.end()) continue;
-    auto r = s.cost.weighted(s.m.residuals(infos_of(f), f.estimate));
+    const auto kept = s.at_estimate.find(f.effects[0]);
+    auto r = kept != s.at_estimate.end() && kept->second.first == f.estimate
+                 ? kept->second.second
+                 : s.cost.weighted(s.m.residuals(infos_of(f), f.estimate));
     for (std::size_t k = 0; k < r.size(); ++k) r[k] -= r0[k];
     d[static_cast<std::size_t>(at - lib.begin())] = std::move(r);
   }

@@ -99,8 +99,9 @@ class Cost {
   // predictions (one condition's recorded input), a fit of it reads them and nothing else.
   Cost only(std::vector<std::size_t> conditions) const;
   const Misfit& misfit() const { return *m_; }
-  // The conditions whose points it reads (ascending).
+  // The conditions whose points it reads (ascending), and the condition of each row.
   std::vector<std::size_t> conditions() const;
+  std::size_t condition_of_row(std::size_t row) const { return m_->points()[part_ ? part_->rows[row] : row].condition; }
   const std::vector<double>& weights() const { return w_; }  // of every point of the misfit
   std::size_t rows() const { return part_ ? part_->rows.size() : m_->size(); }  // residuals() gives one per row
   std::size_t size() const { return counted_; }  // rows that count

@@ -201,13 +201,16 @@ enum class Polish { converged, stopped, failed };
 // Gauss-Newton steps on the whole cost from a point already in the minimum's basin, halving a step
 // that does not lower chi^2, until every step is below a hundredth of its sd. A strength at an edge
 // that the data push beyond is held there (an active set), as the bounds of the grid's range
-// demand. `failed`: no step could be taken at all (a singular or non-descending system), so the
-// caller falls back to the trust region. On convergence `J` is the Jacobian at a point within a
-// hundredth of an sd of the estimate, which gives its sd without evaluating it again.
+// demand. Each step takes a fresh Jacobian: an updated one (Broyden's) is the secant of the last
+// step, and where the model bends it gave sds 10-40 % off. `failed`: no step could be taken at all
+// (a singular or non-descending system), so the caller falls back to the trust region. On
+// convergence `J` is the Jacobian at a point within a hundredth of an sd of the estimate, which
+// gives its sd without evaluating it again. `rv`: the weighted residuals at `best`, in (when the
+// caller has them; else empty) and out.
 Polish polish(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
-              std::vector<double>& best, double& best_chi2, Eigen::MatrixXd& J) {
+              std::vector<double>& best, double& best_chi2, Eigen::MatrixXd& J, std::vector<double>& rv) {
   const std::size_t k = fx.size();
-  std::vector<double> rv = cost.residuals(fx, best);
+  if (rv.size() != cost.rows()) rv = cost.residuals(fx, best);
   best_chi2 = squared_norm(rv);
   for (int iteration = 0; iteration < 30; ++iteration) {
     const Eigen::Map<const Eigen::VectorXd> r(rv.data(), static_cast<Eigen::Index>(rv.size()));
@@ -257,29 +260,66 @@ Polish polish(const Cost& cost, std::span<const effects::EffectInfo* const> fx, 
 
 // Many conditions: the grid and a first refinement on an even sample of them, each of the sample's
 // lowest basins judged on all, then the polish on all.
-// `J`: as polish leaves it on convergence, else empty.
+// `J` and `r_best` (the weighted residuals at the estimate): as polish leaves them on convergence,
+// else empty.
 FitStatus fit_sampled(const Cost& cost, std::span<const effects::EffectInfo* const> fx, const Bounds& b,
-                      std::size_t sample_size, std::vector<double>& best, double& best_chi2, Eigen::MatrixXd& J) {
+                      std::size_t sample_size, std::vector<double>& best, double& best_chi2, Eigen::MatrixXd& J,
+                      std::vector<double>& r_best) {
   const auto all = cost.conditions();
   std::vector<std::size_t> pick(sample_size);
   for (std::size_t i = 0; i < sample_size; ++i) pick[i] = all[(2 * i + 1) * all.size() / (2 * sample_size)];
   const Cost sample = cost.only(std::move(pick));
+  const std::vector<std::size_t> sampled = sample.conditions();
+  struct Basin {
+    std::vector<double> p;
+    std::vector<double> per_condition;  // the sample's chi^2 by condition (sample order)
+    double chi2 = 0.0;
+  };
+  std::vector<Basin> basins;
   for (auto p : grid_basins(sample, fx, b, kSampleBasins)) {
     double c = sample.chi2(fx, p);
     if (sample.size() > fx.size()) refine(sample, fx, b, p, c);
-    if (const double whole = cost.chi2(fx, p); whole < best_chi2) {
+    Basin basin{p, std::vector<double>(sample_size, 0.0), 0.0};
+    const auto r = sample.residuals(fx, p);
+    for (std::size_t row = 0; row < r.size(); ++row) {
+      const auto at = std::lower_bound(sampled.begin(), sampled.end(), sample.condition_of_row(row)) - sampled.begin();
+      basin.per_condition[static_cast<std::size_t>(at)] += r[row] * r[row];
+      basin.chi2 += r[row] * r[row];
+    }
+    basins.push_back(std::move(basin));
+  }
+  std::stable_sort(basins.begin(), basins.end(), [](const Basin& x, const Basin& y) { return x.chi2 < y.chi2; });
+  // A basin the sample finds worse than the lowest by more than four standard errors of the
+  // difference (summed over all the conditions, from its spread over the sampled ones) is worse on
+  // all the data too: it is not judged there.
+  r_best.clear();
+  for (std::size_t i = 0; i < basins.size(); ++i) {
+    if (i > 0) {
+      double mean = 0.0, sq = 0.0;
+      for (std::size_t c = 0; c < sample_size; ++c) mean += basins[i].per_condition[c] - basins[0].per_condition[c];
+      mean /= static_cast<double>(sample_size);
+      for (std::size_t c = 0; c < sample_size; ++c)
+        sq += std::pow(basins[i].per_condition[c] - basins[0].per_condition[c] - mean, 2);
+      const double se = std::sqrt(sq / static_cast<double>(sample_size - 1) / static_cast<double>(sample_size));
+      if (mean > 4.0 * se) continue;
+    }
+    auto r = cost.residuals(fx, basins[i].p);
+    if (const double whole = squared_norm(r); whole < best_chi2) {
       best_chi2 = whole;
-      best = p;
+      best = basins[i].p;
+      r_best = std::move(r);
     }
   }
-  switch (polish(cost, fx, b, best, best_chi2, J)) {
+  switch (polish(cost, fx, b, best, best_chi2, J, r_best)) {
     case Polish::converged: return FitStatus::converged;
     case Polish::stopped: break;
     case Polish::failed:
       J.resize(0, 0);
+      r_best.clear();
       return refine(cost, fx, b, best, best_chi2);
   }
   J.resize(0, 0);
+  r_best.clear();
   return FitStatus::stopped;
 }
 }  // namespace
@@ -303,7 +343,7 @@ StrengthFit fit_strengths(const Cost& cost, std::span<const effects::EffectInfo*
     }
   Eigen::MatrixXd J;
   if (const std::size_t g = opt.grid_conditions; g > 0 && cost.conditions().size() > 2 * g && cost.size() > k) {
-    out.status = fit_sampled(cost, fx, b, g, best, best_chi2, J);
+    out.status = fit_sampled(cost, fx, b, g, best, best_chi2, J, out.residuals);
   } else {
     grid_scan(cost, fx, b, best, best_chi2);
     if (cost.size() > k) out.status = refine(cost, fx, b, best, best_chi2);

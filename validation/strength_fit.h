@@ -42,6 +42,9 @@ struct StrengthFit {
   double chi2 = 0.0;                // of the cost (weights included)
   FitStatus status = FitStatus::grid_only;
   std::vector<bool> at_bound;       // the estimate sits at an edge of the range it was fitted in
+  // The cost's (weighted) residuals at the estimate where the fit kept them (a fit on many
+  // conditions), else empty: a caller that needs them need not evaluate them again.
+  std::vector<double> residuals;
 };
 
 StrengthFit fit_strengths(const Cost& cost, std::span<const effects::EffectInfo* const> fx,
