@@ -8,7 +8,6 @@
 #include <unordered_map>
 
 #include "core/input_error.h"
-#include "core/worker_pool.h"
 #include "validation/campaign_runs.h"
 #include "validation/harness.h"
 #include "validation/parallel_runs.h"
@@ -52,8 +51,6 @@ PredictionSource::PredictionSource(const Dataset& d, std::vector<ModelPtr> model
   check_external_models(models_, d);
   run_expensive(std::span(&fixed_, 1), true);  // the baseline runs and their ladders, as one campaign
 }
-
-PredictionSource::~PredictionSource() = default;
 
 bool PredictionSource::has_expensive() const {
   for (const auto& m : models_)
@@ -182,8 +179,7 @@ Predictions PredictionSource::predict(std::span<const effects::EffectInfo* const
   // side; the expensive models' caches are shared maps, so with one of them they go in order. A
   // failure is the first in the order asked, as in order: every condition before the first failure
   // found is still predicted. Workers take small blocks of conditions as they come free (a busy
-  // machine may stall one of them), and the caller works too. The workers are kept from one
-  // evaluation to the next (core/worker_pool.h).
+  // machine may stall one of them), and the caller works too.
   const int threads = has_expensive() ? 1 : std::min<int>(threads_, static_cast<int>(n / kConditionsPerThread));
   if (threads <= 1) {
     for (std::size_t i = 0; i < n; ++i) condition(i);
@@ -202,8 +198,11 @@ Predictions PredictionSource::predict(std::span<const effects::EffectInfo* const
           }
         }
   };
-  if (!pool_ || pool_->workers() != threads_ - 1) pool_ = std::make_unique<WorkerPool>(threads_ - 1);
-  pool_->run(work);
+  {
+    std::vector<std::jthread> helpers;
+    for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
+    work();
+  }
   for (const auto& f : failure)
     if (f) std::rethrow_exception(f);
   return out;

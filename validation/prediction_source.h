@@ -8,7 +8,6 @@
 // built on the source (validation/misfit.h) stays a pure function of the strengths.
 #include <functional>
 #include <map>
-#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -21,10 +20,6 @@
 #include "validation/harness.h"
 #include "validation/model.h"
 
-namespace chutelab {
-class WorkerPool;
-}
-
 namespace chutelab::validation {
 
 using Predictions = std::vector<std::vector<ModelPrediction>>;  // [condition][model]
@@ -36,7 +31,6 @@ class PredictionSource {
   // depend on it).
   PredictionSource(const Dataset& d, std::vector<ModelPtr> models, analytical::EffectList fixed = {},
                    int threads = 1);
-  ~PredictionSource();
 
   const Dataset& dataset() const { return *d_; }
   const std::vector<ModelPtr>& models() const { return models_; }
@@ -123,7 +117,6 @@ class PredictionSource {
   mutable std::vector<analytical::TransferMemo> memo_;
   mutable std::vector<std::optional<std::vector<ConditionResult>>> raw_fixed_;  // per condition, cheap models only
   mutable std::map<std::string, bool> measurement_only_;
-  mutable std::unique_ptr<WorkerPool> pool_;  // threads_ - 1 workers, started at the first parallel evaluation
   mutable std::map<std::pair<std::size_t, std::size_t>, std::optional<ModelPrediction>> expensive_cache_;
   mutable std::map<std::pair<std::size_t, std::string>, std::optional<ModelPrediction>> cheap_cache_;
   // Probe runs of expensive models: (condition, model, effect name).

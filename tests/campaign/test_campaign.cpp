@@ -12,7 +12,6 @@
 #include "core/campaign.h"
 #include "core/free_cores.h"
 #include "core/input_error.h"
-#include "core/worker_pool.h"
 #include "dem/station/cache.h"
 
 using namespace chutelab;
@@ -196,26 +195,4 @@ BOOST_AUTO_TEST_CASE(free_cores_leave_out_our_own_work) {
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   BOOST_TEST(free_cores() >= 1);
   BOOST_TEST(free_cores() <= cores);
-}
-
-// The kept workers of a cost's evaluations (core/worker_pool.h): every task of a run is done exactly
-// once, by the workers and the caller together, and run returns only when all of them are done;
-// thousands of short runs in a row (a fit's) neither lose nor repeat one, sleeping workers wake.
-BOOST_AUTO_TEST_CASE(kept_workers_do_every_task_once_per_run) {
-  chutelab::WorkerPool pool(1);
-  constexpr std::size_t kTasks = 97;
-  std::vector<std::atomic<int>> done(kTasks);
-  std::atomic<std::size_t> next{0};
-  std::atomic<int> callers{0};
-  const std::function<void()> work = [&] {
-    callers.fetch_add(1);
-    for (std::size_t i; (i = next.fetch_add(1)) < kTasks;) done[i].fetch_add(1);
-  };
-  for (int run = 0; run < 3000; ++run) {
-    next = 0;
-    pool.run(work);
-    if (run == 1500) std::this_thread::sleep_for(std::chrono::milliseconds(5));  // the worker went to sleep
-    for (std::size_t i = 0; i < kTasks; ++i) BOOST_TEST_REQUIRE(done[i].load() == run + 1);
-  }
-  BOOST_TEST(callers.load() == 2 * 3000);  // the worker and the caller, in every run
 }
