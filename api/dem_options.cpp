@@ -41,6 +41,7 @@ validation::ModelSettings model_settings(const DemOptions& o, const std::filesys
   dc.use_cache = !o.no_cache;
   dc.cache_only = o.cache_only;
   dc.ladder = o.ladder;
+  dc.restart = o.restart;
   if (!o.signature_quality.empty()) dc.signature_quality = dem::station::parse_quality(o.signature_quality);
   dc.cache_dir = o.cache;
   dc.progress = progress;

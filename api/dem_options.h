@@ -16,6 +16,7 @@ struct DemOptions {
   std::string cache;                  // result cache folder; "" = $XDG_CACHE_HOME/chutelab/dem
   bool no_cache = false;              // run again even when the cache holds the result
   bool cache_only = false;            // never run: a run missing from the cache is an error
+  bool restart = false;               // runs with effects continue the steady state of the run without
   bool ladder = true;                 // u_num's discretisation part from more runs (validation/gci.h)
   std::string signature_quality;      // "" = the predictions' quality
   std::optional<int> plate_cells;     // rows of cells down the generated plate (0: two triangles)

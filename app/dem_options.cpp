@@ -25,6 +25,11 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
                  "step, and two at 1.25 and 1.56 times the particle size when it is coarser than the dataset's (GCI); "
                  "off: statistical part only")
       ->check(CLI::IsMember({"on", "off"}));
+  cmd.add_option("--dem-restart", o.restart,
+                 "on: a run with effects that act on a running station (the flow fed, the plate friction, forces in "
+                 "flight, the belt's adhesion) continues the steady state of the same run without them instead of "
+                 "filling the station again; off (default): every run starts from an empty station")
+      ->check(CLI::IsMember({"on", "off"}));
   cmd.add_option("--signature-quality", o.signature_quality,
                  "quality of the DEM's own effect-signature runs in diagnose (default: the --dem-quality)")
       ->check(CLI::IsMember({"quick", "standard", "paper"}));
@@ -65,6 +70,7 @@ api::DemOptions dem_options(const DemCli& o) {
   d.no_cache = o.no_cache;
   d.cache_only = o.cache_only;
   d.ladder = o.ladder != "off";
+  d.restart = o.restart != "off";
   d.signature_quality = o.signature_quality;
   d.plate_cells = o.plate_cells;
   d.liggghts_ranks = o.liggghts_ranks;

@@ -19,6 +19,7 @@ struct DemCli {
   std::optional<int> threads, plate_cells;
   bool no_cache = false;
   bool cache_only = false;
+  std::string restart = "off"; // "on" | "off": runs with effects continue the steady state of the run without
   std::string ladder = "on";  // "on" | "off": the particle-size ladder for u_num's discretisation part
   std::string signature_quality;  // "" = the predictions' quality
   int jobs = 0;  // DEM runs at a time in one process (core/campaign.h); 0: one per idle core

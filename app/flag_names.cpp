@@ -22,6 +22,7 @@ constexpr auto kRenamed = std::to_array<std::pair<std::string_view, std::string_
     {"dem.cache_only", "--dem-cache-only"},
     {"dem.plate_cells", "--dem-plate-cells"},
     {"dem.ladder", "--dem-ladder"},
+    {"dem.restart", "--dem-restart"},
 });
 
 // The options' keys that are spelt by the plain rule. Only these are options: a field such as

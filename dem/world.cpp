@@ -282,6 +282,12 @@ void World::initialise() {
   check_state();
 }
 
+void World::refresh_lists() {
+  if (!initialised_ || !contacts_.dirty) return;
+  rebuild();
+  compute_forces();
+}
+
 void World::step(std::int64_t n) {
   initialise();
   // Velocity Verlet (dem/integrator.h). Within one call the closing pass of a step also opens the

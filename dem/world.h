@@ -162,6 +162,10 @@ class World {
   // Binary checkpoint of the dynamic state. Restore into a World built with the same scene
   // (materials, walls, inserters, sinks, settings): continuation is bit-identical.
   void save_checkpoint(const std::string& path) const;
+  // Particles removed since the last step leave the contact lists stale until the next step rebuilds
+  // them; this does that rebuild now (what the next step would do first), so that a checkpoint holds
+  // consistent lists. The continuation is unchanged.
+  void refresh_lists();
   void load_checkpoint(const std::string& path);
 
  private:

@@ -79,6 +79,7 @@ std::string to_text(const StationResult& r) {
                    r.peak_particles, num(r.side_view_time));
   // The rebuild count came later: entries written before it end the line here (read back as unknown).
   o += r.rebuilds >= 0 ? fmt::format(" {}\n", r.rebuilds) : std::string("\n");
+  if (r.restart_time >= 0.0) o += fmt::format("restart {} {}\n", num(r.restart_time), num(r.transient_end));
   o += fmt::format("window {} {} {} {}\n", r.window.found ? 1 : 0, num(r.window.start), num(r.window.end), r.window.blocks);
   o += fmt::format("mass {} {} {} {}\n", num(r.inserted), num(r.discharged), num(r.escaped), num(r.in_domain));
   put(o, "normal_force", r.normal_force);
@@ -175,6 +176,12 @@ bool read_window(std::istringstream& in, const std::string&, StationResult& r) {
   r.window.start = rd(in); r.window.end = rd(in);
   in >> r.window.blocks;
   r.window.found = found != 0;
+  return true;
+}
+
+bool read_restart(std::istringstream& in, const std::string&, StationResult& r) {
+  r.restart_time = rd(in);
+  r.transient_end = rd(in);
   return true;
 }
 
@@ -329,6 +336,7 @@ constexpr TaggedReader kReaders[] = {
     {"note", [](std::istringstream&, const std::string& rest, StationResult& r) { r.notes.push_back(rest); return true; }},
     {"run", read_run},
     {"window", read_window},
+    {"restart", read_restart},
     {"mass", read_mass},
     {"scalar", read_scalar},
     {"traj", read_trajectory_row},

@@ -9,6 +9,8 @@
 #include <memory>
 #include <optional>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 
 #include "core/input_error.h"
@@ -57,15 +59,29 @@ struct Schedule {
   long long samples_per_snapshot = 1;
   long long max_steps = 0;
 
-  static Schedule of(const RunSettings& s, double dt) {
+  // `duration`: the most simulated time this run may take (from empty: max_time).
+  static Schedule of(const RunSettings& s, double dt, double duration) {
     Schedule c;
     c.steps_per_sample = std::max<long long>(1, std::llround(s.sample_interval / dt));
     c.sample_dt = static_cast<double>(c.steps_per_sample) * dt;
     c.samples_per_snapshot = std::max<long long>(1, std::llround(s.snapshot_interval / c.sample_dt));
-    c.max_steps = static_cast<long long>(std::ceil(s.max_time / dt - 1e-9));
+    c.max_steps = static_cast<long long>(std::ceil(duration / dt - 1e-9));
     return c;
   }
 };
+
+// The part of a series after t_cut (a restart's transit): the steady state is looked for there only.
+StationSeries after(const StationSeries& series, double t_cut) {
+  if (t_cut <= 0.0) return series;
+  StationSeries out;
+  out.sample_dt = series.sample_dt;
+  for (std::size_t k = 0; k < series.t.size(); ++k) {
+    if (series.t[k] <= t_cut + 1e-12) continue;
+    out.t.push_back(series.t[k]);
+    out.normal.push_back(series.normal[k]);
+  }
+  return out;
+}
 
 // What the result says of the run before it starts: the condition, the particles and the time step.
 StationResult describe_run(const Station& st, const RunSettings& s, const Scene& sc) {
@@ -160,9 +176,13 @@ Marched march(const RunOptions& o, const Schedule& schedule, Scene& sc, Sensors&
   Marched m;
   StationSeries& series = m.series;
   series.sample_dt = schedule.sample_dt;
-  double next_check = std::max(s.min_time, s.detect_tail + s.min_window);
+  const bool restarted = r.restart_time >= 0.0;
+  const double t0 = w.time();
+  const long long first_step = w.step_count();
+  const double budget = static_cast<double>(schedule.max_steps) * sc.dt;
+  double next_check = restarted ? r.transient_end + s.min_window : std::max(s.min_time, s.detect_tail + s.min_window);
   double next_progress = 0.0;
-  const double progress_step = 0.01 * s.max_time;
+  const double progress_step = 0.01 * budget;
   long long sample_index = 0;
 
   // The plate's load is averaged over every step of a sample, read as each step's loads are final:
@@ -175,7 +195,7 @@ Marched march(const RunOptions& o, const Schedule& schedule, Scene& sc, Sensors&
     moment += plate.torque.z();
   });
   const int base_threads = w.threads();
-  while (w.step_count() < schedule.max_steps) {
+  while (w.step_count() - first_step < schedule.max_steps) {
     force = Vec3::Zero();
     moment = 0.0;
     if (s.extra_threads) w.set_threads(base_threads + s.extra_threads->load(std::memory_order_relaxed));
@@ -199,15 +219,16 @@ Marched march(const RunOptions& o, const Schedule& schedule, Scene& sc, Sensors&
       m.peak_bodies = std::max(m.peak_bodies, w.clumps().size());
     }
     frames.after_sample(t);
-    if (o.progress && t >= next_progress) {
-      o.progress({t, s.max_time, now() - t_start, w.particles().size(), false});
+    if (o.progress && t - t0 >= next_progress) {
+      o.progress({t - t0, budget, now() - t_start, w.particles().size(), false});
       next_progress += progress_step;
     }
     if (t + 1e-12 >= next_check) {
       next_check += s.detect_block;
-      const SteadyWindow win = detect_steady(series.t, series.normal, sp);
+      const StationSeries settled = after(series, r.transient_end);
+      const SteadyWindow win = detect_steady(settled.t, settled.normal, sp);
       if (win.found && win.end - win.start >= s.min_window - 1e-9 &&
-          !drifting(series.t, series.normal, win.start, win.end, s.mean_block)) {
+          !drifting(settled.t, settled.normal, win.start, win.end, s.mean_block)) {
         r.early_stop = true;
         break;
       }
@@ -249,12 +270,13 @@ void note_run(const Scene& sc, const RunSettings& s, std::size_t peak_bodies, St
 // none long enough was found before the time limit, the run's last min_window (with a note).
 void find_window(const StationSeries& series, const RunSettings& s, StationResult& r) {
   const SteadyParams sp{s.detect_block, s.detect_tail, s.mean_block};
-  r.window = detect_steady(series.t, series.normal, sp);
+  const StationSeries settled = after(series, r.transient_end);
+  r.window = detect_steady(settled.t, settled.normal, sp);
   if (r.window.found && r.window.end - r.window.start >= s.min_window - 1e-9) return;
   const bool none = !r.window.found;
   const int n = std::max(1, static_cast<int>(std::floor(s.min_window / s.mean_block + 1e-9)));
   r.window.end = r.simulated_time;
-  r.window.start = std::max(0.0, r.window.end - n * s.mean_block);
+  r.window.start = std::max(std::max(0.0, r.restart_time), r.window.end - n * s.mean_block);
   r.window.blocks = static_cast<int>(std::floor((r.window.end - r.window.start) / s.mean_block + 1e-9));
   r.notes.push_back(none ? fmt::format("no steady state detected within {:.2f} s: means over the last {:.1f} s, "
                                        "uncertain", r.simulated_time, r.window.end - r.window.start)
@@ -404,6 +426,47 @@ void note_feed_mismatch(const Scene& sc, StationResult& r) {
 
 }  // namespace
 
+double restart_transit(const Scene& sc, const RunSettings& s, ChangeAt at) {
+  // The stream leaves the pulley at about belt speed and keeps its horizontal speed to the plate.
+  const double flight = std::max(0.0, sc.plate.face_x(sc.belt.tangent_point.y()) - sc.belt.tangent_point.x()) / sc.belt_speed;
+  switch (at) {
+    case ChangeAt::plate: return s.detect_block;
+    case ChangeAt::flight: return flight + s.detect_block;
+    case ChangeAt::feed: return -sc.feed_s_begin / sc.belt_speed + flight + s.detect_block;
+  }
+  return 0.0;
+}
+
+namespace {
+
+// Continues the steady state `rs.from` in this run's scene: the World's dynamic state, and the
+// discharge count the mass balance needs (what was fed and is neither in the rig nor in a sink).
+void restore(const Restart& rs, Scene& sc, StationResult& r, const RunSettings& s) {
+  World& w = *sc.world;
+  const double dt = sc.dt;
+  w.load_checkpoint(rs.from);
+  if (w.dt() != dt)
+    throw InputError(rs.from, 0, "dt",
+                     fmt::format("the steady state was run at dt {:.6g} s, this run's inputs give {:.6g} s: it "
+                                 "cannot continue it", w.dt(), dt));
+  double in_rig = 0.0, sunk = 0.0;
+  for (double m : w.particles().mass) in_rig += m;
+  for (const auto& k : w.sinks()) sunk += k.removed_mass;
+  sc.discharged = w.inserters()[static_cast<std::size_t>(sc.inserter)].inserted_mass - sunk - in_rig;
+  r.restart_time = w.time();
+  r.transient_end = r.restart_time + restart_transit(sc, s, rs.change);
+}
+
+// Writes the World's state where `path` says, whole or not at all.
+void save_state(World& w, const std::string& path) {
+  w.refresh_lists();
+  const std::string tmp = fmt::format("{}.tmp{}", path, static_cast<long long>(::getpid()));
+  w.save_checkpoint(tmp);
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace
+
 StationResult run_station(const Station& st, const RunOptions& o) {
   const RunSettings& s = o.settings;
   Scene sc = build_scene(st, s, o.geometry, o.external);
@@ -412,7 +475,10 @@ StationResult run_station(const Station& st, const RunOptions& o) {
   StationResult r = describe_run(st, s, sc);
   const double t_start = now();
   w.initialise();
-  const Schedule schedule = Schedule::of(s, sc.dt);
+  if (o.restart) restore(*o.restart, sc, r, s);
+  // A restart's budget: its transit and as much time after it as a run from empty has after min_time.
+  const double duration = o.restart ? r.transient_end - r.restart_time + (s.max_time - s.min_time) : s.max_time;
+  const Schedule schedule = Schedule::of(s, sc.dt, duration);
   const auto maps = record_maps(o, schedule, sc);
   ParticleFrames frames(o, sc);
 
@@ -430,8 +496,14 @@ StationResult run_station(const Station& st, const RunOptions& o) {
   frames.finish();
   note_run(sc, s, marched.peak_bodies, r);
 
+  if (!o.save_state.empty()) save_state(w, o.save_state);
+  if (r.restart_time >= 0.0)
+    r.notes.push_back(fmt::format("continued from a steady state at {:.3f} s with this run's inputs; no window before "
+                                  "{:.3f} s, the time the change needs to reach the plate",
+                                  r.restart_time, r.transient_end));
+
   r.wall_seconds = now() - t_start;
-  if (o.progress) o.progress({r.simulated_time, s.max_time, r.wall_seconds, w.particles().size(), true});
+  if (o.progress) o.progress({r.simulated_time - std::max(0.0, r.restart_time), duration, r.wall_seconds, w.particles().size(), true});
   return r;
 }
 

@@ -2,7 +2,9 @@
 // One DEM run of a transfer-station condition: build the scene, run until the plate force is
 // steady (or the time limit), and reduce the sensors to steady means with standard errors.
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/rig.h"
@@ -37,6 +39,8 @@ struct StationResult {
   long long rebuilds = 0;       // neighbour-list rebuilds (performance); -1: unknown (an older cache entry)
   double wall_seconds = 0.0;
   bool early_stop = false;
+  double restart_time = -1.0;   // s: the simulated time the run continued from (Restart); < 0: from empty
+  double transient_end = 0.0;   // s: no window before this (a restart's transit)
   std::size_t peak_particles = 0;
 
   // --- steady window of the plate normal force ---
@@ -74,6 +78,29 @@ struct Progress {
   bool done = false;
 };
 
+// Where a restarted run's change first acts (RunOptions::restart): its transient is the time the
+// change needs to reach the plate from there, so the steady window is looked for only after it.
+enum class ChangeAt {
+  plate,   // the particle-plate interaction: only what is on or reaches the plate from now on
+  flight,  // forces in flight: the stream released from the pulley from now on
+  feed,    // the feed or the belt (flow rate, belt adhesion): the material inserted from now on
+};
+
+inline std::string_view name(ChangeAt c) {
+  return c == ChangeAt::plate ? "plate" : c == ChangeAt::flight ? "flight" : "feed";
+}
+
+// A run that continues a steady run of the same scene at other inputs (issue: restart probes). The
+// World's state is the steady run's final one (save_state); the scene is built for this run's
+// inputs, so everything that acts from now on is this run's. The change travels from where it acts
+// to the plate (`transient`, from the scene: belt transit and flight at belt speed) and the plate
+// then settles; the steady window is detected after the transit the way a run from empty detects
+// it, and it needs the same length (min_window) as one.
+struct Restart {
+  std::string from;        // a state written by RunOptions::save_state
+  ChangeAt change = ChangeAt::feed;
+};
+
 struct RunOptions {
   RunSettings settings;
   DemTable geometry;                 // STL overrides (settings already applied by the caller)
@@ -82,7 +109,15 @@ struct RunOptions {
   std::string vtk_dir;               // "" = no VTK during the run
   double vtk_every = 0.0;            // s between frames of the particle series (0 = only the final state)
   std::size_t side_view_points = 3000;
+  // Write the final state here (a World checkpoint), for runs that restart from it. "" = none.
+  std::string save_state;
+  std::optional<Restart> restart;
 };
+
+// Seconds a change acting at `at` needs to reach the plate in this scene, at belt speed: from the
+// upstream end of the insertion face along the belt (feed), from the pulley across the flight
+// (flight), none (plate); plus one detection block for the plate's layer to follow.
+double restart_transit(const Scene& sc, const RunSettings& s, ChangeAt at);
 
 // What a run of any engine recorded: the plate load cell every sample interval (averages over the
 // interval ending at t) and the particles near the face at every snapshot (for V_a).

@@ -160,11 +160,84 @@ class DemModel final : public Model {
   }
 
  private:
+  // How a run is made: from empty, or continuing the steady state of the run without effects.
+  struct Plan {
+    std::string key;
+    std::optional<st::ChangeAt> restart;
+    std::string base_key;  // the run without effects (restarts, and the runs that keep their state)
+  };
+  Plan plan(const Station& station, const DemEffectInputs& fx, const st::RunSettings& settings,
+            const st::DemTable& table) const {
+    Plan p;
+    p.key = dem_cache_key(fx, settings, table);
+    if (!c_.restart) return p;
+    const DemEffectInputs base = dem_effect_inputs(station, {});
+    p.base_key = dem_cache_key(base, settings, table);
+    p.restart = restart_change(base, fx);
+    if (p.restart)
+      p.key += fmt::format("restart: continues the steady state of the run without effects; the change acts at the {}\n",
+                           st::name(*p.restart));
+    return p;
+  }
+
+  st::ResultCache cache() const {
+    return st::ResultCache(c_.cache_dir.empty() ? st::ResultCache::default_dir() : c_.cache_dir);
+  }
+
+  // Where the run without effects keeps its final state: beside its result in the cache, or with
+  // --no-dem-cache in the temporary folder.
+  std::string state_path(const std::string& base_key) const {
+    namespace fs = std::filesystem;
+    const fs::path result = cache().path_for(base_key);
+    fs::path dir = c_.use_cache ? result.parent_path() : fs::temp_directory_path() / "chutelab-dem-states";
+    fs::create_directories(dir);
+    return (dir / result.filename()).replace_extension(".state").string();
+  }
+
+  // The final state of the run without effects, made now when it is not there (the run itself is
+  // deterministic: its result equals the cached one, which is kept).
+  std::string base_state(const Station& station, const st::RunSettings& settings, const st::DemTable& table,
+                         const std::string& base_key) const {
+    const std::string path = state_path(base_key);
+    const std::lock_guard<std::mutex> lock(state_mutex(path));
+    if (std::filesystem::exists(path)) return path;
+    const DemEffectInputs base = dem_effect_inputs(station, {});
+    st::RunOptions o = run_options(station, base, settings, table, " (steady state to continue)");
+    o.save_state = path;
+    const st::StationResult r = st::run_station(base.station, o);
+    if (c_.use_cache && !cache().load(base_key)) cache().store(base_key, r);
+    return path;
+  }
+
+  static std::mutex& state_mutex(const std::string& path) {
+    static std::mutex guard;
+    static std::map<std::string, std::unique_ptr<std::mutex>> locks;
+    const std::lock_guard<std::mutex> lock(guard);
+    auto& m = locks[path];
+    if (!m) m = std::make_unique<std::mutex>();
+    return *m;
+  }
+
+  st::RunOptions run_options(const Station& station, const DemEffectInputs& fx, const st::RunSettings& settings,
+                             const st::DemTable& table, const std::string& what) const {
+    st::RunOptions o;
+    o.settings = settings;
+    o.geometry = table;
+    o.external = fx.external;
+    if (c_.progress)
+      o.progress = st::ProgressPrinter(
+          settings.particle_diameter > 0 && settings.particle_diameter != station.material.particle_diameter
+              ? fmt::format("dem {} ({:.1f} mm){}", station.condition, settings.particle_diameter * 1e3, what)
+              : fmt::format("dem {}{}", station.condition, what));
+    return o;
+  }
+
   // The run of these inputs: from the cache, or run now (and cached).
   st::StationResult run_or_load(const Station& station, const DemEffectInputs& fx, const st::RunSettings& settings,
                                 const st::DemTable& table, bool* from_cache, std::string* cache_file) const {
-    const std::string key = dem_cache_key(fx, settings, table);
-    const st::ResultCache cache(c_.cache_dir.empty() ? st::ResultCache::default_dir() : c_.cache_dir);
+    const Plan how = plan(station, fx, settings, table);
+    const std::string& key = how.key;
+    const st::ResultCache cache = this->cache();
     if (cache_file) *cache_file = cache.path_for(key);
     {  // a campaign's result (validation/campaign_runs.h): the same text on every rank
       const std::lock_guard<std::mutex> lock(ready_mutex());
@@ -188,15 +261,16 @@ class DemModel final : public Model {
                                    1e3 * (settings.particle_diameter > 0 ? settings.particle_diameter
                                                                          : station.material.particle_diameter),
                                    cache.dir(), cache.path_for(key)));
-    st::RunOptions o;
-    o.settings = settings;
-    o.geometry = table;
-    o.external = fx.external;
-    if (c_.progress)
-      o.progress = st::ProgressPrinter(
-          settings.particle_diameter > 0 && settings.particle_diameter != station.material.particle_diameter
-              ? fmt::format("dem {} ({:.1f} mm)", station.condition, settings.particle_diameter * 1e3)
-              : fmt::format("dem {}", station.condition));
+    st::RunOptions o = run_options(station, fx, settings, table, how.restart ? " (continued)" : "");
+    std::unique_lock<std::mutex> keeping;
+    if (how.restart) {
+      o.restart = st::Restart{base_state(station, settings, table, how.base_key), *how.restart};
+    } else if (c_.restart && key == how.base_key) {
+      // The run without effects keeps its state for the runs that will continue it.
+      o.save_state = state_path(key);
+      keeping = std::unique_lock<std::mutex>(state_mutex(o.save_state));
+      if (std::filesystem::exists(o.save_state)) o.save_state.clear();
+    }
     st::StationResult r = st::run_station(fx.station, o);
     if (c_.use_cache) cache.store(key, r);
     // Read back from its text, as a campaign's result is: the same numbers to the last bit.
@@ -234,7 +308,8 @@ class DemModel final : public Model {
 
   std::optional<ModelJob> job_for(const Station& station, const DemEffectInputs& fx, const st::RunSettings& settings,
                                   const st::DemTable& table, bool optional_run, const std::string& rung) const {
-    const std::string key = dem_cache_key(fx, settings, table);
+    const Plan how = plan(station, fx, settings, table);
+    const std::string& key = how.key;
     {
       const std::lock_guard<std::mutex> lock(ready_mutex());
       if (ready().count(key)) return std::nullopt;
@@ -249,6 +324,8 @@ class DemModel final : public Model {
     const double d = settings.particle_diameter > 0.0 ? settings.particle_diameter : fx.station.material.particle_diameter;
     j.job.cost = fx.station.mass_flow * settings.max_time / std::pow(d / 0.01, 4.0) *
                  (settings.particle_shape == st::ParticleShape::clump ? 2.7 : 1.0) * (0.1 / settings.dt_fraction);
+    // A continued run comes after the run it continues (which keeps its state), when both are jobs.
+    if (how.restart) j.job.cost *= 0.5;
     j.job.run = [this, station, fx, settings, table, optional_run](const campaign::JobContext& ctx) -> std::string {
       bool from_cache = false;
       // Runs side by side (ranks, --jobs) each take the threads the campaign gives them unless the
@@ -456,6 +533,18 @@ std::string dem_cache_key(const DemEffectInputs& fx, const dem::station::RunSett
   for (const auto& f : table.stl_walls) key += "stl-wall " + file_key(f) + "\n";
   key += fx.key;
   return key;
+}
+
+std::optional<dem::station::ChangeAt> restart_change(const DemEffectInputs& base, const DemEffectInputs& fx) {
+  Station same_flow = base.station;
+  same_flow.mass_flow = fx.station.mass_flow;
+  if (canonical_station(same_flow) != canonical_station(fx.station)) return std::nullopt;
+  if (fx.station.mass_flow != base.station.mass_flow ||
+      fx.external.belt_adhesive_stress != base.external.belt_adhesive_stress)
+    return st::ChangeAt::feed;
+  if (fx.external.flight_key != base.external.flight_key) return st::ChangeAt::flight;
+  if (fx.external.plate_friction != base.external.plate_friction) return st::ChangeAt::plate;
+  return std::nullopt;
 }
 
 std::string canonical_station(const Station& s) {

@@ -33,6 +33,12 @@ struct DemModelConfig {
   bool cache_only = false;   // a run missing from the cache is an error, not a run
   // u_num's discretisation part (validation/gci.h): one more run at 2 dt, and, when the run
   // coarse-grains the dataset's particles, two more at r d and r^2 d.
+  // Runs with effects continue the steady state of the same run without them (dem/station/run.h
+  // Restart) when the effects change only what can act on a running station: the flow fed, the
+  // particle-plate friction, forces in flight, the belt's adhesion. The runs without effects then
+  // keep their final state in the cache folder (~9 MB at standard quality). Off by default: it
+  // saves little and measures a later state (bench/RESTART.md).
+  bool restart = false;
   bool ladder = true;
   double ladder_ratio = 1.25;
   // Settings of the runs that give effect signatures (PredictRequest::signature); unset: the
@@ -54,6 +60,12 @@ struct DemEffectInputs {
   std::string key;                           // canonical text of what the DEM sees
 };
 DemEffectInputs dem_effect_inputs(const Station& st, const analytical::EffectList& effects);
+
+// Where the difference between the runs of `base` and `fx` first acts, when a run of `fx` can
+// continue the steady state of a run of `base` (the same rig, settings and belt speed; only the flow
+// fed, the plate friction, the flight force or the belt adhesion differ); none otherwise, or when
+// nothing differs.
+std::optional<dem::station::ChangeAt> restart_change(const DemEffectInputs& base, const DemEffectInputs& fx);
 
 // The cache key of a DEM run: kStationModelVersion, the station after effects, the resolved
 // settings, the contents of STL files and the effect inputs.
