@@ -31,7 +31,8 @@ void check(const DemOptions& o) {
 int resolve_jobs(int jobs) { return jobs > 0 ? jobs : dem::station::effective_threads(0); }
 
 validation::ModelSettings model_settings(const DemOptions& o, const std::filesystem::path& dataset_dir,
-                                         const std::filesystem::path& output_dir, bool progress) {
+                                         const std::filesystem::path& output_dir, bool progress,
+                                         std::span<const Station> conditions) {
   check(o);
   validation::DemModelConfig dc;
   dc.setup_file = (dataset_dir / "setup.toml").string();
@@ -41,6 +42,8 @@ validation::ModelSettings model_settings(const DemOptions& o, const std::filesys
   dc.use_cache = !o.no_cache;
   dc.cache_only = o.cache_only;
   dc.ladder = o.ladder;
+  dc.ladder_all = o.ladder_all;
+  dc.ladder_conditions.assign(conditions.begin(), conditions.end());
   dc.restart = o.restart;
   if (!o.signature_quality.empty()) dc.signature_quality = dem::station::parse_quality(o.signature_quality);
   dc.cache_dir = o.cache;

@@ -4,6 +4,7 @@
 // (core/input_error.h), which each front end spells its own way.
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "validation/models/model_settings.h"
@@ -18,6 +19,7 @@ struct DemOptions {
   bool cache_only = false;            // never run: a run missing from the cache is an error
   bool restart = false;               // runs with effects continue the steady state of the run without
   bool ladder = true;                 // u_num's discretisation part from more runs (validation/gci.h)
+  bool ladder_all = false;            // every condition its own time-step ladder, not three carried to all
   std::string signature_quality;      // "" = the predictions' quality
   std::optional<int> plate_cells;     // rows of cells down the generated plate (0: two triangles)
   int liggghts_ranks = 1;             // mpirun -n K liggghts
@@ -30,8 +32,10 @@ void check(const DemOptions& o);
 
 // The models' settings for a dataset folder (its setup.toml's [dem] table); the DEM's per-condition
 // files (series, side views, VTK) go to `output_dir` when it is not empty. Checks `o` first.
+// `conditions`: the dataset's, from which the DEM picks the conditions its time-step ladder runs at.
 validation::ModelSettings model_settings(const DemOptions& o, const std::filesystem::path& dataset_dir,
-                                         const std::filesystem::path& output_dir, bool progress);
+                                         const std::filesystem::path& output_dir, bool progress,
+                                         std::span<const Station> conditions = {});
 
 // Independent runs side by side in one process: `jobs`, or for 0 one per core other processes
 // leave free (the DEM's own thread default).

@@ -83,7 +83,7 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
 
   // The models as named (an unknown one is bad input here), then the caller's output folder, then
   // the models again with the folder their per-condition files go to.
-  auto models = validation::make_models(o.models, model_settings(o.dem, dir, {}, o.progress));
+  auto models = validation::make_models(o.models, model_settings(o.dem, dir, {}, o.progress, d.stations));
   OutputPlan plan;
   plan.inputs = validation::dataset_files(dir);
   if (res.tolerances) plan.inputs.emplace_back(res.tolerances->file());
@@ -98,7 +98,7 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
   plan.model_folder = std::any_of(models.begin(), models.end(), [](const auto& m) { return m->expensive(); });
   if (o.prepare_output)
     if (const fs::path out = o.prepare_output(plan); !out.empty())
-      models = validation::make_models(o.models, model_settings(o.dem, dir, out, o.progress));
+      models = validation::make_models(o.models, model_settings(o.dem, dir, out, o.progress, d.stations));
 
   validation::ValidateOptions base;
   base.tolerances = res.tolerances ? &*res.tolerances : nullptr;

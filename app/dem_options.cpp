@@ -21,10 +21,12 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
   cmd.add_option("--dem-cache", o.cache, "DEM result cache folder (default $XDG_CACHE_HOME/chutelab/dem)");
   cmd.add_flag("--no-dem-cache", o.no_cache, "run the DEM again even when a cached result exists");
   cmd.add_option("--dem-ladder", o.ladder,
-                 "on (default): u_num's discretisation part from more runs per condition: one at twice the time "
-                 "step, and two at 1.25 and 1.56 times the particle size when it is coarser than the dataset's (GCI); "
-                 "off: statistical part only")
-      ->check(CLI::IsMember({"on", "off"}));
+                 "on (default): u_num's discretisation part from more runs: one at twice the time step, at three "
+                 "conditions that span the belt speeds and carried to the others (at every condition when one of "
+                 "them resolves a difference, or with fewer than four conditions), and two at 1.25 and 1.56 times "
+                 "the particle size per condition when it is coarser than the dataset's (GCI); all: the time-step "
+                 "run at every condition; off: statistical part only")
+      ->check(CLI::IsMember({"on", "all", "off"}));
   cmd.add_option("--dem-restart", o.restart,
                  "on: a run with effects that act on a running station (the flow fed, the plate friction, forces in "
                  "flight, the belt's adhesion) continues the steady state of the same run without them instead of "
@@ -70,6 +72,7 @@ api::DemOptions dem_options(const DemCli& o) {
   d.no_cache = o.no_cache;
   d.cache_only = o.cache_only;
   d.ladder = o.ladder != "off";
+  d.ladder_all = o.ladder == "all";
   d.restart = o.restart != "off";
   d.signature_quality = o.signature_quality;
   d.plate_cells = o.plate_cells;

@@ -20,7 +20,7 @@ struct DemCli {
   bool no_cache = false;
   bool cache_only = false;
   std::string restart = "off"; // "on" | "off": runs with effects continue the steady state of the run without
-  std::string ladder = "on";  // "on" | "off": the particle-size ladder for u_num's discretisation part
+  std::string ladder = "on";  // "on" | "all" | "off": the ladders of u_num's discretisation part (dem_options.cpp)
   std::string signature_quality;  // "" = the predictions' quality
   int jobs = 0;  // DEM runs at a time in one process (core/campaign.h); 0: one per idle core
   int liggghts_ranks = 1;

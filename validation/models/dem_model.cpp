@@ -155,7 +155,7 @@ class DemModel final : public Model {
       st::write_side_view_vtk((dir / "side_view.vtk").string(), r.side_view);
     }
     ModelPrediction p = to_prediction(r, fx, request, from_cache, cache_file);
-    if (request.discretisation && c_.ladder) add_ladder(p, station, fx, settings, table, request);
+    if (request.discretisation && c_.ladder) add_ladder(p, station, effects, fx, settings, table, request);
     return p;
   }
 
@@ -288,11 +288,24 @@ class DemModel final : public Model {
     const DemEffectInputs fx = dem_effect_inputs(station, effects);
     std::vector<ModelJob> out;
     if (auto j = job_for(station, fx, settings, table, false, "")) out.push_back(std::move(*j));
-    if (request.discretisation && c_.ladder)
-      for (const Ladder& l : ladders(station, settings))
-        for (const auto& rung : l.coarser)
-          if (auto j = job_for(station, fx, rung.second, table, true, rung_words(l.what, rung.second)))
-            out.push_back(std::move(*j));
+    if (!request.discretisation || !c_.ladder) return out;
+    const std::vector<Station> carried_from = ladder_subset();
+    for (const Ladder& l : ladders(station, settings)) {
+      if (l.what == "time-step" && !carried_from.empty()) {
+        // The subset's runs and their ladders (each condition lists them; the campaign keeps one).
+        for (const Station& s : carried_from) {
+          const DemEffectInputs fs = dem_effect_inputs(s, effects);
+          if (auto j = job_for(s, fs, settings, table, false, "")) out.push_back(std::move(*j));
+          for (const auto& rung : time_step_ladder(settings).coarser)
+            if (auto j = job_for(s, fs, rung.second, table, true, rung_words(l.what, rung.second)))
+              out.push_back(std::move(*j));
+        }
+        continue;
+      }
+      for (const auto& rung : l.coarser)
+        if (auto j = job_for(station, fx, rung.second, table, true, rung_words(l.what, rung.second)))
+          out.push_back(std::move(*j));
+    }
     return out;
   }
 
@@ -362,16 +375,33 @@ class DemModel final : public Model {
 
   // The ladders of a run at `settings`: twice the time step, always; coarser particles when the
   // run coarse-grains the dataset's, with h = d / d_data - 1 (zero at the dataset's own size).
+  static Ladder time_step_ladder(const st::RunSettings& settings) {
+    Ladder dt{"time-step", "time step dt, 2 dt", 1.0, {}};
+    st::RunSettings s = settings;
+    s.dt_fraction *= 2.0;
+    s.rayleigh_fraction *= 2.0;
+    dt.coarser.emplace_back(2.0, s);
+    return dt;
+  }
+
+  // The conditions whose time-step ladders are carried to all (DemModelConfig::ladder_conditions):
+  // the slowest and the fastest stream and the middle one, by belt speed, then flow. None: every
+  // condition ladders itself.
+  std::vector<Station> ladder_subset() const {
+    const auto& all = c_.ladder_conditions;
+    if (c_.ladder_all || all.size() <= 3) return {};
+    std::vector<std::size_t> order(all.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      if (all[a].belt_speed != all[b].belt_speed) return all[a].belt_speed < all[b].belt_speed;
+      return all[a].mass_flow < all[b].mass_flow;
+    });
+    return {all[order.front()], all[order[order.size() / 2]], all[order.back()]};
+  }
+
   std::vector<Ladder> ladders(const Station& station, const st::RunSettings& settings) const {
     std::vector<Ladder> out;
-    {
-      Ladder dt{"time-step", "time step dt, 2 dt", 1.0, {}};
-      st::RunSettings s = settings;
-      s.dt_fraction *= 2.0;
-      s.rayleigh_fraction *= 2.0;
-      dt.coarser.emplace_back(2.0, s);
-      out.push_back(std::move(dt));
-    }
+    out.push_back(time_step_ladder(settings));
     const double d_data = station.material.particle_diameter;
     const double d1 = settings.particle_diameter > 0 ? settings.particle_diameter : d_data;
     if (d1 > d_data * (1.0 + 1e-9)) {
@@ -391,6 +421,88 @@ class DemModel final : public Model {
 
  private:
 
+  // The time-step part of u_num,disc carried from the subset's ladders to `p`, per value:
+  // - where a ladder there saw no difference beyond its noise, its u_disc is noise too: `p`'s own
+  //   statistical part times the largest u_disc / u_stat seen;
+  // - where one resolved a difference, that is an integration error, which scales with the value
+  //   (each condition's dt is the same fraction of its collision time): the largest u_disc / |f|
+  //   seen, times `p`'s value.
+  // The larger of the two applies. The stream limits, positions along a boundary whose points differ
+  // from condition to condition, take the largest mean over a boundary's points of u_disc / u_stat
+  // (resolved or not) times each point's own standard error. None when a run of the subset cannot be
+  // made.
+  std::optional<LadderUncertainty> carried_time_step(const ModelPrediction& p, const std::vector<Station>& from,
+                                                     const analytical::EffectList& effects, const st::RunSettings& settings,
+                                                     const st::DemTable& table, const PredictRequest& plain) const {
+    std::array<double, kQuantityCount> k_stat{}, k_rel{};
+    std::array<double, 3> kb{};  // per boundary (upper, lower, centre): the mean of u_disc / u_stat over its points
+    auto bi = [](Boundary b) { return b == Boundary::upper ? 0 : b == Boundary::lower ? 1 : 2; };
+    auto noise = [](const std::optional<GciEstimate>& e) { return !e || e->kind == GciCase::noise_dominated; };
+    const Ladder l = time_step_ladder(settings);
+    for (const Station& s : from) {
+      const DemEffectInputs fs = dem_effect_inputs(s, effects);
+      ModelPrediction fine, coarse;
+      try {
+        fine = to_prediction(run_or_load(s, fs, settings, table, nullptr, nullptr), fs, plain, true, "");
+        coarse = to_prediction(run_or_load(s, fs, l.coarser.front().second, table, nullptr, nullptr), fs, plain, true, "");
+      } catch (const InputError&) {
+        if (c_.cache_only) throw;
+        return std::nullopt;
+      }
+      const std::vector<LadderRun> runs = {{l.h_run, &fine}, {l.coarser.front().first, &coarse}};
+      const LadderUncertainty u = ladder_uncertainty(runs);
+      for (Quantity q : kAllQuantities) {
+        const auto i = static_cast<std::size_t>(q);
+        const auto &ud = u.u_disc[q], &us = fine.uncertainty[q], &f = fine.values[q];
+        if (!ud) continue;
+        if (noise(u.estimate[i])) {
+          if (us && *us > 0.0) k_stat[i] = std::max(k_stat[i], *ud / *us);
+        } else if (f && *f != 0.0) {
+          k_rel[i] = std::max(k_rel[i], *ud / std::abs(*f));
+        }
+      }
+      std::array<double, 3> sum{}, n{};
+      for (std::size_t j = 0; j < plain.trajectory.size() && j < u.trajectory.size(); ++j) {
+        if (!u.trajectory[j]) continue;
+        const int b = bi(plain.trajectory[j].boundary);
+        if (j >= fine.trajectory_uncertainty.size() || !fine.trajectory_uncertainty[j] ||
+            !(*fine.trajectory_uncertainty[j] > 0.0))
+          continue;
+        sum[b] += *u.trajectory[j] / *fine.trajectory_uncertainty[j];
+        n[b] += 1.0;
+      }
+      for (int b = 0; b < 3; ++b)
+        if (n[b] > 0.0) kb[b] = std::max(kb[b], sum[b] / n[b]);
+    }
+    std::vector<std::string> names;
+    for (const Station& s : from) names.push_back(s.condition);
+    LadderUncertainty out;
+    for (Quantity q : kAllQuantities) {
+      const auto i = static_cast<std::size_t>(q);
+      const auto &us = p.uncertainty[q], &f = p.values[q];
+      const double by_noise = us ? k_stat[i] * *us : 0.0, by_value = f ? k_rel[i] * std::abs(*f) : 0.0;
+      if (!(std::max(by_noise, by_value) > 0.0)) continue;
+      out.u_disc[q] = std::max(by_noise, by_value);
+      out.methods[i].push_back(
+          by_value >= by_noise
+              ? fmt::format("time step carried from the ladders at {} (dt, 2 dt): {:.3g} of the value, the largest "
+                            "resolved difference's GCI there relative to its value",
+                            fmt::join(names, ", "), k_rel[i])
+              : fmt::format("time step carried from the ladders at {} (dt, 2 dt): {:.3g} x this run's standard error, "
+                            "the largest ratio of u_disc to the standard error where the difference was not resolved "
+                            "against the noise",
+                            fmt::join(names, ", "), k_stat[i]));
+    }
+    out.trajectory.resize(plain.trajectory.size());
+    out.trajectory_estimate.resize(plain.trajectory.size());
+    for (std::size_t j = 0; j < plain.trajectory.size(); ++j) {
+      const auto b = static_cast<std::size_t>(bi(plain.trajectory[j].boundary));
+      if (j < p.trajectory_uncertainty.size() && p.trajectory_uncertainty[j] && kb[b] > 0.0)
+        out.trajectory[j] = kb[b] * *p.trajectory_uncertainty[j];
+    }
+    return out;
+  }
+
   // u_num's discretisation part: what the run's numerical parameters, the ones it chooses rather
   // than takes from the dataset, change (validation/gci.h). Each is a one-factor ladder, and their
   // parts add in quadrature (one-factor estimates of independent choices):
@@ -400,7 +512,8 @@ class DemModel final : public Model {
   //   at d = 0; a run at the dataset's size has no size error to estimate).
   // The contact modulus is not laddered: a run that softens the dataset's modulus (quick) says so
   // in its notes, and the report lists the part as not estimated.
-  void add_ladder(ModelPrediction& p, const Station& station, const DemEffectInputs& fx,
+  void add_ladder(ModelPrediction& p, const Station& station, const analytical::EffectList& effects,
+                  const DemEffectInputs& fx,
                   const st::RunSettings& settings, const st::DemTable& table,
                   const PredictRequest& request) const {
     PredictRequest plain = request;
@@ -416,7 +529,16 @@ class DemModel final : public Model {
     };
     std::vector<LadderUncertainty> parts;
     std::vector<std::string> labels;
+    const std::vector<Station> carried_from = ladder_subset();
     for (const Ladder& l : ladders(station, settings)) {
+      if (l.what == "time-step" && !carried_from.empty())
+        if (auto u = carried_time_step(p, carried_from, effects, settings, table, plain)) {
+          parts.push_back(std::move(*u));
+          std::vector<std::string> names;
+          for (const Station& s : carried_from) names.push_back(s.condition);
+          labels.push_back(fmt::format("time step dt, 2 dt at {}, carried", fmt::join(names, ", ")));
+          continue;
+        }
       std::vector<ModelPrediction> coarse;
       for (const auto& rung : l.coarser) {
         auto lv = level(rung.second, l.what.c_str());

@@ -41,6 +41,13 @@ struct DemModelConfig {
   bool restart = false;
   bool ladder = true;
   double ladder_ratio = 1.25;
+  // The dataset's conditions. With more than three, the time-step ladder runs at three of them that
+  // span the belt speeds and flows (the slowest, the middle, the fastest) and is carried to every
+  // condition (bench/LADDER.md): where none of those ladders resolves a difference from its noise,
+  // a condition's u_num,disc is its own statistical part times the largest ratio of the two seen
+  // there. A resolved difference, or ladder_all, ladders every condition itself.
+  std::vector<Station> ladder_conditions;
+  bool ladder_all = false;
   // Settings of the runs that give effect signatures (PredictRequest::signature); unset: the
   // predictions' own. A signature is a difference of two runs at the same settings.
   std::optional<dem::station::Quality> signature_quality;
