@@ -18,7 +18,7 @@ namespace chutelab::dem::station {
 
 // Version of the station model: part of every cache key, bumped whenever a change alters results, so
 // that a cached run made by other code is never reused (what each bump changed: `git log -S` on it).
-inline constexpr const char* kStationModelVersion = "chutelab-dem-station 3";
+inline constexpr const char* kStationModelVersion = "chutelab-dem-station 4";
 
 struct TrajectoryRow {
   double x = 0.0;  // m
