@@ -22,8 +22,8 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
   cmd.add_flag("--no-dem-cache", o.no_cache, "run the DEM again even when a cached result exists");
   cmd.add_option("--dem-ladder", o.ladder,
                  "on (default): u_num's discretisation part from more runs: one at twice the time step, at three "
-                 "conditions that span the belt speeds and carried to the others (at every condition when one of "
-                 "them resolves a difference, or with fewer than four conditions), and two at 1.25 and 1.56 times "
+                 "conditions that span the belt speeds, carried to the others relative to each one's standard error "
+                 "or value (at every condition when there are fewer than four), and two at 1.25 and 1.56 times "
                  "the particle size per condition when it is coarser than the dataset's (GCI); all: the time-step "
                  "run at every condition; off: statistical part only")
       ->check(CLI::IsMember({"on", "all", "off"}));

@@ -58,13 +58,6 @@ void line(const char* what, const st::StationResult& r) {
              r.simulated_time - std::max(0.0, r.restart_time), r.wall_seconds);
 }
 
-st::ChangeAt change_of(const v::DemEffectInputs& base, const v::DemEffectInputs& fx) {
-  if (fx.station.mass_flow != base.station.mass_flow || fx.external.belt_adhesive_stress != base.external.belt_adhesive_stress)
-    return st::ChangeAt::feed;
-  if (fx.external.flight_key != base.external.flight_key) return st::ChangeAt::flight;
-  return st::ChangeAt::plate;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -99,9 +92,13 @@ int main(int argc, char** argv) {
   line("baseline continued", bc);
   for (int k = 5; k < argc; ++k) {
     const auto fx = v::dem_effect_inputs(station, chutelab::effects::instantiate({chutelab::effects::parse_setting(argv[k], false)}));
-    const st::ChangeAt at = change_of(base, fx);
+    const auto at = v::restart_change(base, fx);
+    if (!at) {
+      std::fprintf(stderr, "restart_probe: %s does not act on a running station (another rig): no restart\n", argv[k]);
+      return 2;
+    }
     const st::StationResult e = run(fx, std::nullopt, false);
-    const st::StationResult c = run(fx, st::Restart{state, at}, false);
+    const st::StationResult c = run(fx, st::Restart{state, *at}, false);
     line(fmt::format("{} from empty", argv[k]).c_str(), e);
     line(fmt::format("{} restarted", argv[k]).c_str(), c);
     const double dn = c.normal_force.value - e.normal_force.value;

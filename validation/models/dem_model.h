@@ -31,21 +31,22 @@ struct DemModelConfig {
   std::string setup_file;    // the dataset's setup.toml, for its optional [dem] table
   bool use_cache = true;
   bool cache_only = false;   // a run missing from the cache is an error, not a run
-  // u_num's discretisation part (validation/gci.h): one more run at 2 dt, and, when the run
-  // coarse-grains the dataset's particles, two more at r d and r^2 d.
   // Runs with effects continue the steady state of the same run without them (dem/station/run.h
   // Restart) when the effects change only what can act on a running station: the flow fed, the
   // particle-plate friction, forces in flight, the belt's adhesion. The runs without effects then
   // keep their final state in the cache folder (~9 MB at standard quality). Off by default: it
   // saves little and measures a later state (bench/RESTART.md).
   bool restart = false;
+  // u_num's discretisation part (validation/gci.h): one more run at 2 dt, and, when the run
+  // coarse-grains the dataset's particles, two more at r d and r^2 d.
   bool ladder = true;
   double ladder_ratio = 1.25;
   // The dataset's conditions. With more than three, the time-step ladder runs at three of them that
   // span the belt speeds and flows (the slowest, the middle, the fastest) and is carried to every
-  // condition (bench/LADDER.md): where none of those ladders resolves a difference from its noise,
-  // a condition's u_num,disc is its own statistical part times the largest ratio of the two seen
-  // there. A resolved difference, or ladder_all, ladders every condition itself.
+  // condition (bench/LADDER.md, carried_time_step): per value, its own standard error times the
+  // largest u_disc / u_stat seen where a ladder there saw only noise, or its value times the largest
+  // u_disc / |f| seen where one resolved a difference, whichever is larger. ladder_all ladders every
+  // condition itself.
   std::vector<Station> ladder_conditions;
   bool ladder_all = false;
   // Settings of the runs that give effect signatures (PredictRequest::signature); unset: the
