@@ -13,7 +13,10 @@ mkdir -p "$out"
 cp -r "$here/datasets/liggghts-rig" "$out/rig"
 sed -i 's/^rolling_lever = "effective"/rolling_lever = "effective"\nmax_time_s = 1.3\nmin_window_s = 1.0/' "$out/rig/setup.toml"
 grep -q '^max_time_s = 1.3' "$out/rig/setup.toml"
+# Each run's own report goes to OUT/<condition>.log; only the table is printed.
+export bin out
 printf '%s\n' V2-41 V5-44 V3-41 V4-41 V2-26 V3-28 V4-28 V5-28 |
-  xargs -P "$(nproc)" -I{} "$bin" simulate --dataset "$out/rig" --condition {} --quality standard --threads 1 \
-    --no-cache --quiet --out "$out/{}"
+  xargs -P "$(nproc)" -I{} sh -c '"$bin" simulate --dataset "$out/rig" --condition {} --quality standard --threads 1 \
+    --no-cache --quiet --out "$out/{}" >"$out/{}.log" 2>&1'
+
 python3 "$here/bench/window/compare_windows.py" "$out" "$here/datasets/liggghts-rig/measurements.csv"
