@@ -426,6 +426,45 @@ void note_feed_mismatch(const Scene& sc, StationResult& r) {
 
 }  // namespace
 
+std::vector<std::string> window_drift_notes(const StationResult& r) {
+  std::vector<std::string> out;
+  const SteadyWindow& w = r.window;
+  if (w.blocks < 3 || !(w.end > w.start) || r.forces.empty()) return out;
+  const double block = (w.end - w.start) / w.blocks;
+  std::vector<double> t, normal, shear, minus_moment;
+  for (const ForceSample& f : r.forces) {
+    t.push_back(f.t);
+    normal.push_back(f.normal);
+    shear.push_back(f.shear);
+    minus_moment.push_back(-f.moment);
+  }
+  const std::string where = fmt::format("through the steady window ({:.2f}-{:.2f} s, judged on R_n)", w.start, w.end);
+  // The plate's build-up forms more slowly than the load (bench/WINDOW.md): a longer run reads
+  // another value, and the standard error of the window's mean does not include the difference.
+  const std::string why = "the mean is that of a plate still changing, and its ± does not include what a longer run "
+                          "would read";
+  auto force_note = [&](const char* name, const std::vector<double>& v) {
+    const WindowTrend tr = window_trend(t, v, w.start, w.end, block);
+    if (!tr.drifting()) return;
+    const double c = tr.change();
+    out.push_back(fmt::format("{} still {} {}: a straight line through its 0.1 s block means moves {:+.3g} N across it "
+                              "({:+.0f} % of its mean, {:.1f} standard errors); {}",
+                              name, c > 0.0 ? "rises" : "falls", where, c, 100.0 * c / tr.mean,
+                              std::abs(c) / (tr.se_slope * tr.span), why));
+  };
+  force_note("R_n", normal);
+  force_note("R_s", shear);
+  // A position has no scale of its own to be 5 % of: only the trend's significance counts.
+  const WindowTrend tr = window_trend_ratio(t, minus_moment, normal, w.start, w.end, block);
+  if (tr.drifting(0.0)) {
+    const double c = tr.change();
+    out.push_back(fmt::format("the impact point still moves {} the face {}: {:.1f} mm across it ({:.1f} standard "
+                              "errors); {}",
+                              c > 0.0 ? "up" : "down", where, 1e3 * std::abs(c), std::abs(c) / (tr.se_slope * tr.span), why));
+  }
+  return out;
+}
+
 double restart_transit(const Scene& sc, const RunSettings& s, ChangeAt at) {
   // The stream leaves the pulley at about belt speed and keeps its horizontal speed to the plate.
   const double flight = std::max(0.0, sc.plate.face_x(sc.belt.tangent_point.y()) - sc.belt.tangent_point.x()) / sc.belt_speed;

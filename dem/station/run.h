@@ -135,6 +135,12 @@ void reduce_series(const Scene& sc, const Sensors& sensors, const RunSettings& s
 // Throws InputError for impossible input, dem::SimulationError if the run blows up.
 StationResult run_station(const Station& st, const RunOptions& options);
 
+// Which plate loads still move through the steady window, which is judged on R_n alone: R_n, R_s
+// and the impact point, each by the early stop's own test (WindowTrend::drifting) on its 0.1 s block
+// means, one note each. Read from r.forces and r.window, so a cached result says the same as the
+// run that made it.
+std::vector<std::string> window_drift_notes(const StationResult& r);
+
 // Writes OUT/timeseries.csv, OUT/sensors.csv, OUT/steady.csv, OUT/trajectory.csv, OUT/side_view.csv,
 // OUT/plate_map.csv and OUT/plate_map.vtk.
 void write_result_files(const std::string& dir, const StationResult& r);

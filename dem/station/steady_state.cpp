@@ -118,11 +118,14 @@ Estimate block_ratio(const std::vector<double>& t, const std::vector<double>& nu
   return e;
 }
 
-bool drifting(const std::vector<double>& t, const std::vector<double>& v, double start, double end, double block,
-              double rel) {
-  const Blocks b = make_blocks(t, v, nullptr, start, end, block);
+namespace {
+
+WindowTrend trend_of(const Blocks& b, double start, double end) {
+  WindowTrend out;
   const std::size_t n = b.mean.size();
-  if (n < 3) return false;  // too few blocks to see a trend; the window length rule decides
+  out.span = end - start;
+  out.blocks = static_cast<int>(n);
+  if (n < 3) return out;  // too few blocks to see a trend; the window length rule decides
   double tm = 0.0, vm = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     tm += b.start[i];
@@ -141,9 +144,36 @@ bool drifting(const std::vector<double>& t, const std::vector<double>& v, double
     const double r = b.mean[i] - vm - slope * (b.start[i] - tm);
     rss += r * r;
   }
-  const double se_slope = std::sqrt(rss / static_cast<double>(n - 2) / sxx);
-  const double span = end - start;
-  return std::abs(slope * span) > std::max(rel * std::abs(vm), 3.0 * se_slope * span);
+  out.slope = slope;
+  out.se_slope = std::sqrt(rss / static_cast<double>(n - 2) / sxx);
+  out.mean = vm;
+  return out;
+}
+
+}  // namespace
+
+WindowTrend window_trend(const std::vector<double>& t, const std::vector<double>& v, double start, double end,
+                         double block) {
+  return trend_of(make_blocks(t, v, nullptr, start, end, block), start, end);
+}
+
+WindowTrend window_trend_ratio(const std::vector<double>& t, const std::vector<double>& num,
+                               const std::vector<double>& den, double start, double end, double block) {
+  const Blocks bn = make_blocks(t, num, nullptr, start, end, block), bd = make_blocks(t, den, nullptr, start, end, block);
+  Blocks r;
+  if (bn.mean.size() == bd.mean.size())
+    for (std::size_t i = 0; i < bn.mean.size(); ++i) {
+      if (bn.start[i] != bd.start[i] || bd.mean[i] == 0.0) continue;
+      r.mean.push_back(bn.mean[i] / bd.mean[i]);
+      r.weight.push_back(1.0);
+      r.start.push_back(bn.start[i]);
+    }
+  return trend_of(r, start, end);
+}
+
+bool drifting(const std::vector<double>& t, const std::vector<double>& v, double start, double end, double block,
+              double rel) {
+  return window_trend(t, v, start, end, block).drifting(rel);
 }
 
 }  // namespace chutelab::dem::station

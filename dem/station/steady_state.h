@@ -10,6 +10,7 @@
 //  4. the mean over the window, and its standard error from the `mean_block` block means,
 //     sd(block means) / sqrt(blocks) (batch means; Flyvbjerg & Petersen 1989): the blocks are long
 //     against the stream's correlation time (a particle crosses the rig in ~0.1 s).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -50,8 +51,27 @@ Estimate block_mean(const std::vector<double>& t, const std::vector<double>& v, 
 Estimate block_ratio(const std::vector<double>& t, const std::vector<double>& num, const std::vector<double>& den,
                      double start, double end, double block);
 
-// Does the window still drift? The change over the window of a straight line through the block
-// means, against max(rel * |mean|, 3 standard errors of that change).
+// A straight line through the block means of (start, end]: its slope and the slope's standard
+// error (NaN with fewer than three blocks), and the mean of the block means.
+struct WindowTrend {
+  double slope = std::numeric_limits<double>::quiet_NaN();     // per second
+  double se_slope = std::numeric_limits<double>::quiet_NaN();
+  double mean = std::numeric_limits<double>::quiet_NaN();
+  double span = 0.0;  // end - start, s
+  int blocks = 0;
+  double change() const { return slope * span; }  // from the window's start to its end
+  // The early stop's test: the change beyond max(rel * |mean|, 3 standard errors of it).
+  bool drifting(double rel = 0.05) const {
+    return blocks >= 3 && std::abs(slope * span) > std::max(rel * std::abs(mean), 3.0 * se_slope * span);
+  }
+};
+WindowTrend window_trend(const std::vector<double>& t, const std::vector<double>& v, double start, double end,
+                         double block);
+// The same through the ratios of the two series' block means (e.g. an impact point, moment / force).
+WindowTrend window_trend_ratio(const std::vector<double>& t, const std::vector<double>& num,
+                               const std::vector<double>& den, double start, double end, double block);
+
+// Does the window still drift? window_trend(...).drifting(rel).
 bool drifting(const std::vector<double>& t, const std::vector<double>& v, double start, double end, double block,
               double rel = 0.05);
 

@@ -86,6 +86,62 @@ BOOST_AUTO_TEST_CASE(no_steady_state_in_a_rising_series) {
   BOOST_TEST(drifting(t, v, 0.4, 0.9, 0.1));
 }
 
+// A straight line through block means recovers a linear series' change across the window, and the
+// ratio of two series' block means (an impact point) is trended the same way.
+BOOST_AUTO_TEST_CASE(window_trend_of_a_line) {
+  std::vector<double> t, v, num, den;
+  for (int k = 1; k <= 300; ++k) {
+    const double tk = 0.003 * k;
+    t.push_back(tk);
+    v.push_back(2.0 + 1.5 * tk);  // +0.75 over a 0.5 s window
+    den.push_back(20.0);
+    num.push_back(20.0 * (0.1 - 0.01 * tk));  // a ratio falling by 5 mm over 0.5 s
+  }
+  const WindowTrend tr = window_trend(t, v, 0.4, 0.9, 0.1);
+  BOOST_TEST(tr.blocks == 5);
+  // Block means of a line are the line at their samples' mean time; 3 ms samples do not divide the
+  // 0.1 s blocks evenly (33 or 34 each), which moves those times by up to 1.5 ms: 0.1 % of the change.
+  BOOST_TEST(std::abs(tr.change() - 0.75) < 1e-3 * 0.75);
+  BOOST_TEST(tr.drifting());
+  const WindowTrend rt = window_trend_ratio(t, num, den, 0.4, 0.9, 0.1);
+  BOOST_TEST(std::abs(rt.change() + 0.005) < 1e-3 * 0.005);
+  BOOST_TEST(rt.drifting(0.0));
+  // Two blocks cannot show a trend.
+  BOOST_TEST(!window_trend(t, v, 0.7, 0.9, 0.1).drifting());
+}
+
+// A run whose R_n is steady while R_s still rises and the impact point still moves down the face:
+// one note for each of the two, none for R_n; a flat run has none.
+BOOST_AUTO_TEST_CASE(window_drift_notes_name_the_moving_loads) {
+  Noise noise;
+  StationResult r;
+  r.window = SteadyWindow{true, 0.4, 0.9, 5};
+  for (int k = 1; k <= 300; ++k) {
+    const double tk = 0.003 * k;
+    ForceSample f;
+    f.t = tk;
+    f.normal = 40.0 + 0.4 * noise();
+    f.shear = 2.0 + 2.0 * (tk - 0.4) + 0.05 * noise();  // +1 N across the window, 40 % of its mean
+    f.moment = -f.normal * (0.12 - 0.02 * (tk - 0.4));  // 10 mm down the face across the window
+    r.forces.push_back(f);
+  }
+  const std::vector<std::string> notes = window_drift_notes(r);
+  BOOST_TEST_REQUIRE(notes.size() == 2u);
+  BOOST_TEST(notes[0].rfind("R_s still rises", 0) == 0, notes[0]);
+  BOOST_TEST(notes[1].find("moves down the face") != std::string::npos, notes[1]);
+  BOOST_TEST(notes[1].find("10.0 mm") != std::string::npos, notes[1]);
+
+  StationResult flat = r;
+  for (auto& f : flat.forces) {
+    f.shear = 2.5 + 0.05 * noise();
+    f.moment = -f.normal * 0.11;
+  }
+  BOOST_TEST(window_drift_notes(flat).empty());
+  StationResult short_window = r;
+  short_window.window = SteadyWindow{true, 0.7, 0.9, 2};
+  BOOST_TEST(window_drift_notes(short_window).empty());
+}
+
 // The cache gives back exactly what was stored, and only for the same key.
 BOOST_AUTO_TEST_CASE(cache_round_trip) {
   StationResult r;
