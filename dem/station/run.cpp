@@ -632,6 +632,7 @@ void write_result_files(const std::string& dir, const StationResult& r) {
                      r.simulated_time, r.steps, r.rebuilds >= 0 ? std::to_string(r.rebuilds) : "unknown (not in this DEM cache entry)", r.wall_seconds, r.early_stop, r.peak_particles, r.window.found,
                      r.window.start, r.window.end, r.window.blocks, r.inserted, r.discharged, r.escaped, r.in_domain);
     for (const auto& n : r.notes) f << "note = " << n << "\n";
+    for (const auto& n : window_drift_notes(r)) f << "note = " << n << "\n";
   }
   if (!r.maps.empty()) {
     write_plate_map_csv((d / "plate_map.csv").string(), r.maps, r.wear, r.condition);
