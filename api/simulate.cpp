@@ -36,6 +36,11 @@ st::SettingsOverrides overrides_of(const SimulateOptions& o) {
   ov.threads = o.threads;
   ov.seed = o.seed;
   ov.max_time = o.max_time;
+  if (!o.steady_on.empty()) {
+    if (o.steady_on != "normal" && o.steady_on != "all")
+      throw InputError("", 0, "steady_on", "must be \"normal\" (R_n, the LIGGGHTS rig's rule) or \"all\" (R_n, R_s and the moment)");
+    ov.steady_all_loads = o.steady_on == "all";
+  }
   ov.plate_cells = o.plate_cells;
   if (o.map_cell_mm) ov.map_cell = *o.map_cell_mm * 1e-3;
   for (const auto& [k, v] : o.wear) ov.wear.emplace_back(k, v);

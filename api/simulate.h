@@ -16,13 +16,14 @@
 namespace chutelab::api {
 
 // Errors name the keys "dataset", "condition", "quality", "contact", "shape", "diameter_mm",
-// "shear_modulus_scale", "dt_fraction", "threads", "seed", "max_time", "plate_cells", "map_cell_mm",
+// "shear_modulus_scale", "dt_fraction", "threads", "seed", "max_time", "steady_on", "plate_cells", "map_cell_mm",
 // "wear.KEY", "effect", "vtk_every".
 struct SimulateOptions {
   std::filesystem::path dataset;           // "" = default_dataset
   std::filesystem::path default_dataset;
   std::string condition;                   // a row of conditions.csv
   std::string quality, contact, shape;     // "" = the dataset's [dem] table, else the preset's
+  std::string steady_on;                   // "normal" | "all" ([dem] steady_on); "" = the dataset's
   std::optional<double> diameter_mm, shear_modulus_scale, dt_fraction, max_time, map_cell_mm;
   std::optional<int> threads, plate_cells;
   std::optional<std::uint64_t> seed;

@@ -25,7 +25,7 @@ constexpr double kSeriesEvery = 0.05;
 namespace st = dem::station;
 
 struct SimulateCli {
-  std::string dataset, condition, out, quality, contact, shape;
+  std::string dataset, condition, out, quality, contact, shape, steady_on;
   std::optional<double> diameter_mm, shear_modulus_scale, dt_fraction, max_time, vtk_every, map_cell_mm;
   std::optional<int> threads, plate_cells;
   std::optional<std::uint64_t> seed;
@@ -53,6 +53,7 @@ int run_simulate(const SimulateCli& o) {
   opt.shear_modulus_scale = o.shear_modulus_scale;
   opt.dt_fraction = o.dt_fraction;
   opt.max_time = o.max_time;
+  opt.steady_on = o.steady_on;
   opt.map_cell_mm = o.map_cell_mm;
   opt.threads = o.threads;
   opt.plate_cells = o.plate_cells;
@@ -155,6 +156,11 @@ void add_simulate(CLI::App& app, Action& action) {
   with_rule(cmd->add_option("--seed", o->seed, "seed of the particle feed"), options::rules::seed);
   with_rule(cmd->add_option("--max-time", o->max_time, "simulated time limit, s (the run stops earlier when steady)"),
             options::NumberRule{"", 0.0, 100.0, true, false, false, "s"});
+  cmd->add_option("--steady-on", o->steady_on,
+                  "the plate loads the steady window is judged on: normal (R_n, as the LIGGGHTS rig did; the "
+                  "default unless the dataset's [dem] steady_on says otherwise) or all (R_n, R_s and the moment: the "
+                  "build-up on the plate settles later, bench/WINDOW.md)")
+      ->check(CLI::IsMember({"normal", "all"}));
   cmd->add_option("--effect", o->effects, "physical effect NAME=VALUE (those with a DEM counterpart act)");
   cmd->add_option("--out", o->out, "output folder: CSV series, steady means, side view, VTK");
   with_rule(cmd->add_option("--vtk-every", o->vtk_every,

@@ -79,8 +79,17 @@ StationSeries after(const StationSeries& series, double t_cut) {
     if (series.t[k] <= t_cut + 1e-12) continue;
     out.t.push_back(series.t[k]);
     out.normal.push_back(series.normal[k]);
+    out.shear.push_back(series.shear[k]);
+    out.moment.push_back(series.moment[k]);
   }
   return out;
+}
+
+// Whether a channel the window is judged on still drifts through it (the early stop waits then).
+bool load_cell_drifting(const StationSeries& x, const RunSettings& s, const SteadyWindow& w) {
+  if (drifting(x.t, x.normal, w.start, w.end, s.mean_block)) return true;
+  if (!s.steady_all_loads) return false;
+  return drifting(x.t, x.shear, w.start, w.end, s.mean_block) || drifting(x.t, x.moment, w.start, w.end, s.mean_block);
 }
 
 // What the result says of the run before it starts: the condition, the particles and the time step.
@@ -172,7 +181,6 @@ Marched march(const RunOptions& o, const Schedule& schedule, Scene& sc, Sensors&
               StationResult& r) {
   const RunSettings& s = o.settings;
   World& w = *sc.world;
-  const SteadyParams sp{s.detect_block, s.detect_tail, s.mean_block};
   Marched m;
   StationSeries& series = m.series;
   series.sample_dt = schedule.sample_dt;
@@ -226,9 +234,8 @@ Marched march(const RunOptions& o, const Schedule& schedule, Scene& sc, Sensors&
     if (t + 1e-12 >= next_check) {
       next_check += s.detect_block;
       const StationSeries settled = after(series, r.transient_end);
-      const SteadyWindow win = detect_steady(settled.t, settled.normal, sp);
-      if (win.found && win.end - win.start >= s.min_window - 1e-9 &&
-          !drifting(settled.t, settled.normal, win.start, win.end, s.mean_block)) {
+      const SteadyWindow win = load_cell_window(settled, s);
+      if (win.found && win.end - win.start >= s.min_window - 1e-9 && !load_cell_drifting(settled, s, win)) {
         r.early_stop = true;
         break;
       }
@@ -269,9 +276,8 @@ void note_run(const Scene& sc, const RunSettings& s, std::size_t peak_bodies, St
 // The averaging window of the steady means: the detected steady window (steady_state.h), or, when
 // none long enough was found before the time limit, the run's last min_window (with a note).
 void find_window(const StationSeries& series, const RunSettings& s, StationResult& r) {
-  const SteadyParams sp{s.detect_block, s.detect_tail, s.mean_block};
   const StationSeries settled = after(series, r.transient_end);
-  r.window = detect_steady(settled.t, settled.normal, sp);
+  r.window = load_cell_window(settled, s);
   if (r.window.found && r.window.end - r.window.start >= s.min_window - 1e-9) return;
   const bool none = !r.window.found;
   const int n = std::max(1, static_cast<int>(std::floor(s.min_window / s.mean_block + 1e-9)));
@@ -426,6 +432,19 @@ void note_feed_mismatch(const Scene& sc, StationResult& r) {
 
 }  // namespace
 
+// All windows end at the series' end, so the latest start is the shortest window.
+SteadyWindow load_cell_window(const StationSeries& x, const RunSettings& s) {
+  const SteadyParams sp{s.detect_block, s.detect_tail, s.mean_block};
+  SteadyWindow w = detect_steady(x.t, x.normal, sp);
+  if (!s.steady_all_loads || !w.found) return w;
+  for (const std::vector<double>* v : {&x.shear, &x.moment}) {
+    const SteadyWindow o = detect_steady(x.t, *v, sp);
+    if (!o.found) return o;
+    if (o.start > w.start) w = o;
+  }
+  return w;
+}
+
 std::vector<std::string> window_drift_notes(const StationResult& r) {
   std::vector<std::string> out;
   const SteadyWindow& w = r.window;
@@ -438,7 +457,7 @@ std::vector<std::string> window_drift_notes(const StationResult& r) {
     shear.push_back(f.shear);
     minus_moment.push_back(-f.moment);
   }
-  const std::string where = fmt::format("through the steady window ({:.2f}-{:.2f} s, judged on R_n)", w.start, w.end);
+  const std::string where = fmt::format("through the steady window ({:.2f}-{:.2f} s)", w.start, w.end);
   // The plate's build-up forms more slowly than the load (bench/WINDOW.md): a longer run reads
   // another value, and the standard error of the window's mean does not include the difference.
   const std::string why = "the mean is that of a plate still changing, and its ± does not include what a longer run "

@@ -135,8 +135,13 @@ void reduce_series(const Scene& sc, const Sensors& sensors, const RunSettings& s
 // Throws InputError for impossible input, dem::SimulationError if the run blows up.
 StationResult run_station(const Station& st, const RunOptions& options);
 
-// Which plate loads still move through the steady window, which is judged on R_n alone: R_n, R_s
-// and the impact point, each by the early stop's own test (WindowTrend::drifting) on its 0.1 s block
+// The plate load cell's steady window (steady_state.h) in a series: on R_n alone, the LIGGGHTS rig's
+// rule, or, with RunSettings::steady_all_loads, on R_n, R_s and the moment, from where the last of
+// them became steady. Not yet checked for length or drift.
+SteadyWindow load_cell_window(const StationSeries& series, const RunSettings& s);
+
+// Which plate loads still move through the steady window (judged on R_n alone unless
+// RunSettings::steady_all_loads): R_n, R_s and the impact point, each by the early stop's own test (WindowTrend::drifting) on its 0.1 s block
 // means, one note each. Read from r.forces and r.window, so a cached result says the same as the
 // run that made it.
 std::vector<std::string> window_drift_notes(const StationResult& r);

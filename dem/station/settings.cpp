@@ -230,6 +230,13 @@ DemTable read_dem_table(const std::string& file) {
       if (!v || (*v != "particle" && *v != "effective"))
         throw InputError(file, line_of(node), key, "must be \"particle\" (reference study Eq 10) or \"effective\" (LIGGGHTS cdt)");
       t.rolling_lever_effective = *v == "effective";
+    } else if (kv == "steady_on") {
+      const auto v = node.value<std::string>();
+      if (!v || (*v != "normal" && *v != "all"))
+        throw InputError(file, line_of(node), key,
+                         "must be \"normal\" (the steady window judged on R_n, as the LIGGGHTS rig did) or \"all\" "
+                         "(on R_n, R_s and the moment)");
+      t.steady_all_loads = *v == "all";
     } else if (kv == "feed") {
       read_feed_table(node, file, key, t.feed);
     } else if (kv == "plate_cells") {
@@ -272,7 +279,8 @@ DemTable read_dem_table(const std::string& file) {
     } else {
       throw InputError(file, line_of(node), key,
                        "unknown key (known: quality, particle_diameter_mm, shear_modulus_scale, dt_fraction, "
-                       "contact, shape, seed, max_time_s, min_window_s, feed_length_mm, skin_fraction, rolling_lever, plate_cells, map_cell_mm, "
+                       "contact, shape, seed, max_time_s, min_window_s, steady_on, feed_length_mm, skin_fraction, rolling_lever, plate_cells, "
+                       "map_cell_mm, "
                        "[dem.feed], [dem.stl], [dem.wear])");
     }
   }
@@ -291,6 +299,7 @@ void apply(const DemTable& t, RunSettings& s) {
   if (t.feed_length) s.feed_length = *t.feed_length;
   if (t.skin_fraction) s.skin_fraction = *t.skin_fraction;
   if (t.rolling_lever_effective) s.rolling_lever_effective = *t.rolling_lever_effective;
+  if (t.steady_all_loads) s.steady_all_loads = *t.steady_all_loads;
   const DemTable::Feed& f = t.feed;
   if (f.face_length) s.feed_length = *f.face_length;
   if (f.face_width) s.face_width = *f.face_width;
@@ -324,6 +333,7 @@ RunSettings resolve(const DemTable& table, const SettingsOverrides& o, Quality f
   if (o.plate_cells) s.plate_cells = *o.plate_cells;
   if (o.map_cell) s.map_cell = *o.map_cell;
   for (const auto& [k, v] : o.wear) set_wear(s.wear, k, v, "", 0, "wear." + k);
+  if (o.steady_all_loads) s.steady_all_loads = *o.steady_all_loads;
   if (o.max_time) {
     s.max_time = *o.max_time;
     s.min_time = std::min(s.min_time, s.max_time);
@@ -394,6 +404,8 @@ std::string canonical(const RunSettings& s) {
   put("momentum_plane_fraction", s.momentum_plane_fraction);
   // The dataset's feeder: only what differs from the recipe, so older cached runs keep their key.
   if (s.rolling_lever_effective) o += "rolling_lever = effective\n";
+  // The window's rule changes where a run stops and what it averages; the rig's rule keeps old keys.
+  if (s.steady_all_loads) o += "steady_on = all\n";
   if (s.relax_all) o += "relax_all = true\n";
   if (s.relax_from_face) o += "relax_from_face = true\n";
   if (s.insert_at_face) o += "insert_at_face = true\n";

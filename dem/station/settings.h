@@ -124,6 +124,11 @@ struct RunSettings {
   double detect_block = 0.05;        // s, blocks compared for the steady-state detection
   double mean_block = 0.1;           // s, blocks for the standard error of the steady means
   double detect_tail = 0.4;          // s, reference: mean of the last detect_tail
+  // Which of the plate load cell's channels the steady window is judged on: false = R_n alone, the
+  // LIGGGHTS rig's rule; true = R_n, R_s and the moment (so the impact point), the window starting
+  // where the last of them became steady. The build-up on the plate forms more slowly than the load,
+  // so R_s settles later (bench/WINDOW.md): a station that has run for long is compared with true.
+  bool steady_all_loads = false;
 
   // --- numerics ---
   // Verlet skin as a fraction of the particle radius. Measured (bench/STATION.md): 1.0 halves the
@@ -182,6 +187,7 @@ struct DemTable {
   std::optional<double> feed_length;         // m
   std::optional<double> skin_fraction;       // Verlet skin / particle radius
   std::optional<bool> rolling_lever_effective;  // rolling_lever = "effective" | "particle"
+  std::optional<bool> steady_all_loads;         // steady_on = "normal" | "all"
   // [dem.feed]: the dataset's feeder (RunSettings' feed fields; README "DEM").
   struct Feed {
     std::optional<double> face_length, face_width, face_low, face_high, face_end, face_end_time;
@@ -218,6 +224,7 @@ struct SettingsOverrides {
   std::optional<std::uint64_t> seed;
   std::optional<int> threads;
   std::optional<double> max_time;           // s
+  std::optional<bool> steady_all_loads;     // RunSettings::steady_all_loads
   std::optional<int> plate_cells;
   std::optional<double> map_cell;           // m
   std::vector<std::pair<std::string, double>> wear;  // wear_fields() key -> value

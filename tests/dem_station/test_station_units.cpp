@@ -142,6 +142,61 @@ BOOST_AUTO_TEST_CASE(window_drift_notes_name_the_moving_loads) {
   BOOST_TEST(window_drift_notes(short_window).empty());
 }
 
+// The window judged on all three load-cell channels starts where the last of them settles: here R_n
+// is steady from 0.3 s and R_s ramps until 0.8 s. On R_n alone the window starts right after
+// R_n's ramp; on all three, once R_s is inside the rule's 10 % band (2 + 2.5 t = 3.6 at 0.64 s),
+// and R_s's mean is then its plateau within that band's share of the window (1 %).
+BOOST_AUTO_TEST_CASE(steady_window_on_all_loads_waits_for_the_shear) {
+  Noise noise;
+  StationSeries x;
+  for (int k = 1; k <= 433; ++k) {  // 1.3 s at 3 ms
+    const double tk = 0.003 * k;
+    x.t.push_back(tk);
+    x.normal.push_back(40.0 * std::min(1.0, tk / 0.3) + 0.4 * noise());
+    x.shear.push_back(2.0 + 2.0 * std::min(1.0, tk / 0.8) + 0.05 * noise());
+    x.moment.push_back(-x.normal.back() * 0.1);
+  }
+  RunSettings s;
+  const SteadyWindow on_normal = load_cell_window(x, s);
+  BOOST_TEST(on_normal.found);
+  BOOST_TEST(on_normal.start < 0.5);
+  s.steady_all_loads = true;
+  const SteadyWindow on_all = load_cell_window(x, s);
+  BOOST_TEST(on_all.found);
+  BOOST_TEST(on_all.start >= 0.64);
+  BOOST_TEST(std::abs((on_all.end - on_all.start) / 0.1 - on_all.blocks) < 1e-9);
+  const Estimate rs = block_mean(x.t, x.shear, std::vector<double>(x.t.size(), 1.0), on_all.start, on_all.end, 0.1);
+  BOOST_TEST(std::abs(rs.value - 4.0) < 0.04);
+  // The same series judged on R_n alone averages much of the ramp.
+  const Estimate early = block_mean(x.t, x.shear, std::vector<double>(x.t.size(), 1.0), on_normal.start, on_normal.end, 0.1);
+  BOOST_TEST(early.value < rs.value - 0.2);
+}
+
+// [dem] steady_on reaches the settings and the cache key only when it is "all"; an override wins;
+// anything else is refused naming the key and its line.
+BOOST_AUTO_TEST_CASE(steady_on_table_key) {
+  const fs::path d = temp_dir("steady_on");
+  std::ofstream(d / "all.toml") << "[dem]\nsteady_on = \"all\"\n";
+  std::ofstream(d / "normal.toml") << "[dem]\nsteady_on = \"normal\"\n";
+  std::ofstream(d / "bad.toml") << "[dem]\n\nsteady_on = \"shear\"\n";
+  const RunSettings all = resolve(read_dem_table((d / "all.toml").string()), SettingsOverrides{});
+  const RunSettings normal = resolve(read_dem_table((d / "normal.toml").string()), SettingsOverrides{});
+  BOOST_TEST(all.steady_all_loads);
+  BOOST_TEST(!normal.steady_all_loads);
+  BOOST_TEST(canonical(all).find("steady_on = all") != std::string::npos);
+  BOOST_TEST(canonical(normal) == canonical(resolve(DemTable{}, SettingsOverrides{})));
+  SettingsOverrides o;
+  o.steady_all_loads = false;
+  BOOST_TEST(!resolve(read_dem_table((d / "all.toml").string()), o).steady_all_loads);
+  try {
+    read_dem_table((d / "bad.toml").string());
+    BOOST_FAIL("steady_on = \"shear\" accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.field() == "dem.steady_on");
+    BOOST_TEST(e.line() == 3);
+  }
+}
+
 // The cache gives back exactly what was stored, and only for the same key.
 BOOST_AUTO_TEST_CASE(cache_round_trip) {
   StationResult r;
