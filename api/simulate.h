@@ -16,8 +16,8 @@
 namespace chutelab::api {
 
 // Errors name the keys "dataset", "condition", "quality", "contact", "shape", "diameter_mm",
-// "shear_modulus_scale", "dt_fraction", "threads", "seed", "max_time", "steady_on", "plate_cells", "map_cell_mm",
-// "wear.KEY", "effect", "vtk_every".
+// "shear_modulus_scale", "dt_fraction", "threads", "seed", "max_time", "steady_on", "plate_cells",
+// "map_cell_mm", "wear.KEY", "effect", "vtk_every".
 struct SimulateOptions {
   std::filesystem::path dataset;           // "" = default_dataset
   std::filesystem::path default_dataset;
