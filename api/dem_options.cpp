@@ -18,6 +18,8 @@ void check(const DemOptions& o) {
     throw InputError("", 0, "dem.quality", "must be quick, standard or paper");
   if (!o.signature_quality.empty() && !st::parse_quality(o.signature_quality))
     throw InputError("", 0, "dem.signature_quality", "must be quick, standard or paper");
+  if (!o.steady_on.empty() && o.steady_on != "normal" && o.steady_on != "all")
+    throw InputError("", 0, "dem.steady_on", "must be normal (R_n, the LIGGGHTS rig's rule) or all (R_n, R_s and the moment)");
   if (o.threads) options::rules::dem_threads.check(static_cast<double>(*o.threads));
   if (o.plate_cells) kPlateCells.check(static_cast<double>(*o.plate_cells));
   kLiggghtsRanks.check(static_cast<double>(o.liggghts_ranks));
@@ -39,6 +41,7 @@ validation::ModelSettings model_settings(const DemOptions& o, const std::filesys
   if (!o.quality.empty()) dc.overrides.quality = dem::station::parse_quality(o.quality);
   dc.overrides.threads = o.threads;
   dc.overrides.plate_cells = o.plate_cells;
+  if (!o.steady_on.empty()) dc.overrides.steady_all_loads = o.steady_on == "all";
   dc.use_cache = !o.no_cache;
   dc.cache_only = o.cache_only;
   dc.ladder = o.ladder;

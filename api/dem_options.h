@@ -21,6 +21,7 @@ struct DemOptions {
   bool ladder = true;                 // u_num's discretisation part from more runs (validation/gci.h)
   bool ladder_all = false;            // every condition its own time-step ladder, not three carried to all
   std::string signature_quality;      // "" = the predictions' quality
+  std::string steady_on;              // "" = the dataset's [dem] steady_on; "normal" (R_n) | "all" (R_n, R_s, moment)
   std::optional<int> plate_cells;     // rows of cells down the generated plate (0: two triangles)
   int liggghts_ranks = 1;             // mpirun -n K liggghts
   std::string liggghts_command;       // "" = mpirun -n K liggghts

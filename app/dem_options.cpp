@@ -32,6 +32,11 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
                  "flight, the belt's adhesion) continues the steady state of the same run without them instead of "
                  "filling the station again; off (default): every run starts from an empty station")
       ->check(CLI::IsMember({"on", "off"}));
+  cmd.add_option("--dem-steady-on", o.steady_on,
+                 "the plate loads each DEM run's steady window is judged on: normal (R_n, as the LIGGGHTS rig did; "
+                 "the default unless the dataset's [dem] steady_on says otherwise) or all (R_n, R_s and the moment: "
+                 "the build-up on the plate settles later, and runs take longer; bench/WINDOW.md)")
+      ->check(CLI::IsMember({"normal", "all"}));
   cmd.add_option("--signature-quality", o.signature_quality,
                  "quality of the DEM's own effect-signature runs in diagnose (default: the --dem-quality)")
       ->check(CLI::IsMember({"quick", "standard", "paper"}));
@@ -75,6 +80,7 @@ api::DemOptions dem_options(const DemCli& o) {
   d.ladder_all = o.ladder == "all";
   d.restart = o.restart != "off";
   d.signature_quality = o.signature_quality;
+  d.steady_on = o.steady_on;
   d.plate_cells = o.plate_cells;
   d.liggghts_ranks = o.liggghts_ranks;
   d.liggghts_command = o.liggghts_command;

@@ -22,6 +22,7 @@ struct DemCli {
   std::string restart = "off"; // "on" | "off": runs with effects continue the steady state of the run without
   std::string ladder = "on";  // "on" | "all" | "off": the ladders of u_num's discretisation part (dem_options.cpp)
   std::string signature_quality;  // "" = the predictions' quality
+  std::string steady_on;          // "" = the dataset's [dem] steady_on; "normal" | "all"
   int jobs = 0;  // DEM runs at a time in one process (core/campaign.h); 0: one per idle core
   int liggghts_ranks = 1;
   std::string liggghts_command;

@@ -23,6 +23,7 @@ constexpr auto kRenamed = std::to_array<std::pair<std::string_view, std::string_
     {"dem.plate_cells", "--dem-plate-cells"},
     {"dem.ladder", "--dem-ladder"},
     {"dem.restart", "--dem-restart"},
+    {"dem.steady_on", "--dem-steady-on"},
 });
 
 // The options' keys that are spelt by the plain rule. Only these are options: a field such as
@@ -32,7 +33,7 @@ constexpr auto kPlain = std::to_array<std::string_view>({
     "mapping", "seed", "noise_scale", "noise_factor", "outliers", "alpha", "self_check", "jobs", "threads",
     "dem.threads", "dem.quality", "dem.cache", "diagnose", "add_missing", "belt_speed", "mass_flow",
     "plate_distance", "plate_top", "stream_thickness", "sweep", "svg", "dxf", "points", "format", "quality",
-    "contact", "shape", "diameter_mm", "shear_modulus_scale", "dt_fraction", "max_time", "vtk_every",
+    "contact", "shape", "diameter_mm", "shear_modulus_scale", "dt_fraction", "max_time", "steady_on", "vtk_every",
     "plate_cells", "map_cell_mm", "no_cache", "rolling", "density", "target_bulk_density",
     "target_pile_height", "sizes", "only", "limit"});
 

@@ -70,6 +70,7 @@ BOOST_AUTO_TEST_CASE(validate_checks_its_options_before_any_work) {
       {[](auto& o) { o.jobs = -1; }, "jobs"},
       {[](auto& o) { o.dem.threads = 300; }, "dem.threads"},
       {[](auto& o) { o.dem.quality = "fast"; }, "dem.quality"},
+      {[](auto& o) { o.dem.steady_on = "shear"; }, "dem.steady_on"},
       {[](auto& o) { o.dem.cache_only = o.dem.no_cache = true; }, "dem.cache_only"},
       // A missing dataset is found only after the options: they are checked first.
       {[](auto& o) { o.dataset = "/nonexistent"; o.dem.plate_cells = 401; }, "dem.plate_cells"},
@@ -146,6 +147,9 @@ BOOST_AUTO_TEST_CASE(diagnose_synthesize_estimate_and_simulate_check_first) {
   m.contact = "glue";
   refused([&] { api::simulate(m); }, "contact");
   m.contact.clear();
+  m.steady_on = "shear";
+  refused([&] { api::simulate(m); }, "steady_on");
+  m.steady_on.clear();
   m.vtk_every = 0.1;  // a particle series needs a folder to go to
   const InputError v = refused([&] { api::simulate(m); }, "vtk_every");
   BOOST_TEST(v.problem_said() == "needs out DIR");

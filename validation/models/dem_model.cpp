@@ -136,6 +136,7 @@ class DemModel final : public Model {
       over.quality = c_.signature_quality;
       over.seed = c_.overrides.seed;
       over.threads = c_.overrides.threads;
+      over.steady_all_loads = c_.overrides.steady_all_loads;  // the window's rule is the user's, at any quality
     }
     return over;
   }
