@@ -124,7 +124,7 @@ int run_simulate(const SimulateCli& o) {
         peak_w * 3.6e9, area > 0.0 ? wear_sum / area * 3.6e9 : 0.0, normal);
   }
   for (const auto& n : r.notes) std::cout << "note: " << n << "\n";
-  for (const auto& n : st::window_drift_notes(r)) std::cout << "note: " << n << "\n";
+  for (const auto& d : st::window_drifts(r)) std::cout << "note: " << d.note << "\n";
   for (const auto& n : res.effect_notes) std::cout << "note: " << n << "\n";
   if (!o.out.empty()) std::cout << fmt::format("files: {}\n", o.out);
   return kExitOk;

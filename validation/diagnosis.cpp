@@ -1083,6 +1083,13 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
   out.used_surrogate = m.source().has_expensive();
   for (const auto& mm : models)
     if (mm->expensive() && !mm->runs_with_effects()) out.exported_models.emplace_back(mm->name(), mm->description());
+  if (m.source().has_expensive()) {
+    const Predictions base = m.source().predict({}, {});
+    for (std::size_t c = 0; c < base.size(); ++c)
+      for (const auto& p : base[c])
+        if (!p.unsteady.empty())
+          out.unsteady_baseline.push_back(fmt::format("{} ({})", m.dataset().stations[c].condition, fmt::join(p.unsteady, ", ")));
+  }
   if (m.size() == 0) {
     out.verdict_code = Verdict::no_data;
     describe(out, opt);

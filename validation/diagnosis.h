@@ -236,6 +236,9 @@ struct DiagnosisResult {
   std::vector<std::string> discriminators;     // which measurement would tell them apart
   std::vector<std::string> proportional;       // candidates that move the data in proportion to the best
   std::vector<std::string> caveats;
+  // The baseline's conditions whose steady means came from a window some load still moved through
+  // (ModelPrediction::unsteady), as "V5-44 (R_s, impact point)".
+  std::vector<std::string> unsteady_baseline;
   // With an expensive model (DEM) the ranking uses the cheap models' signatures as differences
   // (DESIGN.md §5); the recommended fit is then re-run with the expensive model for real.
   bool used_surrogate = false;

@@ -445,6 +445,13 @@ void describe_caveats(DiagnosisResult& r, const DiagnoseOptions& opt) {
     r.caveats.push_back(fmt::format("The fits were repeated {} times until the outliers, discrepancies and "
                                     "uncertainty scale agreed with the explanation they were judged against.",
                                     r.noise_rounds));
+  if (!r.unsteady_baseline.empty())
+    r.caveats.push_back(fmt::format(
+        "The baseline's steady means came from windows that some plate loads still moved through, at {}: the "
+        "build-up on the plate was still forming. Their ± does not cover that, and an effect fitted to those loads "
+        "(plate friction, for R_s) may stand in for it. --dem-steady-on all judges the window on every load "
+        "(bench/WINDOW.md).",
+        fmt::join(r.unsteady_baseline, "; ")));
   r.caveats.push_back("Only the effects in chutelab's library were tried; a misfit they cannot explain points to "
                       "physics outside it.");
   if (r.n_without_uncertainty > 0)

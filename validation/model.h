@@ -95,6 +95,9 @@ struct ModelPrediction {
   std::vector<SurfaceMap> maps;                   // pressure and wear maps (DEM)
   std::optional<PlateZone> plate_zone;            // the analytical impact zone
   std::vector<std::string> notes;                 // e.g. "R_s from Eq 7 (no stationary flow)"
+  // Loads whose steady mean came from a window they still moved through (a DEM's "R_s", "impact
+  // point": the build-up on the plate still forming; bench/WINDOW.md). Their ± does not cover it.
+  std::vector<std::string> unsteady;
 };
 
 // An expensive model's prediction of one condition as a campaign job (core/campaign.h): `job`

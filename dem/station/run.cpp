@@ -445,8 +445,8 @@ SteadyWindow load_cell_window(const StationSeries& x, const RunSettings& s) {
   return w;
 }
 
-std::vector<std::string> window_drift_notes(const StationResult& r) {
-  std::vector<std::string> out;
+std::vector<WindowDrift> window_drifts(const StationResult& r) {
+  std::vector<WindowDrift> out;
   const SteadyWindow& w = r.window;
   if (w.blocks < 3 || !(w.end > w.start) || r.forces.empty()) return out;
   const double block = (w.end - w.start) / w.blocks;
@@ -466,10 +466,10 @@ std::vector<std::string> window_drift_notes(const StationResult& r) {
     const WindowTrend tr = window_trend(t, v, w.start, w.end, block);
     if (!tr.drifting()) return;
     const double c = tr.change();
-    out.push_back(fmt::format("{} still {} {}: a straight line through its 0.1 s block means moves {:+.3g} N across it "
-                              "({:+.0f} % of its mean, {:.1f} standard errors); {}",
-                              name, c > 0.0 ? "rises" : "falls", where, c, 100.0 * c / tr.mean,
-                              std::abs(c) / (tr.se_slope * tr.span), why));
+    out.push_back({name, fmt::format("{} still {} {}: a straight line through its 0.1 s block means moves {:+.3g} N "
+                                     "across it ({:+.0f} % of its mean, {:.1f} standard errors); {}",
+                                     name, c > 0.0 ? "rises" : "falls", where, c, 100.0 * c / tr.mean,
+                                     std::abs(c) / (tr.se_slope * tr.span), why)});
   };
   force_note("R_n", normal);
   force_note("R_s", shear);
@@ -477,9 +477,11 @@ std::vector<std::string> window_drift_notes(const StationResult& r) {
   const WindowTrend tr = window_trend_ratio(t, minus_moment, normal, w.start, w.end, block);
   if (tr.drifting(0.0)) {
     const double c = tr.change();
-    out.push_back(fmt::format("the impact point still moves {} the face {}: {:.1f} mm across it ({:.1f} standard "
-                              "errors); {}",
-                              c > 0.0 ? "up" : "down", where, 1e3 * std::abs(c), std::abs(c) / (tr.se_slope * tr.span), why));
+    out.push_back({"impact point",
+                   fmt::format("the impact point still moves {} the face {}: {:.1f} mm across it ({:.1f} standard "
+                               "errors); {}",
+                               c > 0.0 ? "up" : "down", where, 1e3 * std::abs(c), std::abs(c) / (tr.se_slope * tr.span),
+                               why)});
   }
   return out;
 }
@@ -651,7 +653,7 @@ void write_result_files(const std::string& dir, const StationResult& r) {
                      r.simulated_time, r.steps, r.rebuilds >= 0 ? std::to_string(r.rebuilds) : "unknown (not in this DEM cache entry)", r.wall_seconds, r.early_stop, r.peak_particles, r.window.found,
                      r.window.start, r.window.end, r.window.blocks, r.inserted, r.discharged, r.escaped, r.in_domain);
     for (const auto& n : r.notes) f << "note = " << n << "\n";
-    for (const auto& n : window_drift_notes(r)) f << "note = " << n << "\n";
+    for (const auto& d : window_drifts(r)) f << "note = " << d.note << "\n";
   }
   if (!r.maps.empty()) {
     write_plate_map_csv((d / "plate_map.csv").string(), r.maps, r.wear, r.condition);

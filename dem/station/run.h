@@ -142,9 +142,13 @@ SteadyWindow load_cell_window(const StationSeries& series, const RunSettings& s)
 
 // Which plate loads still move through the steady window (judged on R_n alone unless
 // RunSettings::steady_all_loads): R_n, R_s and the impact point, each by the early stop's own test
-// (WindowTrend::drifting) on its 0.1 s block means, one note each. Read from r.forces and r.window,
-// so a cached result says the same as the run that made it.
-std::vector<std::string> window_drift_notes(const StationResult& r);
+// (WindowTrend::drifting) on its 0.1 s block means, with a note for each. Read from r.forces and
+// r.window, so a cached result says the same as the run that made it.
+struct WindowDrift {
+  std::string load;  // "R_n", "R_s" or "impact point"
+  std::string note;
+};
+std::vector<WindowDrift> window_drifts(const StationResult& r);
 
 // Writes OUT/timeseries.csv, OUT/sensors.csv, OUT/steady.csv, OUT/trajectory.csv, OUT/side_view.csv,
 // OUT/plate_map.csv and OUT/plate_map.vtk.

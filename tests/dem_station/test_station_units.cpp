@@ -112,7 +112,7 @@ BOOST_AUTO_TEST_CASE(window_trend_of_a_line) {
 
 // A run whose R_n is steady while R_s still rises and the impact point still moves down the face:
 // one note for each of the two, none for R_n; a flat run has none.
-BOOST_AUTO_TEST_CASE(window_drift_notes_name_the_moving_loads) {
+BOOST_AUTO_TEST_CASE(window_drifts_name_the_moving_loads) {
   Noise noise;
   StationResult r;
   r.window = SteadyWindow{true, 0.4, 0.9, 5};
@@ -125,21 +125,23 @@ BOOST_AUTO_TEST_CASE(window_drift_notes_name_the_moving_loads) {
     f.moment = -f.normal * (0.12 - 0.02 * (tk - 0.4));  // 10 mm down the face across the window
     r.forces.push_back(f);
   }
-  const std::vector<std::string> notes = window_drift_notes(r);
+  const std::vector<WindowDrift> notes = window_drifts(r);
   BOOST_TEST_REQUIRE(notes.size() == 2u);
-  BOOST_TEST(notes[0].rfind("R_s still rises", 0) == 0, notes[0]);
-  BOOST_TEST(notes[1].find("moves down the face") != std::string::npos, notes[1]);
-  BOOST_TEST(notes[1].find("10.0 mm") != std::string::npos, notes[1]);
+  BOOST_TEST(notes[0].load == "R_s");
+  BOOST_TEST(notes[0].note.rfind("R_s still rises", 0) == 0, notes[0].note);
+  BOOST_TEST(notes[1].load == "impact point");
+  BOOST_TEST(notes[1].note.find("moves down the face") != std::string::npos, notes[1].note);
+  BOOST_TEST(notes[1].note.find("10.0 mm") != std::string::npos, notes[1].note);
 
   StationResult flat = r;
   for (auto& f : flat.forces) {
     f.shear = 2.5 + 0.05 * noise();
     f.moment = -f.normal * 0.11;
   }
-  BOOST_TEST(window_drift_notes(flat).empty());
+  BOOST_TEST(window_drifts(flat).empty());
   StationResult short_window = r;
   short_window.window = SteadyWindow{true, 0.7, 0.9, 2};
-  BOOST_TEST(window_drift_notes(short_window).empty());
+  BOOST_TEST(window_drifts(short_window).empty());
 }
 
 // The window judged on all three load-cell channels starts where the last of them settles: here R_n

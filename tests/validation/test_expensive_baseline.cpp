@@ -1,6 +1,7 @@
 // DESIGN.md §5: with an expensive baseline the diagnosis must not run it per candidate; it shifts
 // one baseline run by the cheap models' response and confirms the winner with a real run.
 #include <boost/test/unit_test.hpp>
+#include <algorithm>
 #include <atomic>
 
 #include "validation/dataset.h"
@@ -258,4 +259,45 @@ BOOST_AUTO_TEST_CASE(expensive_strength_and_its_uncertainty_come_from_a_profile_
   const int n = static_cast<int>(d.stations.size());
   BOOST_TEST(calls.load() % n == 0);
   BOOST_TEST(calls.load() / n <= 2 + opt.confirm + opt.profile_runs + 1);
+}
+
+namespace {
+
+// An expensive stand-in whose first condition's R_s came from a window it still moved through
+// (ModelPrediction::unsteady, as a DEM run reports it).
+class UnsteadyModel final : public Model {
+ public:
+  explicit UnsteadyModel(std::string condition) : inner_(make_model("korzen")), condition_(std::move(condition)) {}
+  std::string name() const override { return "unsteady"; }
+  std::string description() const override { return "expensive stand-in with one unsteady window"; }
+  bool expensive() const override { return true; }
+  ModelPrediction predict(const Station& st, const analytical::EffectList& fx,
+                          const PredictRequest& req) const override {
+    auto p = inner_->predict(st, fx, req);
+    if (st.condition == condition_) p.unsteady = {"R_s"};
+    return p;
+  }
+
+ private:
+  ModelPtr inner_;
+  std::string condition_;
+};
+
+}  // namespace
+
+// A baseline whose steady window was not steady in some load is named among the caveats, with its
+// condition and load: an effect fitted to that load may stand in for it.
+BOOST_AUTO_TEST_CASE(an_unsteady_baseline_window_is_a_caveat) {
+  const auto rig = read_dataset(CHUTELAB_SOURCE_DIR "/datasets/grima2010", MeasurementsRequired::no);
+  const std::string first = rig.stations.front().condition;
+  DiagnoseOptions one;
+  one.pairs = false;
+  one.profile_runs = 0;
+  const auto r = diagnose(rig, {std::make_shared<UnsteadyModel>(first)}, one);
+  BOOST_TEST_REQUIRE(r.unsteady_baseline.size() == 1u);
+  BOOST_TEST(r.unsteady_baseline.front() == first + " (R_s)");
+  const auto it = std::find_if(r.caveats.begin(), r.caveats.end(),
+                               [&](const std::string& c) { return c.find("still moved through") != std::string::npos; });
+  BOOST_TEST_REQUIRE((it != r.caveats.end()));
+  BOOST_TEST(it->find(first + " (R_s)") != std::string::npos, *it);
 }

@@ -637,7 +637,10 @@ ModelPrediction dem_station_prediction(const st::StationResult& r, const DemEffe
     p.plate_uncertainty.push_back(u);
   }
   p.notes = r.notes;
-  for (auto& n : st::window_drift_notes(r)) p.notes.push_back(std::move(n));
+  for (auto& d : st::window_drifts(r)) {
+    p.notes.push_back(std::move(d.note));
+    p.unsteady.push_back(std::move(d.load));
+  }
   if (r.impact_velocity_fast.ok())
     p.notes.push_back(fmt::format("free-stream particles alone (v_x > V_b/2) arrive at {:.3f} m/s; the V_p slab lies "
                                   "partly in the layer on the plate", r.impact_velocity_fast.value));
