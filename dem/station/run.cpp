@@ -71,9 +71,12 @@ struct Schedule {
 };
 
 // The part of a series after t_cut (a restart's transit): the steady state is looked for there only.
-StationSeries after(const StationSeries& series, double t_cut) {
+// From empty that is the series itself, not a copy (it is asked at every check, and the face
+// particles it holds are never read there); after a restart, the load cell's channels copied into
+// `out`.
+const StationSeries& after(const StationSeries& series, double t_cut, StationSeries& out) {
   if (t_cut <= 0.0) return series;
-  StationSeries out;
+  out = StationSeries{};
   out.sample_dt = series.sample_dt;
   for (std::size_t k = 0; k < series.t.size(); ++k) {
     if (series.t[k] <= t_cut + 1e-12) continue;
@@ -233,7 +236,8 @@ Marched march(const RunOptions& o, const Schedule& schedule, Scene& sc, Sensors&
     }
     if (t + 1e-12 >= next_check) {
       next_check += s.detect_block;
-      const StationSeries settled = after(series, r.transient_end);
+      StationSeries part;
+      const StationSeries& settled = after(series, r.transient_end, part);
       const SteadyWindow win = load_cell_window(settled, s);
       if (win.found && win.end - win.start >= s.min_window - 1e-9 && !load_cell_drifting(settled, s, win)) {
         r.early_stop = true;
@@ -276,7 +280,8 @@ void note_run(const Scene& sc, const RunSettings& s, std::size_t peak_bodies, St
 // The averaging window of the steady means: the detected steady window (steady_state.h), or, when
 // none long enough was found before the time limit, the run's last min_window (with a note).
 void find_window(const StationSeries& series, const RunSettings& s, StationResult& r) {
-  const StationSeries settled = after(series, r.transient_end);
+  StationSeries part;
+  const StationSeries& settled = after(series, r.transient_end, part);
   r.window = load_cell_window(settled, s);
   if (r.window.found && r.window.end - r.window.start >= s.min_window - 1e-9) return;
   const bool none = !r.window.found;
