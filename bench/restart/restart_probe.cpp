@@ -12,8 +12,11 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 
+#include "core/input_error.h"
 #include "dem/station/run.h"
 #include "effects/registry.h"
 #include "validation/dataset.h"
@@ -58,9 +61,7 @@ void line(const char* what, const st::StationResult& r) {
              r.simulated_time - std::max(0.0, r.restart_time), r.wall_seconds);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int probe(int argc, char** argv) {
   if (argc < 6) {
     std::fprintf(stderr, "usage: restart_probe DATASET CONDITION QUALITY THREADS EFFECT=VALUE...\n");
     return 2;
@@ -74,7 +75,9 @@ int main(int argc, char** argv) {
   ov.quality = st::parse_quality(argv[3]);
   ov.threads = std::stoi(argv[4]);
   const st::RunSettings settings = st::resolve(table, ov);
-  const std::string state = (std::filesystem::temp_directory_path() / "restart_probe.state").string();
+  // One state file per process: two probes side by side must not read each other's state.
+  const std::string state =
+      (std::filesystem::temp_directory_path() / fmt::format("restart_probe.{}.state", static_cast<long>(getpid()))).string();
 
   auto run = [&](const v::DemEffectInputs& fx, std::optional<st::Restart> rs, bool save) {
     st::RunOptions o;
@@ -118,4 +121,16 @@ int main(int argc, char** argv) {
     }
   }
   std::filesystem::remove(state);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return probe(argc, argv);
+  } catch (const chutelab::InputError& e) {
+    std::fprintf(stderr, "restart_probe: %s\n", e.what());
+    return 2;
+  }
 }
