@@ -81,6 +81,12 @@ Misfit::Misfit(std::shared_ptr<const PredictionSource> source) : source_(std::mo
                                              nth(input_part(ci, *by).trajectory)});
     add({ci, trajectory_quantity(p.boundary), std::nullopt, qi, *by, 0, p.y, u, *p.uncertainty, p.where});
   }
+  condition_begin_.assign(d.stations.size() + 1, 0);
+  for (const auto& p : points_) ++condition_begin_[p.condition + 1];
+  for (std::size_t c = 0; c < d.stations.size(); ++c) condition_begin_[c + 1] += condition_begin_[c];
+  by_condition_.resize(points_.size());
+  std::vector<std::size_t> at(condition_begin_.begin(), condition_begin_.end() - 1);
+  for (std::size_t i = 0; i < points_.size(); ++i) by_condition_[at[points_[i].condition]++] = i;
 }
 
 std::vector<std::optional<double>> Misfit::predicted(std::span<const effects::EffectInfo* const> fx,
@@ -98,11 +104,18 @@ std::vector<std::optional<double>> Misfit::predicted(std::span<const effects::Ef
 
 std::vector<double> Misfit::residuals(std::span<const effects::EffectInfo* const> fx,
                                       std::span<const double> strengths) const {
+  std::vector<double> r(points_.size());
   try {
-    return residuals_of(source_->predict(fx, strengths));
+    // Each condition's residuals where its predictions are made, which are then dropped there.
+    source_->visit(fx, strengths, PredictionSource::Evaluation::surrogate, {},
+                   [&](std::size_t c, const std::vector<ModelPrediction>& pred) {
+                     for (std::size_t k = condition_begin_[c]; k < condition_begin_[c + 1]; ++k)
+                       r[by_condition_[k]] = residual(pred, by_condition_[k]);
+                   });
   } catch (const InputError&) {
-    return std::vector<double>(points_.size(), kInfeasible);
+    r.assign(points_.size(), kInfeasible);
   }
+  return r;
 }
 
 std::vector<double> Misfit::residuals_exact(std::span<const effects::EffectInfo* const> fx,
@@ -114,9 +127,11 @@ std::vector<double> Misfit::residuals_exact(std::span<const effects::EffectInfo*
   }
 }
 
-double Misfit::residual(const Predictions& pred, std::size_t i) const {
+double Misfit::residual(const Predictions& pred, std::size_t i) const { return residual(pred[points_[i].condition], i); }
+
+double Misfit::residual(const std::vector<ModelPrediction>& condition, std::size_t i) const {
   const auto& p = points_[i];
-  const ModelPrediction& mp = pred[p.condition][p.model];
+  const ModelPrediction& mp = condition[p.model];
   std::optional<double> v;
   if (p.q) v = mp.values[*p.q];
   else if (p.query < mp.trajectory.size()) v = mp.trajectory[p.query];
@@ -135,22 +150,38 @@ MisfitPart Misfit::part(std::vector<std::size_t> conditions) const {
   MisfitPart out;
   std::sort(conditions.begin(), conditions.end());
   conditions.erase(std::unique(conditions.begin(), conditions.end()), conditions.end());
-  for (std::size_t i = 0; i < points_.size(); ++i)
-    if (std::binary_search(conditions.begin(), conditions.end(), points_[i].condition)) out.rows.push_back(i);
+  out.begin.assign(conditions.size() + 1, 0);
+  for (std::size_t k = 0; k < conditions.size(); ++k) {
+    const std::size_t c = conditions[k];
+    out.begin[k + 1] = out.begin[k] + (c < condition_begin_.size() - 1 ? condition_begin_[c + 1] - condition_begin_[c] : 0);
+  }
+  std::vector<std::size_t> at(out.begin.begin(), out.begin.end() - 1);
+  out.by_condition.resize(out.begin.back());
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const auto it = std::lower_bound(conditions.begin(), conditions.end(), points_[i].condition);
+    if (it == conditions.end() || *it != points_[i].condition) continue;
+    out.by_condition[at[static_cast<std::size_t>(it - conditions.begin())]++] = out.rows.size();
+    out.rows.push_back(i);
+  }
   out.conditions = std::move(conditions);
   return out;
 }
 
 std::vector<double> Misfit::residuals(std::span<const effects::EffectInfo* const> fx,
                                       std::span<const double> strengths, const MisfitPart& part) const {
+  std::vector<double> r(part.rows.size());
   try {
-    const auto pred = source_->predict(fx, strengths, PredictionSource::Evaluation::surrogate, part.conditions);
-    std::vector<double> r(part.rows.size());
-    for (std::size_t i = 0; i < r.size(); ++i) r[i] = residual(pred, part.rows[i]);
-    return r;
+    source_->visit(fx, strengths, PredictionSource::Evaluation::surrogate, part.conditions,
+                   [&](std::size_t c, const std::vector<ModelPrediction>& pred) {
+                     const auto k = static_cast<std::size_t>(
+                         std::lower_bound(part.conditions.begin(), part.conditions.end(), c) - part.conditions.begin());
+                     for (std::size_t j = part.begin[k]; j < part.begin[k + 1]; ++j)
+                       r[part.by_condition[j]] = residual(pred, part.rows[part.by_condition[j]]);
+                   });
   } catch (const InputError&) {
-    return std::vector<double>(part.rows.size(), kInfeasible);
+    r.assign(part.rows.size(), kInfeasible);
   }
+  return r;
 }
 
 double Misfit::chi2(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const {

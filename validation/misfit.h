@@ -42,6 +42,8 @@ struct MisfitGroup {
 struct MisfitPart {
   std::vector<std::size_t> conditions;  // ascending
   std::vector<std::size_t> rows;        // the points of those conditions, ascending
+  // The positions in `rows` of conditions[k]'s points: by_condition[begin[k] .. begin[k + 1]).
+  std::vector<std::size_t> begin, by_condition;
 };
 
 class Misfit {
@@ -83,10 +85,14 @@ class Misfit {
 
  private:
   double residual(const Predictions& pred, std::size_t i) const;
+  // Point i's residual from its own condition's predictions.
+  double residual(const std::vector<ModelPrediction>& condition, std::size_t i) const;
 
   std::shared_ptr<const PredictionSource> source_;
   std::vector<MisfitPoint> points_;
   std::vector<MisfitGroup> groups_;
+  // The points of condition c: by_condition_[condition_begin_[c] .. condition_begin_[c + 1]).
+  std::vector<std::size_t> condition_begin_, by_condition_;
   int left_out_ = 0;
 };
 

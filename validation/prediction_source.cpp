@@ -150,14 +150,27 @@ void PredictionSource::predict_condition(std::size_t c, const analytical::Effect
     }
   }
   apply_measurement_effects(list, same);
+  out.reserve(out.size() + same.size());
   for (auto& s : same) out.push_back(std::move(s.prediction));
 }
 
 Predictions PredictionSource::predict(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
                                       Evaluation how, std::span<const std::size_t> only) const {
+  Predictions out(d_->stations.size());
+  for_conditions(fx, strengths, how, only, [&](std::size_t c, std::vector<ModelPrediction>& p) { out[c] = std::move(p); });
+  return out;
+}
+
+void PredictionSource::visit(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
+                             Evaluation how, std::span<const std::size_t> only, const ConditionUse& use) const {
+  for_conditions(fx, strengths, how, only, [&](std::size_t c, std::vector<ModelPrediction>& p) { use(c, p); });
+}
+
+void PredictionSource::for_conditions(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
+                                      Evaluation how, std::span<const std::size_t> only,
+                                      const std::function<void(std::size_t, std::vector<ModelPrediction>&)>& take) const {
   const analytical::EffectList list = with(fx, strengths);
   const bool reuse_raw = on_measurement_only(fx);
-  Predictions out(d_->stations.size());
   std::vector<std::size_t> all;
   if (only.empty()) {
     all.resize(d_->stations.size());
@@ -166,14 +179,17 @@ Predictions PredictionSource::predict(std::span<const effects::EffectInfo* const
   }
   const std::size_t n = only.size();
   // A model that cannot take a condition says which line of conditions.csv, as validate does.
-  auto condition = [&](std::size_t i) {
+  // `scratch` is the calling thread's: its predictions are made, used and freed there.
+  auto condition = [&](std::size_t i, std::vector<ModelPrediction>& scratch) {
     const std::size_t c = only[i];
+    scratch.clear();
     try {
-      predict_condition(c, list, fx, strengths, how, reuse_raw, out[c]);
+      predict_condition(c, list, fx, strengths, how, reuse_raw, scratch);
     } catch (const InputError& e) {
       if (c < d_->station_lines.size()) throw e.located(d_->station_lines[c].file, d_->station_lines[c].line);
       throw;
     }
+    take(c, scratch);
   };
   // Conditions are independent and each writes only its own slot and memo, so they may go side by
   // side; the expensive models' caches are shared maps, so with one of them they go in order. A
@@ -182,16 +198,18 @@ Predictions PredictionSource::predict(std::span<const effects::EffectInfo* const
   // machine may stall one of them), and the caller works too.
   const int threads = has_expensive() ? 1 : std::min<int>(threads_, static_cast<int>(n / kConditionsPerThread));
   if (threads <= 1) {
-    for (std::size_t i = 0; i < n; ++i) condition(i);
-    return out;
+    std::vector<ModelPrediction> scratch;
+    for (std::size_t i = 0; i < n; ++i) condition(i, scratch);
+    return;
   }
   std::vector<std::exception_ptr> failure(n);
   std::atomic<std::size_t> next_block{0}, first_failure{n};
   constexpr std::size_t kBlock = 16;
   auto work = [&] {
+    std::vector<ModelPrediction> scratch;
     for (std::size_t b; (b = next_block.fetch_add(kBlock)) < n;)
       for (std::size_t i = b; i < std::min(n, b + kBlock) && i < first_failure.load(); ++i) try {
-          condition(i);
+          condition(i, scratch);
         } catch (...) {
           failure[i] = std::current_exception();
           for (std::size_t f = first_failure.load(); i < f && !first_failure.compare_exchange_weak(f, i);) {
@@ -205,7 +223,6 @@ Predictions PredictionSource::predict(std::span<const effects::EffectInfo* const
   }
   for (const auto& f : failure)
     if (f) std::rethrow_exception(f);
-  return out;
 }
 
 PredictionSource::Shift PredictionSource::shift_of(std::size_t c, const effects::EffectInfo& e, double s) const {

@@ -58,6 +58,15 @@ class PredictionSource {
   Predictions predict(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
                       Evaluation how = Evaluation::surrogate, std::span<const std::size_t> only = {}) const;
 
+  // Each condition's predictions (those of `only`, or of every condition), as predict() makes them,
+  // handed to `use` by the thread that made them and dropped there. A fit reads a few numbers of each
+  // and keeps none: ten thousand conditions' predictions, made on the workers and freed on the
+  // caller's thread, cost a quarter of a large diagnosis in the allocator (bench/SCALE.md). `use`
+  // may run on several threads at once, for different conditions. Fails as predict() does.
+  using ConditionUse = std::function<void(std::size_t condition, const std::vector<ModelPrediction>&)>;
+  void visit(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths, Evaluation how,
+             std::span<const std::size_t> only, const ConditionUse& use) const;
+
   // Runs every probe run the candidates need (`jobs` at a time), so that fits find them ready.
   void prepare_signatures(std::span<const effects::EffectInfo* const> candidates, int jobs) const;
   // Runs the expensive models at these strengths for every condition (`jobs` at a time).
@@ -69,6 +78,11 @@ class PredictionSource {
   void predict_condition(std::size_t c, const analytical::EffectList& list,
                          std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
                          Evaluation how, bool reuse_raw, std::vector<ModelPrediction>& out) const;
+  // Predicts the conditions of `only` (empty: all), side by side where they may be, and hands each
+  // condition's predictions to `take` on the thread that made them (predict and visit).
+  void for_conditions(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths, Evaluation how,
+                      std::span<const std::size_t> only,
+                      const std::function<void(std::size_t, std::vector<ModelPrediction>&)>& take) const;
   // Every model's prediction of a condition before the measurement effects act.
   std::vector<ConditionResult> raw_condition(std::size_t c, const analytical::EffectList& list,
                                              std::span<const effects::EffectInfo* const> fx,
