@@ -54,6 +54,9 @@ void run_models(std::span<const ModelRun> runs, const RunModelsOptions& options)
     }
   }
   if (jobs.empty()) return;
+  if (!options.purpose.empty())
+    progress::line(fmt::format("{}{} ({} runs)", options.label.empty() ? std::string() : options.label + ": ",
+                               options.purpose, jobs.size()));
   explain(jobs, options);
   std::vector<campaign::Job> work;
   for (const auto& j : jobs) work.push_back(j.job);

@@ -37,6 +37,9 @@ struct ModelRun {
 struct RunModelsOptions {
   std::string label = "runs";  // prefix of the campaign's progress lines
   int jobs = 0;                // runs side by side in this process (campaign::Options::threads); 0: the process's
+  // What the runs are for, said once before they start ("": nothing said), so that a user who
+  // waits for a diagnosis's fifth set of runs knows what each set is.
+  std::string purpose;
 };
 
 // Throws the first failing run's InputError (in list order) on every rank.

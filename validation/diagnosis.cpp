@@ -249,7 +249,8 @@ void confirm_leaders(std::vector<EffectFit>& singles, const Stage& s, int jobs) 
     // A measurement effect acts on the expensive model's output exactly: a run would add nothing.
     if (s.m.source().signature(*fx[0]) == PredictionSource::Signature::none) continue;
     f.estimate[0] = on_grid(f.estimate[0], f.uncertainty[0]);
-    s.m.source().prepare_exact(fx, f.estimate, jobs);
+    s.m.source().prepare_exact(fx, f.estimate, jobs,
+                               fmt::format("leading candidate {}, run for real to confirm its rank", confirmed + 1));
     rescore(f, s.cost.chi2_of(s.m.residuals_exact(fx, f.estimate)), s);
     ++confirmed;
   }
@@ -431,7 +432,7 @@ std::vector<EffectFit> fit_pairs(const Stage& s, const std::vector<EffectFit>& s
     EffectFit f = out.front();
     const Fx fx = infos_of(f);
     for (std::size_t i = 0; i < f.estimate.size(); ++i) f.estimate[i] = on_grid(f.estimate[i], f.uncertainty[i]);
-    s.m.source().prepare_exact(fx, f.estimate, jobs);
+    s.m.source().prepare_exact(fx, f.estimate, jobs, "the best pair, run for real before it is kept");
     rescore(f, s.cost.chi2_of(s.m.residuals_exact(fx, f.estimate)), s);
     test_pair(f);
     out.clear();
@@ -688,7 +689,7 @@ void profile_best(EffectFit& f, const Stage& s, int jobs) {
   const Fx fx = {e};
   auto chi2_at = [&](double v) {
     const std::vector<double> at = {v};
-    s.m.source().prepare_exact(fx, at, jobs);
+    s.m.source().prepare_exact(fx, at, jobs, fmt::format("a point of {}'s profile (its chi^2 from real runs)", e->name));
     return s.cost.chi2_of(s.m.residuals_exact(fx, at));
   };
   const double span = e->upper - e->lower;
@@ -1144,7 +1145,7 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
       out.confirmed_chi2 = best->profile->lowest()->second;
     } else if (m.source().reruns_expensive()) {
       const Fx fx = infos_of(*best);
-      m.source().prepare_exact(fx, best->estimate, jobs);
+      m.source().prepare_exact(fx, best->estimate, jobs, "the recommended explanation, run for real");
       out.confirmed_chi2 = s.cost.chi2_of(m.residuals_exact(fx, best->estimate));
     }
   } else if (!outside) {

@@ -235,7 +235,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
     for (const auto& m : models)
       if (m->expensive())
         runs.push_back({m, d.stations[i], options.effects, d.station_lines[i].file, d.station_lines[i].line});
-  run_models(runs, {"validate", options.jobs});
+  run_models(runs, {"validate", options.jobs, {}});
 
   // Every look-up below is by index or hash, once per row: validate stays linear in the dataset.
   std::unordered_map<std::string, std::vector<TrajectoryQuery>> queries_of;

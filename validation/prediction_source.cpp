@@ -49,7 +49,8 @@ PredictionSource::PredictionSource(const Dataset& d, std::vector<ModelPtr> model
     for (const auto& n : model_names())
       if (auto m = make_model(n); !m->expensive()) signature_.push_back(m);
   check_external_models(models_, d);
-  run_expensive(std::span(&fixed_, 1), true);  // the baseline runs and their ladders, as one campaign
+  // The baseline runs and their ladders, as one campaign.
+  run_expensive(std::span(&fixed_, 1), true, false, "the baseline: every condition without candidate effects");
 }
 
 bool PredictionSource::has_expensive() const {
@@ -389,7 +390,10 @@ void PredictionSource::prepare_signatures(std::span<const effects::EffectInfo* c
         lists.push_back(fixed_);
         lists.back().push_back(e->make(probe_strength(*e)));
       }
-    run_expensive(lists, false, true);
+    run_expensive(lists, false, true,
+                  fmt::format("the signatures: every condition without candidates and with each of the {} candidates the "
+                              "model runs itself, at its probe strength and at the signature quality where the model has one",
+                              lists.size() - 1));
   }
   std::vector<std::function<void()>> work;
   // The baselines first, slots created here: the maps are not touched while the runs go on.
@@ -414,11 +418,15 @@ void PredictionSource::prepare_signatures(std::span<const effects::EffectInfo* c
 }
 
 void PredictionSource::prepare_exact(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
-                                     int jobs) const {
+                                     int jobs, const std::string& why) const {
   const RunPart part = run_part(fx, strengths);
   if (part.fx.empty()) return;  // the baseline's runs, made already
   const analytical::EffectList list = with(part.fx, part.strengths);
-  run_expensive(std::span(&list, 1), false);  // the runs as one campaign; the predictions below read them
+  std::vector<std::string> at;
+  for (std::size_t i = 0; i < part.fx.size(); ++i) at.push_back(fmt::format("{} = {:.4g}", part.fx[i]->name, part.strengths[i]));
+  // The runs as one campaign; the predictions below read them.
+  run_expensive(std::span(&list, 1), false, false,
+                fmt::format("{}every condition with {}", why.empty() ? std::string() : why + ": ", fmt::join(at, ", ")));
   std::vector<std::function<void()>> work;
   const std::string key = strengths_key(part.fx, part.strengths);
   for (std::size_t k = 0; k < models_.size(); ++k)
@@ -441,7 +449,7 @@ const ModelPrediction& PredictionSource::cheap_base(std::size_t c, const ModelPt
 }
 
 void PredictionSource::run_expensive(std::span<const analytical::EffectList> lists, bool discretisation,
-                                     bool signature) const {
+                                     bool signature, const std::string& purpose) const {
   std::vector<ModelRun> runs;
   for (const auto& effects : lists)
     for (std::size_t c = 0; c < d_->stations.size(); ++c)
@@ -449,7 +457,7 @@ void PredictionSource::run_expensive(std::span<const analytical::EffectList> lis
         if (m->expensive() && m->runs_with_effects())
           runs.push_back({m, d_->stations[c], effects, d_->station_lines[c].file, d_->station_lines[c].line, signature,
                           discretisation});
-  run_models(runs, {"diagnose", threads_});
+  run_models(runs, {"diagnose", threads_, purpose});
 }
 
 }  // namespace chutelab::validation

@@ -70,8 +70,9 @@ class PredictionSource {
   // Runs every probe run the candidates need (`jobs` at a time), so that fits find them ready.
   void prepare_signatures(std::span<const effects::EffectInfo* const> candidates, int jobs) const;
   // Runs the expensive models at these strengths for every condition (`jobs` at a time).
+  // `why`: what the runs are for, said before they start with the strengths they run at.
   void prepare_exact(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths,
-                     int jobs) const;
+                     int jobs, const std::string& why = {}) const;
 
  private:
   analytical::EffectList with(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
@@ -94,7 +95,8 @@ class PredictionSource {
   // The expensive models' runs of every condition with each list of effects, as one campaign:
   // `discretisation` adds their ladders (the baseline), `signature` runs them at the signature
   // quality (probes).
-  void run_expensive(std::span<const analytical::EffectList> lists, bool discretisation, bool signature = false) const;
+  void run_expensive(std::span<const analytical::EffectList> lists, bool discretisation, bool signature,
+                     const std::string& purpose) const;
   const ModelPrediction& expensive_base(std::size_t condition, std::size_t model) const;
   const ModelPrediction& cheap_base(std::size_t condition, const ModelPtr& model) const;
   const ModelPrediction& expensive_probe(std::size_t condition, std::size_t model, const effects::EffectInfo& e) const;

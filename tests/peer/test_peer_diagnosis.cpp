@@ -58,6 +58,14 @@ BOOST_AUTO_TEST_CASE(flow_bias_found_in_peer_data) {
   const auto r = diagnose("liggghts-flowbias", out);
   BOOST_TEST_MESSAGE(r.out << r.err);
   BOOST_REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  // Each set of runs says what it is for before it starts (they take a minute each from empty).
+  for (const char* purpose : {"diagnose: the baseline: every condition without candidate effects (11 runs)",
+                              "diagnose: the signatures: every condition without candidates and with each of the 12",
+                              "diagnose: leading candidate 1, run for real to confirm its rank: every condition with "
+                              "mass_flow_bias = ",
+                              "diagnose: a point of mass_flow_bias's profile (its chi^2 from real runs): every condition "
+                              "with mass_flow_bias = "})
+    BOOST_TEST(r.err.find(purpose) != std::string::npos, purpose);
   const auto rows = singles(test::read_file(out / "diagnosis.csv"));
   BOOST_REQUIRE(!rows.empty());
   const Row& top = rows.front();
