@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "core/input_error.h"
 #include "effects/registry.h"
 #include "validation/misfit.h"
 #include "validation/strength_fit.h"
@@ -87,6 +88,41 @@ BOOST_AUTO_TEST_CASE(a_sampled_grid_lands_where_the_whole_grid_does) {
     BOOST_TEST(sampled.chi2 <= whole.chi2 + 0.01, name);
     BOOST_TEST(std::abs(sampled.uncertainty[0] / whole.uncertainty[0] - 1.0) < 0.05, name);
   }
+}
+
+// The residuals are taken per condition on the thread that predicted it (PredictionSource::visit):
+// they must be those read from the whole predictions kept, bit for bit, on two threads (200
+// conditions: 64 a thread and more), for every point and for a part's rows, and all infeasible
+// when a strength makes a condition impossible.
+BOOST_AUTO_TEST_CASE(residuals_per_condition_are_those_of_the_kept_predictions) {
+  const std::vector<ModelPtr> models = cheap();
+  SynthesizeOptions so;
+  so.seed = 6601;
+  const Dataset data = replica(many_conditions(200), models, so);
+  const Misfit m(data, models, {}, 2);
+  const std::vector<const effects::EffectInfo*> fx = {effects::find("air_drag"), effects::find("plate_friction")};
+  const std::vector<double> at = {0.6, 0.05};
+  const std::vector<double> kept = m.residuals_of(m.source().predict(fx, at));
+  const std::vector<double> visited = m.residuals(fx, at);
+  BOOST_REQUIRE_EQUAL(kept.size(), visited.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < kept.size(); ++i) differ += kept[i] != visited[i];
+  BOOST_TEST(differ == 0u);
+
+  const MisfitPart part = m.part({150, 3, 77, 3});
+  const std::vector<double> rows = m.residuals(fx, at, part);
+  BOOST_REQUIRE_EQUAL(rows.size(), part.rows.size());
+  BOOST_TEST(part.conditions == (std::vector<std::size_t>{3, 77, 150}), boost::test_tools::per_element());
+  for (std::size_t j = 0; j < rows.size(); ++j) BOOST_TEST(rows[j] == kept[part.rows[j]], j);
+
+  // A plate a metre nearer than recorded stands behind the pulley: no condition can be predicted,
+  // and every residual is the infeasible one.
+  const std::vector<const effects::EffectInfo*> plate = {effects::find("plate_distance")};
+  const std::vector<double> behind = {-1000.0};
+  BOOST_CHECK_THROW((void)m.source().predict(plate, behind), InputError);
+  std::size_t feasible = 0;
+  for (double r : m.residuals(plate, behind)) feasible += r != Misfit::kInfeasible;
+  BOOST_TEST(feasible == 0u);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
