@@ -47,6 +47,23 @@ double sd(const std::vector<double>& x) {
   return std::sqrt(s / static_cast<double>(x.size() - 1));
 }
 
+// The ratios of two series' block means (e.g. an impact point, moment / force), block by block: the
+// blocks both series have (a block with no finite sample is dropped from its series), a zero
+// denominator left out.
+Blocks ratio_blocks(const std::vector<double>& t, const std::vector<double>& num, const std::vector<double>& den,
+                    double start, double end, double block) {
+  const Blocks bn = make_blocks(t, num, nullptr, start, end, block), bd = make_blocks(t, den, nullptr, start, end, block);
+  Blocks r;
+  if (bn.mean.size() != bd.mean.size()) return r;
+  for (std::size_t i = 0; i < bn.mean.size(); ++i) {
+    if (bn.start[i] != bd.start[i] || bd.mean[i] == 0.0) continue;
+    r.mean.push_back(bn.mean[i] / bd.mean[i]);
+    r.weight.push_back(1.0);
+    r.start.push_back(bn.start[i]);
+  }
+  return r;
+}
+
 }  // namespace
 
 SteadyWindow detect_steady(const std::vector<double>& t, const std::vector<double>& v, const SteadyParams& p) {
@@ -108,13 +125,8 @@ Estimate block_ratio(const std::vector<double>& t, const std::vector<double>& nu
   if (!a.ok() || !b.ok() || b.value == 0.0) return e;
   e.value = a.value / b.value;
   e.n = a.n;
-  const Blocks bn = make_blocks(t, num, nullptr, start, end, block), bd = make_blocks(t, den, nullptr, start, end, block);
-  if (bn.mean.size() >= 2 && bn.mean.size() == bd.mean.size()) {
-    std::vector<double> r;
-    for (std::size_t i = 0; i < bn.mean.size(); ++i)
-      if (bd.mean[i] != 0.0) r.push_back(bn.mean[i] / bd.mean[i]);
-    if (r.size() >= 2) e.se = sd(r) / std::sqrt(static_cast<double>(r.size()));
-  }
+  const Blocks r = ratio_blocks(t, num, den, start, end, block);
+  if (r.mean.size() >= 2) e.se = sd(r.mean) / std::sqrt(static_cast<double>(r.mean.size()));
   return e;
 }
 
@@ -159,16 +171,7 @@ WindowTrend window_trend(const std::vector<double>& t, const std::vector<double>
 
 WindowTrend window_trend_ratio(const std::vector<double>& t, const std::vector<double>& num,
                                const std::vector<double>& den, double start, double end, double block) {
-  const Blocks bn = make_blocks(t, num, nullptr, start, end, block), bd = make_blocks(t, den, nullptr, start, end, block);
-  Blocks r;
-  if (bn.mean.size() == bd.mean.size())
-    for (std::size_t i = 0; i < bn.mean.size(); ++i) {
-      if (bn.start[i] != bd.start[i] || bd.mean[i] == 0.0) continue;
-      r.mean.push_back(bn.mean[i] / bd.mean[i]);
-      r.weight.push_back(1.0);
-      r.start.push_back(bn.start[i]);
-    }
-  return trend_of(r, start, end);
+  return trend_of(ratio_blocks(t, num, den, start, end, block), start, end);
 }
 
 bool drifting(const std::vector<double>& t, const std::vector<double>& v, double start, double end, double block,
