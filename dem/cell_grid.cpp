@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "dem/team.h"
+
 namespace chutelab::dem {
 
 void CellGrid::build(const Particles& p, double skin, int nt, std::vector<std::int32_t>& order) {
@@ -42,8 +44,10 @@ void CellGrid::build(const Particles& p, double skin, int nt, std::vector<std::i
   const std::int64_t ncell = cells();
   cell.assign(n, 0);
   cell_start.assign(static_cast<std::size_t>(ncell) + 1, 0);
-#pragma omp parallel for num_threads(nt) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) cell[i] = static_cast<std::int32_t>(cell_of(p.x[i]));
+  on_team(nt, [&] {
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) cell[i] = static_cast<std::int32_t>(cell_of(p.x[i]));
+  });
   for (std::size_t i = 0; i < n; ++i) ++cell_start[static_cast<std::size_t>(cell[i]) + 1];
   for (std::int64_t c = 0; c < ncell; ++c) cell_start[static_cast<std::size_t>(c) + 1] += cell_start[static_cast<std::size_t>(c)];
   order.resize(n);

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "dem/world.h"
+#include "dem/team.h"
 
 namespace chutelab::dem {
 
@@ -70,11 +71,13 @@ void World::take_reference(int nt) {
     const Vec3* __restrict px = p_.x.data();
     Vec3* __restrict xr = contacts_.reference.x.data();
     std::int32_t* __restrict im = contacts_.reference.index_map.data();
-#pragma omp parallel for num_threads(nt) schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      im[i] = static_cast<std::int32_t>(i);
-      xr[i] = px[i];
-    }
+    on_team(nt, [&] {
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        im[i] = static_cast<std::int32_t>(i);
+        xr[i] = px[i];
+      }
+    });
   }
   contacts_.pairs.measure_gaps(contacts_.reference.x.data(), p_.radius.data(), n, nt);
   for (std::size_t k = 0; k < walls_.size(); ++k) {

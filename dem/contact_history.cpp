@@ -2,6 +2,7 @@
 
 #include "dem/neighbor_list.h"
 #include "dem/storage.h"
+#include "dem/team.h"
 #include "dem/walls/wall_contact_list.h"
 
 namespace chutelab::dem {
@@ -20,21 +21,25 @@ void compact_touching(const std::vector<std::int32_t>& begin, const std::vector<
     const std::int32_t* __restrict rb = begin.data();
     const std::uint8_t* __restrict to = touch.data();
     std::int32_t* __restrict ob = out_begin.data();
-#pragma omp parallel for num_threads(nt) schedule(static)
-    for (std::size_t r = 0; r < rows; ++r) {
-      std::int32_t c = 0;
-      for (auto e = rb[r]; e < rb[r + 1]; ++e) c += to[static_cast<std::size_t>(e)];
-      ob[r + 1] = c;
-    }
+    on_team(nt, [&] {
+#pragma omp for schedule(static)
+      for (std::size_t r = 0; r < rows; ++r) {
+        std::int32_t c = 0;
+        for (auto e = rb[r]; e < rb[r + 1]; ++e) c += to[static_cast<std::size_t>(e)];
+        ob[r + 1] = c;
+      }
+    });
   }
   for (std::size_t r = 0; r < rows; ++r) out_begin[r + 1] += out_begin[r];
   size(static_cast<std::size_t>(out_begin[rows]));
-#pragma omp parallel for num_threads(nt) schedule(static)
-  for (std::size_t r = 0; r < rows; ++r) {
-    auto to = static_cast<std::size_t>(out_begin[r]);
-    for (auto e = begin[r]; e < begin[r + 1]; ++e)
-      if (touch[static_cast<std::size_t>(e)]) copy(static_cast<std::size_t>(e), to++);
-  }
+  on_team(nt, [&] {
+#pragma omp for schedule(static)
+    for (std::size_t r = 0; r < rows; ++r) {
+      auto to = static_cast<std::size_t>(out_begin[r]);
+      for (auto e = begin[r]; e < begin[r + 1]; ++e)
+        if (touch[static_cast<std::size_t>(e)]) copy(static_cast<std::size_t>(e), to++);
+    }
+  });
 }
 
 }  // namespace

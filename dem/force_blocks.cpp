@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include "dem/storage.h"
+#include "dem/team.h"
 
 namespace chutelab::dem {
 
@@ -38,14 +39,16 @@ void ForceBlocks::layout(std::size_t n, std::size_t count, int threads, const st
     }
     first_row_[b] = lo;
   }
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::size_t b = 0; b < count; ++b) {
-    const std::size_t r0 = first_row_[b], r1 = first_row_[b + 1];
-    std::size_t reach = r1;
-    for (auto s = row_begin[r0]; s < row_begin[r1]; ++s)
-      reach = std::max(reach, static_cast<std::size_t>(neighbor[static_cast<std::size_t>(s)]) + 1);
-    reach_end_[b] = reach;
-  }
+  on_team(threads, [&] {
+#pragma omp for schedule(static)
+    for (std::size_t b = 0; b < count; ++b) {
+      const std::size_t r0 = first_row_[b], r1 = first_row_[b + 1];
+      std::size_t reach = r1;
+      for (auto s = row_begin[r0]; s < row_begin[r1]; ++s)
+        reach = std::max(reach, static_cast<std::size_t>(neighbor[static_cast<std::size_t>(s)]) + 1);
+      reach_end_[b] = reach;
+    }
+  });
   for (std::size_t b = 0; b < count; ++b) offset_[b + 1] = offset_[b] + (reach_end_[b] - first_row_[b]);
   first_reaching_.assign(count, 0);
   for (std::size_t b = 0; b < count; ++b) {
@@ -61,12 +64,14 @@ void ForceBlocks::layout(std::size_t n, std::size_t count, int threads, const st
   resize_for_overwrite(torque_, offset_[count]);
   // Zero between force evaluations (the evaluation that reads an entry clears it), each block by the
   // thread that takes it in the pair pass while the cut between threads is even.
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::size_t b = 0; b < count; ++b) {
-    const auto lo = static_cast<std::ptrdiff_t>(offset_[b]), hi = static_cast<std::ptrdiff_t>(offset_[b + 1]);
-    std::fill(force_.begin() + lo, force_.begin() + hi, Vec3::Zero());
-    std::fill(torque_.begin() + lo, torque_.begin() + hi, Vec3::Zero());
-  }
+  on_team(threads, [&] {
+#pragma omp for schedule(static)
+    for (std::size_t b = 0; b < count; ++b) {
+      const auto lo = static_cast<std::ptrdiff_t>(offset_[b]), hi = static_cast<std::ptrdiff_t>(offset_[b + 1]);
+      std::fill(force_.begin() + lo, force_.begin() + hi, Vec3::Zero());
+      std::fill(torque_.begin() + lo, torque_.begin() + hi, Vec3::Zero());
+    }
+  });
 }
 
 void ForceBlocks::reduce(std::size_t ob, Vec3* f, Vec3* t) {

@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include "dem/pair_loop.h"
+#include "dem/team.h"
 #include "dem/wall_forces.h"
 #include "dem/world.h"
 
@@ -60,8 +61,7 @@ void World::compute_forces_impl(const BlockCallback& after_block) {
   ThreadCut& cut = blocks_.cut();
   cut.fit(static_cast<std::size_t>(nt), nblocks);
   const bool timed = nt > 1;
-#pragma omp parallel num_threads(nt)
-  {
+  on_team(nt, [&] {
     const auto thread = static_cast<std::size_t>(omp_get_thread_num());
     const auto [b0, b1] = blocks_.thread_blocks();
     const auto [r0, r1] = blocks_.thread_rows(n);
@@ -81,7 +81,7 @@ void World::compute_forces_impl(const BlockCallback& after_block) {
     const Clock::time_point c2 = timed ? Clock::now() : Clock::time_point{};
     for (std::size_t b = b0; b < b1; ++b) finish_block(b, thread, after_block);
     if (timed) cut.busy[thread] += std::chrono::duration<double>(c1 - c0 + (Clock::now() - c2)).count();
-  }
+  });
   if (timed) cut.step();
   wall_loads_.sum_into(walls_);
 }

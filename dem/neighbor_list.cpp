@@ -13,6 +13,7 @@
 #endif
 
 #include "dem/storage.h"
+#include "dem/team.h"
 
 namespace chutelab::dem {
 namespace {
@@ -175,8 +176,7 @@ void NeighborList::build(const CellGrid& grid, const Particles& p, double skin, 
   if (row_buffers_.size() < static_cast<std::size_t>(nt)) row_buffers_.resize(static_cast<std::size_t>(nt));
   std::vector<std::size_t> block(static_cast<std::size_t>(nt) + 1, 0);
   // One pass: each thread fills a contiguous block of rows into its own buffer.
-#pragma omp parallel num_threads(nt)
-  {
+  on_team(nt, [&] {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const auto nth = static_cast<std::size_t>(omp_get_num_threads());
     const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
@@ -206,7 +206,7 @@ void NeighborList::build(const CellGrid& grid, const Particles& p, double skin, 
     for (std::size_t i = lo; i < hi; ++i) row_begin[i] = static_cast<std::int32_t>(block[t]) + local_start[i];
     std::copy(out.begin(), out.end(), neighbor.begin() + static_cast<std::ptrdiff_t>(block[t]));
     row_buffers_[t] = std::move(out);
-  }
+  });
   row_begin[n] = static_cast<std::int32_t>(neighbor.size());
   const std::size_t nslots = neighbor.size();
   resize_for_overwrite(shear, nslots);
@@ -215,21 +215,25 @@ void NeighborList::build(const CellGrid& grid, const Particles& p, double skin, 
   Vec3* __restrict sh = shear.data();
   Vec3* __restrict ro = roll.data();
   std::uint8_t* __restrict to = touch.data();
-#pragma omp parallel for num_threads(nt) schedule(static)
-  for (std::size_t k = 0; k < nslots; ++k) {
-    sh[k].setZero();
-    ro[k].setZero();
-    to[k] = 0;
-  }
+  on_team(nt, [&] {
+#pragma omp for schedule(static)
+    for (std::size_t k = 0; k < nslots; ++k) {
+      sh[k].setZero();
+      ro[k].setZero();
+      to[k] = 0;
+    }
+  });
   index_slots(nt);
 }
 
 void NeighborList::index_slots(int threads) {
   resize_for_overwrite(slot_row, neighbor.size());
   const std::size_t rows = row_begin.empty() ? 0 : row_begin.size() - 1;
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::size_t i = 0; i < rows; ++i)
-    std::fill(slot_row.begin() + row_begin[i], slot_row.begin() + row_begin[i + 1], static_cast<std::int32_t>(i));
+  on_team(threads, [&] {
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < rows; ++i)
+      std::fill(slot_row.begin() + row_begin[i], slot_row.begin() + row_begin[i + 1], static_cast<std::int32_t>(i));
+  });
 }
 
 // The gaps need the list's slot_row (index_slots) and the positions max_disp_ is measured from.
@@ -253,20 +257,22 @@ void NeighborList::measure_gaps([[maybe_unused]] const Vec3* x_ref, [[maybe_unus
   float* __restrict out = gap.data();
   const __m512d eps = _mm512_set1_pd(gap_eps), zero = _mm512_setzero_pd();
   const std::size_t groups = (nslots + 7) / 8;
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::size_t g = 0; g < groups; ++g) {
-    const std::size_t s = 8 * g, rem = nslots - s;
-    const auto lanes = static_cast<__mmask8>(rem >= 8 ? 0xFFu : (1u << rem) - 1u);
-    const auto gather = [&](__m256i idx, const double* base) { return _mm512_mask_i32gather_pd(zero, lanes, idx, base, 8); };
-    const __m256i vi = _mm256_maskz_loadu_epi32(lanes, rows + s), vj = _mm256_maskz_loadu_epi32(lanes, nb + s);
-    const __m256i i3 = _mm256_add_epi32(vi, _mm256_add_epi32(vi, vi)), j3 = _mm256_add_epi32(vj, _mm256_add_epi32(vj, vj));
-    const __m512d dx = _mm512_sub_pd(gather(j3, xb), gather(i3, xb));
-    const __m512d dy = _mm512_sub_pd(gather(j3, xb + 1), gather(i3, xb + 1));
-    const __m512d dz = _mm512_sub_pd(gather(j3, xb + 2), gather(i3, xb + 2));
-    const __m512d d = _mm512_maskz_sqrt_pd(lanes, _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz)));
-    const __m512d gd = _mm512_sub_pd(_mm512_sub_pd(d, _mm512_add_pd(gather(vi, radius), gather(vj, radius))), eps);
-    _mm256_mask_storeu_ps(out + s, lanes, _mm512_maskz_cvt_roundpd_ps(lanes, gd, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
-  }
+  on_team(threads, [&] {
+#pragma omp for schedule(static)
+    for (std::size_t g = 0; g < groups; ++g) {
+      const std::size_t s = 8 * g, rem = nslots - s;
+      const auto lanes = static_cast<__mmask8>(rem >= 8 ? 0xFFu : (1u << rem) - 1u);
+      const auto gather = [&](__m256i idx, const double* base) { return _mm512_mask_i32gather_pd(zero, lanes, idx, base, 8); };
+      const __m256i vi = _mm256_maskz_loadu_epi32(lanes, rows + s), vj = _mm256_maskz_loadu_epi32(lanes, nb + s);
+      const __m256i i3 = _mm256_add_epi32(vi, _mm256_add_epi32(vi, vi)), j3 = _mm256_add_epi32(vj, _mm256_add_epi32(vj, vj));
+      const __m512d dx = _mm512_sub_pd(gather(j3, xb), gather(i3, xb));
+      const __m512d dy = _mm512_sub_pd(gather(j3, xb + 1), gather(i3, xb + 1));
+      const __m512d dz = _mm512_sub_pd(gather(j3, xb + 2), gather(i3, xb + 2));
+      const __m512d d = _mm512_maskz_sqrt_pd(lanes, _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz)));
+      const __m512d gd = _mm512_sub_pd(_mm512_sub_pd(d, _mm512_add_pd(gather(vi, radius), gather(vj, radius))), eps);
+      _mm256_mask_storeu_ps(out + s, lanes, _mm512_maskz_cvt_roundpd_ps(lanes, gd, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+    }
+  });
 #else
   (void)n;
   gap.clear();
@@ -277,27 +283,29 @@ void NeighborList::measure_gaps([[maybe_unused]] const Vec3* x_ref, [[maybe_unus
 void NeighborList::carry_history(const TouchingHistory& saved, const std::vector<std::int32_t>& map, int threads) {
   // Each old contact lands in its own new slot, so the rows can be carried over in parallel.
   const std::size_t old_rows = saved.pair_begin.empty() ? 0 : saved.pair_begin.size() - 1;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 512)
-  for (std::size_t io = 0; io < old_rows; ++io) {
-    const std::int32_t a0 = io < map.size() ? map[io] : -1;
-    if (a0 < 0) continue;
-    for (auto s = saved.pair_begin[io]; s < saved.pair_begin[io + 1]; ++s) {
-      const auto so = static_cast<std::size_t>(s);
-      const auto jo = static_cast<std::size_t>(saved.pair_other[so]);
-      const std::int32_t b0 = jo < map.size() ? map[jo] : -1;
-      if (b0 < 0) continue;
-      const std::int32_t a = std::min(a0, b0), b = std::max(a0, b0);
-      const double sign = a0 < b0 ? 1.0 : -1.0;  // history is i's view; swapping i and j negates it
-      const auto first = neighbor.begin() + row_begin[static_cast<std::size_t>(a)];
-      const auto last = neighbor.begin() + row_begin[static_cast<std::size_t>(a) + 1];
-      const auto it = std::lower_bound(first, last, b);
-      if (it == last || *it != b) continue;
-      const auto sn = static_cast<std::size_t>(it - neighbor.begin());
-      shear[sn] = sign * saved.pair_shear[so];
-      roll[sn] = sign * saved.pair_roll[so];
-      touch[sn] = 1;
+  on_team(threads, [&] {
+#pragma omp for schedule(dynamic, 512)
+    for (std::size_t io = 0; io < old_rows; ++io) {
+      const std::int32_t a0 = io < map.size() ? map[io] : -1;
+      if (a0 < 0) continue;
+      for (auto s = saved.pair_begin[io]; s < saved.pair_begin[io + 1]; ++s) {
+        const auto so = static_cast<std::size_t>(s);
+        const auto jo = static_cast<std::size_t>(saved.pair_other[so]);
+        const std::int32_t b0 = jo < map.size() ? map[jo] : -1;
+        if (b0 < 0) continue;
+        const std::int32_t a = std::min(a0, b0), b = std::max(a0, b0);
+        const double sign = a0 < b0 ? 1.0 : -1.0;  // history is i's view; swapping i and j negates it
+        const auto first = neighbor.begin() + row_begin[static_cast<std::size_t>(a)];
+        const auto last = neighbor.begin() + row_begin[static_cast<std::size_t>(a) + 1];
+        const auto it = std::lower_bound(first, last, b);
+        if (it == last || *it != b) continue;
+        const auto sn = static_cast<std::size_t>(it - neighbor.begin());
+        shear[sn] = sign * saved.pair_shear[so];
+        roll[sn] = sign * saved.pair_roll[so];
+        touch[sn] = 1;
+      }
     }
-  }
+  });
 }
 
 }  // namespace chutelab::dem

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dem/types.h"
+#include "dem/team.h"
 
 namespace chutelab::dem {
 
@@ -92,8 +93,10 @@ struct Particles {
     T* __restrict out = spare.data();
     const T* __restrict in = a.data();
     const std::int32_t* __restrict ord = order.data();
-#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
-    for (std::size_t k = 0; k < n; ++k) out[k] = in[static_cast<std::size_t>(ord[k])];
+    on_team(threads, [&] {
+#pragma omp for schedule(static)
+      for (std::size_t k = 0; k < n; ++k) out[k] = in[static_cast<std::size_t>(ord[k])];
+    });
     a.swap(spare);
   }
 };

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "dem/team.h"
 #include "dem/world.h"
 
 namespace chutelab::dem {
@@ -71,8 +72,7 @@ void World::remove_behind_sinks() {
 void World::release_held() {
   const std::size_t np = p_.size();
   std::size_t released = 0;
-#pragma omp parallel num_threads(thread_count()) reduction(+ : released)
-  {
+  auto release_rows = [&](std::size_t& count) {
     const auto [lo, hi] = blocks_.thread_rows(np);
     for (const std::int32_t h : held_between(lo, hi)) {
       const auto i = static_cast<std::size_t>(h);
@@ -82,8 +82,15 @@ void World::release_held() {
       if (!through) continue;
       p_.v[i] = in.velocity;
       p_.held_by[i] = -1;
-      ++released;
+      ++count;
     }
+  };
+  const int nt = thread_count();
+  if (runs_alone(nt)) {
+    release_rows(released);
+  } else {
+#pragma omp parallel num_threads(nt) reduction(+ : released)
+    release_rows(released);
   }
   if (released > 0)  // the released ones now have held_by = -1
     std::erase_if(sources_.held, [&](std::int32_t i) { return p_.held_by[static_cast<std::size_t>(i)] < 0; });

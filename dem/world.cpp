@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include "core/input_error.h"
+#include "dem/team.h"
 
 namespace chutelab::dem {
 namespace {
@@ -344,7 +345,13 @@ std::pair<std::size_t, double> World::verlet_pass(const VerletPass& pass, double
   const StateLimits limits = state_limits();
   const std::size_t np = p_.size();
   std::size_t first_bad = np;
-#pragma omp parallel num_threads(thread_count()) reduction(min : first_bad) reduction(max : maxd2)
+  const int nt = thread_count();
+  if (runs_alone(nt)) {
+    const auto [lo, hi] = blocks_.thread_rows(np);
+    verlet_rows(state, pass, limits, lo, hi, first_bad, maxd2);
+    return {first_bad, maxd2};
+  }
+#pragma omp parallel num_threads(nt) reduction(min : first_bad) reduction(max : maxd2)
   {
     const auto [lo, hi] = blocks_.thread_rows(np);
     verlet_rows(state, pass, limits, lo, hi, first_bad, maxd2);

@@ -7,6 +7,7 @@
 #include <omp.h>
 
 #include "dem/storage.h"
+#include "dem/team.h"
 #include "dem/walls/closest_point.h"
 
 namespace chutelab::dem {
@@ -89,8 +90,7 @@ void WallContactList::build(const CellGrid& grid, const Particles& p, const std:
                             int nt) {
   const std::size_t n = p.size();
   std::vector<std::vector<Candidate>> found(static_cast<std::size_t>(nt));
-#pragma omp parallel num_threads(nt)
-  {
+  on_team(nt, [&] {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const auto nth = static_cast<std::size_t>(omp_get_num_threads());
     std::vector<Candidate> local;  // on this thread's stack while it grows (see NeighborList::build)
@@ -105,7 +105,7 @@ void WallContactList::build(const CellGrid& grid, const Particles& p, const std:
       wall_candidates(w, static_cast<std::int32_t>(wi), grid, p, wall_skin, t, nth, local);
     }
     found[t] = std::move(local);
-  }
+  });
   // The thread buffers hold, per thread, all walls in order; joined wall by wall they give the
   // serial order. Per particle the (wall, element) pairs must ascend: within one wall a particle's
   // entries come from ascending triangle ranges, so a stable counting sort by particle over the
@@ -148,23 +148,25 @@ void WallContactList::build(const CellGrid& grid, const Particles& p, const std:
 void WallContactList::carry_history(const TouchingHistory& saved, const std::vector<std::int32_t>& map, int threads) {
   // Likewise each old particle's wall entries go to its own new particle's entries.
   const std::size_t old_owners = saved.wall_begin.empty() ? 0 : saved.wall_begin.size() - 1;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 512)
-  for (std::size_t io = 0; io < old_owners; ++io) {
-    const std::int32_t a = io < map.size() ? map[io] : -1;
-    if (a < 0) continue;
-    for (auto e = saved.wall_begin[io]; e < saved.wall_begin[io + 1]; ++e) {
-      const auto eo = static_cast<std::size_t>(e);
-      for (auto k = begin[static_cast<std::size_t>(a)]; k < begin[static_cast<std::size_t>(a) + 1]; ++k) {
-        const auto kn = static_cast<std::size_t>(k);
-        if (wall[kn] == saved.wall_wall[eo] && element[kn] == saved.wall_element[eo]) {
-          shear[kn] = saved.wall_shear[eo];
-          roll[kn] = saved.wall_roll[eo];
-          touch[kn] = 1;
-          break;
+  on_team(threads, [&] {
+#pragma omp for schedule(dynamic, 512)
+    for (std::size_t io = 0; io < old_owners; ++io) {
+      const std::int32_t a = io < map.size() ? map[io] : -1;
+      if (a < 0) continue;
+      for (auto e = saved.wall_begin[io]; e < saved.wall_begin[io + 1]; ++e) {
+        const auto eo = static_cast<std::size_t>(e);
+        for (auto k = begin[static_cast<std::size_t>(a)]; k < begin[static_cast<std::size_t>(a) + 1]; ++k) {
+          const auto kn = static_cast<std::size_t>(k);
+          if (wall[kn] == saved.wall_wall[eo] && element[kn] == saved.wall_element[eo]) {
+            shear[kn] = saved.wall_shear[eo];
+            roll[kn] = saved.wall_roll[eo];
+            touch[kn] = 1;
+            break;
+          }
         }
       }
     }
-  }
+  });
 
 }
 
