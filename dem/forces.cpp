@@ -66,12 +66,11 @@ void World::compute_forces_impl(const BlockCallback& after_block) {
     const auto [b0, b1] = blocks_.thread_blocks();
     const auto [r0, r1] = blocks_.thread_rows(n);
     const Clock::time_point c0 = timed ? Clock::now() : Clock::time_point{};
-    {
-      WallContactChunks<Model> chunks(wall_arrays);  // runs what is left in its chunks as it goes
-      for (const std::int32_t* o = std::lower_bound(owners, owners + n_owners, static_cast<std::int32_t>(r0));
-           o < owners + n_owners && static_cast<std::size_t>(*o) < r1; ++o)
-        particle_wall_forces<Model>(chunks, wall_arrays, static_cast<std::size_t>(*o));
-    }
+    WallContactChunks<Model> chunks(wall_arrays);
+    for (const std::int32_t* o = std::lower_bound(owners, owners + n_owners, static_cast<std::int32_t>(r0));
+         o < owners + n_owners && static_cast<std::size_t>(*o) < r1; ++o)
+      particle_wall_forces<Model>(chunks, wall_arrays, static_cast<std::size_t>(*o));
+    chunks.finish();
     for (std::size_t b = b0; b < b1; ++b)
       pair_loop::block_pairs<Model>(pairs, blocks_.first_row(b), blocks_.first_row(b + 1), blocks_.forces(b),
                                     blocks_.torques(b));

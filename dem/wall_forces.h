@@ -112,7 +112,9 @@ class WallContactChunks {
   explicit WallContactChunks(const WallForceArrays<typename Model::Coeffs>& a) : a_(a) {}
   WallContactChunks(const WallContactChunks&) = delete;
   WallContactChunks& operator=(const WallContactChunks&) = delete;
-  ~WallContactChunks() {
+
+  // Runs what is left in the chunks; the list's entries are final after it.
+  void finish() {
     for (std::size_t k = 0; k < kSlots; ++k) flush(k);
   }
 
