@@ -4,6 +4,7 @@
 #define BOOST_TEST_MODULE dem_runtime
 #include <boost/test/unit_test.hpp>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -12,9 +13,12 @@
 #include <sstream>
 #include <unistd.h>
 
+#include <omp.h>
+
 #include "core/input_error.h"
 #include "dem/io/csv.h"
 #include "dem/io/vtk.h"
+#include "dem/team.h"
 #include "dem/world.h"
 #include "helpers.h"
 
@@ -282,6 +286,45 @@ BOOST_AUTO_TEST_CASE(body_force_hook_gives_terminal_speed) {
   w.step(20000);  // 2 s, ten time constants m/c
   const double vt = sphere_mass(0.01, 1000) * 9.81 / c;
   BOOST_TEST(std::abs(-w.particles().v[0].z() / vt - 1) < 1e-3);
+}
+
+// dem/team.h: a pass of one thread runs on the caller without entering an OpenMP region (libgomp's
+// futex wake at the end of each region and barrier is what it saves); a pass of two runs on a team
+// of two, whose barrier holds; and inside a region someone else opened, a pass of one keeps a region
+// of its own, so that an orphaned barrier in it cannot bind to the enclosing team.
+BOOST_AUTO_TEST_CASE(a_team_of_one_runs_outside_openmp) {
+  int calls = 0, level = -1, thread = -1, threads = 0;
+  on_team(1, [&] {
+    ++calls;
+    level = omp_get_level();
+    thread = omp_get_thread_num();
+    threads = omp_get_num_threads();
+#pragma omp barrier
+  });
+  BOOST_TEST(calls == 1);
+  BOOST_TEST(level == 0);
+  BOOST_TEST(thread == 0);
+  BOOST_TEST(threads == 1);
+
+  std::atomic<int> arrived{0}, seen_after_barrier{0};
+  on_team(2, [&] {
+    arrived.fetch_add(1);
+#pragma omp barrier
+    seen_after_barrier.fetch_add(arrived.load());
+  });
+  BOOST_TEST(arrived.load() == 2);
+  BOOST_TEST(seen_after_barrier.load() == 4);  // each thread saw both arrive before the barrier let it go
+
+  int inner_level = -1;
+#pragma omp parallel num_threads(2)
+  {
+#pragma omp single
+    on_team(1, [&] {
+      inner_level = omp_get_level();
+#pragma omp barrier
+    });
+  }
+  BOOST_TEST(inner_level == 2);
 }
 
 // Checkpoint/restart: a run interrupted by a checkpoint and restored in a freshly built scene continues
