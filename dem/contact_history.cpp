@@ -1,5 +1,7 @@
 #include "dem/contact_history.h"
 
+#include <algorithm>
+
 #include "dem/neighbor_list.h"
 #include "dem/storage.h"
 #include "dem/team.h"
@@ -10,7 +12,7 @@ namespace {
 
 // The touching entries of a list in CSR form (row `begin`, per-entry `touch`), compacted into
 // `out_begin` by the same rows: count per row, prefix sum, then `size(total)` and `copy(from, to)`
-// for each touching entry, every row its own range (rows in parallel, entry order kept).
+// for each touching entry, in entry order (touch is 0 or 1).
 template <class Size, class Copy>
 void compact_touching(const std::vector<std::int32_t>& begin, const std::vector<std::uint8_t>& touch, int nt,
                       std::vector<std::int32_t>& out_begin, Size size, Copy copy) {
@@ -32,12 +34,29 @@ void compact_touching(const std::vector<std::int32_t>& begin, const std::vector<
   }
   for (std::size_t r = 0; r < rows; ++r) out_begin[r + 1] += out_begin[r];
   size(static_cast<std::size_t>(out_begin[rows]));
+  if (rows == 0) return;
+  // Each thread's rows are one range of entries and one range of the output, so the copy runs over
+  // entries, not rows. A batch's touching entries are listed first (no branch) and copied after: the
+  // copies' loads are scattered over the whole list, and without a mispredicted branch between them
+  // they overlap instead of waiting one after the other (on a station run this copy was 5 % of the
+  // time, almost all of it the loads' misses).
   on_team(nt, [&] {
-#pragma omp for schedule(static)
-    for (std::size_t r = 0; r < rows; ++r) {
-      auto to = static_cast<std::size_t>(out_begin[r]);
-      for (auto e = begin[r]; e < begin[r + 1]; ++e)
-        if (touch[static_cast<std::size_t>(e)]) copy(static_cast<std::size_t>(e), to++);
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto team = static_cast<std::size_t>(omp_get_num_threads());
+    const std::size_t r0 = rows * t / team, r1 = rows * (t + 1) / team;
+    auto to = static_cast<std::size_t>(out_begin[r0]);
+    const auto e1 = static_cast<std::size_t>(begin[r1]);
+    const std::uint8_t* __restrict tb = touch.data();
+    constexpr std::size_t kBatch = 256;
+    std::size_t listed[kBatch];
+    for (auto b = static_cast<std::size_t>(begin[r0]); b < e1; b += kBatch) {
+      const std::size_t end = std::min(b + kBatch, e1);
+      std::size_t m = 0;
+      for (std::size_t e = b; e < end; ++e) {
+        listed[m] = e;
+        m += tb[e];
+      }
+      for (std::size_t k = 0; k < m; ++k) copy(listed[k], to++);
     }
   });
 }
