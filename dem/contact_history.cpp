@@ -44,7 +44,7 @@ void compact_touching(const std::vector<std::int32_t>& begin, const std::vector<
   on_team(nt, [&] {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const auto team = static_cast<std::size_t>(omp_get_num_threads());
-    const std::size_t r0 = rows * t / team, r1 = rows * (t + 1) / team;
+    const auto [r0, r1] = even_share(rows, t, team);
     auto to = static_cast<std::size_t>(out_begin[r0]);
     const auto e1 = static_cast<std::size_t>(begin[r1]);
     const std::uint8_t* __restrict tb = touch.data();

@@ -119,7 +119,7 @@ std::pair<std::size_t, std::size_t> ForceBlocks::thread_rows(std::size_t n) cons
   const auto t = static_cast<std::size_t>(omp_get_thread_num());
   const auto nt = static_cast<std::size_t>(omp_get_num_threads());
   const std::size_t nb = count();
-  if (nb == 0) return {n * t / nt, n * (t + 1) / nt};
+  if (nb == 0) return even_share(n, t, nt);
   const auto [b0, b1] = cut_.blocks(t, nt, nb);
   return {std::min(first_row_[b0], n), b1 == nb ? n : std::min(first_row_[b1], n)};
 }
@@ -134,7 +134,7 @@ void ThreadCut::fit(std::size_t nt, std::size_t blocks) {
 
 std::pair<std::size_t, std::size_t> ThreadCut::blocks(std::size_t t, std::size_t nt, std::size_t nblocks) const {
   if (at.size() == nt + 1 && at.back() == nblocks) return {at[t], at[t + 1]};
-  return {nblocks * t / nt, nblocks * (t + 1) / nt};
+  return even_share(nblocks, t, nt);
 }
 
 // A block moves to the neighbouring thread only when the busier of the two would stay busier after

@@ -179,7 +179,7 @@ void NeighborList::build(const CellGrid& grid, const Particles& p, double skin, 
   on_team(nt, [&] {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const auto nth = static_cast<std::size_t>(omp_get_num_threads());
-    const std::size_t lo = n * t / nth, hi = n * (t + 1) / nth;
+    const auto [lo, hi] = even_share(n, t, nth);
     // The buffer is moved to this thread's stack while it grows: the vector objects of all threads
     // share a cache line, and each row's resize wrote it, so it went back and forth between the
     // cores at every row (bench bed, 2 threads: the search took as long as on one).

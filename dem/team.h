@@ -2,6 +2,9 @@
 // How the engine's passes run on a team of threads (OpenMP), and when they run without one.
 #include <omp.h>
 
+#include <cstddef>
+#include <utility>
+
 namespace chutelab::dem {
 
 // Whether a pass asked for nt threads runs on the calling thread, outside any OpenMP region.
@@ -22,6 +25,12 @@ void on_team(int nt, F&& body) {
   }
 #pragma omp parallel num_threads(nt)
   body();
+}
+
+// Thread t's even share [first, last) of n items cut among nt threads. The cut depends only on
+// (n, t, nt), so passes that cut the same n the same way hand each thread the same items.
+inline std::pair<std::size_t, std::size_t> even_share(std::size_t n, std::size_t t, std::size_t nt) {
+  return {n * t / nt, n * (t + 1) / nt};
 }
 
 }  // namespace chutelab::dem

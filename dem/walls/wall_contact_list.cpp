@@ -53,8 +53,8 @@ void wall_candidates(const Wall& w, std::int32_t wi, const CellGrid& grid, const
   const std::size_t n = p.size();
   const double reach = grid.rmax + wall_skin;
   if (const auto* m = std::get_if<TriangleMesh>(&w.current)) {
-    const std::size_t nt_all = m->triangles.size();
-    for (std::size_t tr = nt_all * t / nth; tr < nt_all * (t + 1) / nth; ++tr) {
+    const auto [first, last] = even_share(m->triangles.size(), t, nth);
+    for (std::size_t tr = first; tr < last; ++tr) {
       Vec3 tlo = m->vertices[static_cast<std::size_t>(m->triangles[tr][0])], thi = tlo;
       for (int k = 1; k < 3; ++k) {
         tlo = tlo.cwiseMin(m->vertices[static_cast<std::size_t>(m->triangles[tr][static_cast<std::size_t>(k)])]);
@@ -79,7 +79,8 @@ void wall_candidates(const Wall& w, std::int32_t wi, const CellGrid& grid, const
           }
     }
   } else {
-    for (std::size_t i = n * t / nth; i < n * (t + 1) / nth; ++i)
+    const auto [first, last] = even_share(n, t, nth);
+    for (std::size_t i = first; i < last; ++i)
       if (element_distance(w, 0, p.x[i]) < p.radius[i] + wall_skin) out.push_back({static_cast<std::int32_t>(i), wi, 0});
   }
 }
