@@ -65,7 +65,8 @@ ParsedEffects parse_effects(const std::vector<std::string>& args) {
 
 AppliedEffects resolve_effects(const std::vector<std::string>& args, const validation::Dataset& d,
                                const std::vector<validation::ModelPtr>& models,
-                               std::vector<reports::EffectDescription>& described) {
+                               std::vector<reports::EffectDescription>& described,
+                               const analytical::EffectList& also) {
   const auto [fixed, to_fit] = parse_effects(args);
   AppliedEffects out;
   out.effects = effects::instantiate(fixed);
@@ -76,7 +77,9 @@ AppliedEffects resolve_effects(const std::vector<std::string>& args, const valid
   }
   if (to_fit.empty()) return out;
 
-  const validation::Misfit misfit(d, in_registry_order(models), out.effects);
+  analytical::EffectList applied = out.effects;
+  applied.insert(applied.end(), also.begin(), also.end());
+  const validation::Misfit misfit(d, in_registry_order(models), applied);
   if (misfit.size() == 0)
     throw InputError(d.dir.string(), 0, "effect",
                      "nothing to fit: no measurement with an uncertainty that these models predict");
@@ -92,6 +95,27 @@ AppliedEffects resolve_effects(const std::vector<std::string>& args, const valid
   out.notes.push_back(fmt::format(
       "Fitted on this dataset ({} values with uncertainties): chi^2 {:.1f} -> {:.1f}.", misfit.size(),
       misfit.chi2({}, {}), fit.chi2));
+  return out;
+}
+
+AppliedEffects diagnosed_effects(const validation::DiagnosisResult& diagnosis, const std::vector<std::string>& skip,
+                                 std::vector<reports::EffectDescription>& described) {
+  AppliedEffects out;
+  const validation::EffectFit* best = diagnosis.best();
+  if (!best) return out;
+  for (std::size_t i = 0; i < best->effects.size(); ++i) {
+    const auto* e = effects::find(best->effects[i]);
+    if (std::find(skip.begin(), skip.end(), e->name) != skip.end()) continue;
+    out.effects.push_back(e->make(best->estimate[i]));
+    out.labels.push_back(fmt::format("{}={:.4g} (fitted)", e->name, best->estimate[i]));
+    described.push_back({e->name, e->parameter, e->unit, e->physics, e->source, best->estimate[i],
+                         best->uncertainty[i], true});
+  }
+  if (out.effects.empty()) return out;
+  out.notes.push_back(fmt::format(
+      "{} as the diagnosis fitted {} ({} values with uncertainties, under its noise model): chi^2 {:.1f} -> {:.1f}.",
+      best->label(), best->effects.size() == 1 ? "it" : "them", diagnosis.n_data, best->chi2_before,
+      best->chi2_after));
   return out;
 }
 

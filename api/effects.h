@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "reports/report.h"
+#include "validation/diagnosis.h"
 #include "validation/dataset.h"
 #include "validation/model.h"
 
@@ -24,9 +25,21 @@ struct ParsedEffects {
 };
 ParsedEffects parse_effects(const std::vector<std::string>& args);
 
+// `also`: effects applied with the fixed ones while fitting (not returned): the diagnosis's
+// recommended explanation when add_missing adds it beside inputs to fit.
 AppliedEffects resolve_effects(const std::vector<std::string>& args, const validation::Dataset& d,
                                const std::vector<validation::ModelPtr>& models,
-                               std::vector<reports::EffectDescription>& described);
+                               std::vector<reports::EffectDescription>& described,
+                               const analytical::EffectList& also = {});
+
+// The diagnosis's recommended explanation (add_missing) at the strengths its verdict states: the
+// diagnosis's own fit, under its noise model, so that readings it left out and quantities it set
+// aside as no effect's (a model-form error) do not pull the strengths. A refit of every point as
+// stated can land on the other side of the record from what the verdict says. Effects in `skip`
+// (given by the caller as well) are left to the caller's setting.
+AppliedEffects diagnosed_effects(const validation::DiagnosisResult& diagnosis,
+                                 const std::vector<std::string>& skip,
+                                 std::vector<reports::EffectDescription>& described);
 
 // Inputs NAME=VALUE|fit: a recorded input's error (effects/registry.h, Kind::record), given as an
 // effect is; the effects followed by the inputs. An input that names a physical effect is refused

@@ -123,13 +123,21 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
     dopt.progress = o.progress;
     res.diagnosis = validation::diagnose(d, in_registry_order(cheap), dopt);
   }
-  // add_missing: what the diagnosis recommends, fitted (jointly, for a pair).
-  std::vector<std::string> effect_args = given;
+  // add_missing: what the diagnosis recommends, at the strengths its verdict states (its own fit,
+  // not a refit of every point as stated, which may go the other way: api/effects.h).
   res.added_missing = o.add_missing;
-  if (o.add_missing && res.diagnosis && res.diagnosis->best())
-    for (const auto& e : res.diagnosis->best()->effects) effect_args.push_back(e + "=fit");
-
-  const auto applied = resolve_effects(effect_args, d, cheap, res.effects);
+  std::vector<reports::EffectDescription> diagnosed_words;
+  AppliedEffects diagnosed;
+  if (o.add_missing && res.diagnosis) {
+    std::vector<std::string> named;
+    for (const auto& a : given) named.push_back(a.substr(0, a.find('=')));
+    diagnosed = diagnosed_effects(*res.diagnosis, named, diagnosed_words);
+  }
+  auto applied = resolve_effects(given, d, cheap, res.effects, diagnosed.effects);
+  applied.effects.insert(applied.effects.end(), diagnosed.effects.begin(), diagnosed.effects.end());
+  applied.labels.insert(applied.labels.end(), diagnosed.labels.begin(), diagnosed.labels.end());
+  applied.notes.insert(applied.notes.end(), diagnosed.notes.begin(), diagnosed.notes.end());
+  res.effects.insert(res.effects.end(), diagnosed_words.begin(), diagnosed_words.end());
   if (!applied.effects.empty()) {
     validation::ValidateOptions with = base;
     with.effects = applied.effects;

@@ -37,7 +37,7 @@ struct ValidateOptions {
   std::vector<std::string> inputs;                    // recorded inputs' errors, NAME=VALUE or NAME=fit
   std::filesystem::path tolerances;                   // "" = the dataset's tolerances.toml when present
   bool diagnose = false;                              // also rank the candidate missing effects
-  bool add_missing = false;                           // diagnose, then add what it points to (fitted)
+  bool add_missing = false;                           // diagnose, then add what it points to, as its verdict states
   // Effects and inputs imply the diagnosis, so that the report shows why they were added.
   bool diagnose_with_effects = true;
   std::vector<std::filesystem::path> studies;         // calibrate / sensitivity output folders or files
