@@ -87,6 +87,8 @@ Misfit::Misfit(std::shared_ptr<const PredictionSource> source) : source_(std::mo
   by_condition_.resize(points_.size());
   std::vector<std::size_t> at(condition_begin_.begin(), condition_begin_.end() - 1);
   for (std::size_t i = 0; i < points_.size(); ++i) by_condition_[at[points_[i].condition]++] = i;
+  infeasible_.resize(points_.size());
+  for (std::size_t i = 0; i < points_.size(); ++i) infeasible_[i] = kInfeasible + std::abs(residual(base, i));
 }
 
 std::vector<std::optional<double>> Misfit::predicted(std::span<const effects::EffectInfo* const> fx,
@@ -113,7 +115,7 @@ std::vector<double> Misfit::residuals(std::span<const effects::EffectInfo* const
                        r[by_condition_[k]] = residual(pred, by_condition_[k]);
                    });
   } catch (const InputError&) {
-    r.assign(points_.size(), kInfeasible);
+    r = infeasible_;
   }
   return r;
 }
@@ -123,7 +125,7 @@ std::vector<double> Misfit::residuals_exact(std::span<const effects::EffectInfo*
   try {
     return residuals_of(source_->predict(fx, strengths, PredictionSource::Evaluation::exact));
   } catch (const InputError&) {
-    return std::vector<double>(points_.size(), kInfeasible);
+    return infeasible_;
   }
 }
 
@@ -179,7 +181,7 @@ std::vector<double> Misfit::residuals(std::span<const effects::EffectInfo* const
                        r[part.by_condition[j]] = residual(pred, part.rows[part.by_condition[j]]);
                    });
   } catch (const InputError&) {
-    r.assign(part.rows.size(), kInfeasible);
+    for (std::size_t j = 0; j < part.rows.size(); ++j) r[j] = infeasible_[part.rows[j]];
   }
   return r;
 }

@@ -80,7 +80,11 @@ class Misfit {
                                                std::span<const double> strengths) const;
 
   // The misfit of a model that predicts nothing useful: large but finite, so that a minimiser can
-  // still step back.
+  // still step back. A point's residual at a strength where the rig has no answer (the stream
+  // misses the plate) is this beyond its residual without candidates, so that such a trial is
+  // worse than the models as they are under any weights: a fixed residual would beat a baseline
+  // whose own residuals are larger (forces recorded in kN under N columns), the fit would settle
+  // where the rig is impossible, and that candidate's problem would surface as the dataset's.
   static constexpr double kInfeasible = 1e3;
 
  private:
@@ -94,6 +98,7 @@ class Misfit {
   // The points of condition c: by_condition_[condition_begin_[c] .. condition_begin_[c + 1]).
   std::vector<std::size_t> condition_begin_, by_condition_;
   int left_out_ = 0;
+  std::vector<double> infeasible_;  // per point: kInfeasible + |its residual without candidates|
 };
 
 // What a fit minimises: the misfit's residuals, each multiplied by a weight (1 / the factor its

@@ -5,6 +5,7 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "core/input_error.h"
@@ -147,6 +148,33 @@ BOOST_AUTO_TEST_CASE(out_of_library_misfit_names_nothing) {
   BOOST_TEST(!r.best(), r.verdict);
   BOOST_TEST((r.verdict_code == Verdict::outside_library), r.verdict);
   BOOST_TEST(r.verdict.find("look outside the library") != std::string::npos);
+}
+
+// Forces recorded in kN under N columns: every force reads a thousand times low, far beyond any
+// candidate. Trial strengths that make the rig impossible (the stream misses the plate) are that
+// candidate's problem: they count as a worse misfit than the models as they are, never as the
+// dataset's error, and the diagnosis ends with a verdict.
+BOOST_AUTO_TEST_CASE(a_candidate_that_makes_the_rig_impossible_is_no_dataset_error) {
+  Replica kn;
+  kn.seed = 6310;
+  Dataset d = make(kn);
+  for (auto& m : d.measurements)
+    if (m.quantity == Quantity::normal_force || m.quantity == Quantity::shear_force ||
+        m.quantity == Quantity::resultant_force) {
+      m.value /= 1000.0;
+      if (m.uncertainty) *m.uncertainty /= 1000.0;
+    }
+  std::optional<DiagnosisResult> r;
+  BOOST_CHECK_NO_THROW(r = diagnose(d, cheap()));
+  BOOST_REQUIRE(r);
+  // Whatever it names, its strengths give the rig an answer at every condition.
+  if (const EffectFit* b = r->best()) {
+    analytical::EffectList fx;
+    for (std::size_t i = 0; i < b->effects.size(); ++i) fx.push_back(effects::find(b->effects[i])->make(b->estimate[i]));
+    for (const auto& st : d.stations) BOOST_CHECK_NO_THROW(cheap().front()->predict(st, fx, {}));
+  }
+  // No candidate's fit is better than the models as they are by landing where the rig has no answer.
+  for (const auto& f : r->singles) BOOST_TEST(f.chi2_after <= f.chi2_before * (1.0 + 1e-9), f.label());
 }
 
 BOOST_AUTO_TEST_CASE(thin_data_are_said_to_be_thin) {
