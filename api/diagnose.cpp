@@ -1,6 +1,7 @@
 #include "api/diagnose.h"
 
 #include "core/option_check.h"
+#include "logs/dataset_logs.h"
 #include "validation/dataset_output.h"
 
 namespace chutelab::api {
@@ -32,7 +33,7 @@ std::vector<validation::OutputFile> DiagnoseResult::files() const {
 
 DiagnoseResult diagnose(const DiagnoseOptions& o) {
   check(o);
-  return diagnose(validation::read_dataset(o.dataset), o);
+  return diagnose(logs::read_dataset(o.dataset, validation::MeasurementsRequired::yes), o);
 }
 
 DiagnoseResult diagnose(validation::Dataset dataset, const DiagnoseOptions& o) {

@@ -2,6 +2,7 @@
 
 #include "api/effects.h"
 #include "core/option_check.h"
+#include "logs/dataset_logs.h"
 #include "effects/registry.h"
 #include "validation/dataset_output.h"
 #include "validation/synthesize.h"
@@ -26,7 +27,7 @@ void check(const SynthesizeOptions& o) {
 SynthesizeResult synthesize(const SynthesizeOptions& o) {
   check(o);
   const std::filesystem::path dir = o.dataset.empty() ? o.default_dataset : o.dataset;
-  return synthesize(validation::read_dataset(dir, validation::MeasurementsRequired::no), o);
+  return synthesize(logs::read_dataset(dir, validation::MeasurementsRequired::no), o);
 }
 
 SynthesizeResult synthesize(validation::Dataset source, const SynthesizeOptions& o) {

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "api/effects.h"
+#include "api/log_report.h"
 #include "core/input_error.h"
 #include "core/option_check.h"
 #include "reports/report.h"
@@ -38,6 +39,10 @@ reports::ReportInput ValidateResult::report() const {
   in.findings = &findings;
   in.notes = notes;
   in.studies = &studies;
+  if (logs) {
+    in.log_charts = log_charts(*logs);
+    in.log_lines = log_lines(*logs);
+  }
   return in;
 }
 
@@ -58,7 +63,11 @@ std::vector<validation::OutputFile> ValidateResult::files() const {
 
 ValidateResult validate(const ValidateOptions& o) {
   check(o);
-  return validate(validation::read_dataset(o.dataset), o);
+  std::optional<logs::LogImport> li;
+  validation::Dataset d = logs::read_dataset(o.dataset, validation::MeasurementsRequired::yes, &li);
+  ValidateResult r = validate(std::move(d), o);
+  r.logs = std::move(li);
+  return r;
 }
 
 ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {

@@ -17,6 +17,7 @@
 
 #include "api/dem_options.h"
 #include "api/output_plan.h"
+#include "logs/dataset_logs.h"
 #include "reports/report.h"
 #include "reports/studies.h"
 #include "validation/dataset.h"
@@ -61,6 +62,9 @@ struct ValidateResult {
   std::vector<validation::ReferenceFinding> findings;    // the reference study's findings checked
   std::vector<reports::StudySection> studies;
   bool added_missing = false;
+  // The dataset's logs, when its plate measurements came from them (logs/dataset_logs.h): the
+  // report shows each with its window, zero and trend.
+  std::optional<logs::LogImport> logs;
 
   const validation::ValidationResult& final_result() const { return with_effects ? *with_effects : baseline; }
   bool acceptance_failed() const { return final_result().acceptance_failed; }

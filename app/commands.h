@@ -23,6 +23,8 @@ void add_simulate(CLI::App& app, Action& action);
 void add_calibrate(CLI::App& app, Action& action);
 void add_sensitivity(CLI::App& app, Action& action);
 void add_import_digitised(CLI::App& app, Action& action);
+void add_import_logs(CLI::App& app, Action& action);
+void add_synthesize_logs(CLI::App& app, Action& action);
 void add_design(CLI::App& app, Action& action);
 
 // "a,b,,c" -> {"a", "b", "", "c"}: the comma lists of --models, empty items kept for the library's

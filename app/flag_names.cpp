@@ -35,7 +35,7 @@ constexpr auto kPlain = std::to_array<std::string_view>({
     "plate_distance", "plate_top", "stream_thickness", "sweep", "svg", "dxf", "points", "format", "quality",
     "contact", "shape", "diameter_mm", "shear_modulus_scale", "dt_fraction", "max_time", "steady_on", "vtk_every",
     "plate_cells", "map_cell_mm", "no_cache", "rolling", "density", "target_bulk_density",
-    "target_pile_height", "sizes", "only", "limit"});
+    "target_pile_height", "sizes", "only", "limit", "truth", "sensor", "dem_series"});
 
 // Options whose errors a model run places at the condition it was running (conditions.csv:2): their
 // keys are no file's column or TOML key, so they stay flags there.

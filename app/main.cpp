@@ -155,6 +155,8 @@ int main(int argc, char** argv) {
   app::add_calibrate(app, action);
   app::add_sensitivity(app, action);
   app::add_import_digitised(app, action);
+  app::add_import_logs(app, action);
+  app::add_synthesize_logs(app, action);
   app::add_design(app, action);
   app::check_every_option(app);  // after every command's own rules (core/option_check.h)
   try {

@@ -18,7 +18,10 @@
 #include "api/diagnose.h"
 #include "api/effects.h"
 #include "api/estimate.h"
+#include "api/import_logs.h"
 #include "api/synthesize.h"
+#include "api/synthesize_logs.h"
+#include "logs/dataset_logs.h"
 #include "api/validate.h"
 #include "core/input_error.h"
 #include "core/message.h"
@@ -587,6 +590,43 @@ void synthesize(const validation::Dataset& source, const std::vector<std::string
   validation::write_dataset(out, r.files, source.dir);
 }
 
+void import_logs(const std::filesystem::path& dataset, const std::filesystem::path& out) {
+  api::ImportLogsOptions o;
+  o.dataset = dataset;
+  api::check(o);
+  if (out.empty()) throw InputError("", 0, "out", "is empty; give a folder");
+  o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
+    OutputFolder check(out, plan.inputs);
+    return {};
+  };
+  py::gil_scoped_release free;
+  const api::ImportLogsResult r = api::import_logs(o);
+  validation::write_dataset(out, r.files(), r.dataset.dir);
+}
+
+void synthesize_logs(const std::filesystem::path& dataset, const std::filesystem::path& truth,
+                     const std::filesystem::path& sensor, const std::filesystem::path& dem_series,
+                     const py::object& seed_arg, const std::filesystem::path& out) {
+  api::SynthesizeLogsOptions o;
+  const double seed_checked = whole_number(seed_arg, options::rules::seed);
+  o.seed = py::isinstance<py::float_>(seed_arg)
+               ? static_cast<std::uint64_t>(seed_checked)
+               : py::reinterpret_steal<py::int_>(PyNumber_Index(seed_arg.ptr())).cast<std::uint64_t>();
+  o.dataset = dataset;
+  o.truth = truth;
+  o.sensor = sensor;
+  o.dem_series = dem_series;
+  api::check(o);
+  if (out.empty()) throw InputError("", 0, "out", "is empty; give a folder");
+  o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
+    OutputFolder check(out, plan.inputs);
+    return {};
+  };
+  py::gil_scoped_release free;
+  const api::SynthesizeLogsResult r = api::synthesize_logs(o);
+  validation::write_dataset(out, r.files, r.source.dir);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_chutelab, m) {
@@ -660,8 +700,9 @@ PYBIND11_MODULE(_chutelab, m) {
   m.def(
       "read_dataset",
       [](const std::filesystem::path& dir, bool measurements_required) {
-        return validation::read_dataset(dir, measurements_required ? validation::MeasurementsRequired::yes
-                                                                   : validation::MeasurementsRequired::no);
+        // A dataset of logs reads its logs into means (logs/dataset_logs.h).
+        return logs::read_dataset(dir, measurements_required ? validation::MeasurementsRequired::yes
+                                                             : validation::MeasurementsRequired::no);
       },
       py::arg("dir"), py::arg("measurements_required"));
 
@@ -684,6 +725,9 @@ PYBIND11_MODULE(_chutelab, m) {
         py::arg("self_check"), py::arg("seed"));
   m.def("synthesize", &synthesize, py::arg("source"), py::arg("effects"), py::arg("seed"),
         py::arg("noise_scale"), py::arg("out"));
+  m.def("import_logs", &import_logs, py::arg("dataset"), py::arg("out"));
+  m.def("synthesize_logs", &synthesize_logs, py::arg("dataset"), py::arg("truth"), py::arg("sensor"),
+        py::arg("dem_series"), py::arg("seed"), py::arg("out"));
 
   // The quantity vocabulary (core/quantity.h) and the stream boundaries trajectory.csv compares, for
   // axis labels: name (as in the tables), symbol, label, unit.

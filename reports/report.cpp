@@ -417,6 +417,17 @@ Doc assemble(const ReportInput& in) {
     x.table(summary_table(*v.result, "summary-table-" + v.suffix));
   });
 
+  // ---- The rig's logs behind the plate's measurements ----
+  if (!in.log_charts.empty()) {
+    d.h(2, "logs", "The rig's logs");
+    d.p("The plate's measurements were read from the rig's logs: the steady window found in each (not chosen), the "
+        "zero from its unloaded parts before and after, its drift and any creep, and an uncertainty that counts the "
+        "samples' correlation (log_provenance.csv of import-logs lists every number).");
+    d.figure(log_charts_html(in.log_charts, "logchart"),
+             "The plate's load as logged per condition, with its steady window, zero and trend");
+    d.list(in.log_lines);
+  }
+
   // ---- Reference study Table 4 and Fig. 6 ----
   d.h(2, "forces", "Plate forces");
   per_variant(d, vs, "forces", [&](Doc& x, const Variant& v, const ValidationResult* other) {

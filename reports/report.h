@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "reports/log_chart.h"
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
@@ -30,6 +31,8 @@ struct ReportInput {
   const std::vector<validation::ReferenceFinding>* findings = nullptr;  // optional: the reference study's findings checked
   std::vector<std::string> notes;                           // provenance of numbers, warnings
   const std::vector<StudySection>* studies = nullptr;       // optional: calibrate / sensitivity sections
+  std::vector<LogChart> log_charts;                         // optional: the rig's logs, one chart a condition
+  std::vector<std::string> log_lines;                       // optional: what each log gave and said, in words
 };
 
 std::string report_markdown(const ReportInput& in);

@@ -6,14 +6,14 @@ namespace chutelab::validation {
 
 std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& dir) {
   return {dir, dir / "setup.toml", dir / "conditions.csv", dir / "measurements.csv", dir / "trajectory.csv",
-          dir / "plate_map.csv", dir / "tolerances.toml", dir / "README.md"};
+          dir / "plate_map.csv", dir / "tolerances.toml", dir / "README.md", dir / "logs"};
 }
 
 void write_dataset(const std::filesystem::path& out, const std::vector<OutputFile>& files,
                    const std::filesystem::path& source_dir) {
   OutputFolder folder(out, dataset_files(source_dir));
   folder.owns({"setup.toml", "conditions.csv", "measurements.csv", "trajectory.csv", "plate_map.csv",
-               "tolerances.toml", "README.md"});
+               "tolerances.toml", "README.md", "log_provenance.csv", "log_checks.csv", "logs"});
   for (const auto& [name, content] : files) folder.write(name, content);
   folder.commit();
 }

@@ -37,8 +37,8 @@ InputError = _chutelab.InputError
 InputError.__doc__ = ("Bad input: a ValueError with .file and .line (\"\", 0 when an argument, not a file, "
                       "is wrong), .field (the keyword or the file's column) and .problem.")
 
-__all__ = ["estimate", "read_dataset", "validate", "diagnose", "synthesize", "write_report", "models",
-           "effects", "quantities", "Estimate", "Dataset", "Validation", "Diagnosis", "Strength", "Quantity",
+__all__ = ["estimate", "read_dataset", "validate", "diagnose", "synthesize", "import_logs", "synthesize_logs",
+           "write_report", "models", "effects", "quantities", "Estimate", "Dataset", "Validation", "Diagnosis", "Strength", "Quantity",
            "InputError", "DATASETS", "DEFAULT_DATASET"]
 
 PathLike = Union[str, _os.PathLike]
@@ -297,7 +297,8 @@ def read_dataset(path: PathLike, measurements_required: bool = False) -> Dataset
 
 def _dataset(d, measurements_required=True, field="dataset") -> Dataset:
     if isinstance(d, Dataset):
-        if measurements_required and not _os.path.exists(_os.path.join(d.dir, "measurements.csv")):
+        if measurements_required and not (_os.path.exists(_os.path.join(d.dir, "measurements.csv"))
+                                          or _os.path.exists(_os.path.join(d.dir, "logs", "layout.toml"))):
             read_dataset(d.dir, True)  # raises the reader's InputError
         return d
     return read_dataset(_path(field, d, optional=False), measurements_required)
@@ -502,6 +503,31 @@ def synthesize(dataset: Union[Dataset, PathLike, None] = None, effects: EffectsA
     with _tempfile.TemporaryDirectory(prefix="chutelab-synthetic-") as tmp:
         _chutelab.synthesize(source._core, args, seed, scale, tmp)
         return read_dataset(tmp)
+
+
+# ---- rig logs ------------------------------------------------------------------------------------
+
+def import_logs(dataset: PathLike, out: PathLike) -> Dataset:
+    """A dataset of means from a dataset of rig logs, as `chutelab import-logs`: each condition's
+    logs/<condition>.csv read with logs/layout.toml (steady window, zero, drift and creep found from
+    the log; the uncertainty counts the samples' correlation). Written to `out` (measurements.csv
+    with each row's provenance, log_provenance.csv, log_checks.csv) and read back from there."""
+    target = _path("out", out, optional=False)
+    _chutelab.import_logs(_path("dataset", dataset, optional=False), target)
+    return read_dataset(target, True)
+
+
+def synthesize_logs(dataset: PathLike, truth: PathLike, *, sensor: Optional[PathLike] = None,
+                    dem_series: Optional[PathLike] = None, seed: int = 1, out: PathLike) -> Dataset:
+    """A dataset of rig logs written by the virtual rig, as `chutelab synthesize-logs`: the true
+    means in `truth` (CSV condition,quantity,value) through a sensor model (`sensor`, TOML; default
+    the built-in one), optionally with the fluctuation of DEM runs (`dem_series`). Written to `out`
+    and read back from there (its logs read into means)."""
+    target = _path("out", out, optional=False)
+    _chutelab.synthesize_logs(_path("dataset", dataset, optional=False), _path("truth", truth, optional=False),
+                              _path("sensor", sensor) or "", _path("dem_series", dem_series) or "",
+                              _seed_like("seed", seed), target)
+    return read_dataset(target, True)
 
 
 # ---- the registry --------------------------------------------------------------------------------
