@@ -1,5 +1,5 @@
 #pragma once
-// import_logs: a dataset whose plate measurements are a rig's raw logs (logs/layout.toml and one
+// import_logs: a dataset whose plate measurements are a rig's raw logs (DATASET/logs/layout.toml and one
 // logs/<condition>.csv a condition) turned into a dataset of means: measurements.csv with each
 // row's provenance (file, window, method), log_provenance.csv with every number behind each mean
 // and log_checks.csv with the belt's own channels against the record (logs/provenance_csv.h). The

@@ -10,7 +10,7 @@
 namespace chutelab::api {
 
 std::vector<reports::LogChart> log_charts(const logs::LogImport& logs);
-// "V2-26 (logs/V2-26.csv): window 6.3-34.1 s; R_n 14.93 ± 0.08 N, ...; zero drift ...; creep ..."
+// One line a condition: its log file, its window, its means with their u and what its log said.
 std::vector<std::string> log_lines(const logs::LogImport& logs);
 
 }  // namespace chutelab::api

@@ -34,7 +34,7 @@ struct SynthesizeLogsResult {
   logs::SensorModel sensor;
   std::vector<logs::TrueCondition> truth;   // per condition, as written
   // setup.toml, conditions.csv, measurements.csv (the source's rows of quantities the logs do not
-  // give), trajectory.csv and plate_map.csv as they were, logs/layout.toml, logs/<condition>.csv,
+  // give), trajectory.csv and plate_map.csv as they were, the logs folder (layout.toml, <condition>.csv),
   // README.md. Write them with validation::write_dataset(out, files, source.dir).
   std::vector<validation::OutputFile> files;
 };

@@ -1,5 +1,5 @@
 #pragma once
-// A dataset whose plate measurements come as logs: `logs/layout.toml` and one `logs/<condition>.csv`
+// A dataset whose plate measurements come as logs: `DATASET/logs/layout.toml` and one `DATASET/logs/<condition>.csv`
 // a condition of conditions.csv. Reading such a dataset reads the logs into means
 // (log_reading.h) beside the rows of measurements.csv (the quantities no log holds: a camera's
 // impact velocity, say), so that validate, diagnose and synthesize take it as any dataset.

@@ -1,5 +1,5 @@
 #pragma once
-// The layout of a rig's logs (logs/layout.toml in a dataset): which column of a log is which
+// The layout of a rig's logs (DATASET/logs/layout.toml): which column of a log is which
 // channel, its calibration, and how the plate's load cells combine into R_n, R_s, R and the impact
 // point. One log a condition, `<condition>.csv` beside the layout (time and one column a channel,
 // each column named with its unit: t_s, cell_upper_mV, tacho_Hz).

@@ -9,10 +9,10 @@ namespace chutelab::reports {
 namespace {
 
 std::string one_chart(const LogChart& c, const std::string& id) {
-  constexpr double W = 320.0, H = 190.0;
+  constexpr double W = 320.0, H = 218.0;
   Svg svg(W, H, "plot log-chart", id, "The log of " + c.condition);
   svg.title(c.condition);
-  const Frame f{52.0, 26.0, W - 64.0, H - 66.0};
+  const Frame f{52.0, 26.0, W - 64.0, H - 92.0};  // room below for the time axis's title and the legend
   double lo = 0.0, hi = 1.0;
   if (!c.v.empty()) {
     lo = *std::min_element(c.v.begin(), c.v.end());
@@ -39,7 +39,7 @@ std::string one_chart(const LogChart& c, const std::string& id) {
            "class=\"log-zero\" stroke=\"#444\" stroke-width=\"1.2\" stroke-dasharray=\"4 3\"");
   svg.line(X(c.trend_t0), Y(c.trend_v0), X(c.trend_t1), Y(c.trend_v1),
            "class=\"log-trend\" stroke=\"#CC3311\" stroke-width=\"1.8\"");
-  svg.legend(10.0, H - 22.0, W - 20.0,
+  svg.legend(10.0, H - 24.0, W - 20.0,
              {{LegendEntry::Kind::box, "window", c.steady ? "#009E73" : "#D55E00", "", Shape::circle, true, 0.3},
               {LegendEntry::Kind::line, "zero", "#444", "4 3"},
               {LegendEntry::Kind::line, "trend", "#CC3311"}});
