@@ -1,6 +1,7 @@
 // A dataset of logs end to end: the bundled datasets/hidden-effect-logs through validate and
 // import-logs, bad input, and the diagnosis's verdict from logs against the one from the true means.
 #include <boost/test/unit_test.hpp>
+#include <cmath>
 #include <fmt/format.h>
 #include <map>
 
@@ -93,4 +94,51 @@ BOOST_AUTO_TEST_CASE(the_verdict_from_logs_is_the_verdict_from_the_true_means) {
   BOOST_TEST(from_truth.diagnosis.best()->label() == "air_drag");
   BOOST_TEST(from_logs.diagnosis.best()->label() == from_truth.diagnosis.best()->label());
   BOOST_TEST(static_cast<int>(from_logs.diagnosis.verdict_code) == static_cast<int>(from_truth.diagnosis.verdict_code));
+}
+
+BOOST_AUTO_TEST_CASE(logs_ride_on_the_dems_own_plate_force_series) {
+  // A DEM run's series (as simulate --out writes it) for each condition: a rise, then a steady load
+  // with its own fluctuation (7 Hz, 1 N). The logs carry that fluctuation on the truth's means; read
+  // back, the R_n are the truth's within 3 u (the fluctuation averages out over the window).
+  const auto dir = test::fresh_dir("logs-dem");
+  const std::vector<std::string> conditions = {"V2-26", "V2-41", "V3-28", "V3-41", "V4-28", "V4-41", "V5-28", "V5-44"};
+  std::string truth = "condition,quantity,value\n";
+  for (const auto& c : conditions) {
+    truth += c + ",normal_force_N,30\n" + c + ",shear_force_N,3\n" + c + ",impact_point_y_mm,60\n";
+    std::string s = "t_s,normal_force_N,shear_force_N,moment_Nm,impact_point_y_mm\n";
+    for (int k = 1; k <= 300; ++k) {
+      const double t = 0.003 * k, rise = 1.0 - std::exp(-t / 0.05);
+      const double n = 32.0 * rise + std::sin(2.0 * 3.14159265358979 * 7.0 * t);
+      s += fmt::format("{},{},{},{},{}\n", t, n, 3.2 * rise, -0.06 * n, rise > 0.01 ? "61" : "");
+    }
+    test::write_file(dir / "dem" / c / "timeseries.csv", s);
+  }
+  test::write_file(dir / "truth.csv", truth);
+  const auto made = test::run_chutelab(fmt::format("synthesize-logs --dataset {} --truth {} --dem-series {} --seed 4 --out {}",
+                                                   (kSource / "datasets" / "hidden-effect").string(),
+                                                   (dir / "truth.csv").string(), (dir / "dem").string(),
+                                                   (dir / "logs").string()));
+  BOOST_REQUIRE(made.exit_code == 0);
+  const auto imp = test::run_chutelab(fmt::format("import-logs --dataset {} --out {}", (dir / "logs").string(),
+                                                  (dir / "means").string()));
+  BOOST_REQUIRE(imp.exit_code == 0);
+  // (At least 7 of 8: a clean log is taken for a creeping one about once in a hundred, bench/LOGS.md,
+  // and its correction then moves it by the test's threshold; with this seed V2-26 is such a log.)
+  int rows = 0, within = 0;
+  for (const auto& m : validation::read_measurements(dir / "means" / "measurements.csv", nullptr)) {
+    if (m.quantity != Quantity::normal_force) continue;
+    ++rows;
+    within += std::abs(m.value - 30.0) < 3.0 * *m.uncertainty;
+  }
+  BOOST_TEST(rows == 8);
+  BOOST_TEST(within >= 7);
+  // A condition without its run: bad input naming the folder's key.
+  fs::remove_all(dir / "dem" / "V5-44");
+  const auto bad = test::run_chutelab(fmt::format("synthesize-logs --dataset {} --truth {} --dem-series {} --out {}",
+                                                  (kSource / "datasets" / "hidden-effect").string(),
+                                                  (dir / "truth.csv").string(), (dir / "dem").string(),
+                                                  (dir / "logs2").string()));
+  BOOST_TEST(bad.exit_code == 2);
+  BOOST_TEST(bad.err.find("--dem-series") != std::string::npos);
+  BOOST_TEST(!fs::exists(dir / "logs2"));
 }
