@@ -27,7 +27,7 @@ struct ImportLogsResult {
   logs::LogImport logs;
   // The dataset of means: setup.toml, conditions.csv, measurements.csv, log_provenance.csv,
   // log_checks.csv, README.md, and trajectory.csv, plate_map.csv, tolerances.toml as they were.
-  // Write them with validation::write_dataset(out, files, dataset.dir).
+  // Write them with validation::write_dataset(out, files, dataset.dir, "import-logs").
   std::vector<validation::OutputFile> files() const;
 };
 

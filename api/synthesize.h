@@ -33,7 +33,7 @@ void check(const SynthesizeOptions& o);
 struct SynthesizeResult {
   validation::Dataset source;     // the dataset the rig and conditions came from
   // The synthetic dataset's files (setup.toml, conditions.csv, measurements.csv, README.md, ...):
-  // write them with validation::write_dataset(out, files, source.dir), which refuses the source.
+  // write them with validation::write_dataset(out, files, source.dir, "synthesize"), which refuses the source.
   std::vector<validation::OutputFile> files;
 };
 

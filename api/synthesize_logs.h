@@ -35,7 +35,7 @@ struct SynthesizeLogsResult {
   std::vector<logs::TrueCondition> truth;   // per condition, as written
   // setup.toml, conditions.csv, measurements.csv (the source's rows of quantities the logs do not
   // give), trajectory.csv and plate_map.csv as they were, the logs folder (layout.toml, <condition>.csv),
-  // README.md. Write them with validation::write_dataset(out, files, source.dir).
+  // README.md. Write them with validation::write_dataset(out, files, source.dir, "synthesize-logs").
   std::vector<validation::OutputFile> files;
 };
 

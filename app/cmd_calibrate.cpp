@@ -83,9 +83,7 @@ int run_calibrate(const CalibrateCli& o) {
   ctx.dataset = dir.string();
   ctx.quality = o.quality;
   ctx.setup = validation::read_setup(dir / "setup.toml");
-  OutputFolder out(o.out, dataset_inputs(dir));  // checked before minutes of slump tests
-  out.owns({"calibration.csv", "incline.csv", "calibration.md", "calibration.html", "material.toml",
-            "calibration-timing.csv"});
+  OutputFolder out(o.out, dataset_inputs(dir), "calibrate");  // checked before minutes of slump tests
   check_entries(out, {"calibration.csv", "incline.csv", "calibration.md", "calibration.html", "material.toml",
                       "calibration-timing.csv"});
 

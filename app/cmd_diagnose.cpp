@@ -39,8 +39,7 @@ int run_diagnose(const DiagnoseCli& o) {
   opt.progress = true;
   std::optional<OutputFolder> out;
   opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
-    out.emplace(o.out, plan.inputs);
-    own_validate_outputs(*out);
+    out.emplace(o.out, plan.inputs, "diagnose");
     for (const auto& f : plan.files) out->check_entry(f, false);
     return {};
   };

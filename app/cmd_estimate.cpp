@@ -45,7 +45,7 @@ void write_export(const EstimateCli& o, const std::string& file, const char* fla
   std::vector<fs::path> inputs;
   for (const auto& r : read)
     if (!r.empty()) inputs.push_back(r);
-  validation::write_outputs(out.parent_path(), {{out.filename().string(), content}}, inputs);
+  validation::write_outputs(out.parent_path(), {{out.filename().string(), content}}, inputs, "");
 }
 
 void write_svg(const EstimateCli& o, const std::string& svg) {

@@ -98,9 +98,13 @@ int run_import(const ImportCli& o) {
   auto inputs = dataset_inputs(src);
   inputs.emplace_back(o.mapping);
   for (const auto& in : o.inputs) inputs.emplace_back(in);
-  OutputFolder out(out_dir, inputs);
-  for (const auto& e : fs::directory_iterator(src))
-    fs::copy(e.path(), out.staged_path(e.path().filename().string()), fs::copy_options::recursive);
+  OutputFolder out(out_dir, inputs, "import-digitised");
+  for (const auto& e : fs::directory_iterator(src)) {
+    const std::string n = e.path().filename().string();
+    // The source's record of what chutelab wrote there, or a run's staging, is not part of the dataset.
+    if (n == OutputManifest::kFileName || n.find(".partial-") != std::string::npos) continue;
+    fs::copy(e.path(), out.staged_path(n), fs::copy_options::recursive);
+  }
   std::vector<std::vector<std::string>> mrows, trows;
   std::vector<validation::SourceLine> mwhere, twhere;
   for (const auto& m : imp.measurements) {

@@ -19,11 +19,11 @@ int run_import_logs(const ImportLogsCli& o) {
   api::ImportLogsOptions opt;
   opt.dataset = o.dataset;
   opt.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
-    OutputFolder check(o.out, plan.inputs);
+    OutputFolder check(o.out, plan.inputs, "import-logs");
     return {};
   };
   const api::ImportLogsResult r = api::import_logs(opt);
-  validation::write_dataset(o.out, r.files(), r.dataset.dir);
+  validation::write_dataset(o.out, r.files(), r.dataset.dir, "import-logs");
   for (const auto& c : r.logs.conditions) {
     std::cout << fmt::format("{}: window {:.2f}-{:.2f} s{}", c.condition, c.segments.window.start,
                              c.segments.window.end, c.segments.steady ? "" : " (not steady)");

@@ -80,8 +80,7 @@ int run_sensitivity(const SensitivityCli& o) {
   const fs::path setup_file = dir / "setup.toml";
   const Setup setup = validation::read_setup(setup_file);
   const auto stations = validation::read_conditions(dir / "conditions.csv", setup);
-  OutputFolder out(o.out, dataset_inputs(dir));  // checked before minutes of DEM runs
-  out.owns({"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity-timing.csv"});
+  OutputFolder out(o.out, dataset_inputs(dir), "sensitivity");  // checked before minutes of DEM runs
   check_entries(out, {"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity-timing.csv"});
   const Station* station = &validation::condition_row(stations, o.condition, dir / "conditions.csv", "--condition");
   st::SettingsOverrides ov;

@@ -68,9 +68,7 @@ int run_simulate(const SimulateCli& o) {
   std::optional<OutputFolder> out;
   if (!o.out.empty())
     opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
-      out.emplace(o.out, plan.inputs);
-      out->owns({"timeseries.csv", "sensors.csv", "steady.csv", "trajectory.csv", "side_view.csv", "run.txt",
-                 "plate_map.csv", "plate_map.vtk", "side_view.vtk", "vtk"});
+      out.emplace(o.out, plan.inputs, "simulate");
       for (const auto& f : plan.files) out->check_entry(f, false);
       if (o.vtk_every) out->check_entry("vtk", true);
       return out->staging();

@@ -34,11 +34,11 @@ int run_synthesize(const SynthesizeCli& o) {
   opt.allow_out_of_range = o.out_of_range;
   // Checked before any work (and again, the same way, where the dataset is written).
   opt.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
-    OutputFolder check(o.out, plan.inputs);
+    OutputFolder check(o.out, plan.inputs, "synthesize");
     return {};
   };
   const api::SynthesizeResult r = api::synthesize(opt);
-  validation::write_dataset(o.out, r.files, r.source.dir);
+  validation::write_dataset(o.out, r.files, r.source.dir, "synthesize");
   std::cout << fmt::format("synthetic dataset: {}\n", o.out);
   return 0;
 }

@@ -26,11 +26,11 @@ int run_synthesize_logs(const SynthesizeLogsCli& o) {
   opt.dem_series = o.dem_series;
   opt.seed = o.seed;
   opt.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
-    OutputFolder check(o.out, plan.inputs);
+    OutputFolder check(o.out, plan.inputs, "synthesize-logs");
     return {};
   };
   const api::SynthesizeLogsResult r = api::synthesize_logs(opt);
-  validation::write_dataset(o.out, r.files, r.source.dir);
+  validation::write_dataset(o.out, r.files, r.source.dir, "synthesize-logs");
   std::cout << fmt::format("dataset of logs: {} ({} conditions)\n", o.out, r.truth.size());
   return 0;
 }

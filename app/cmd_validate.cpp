@@ -59,8 +59,7 @@ int run_validate(const ValidateCli& o) {
   std::optional<OutputFolder> out;
   opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
     check_junit_path(o, plan);
-    out.emplace(o.out, plan.inputs);
-    own_validate_outputs(*out);
+    out.emplace(o.out, plan.inputs, "validate");
     for (const auto& f : plan.files) out->check_entry(f, false);
     if (!plan.model_folder) return {};
     out->check_entry("dem", true);
@@ -78,7 +77,8 @@ int run_validate(const ValidateCli& o) {
     const fs::path f(o.junit);
     validation::write_outputs(f.parent_path().empty() ? fs::path(".") : f.parent_path(),
                               {{f.filename().string(),
-                                validation::junit_xml(final_result, r.tolerances ? &*r.tolerances : nullptr, &junit)}});
+                                validation::junit_xml(final_result, r.tolerances ? &*r.tolerances : nullptr, &junit)}},
+                              {}, "");
   }
   std::cout << validate_console(r.report(), o.add_missing, (fs::path(o.out) / "report.html").string());
   if (!o.junit.empty()) {

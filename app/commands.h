@@ -38,10 +38,6 @@ std::optional<std::string> misspelt(CLI::App& app, int argc, char** argv);
 // What a command reads from a dataset folder: the folder itself (--out may not be it) and its files.
 std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& dir);
 
-// What validate and diagnose may write in --out: one family (both write diagnosis.csv/.md), so either
-// one removes the other's earlier outputs it does not write (OutputFolder::owns).
-void own_validate_outputs(OutputFolder& out);
-
 // Refuses, before any long run, an --out where one of these files cannot be placed (a folder there).
 void check_entries(const OutputFolder& out, std::initializer_list<const char*> files);
 

@@ -103,11 +103,6 @@ std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& d
   return validation::dataset_files(dir);
 }
 
-void own_validate_outputs(OutputFolder& out) {
-  out.owns({"predictions.csv", "errors.csv", "summary.csv", "report.md", "report.html", "diagnosis.csv",
-            "diagnosis.md", "self_check.md", "self_check.csv", "dem"});
-}
-
 void check_entries(const OutputFolder& out, std::initializer_list<const char*> files) {
   for (const char* f : files) out.check_entry(f, false);
 }

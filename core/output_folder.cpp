@@ -15,6 +15,8 @@
 #include <fstream>
 #include <iostream>
 #include <algorithm>
+#include <map>
+#include <set>
 #include <mutex>
 #include <thread>
 #ifndef __EMSCRIPTEN__
@@ -235,8 +237,9 @@ void sweep_dead_staging(const fs::path& out) {
 #endif
 }
 
-OutputFolder::OutputFolder(const fs::path& out, std::vector<fs::path> inputs, std::string_view flag)
-    : out_(tidy(out)), flag_(flag) {
+OutputFolder::OutputFolder(const fs::path& out, std::vector<fs::path> inputs, std::string_view command,
+                           std::string_view flag)
+    : out_(tidy(out)), command_(command), flag_(flag) {
   if (out.empty()) throw InputError("", 0, flag_, "no output folder given");
   std::error_code ec;
   const auto st = fs::status(out_, ec);
@@ -255,27 +258,22 @@ OutputFolder::OutputFolder(const fs::path& out, std::vector<fs::path> inputs, st
   fs::path parent = out_.parent_path();
   if (parent.empty()) parent = ".";
   writer_ = writes_files();
-  staging_ = parent / fmt::format(".{}.partial-{}", out_.filename().string(), static_cast<long>(::getpid()));
+  // Inside an existing --out, so that every rename stays on its file system (--out may be a mount
+  // point, or a link to another disk); beside a new one, on the file system it will be made on.
+  const bool exists = fs::is_directory(st);
+  staging_ = exists ? out_ / fmt::format(".chutelab.partial-{}", static_cast<long>(::getpid()))
+                    : parent / fmt::format(".{}.partial-{}", out_.filename().string(), static_cast<long>(::getpid()));
   if (!writer_) return;
-  fs::create_directories(parent, ec);
+  if (!exists) fs::create_directories(parent, ec);
   if (ec) throw InputError(parent.string(), 0, flag_, fmt::format("cannot create the folder: {}", ec.message()));
   sweep_dead_staging(out_);
   fs::remove_all(staging_, ec);  // left by a killed run of the same process id
   register_temporary(staging_);
   fs::create_directory(staging_, ec);
-  if (ec && fs::is_directory(st)) {
-    // A folder one may write in, inside one that is not (--junit /work/report.xml): stage inside it;
-    // the renames stay on one file system either way.
-    unregister_temporary(staging_);
-    staging_ = out_ / fmt::format(".chutelab.partial-{}", static_cast<long>(::getpid()));
-    ec.clear();
-    fs::remove_all(staging_, ec);
-    register_temporary(staging_);
-    fs::create_directory(staging_, ec);
-  }
   if (ec) {
     unregister_temporary(staging_);
-    throw InputError(parent.string(), 0, flag_, fmt::format("cannot write in this folder: {}", ec.message()));
+    throw InputError((exists ? out_ : parent).string(), 0, flag_,
+                     fmt::format("cannot write in this folder: {}", ec.message()));
   }
 #ifndef __EMSCRIPTEN__
   // Held while this process lives (the kernel releases it however the process ends): a later run
@@ -295,8 +293,12 @@ OutputFolder::~OutputFolder() {
 #endif
 }
 
-void OutputFolder::owns(std::initializer_list<std::string_view> names) {
-  for (auto n : names) owned_.emplace_back(n);
+void OutputFolder::read_together(std::initializer_list<std::string_view> names) {
+  for (auto n : names) together_.emplace_back(n);
+}
+
+void OutputFolder::takes_over(std::initializer_list<std::string_view> commands) {
+  for (auto c : commands) taken_.emplace_back(c);
 }
 
 fs::path OutputFolder::staged_path(const std::string& name) const {
@@ -321,18 +323,61 @@ void OutputFolder::check_not_input(const fs::path& dest, bool is_dir) const {
   }
 }
 
+const OutputManifest& OutputFolder::manifest() const {
+  if (!manifest_) manifest_ = OutputManifest::read(out_);
+  return *manifest_;
+}
+
+namespace {
+
+enum class Kind { none, folder, file, other };  // other: a link, FIFO, device, ... (never followed)
+
+Kind kind_of(const fs::path& p) {
+  std::error_code ec;
+  const auto st = fs::symlink_status(p, ec);
+  if (ec || !fs::exists(st)) return Kind::none;
+  if (fs::is_directory(st)) return Kind::folder;
+  if (fs::is_regular_file(st)) return Kind::file;
+  return Kind::other;
+}
+
+// Why chutelab may not replace `dest` (relative path `rel` of --out) with a file: empty when it may
+// (absent, or a file chutelab wrote there and nobody changed since).
+std::string not_ours(const fs::path& dest, const std::string& rel, const OutputManifest& m, bool named) {
+  const Kind k = kind_of(dest);
+  if (k == Kind::none) return {};
+  if (k == Kind::folder) return "is a folder where chutelab writes a file; move it away";
+  if (named) return {};  // the file the user named is the one to replace
+  const auto it = m.records.find(rel);
+  if (it == m.records.end() || it->second.folder)
+    return fmt::format("chutelab did not write it (no earlier run recorded it in {}); it is left as it is: move it "
+                       "away or choose another folder",
+                       OutputManifest::kFileName);
+  if (!OutputManifest::intact(dest, it->second))
+    return "was changed since chutelab wrote it; it is left as it is: move it away or choose another folder";
+  return {};
+}
+
+// "dem/V3-41/a.csv" -> {"dem", "dem/V3-41"}: the folders a relative path passes through.
+std::vector<std::string> parents_of(const std::string& rel) {
+  std::vector<std::string> p;
+  for (auto at = rel.find('/'); at != std::string::npos; at = rel.find('/', at + 1)) p.push_back(rel.substr(0, at));
+  return p;
+}
+
+}  // namespace
+
 bool OutputFolder::check_entry(const std::string& name, bool is_dir) const {
   const fs::path dest = out_ / name;
   check_not_input(dest, is_dir);
-  std::error_code ec;
-  const auto st = fs::symlink_status(dest, ec);
-  if (ec && ec != std::errc::no_such_file_or_directory)
-    throw InputError(dest.string(), 0, flag_, fmt::format("cannot replace: {}", ec.message()));
-  if (!fs::exists(st)) return false;
-  if (fs::is_directory(st) && !is_dir)
-    throw InputError(dest.string(), 0, flag_, "is a folder where chutelab writes a file; move it away");
-  if (!fs::is_directory(st) && is_dir)
-    throw InputError(dest.string(), 0, flag_, "is a file where chutelab writes a folder; move it away");
+  const Kind k = kind_of(dest);
+  if (k == Kind::none) return false;
+  if (is_dir) {
+    if (k != Kind::folder) throw InputError(dest.string(), 0, flag_, "is a file where chutelab writes a folder; move it away");
+    return true;
+  }
+  if (const std::string why = not_ours(dest, name, manifest(), command_.empty()); !why.empty())
+    throw InputError(dest.string(), 0, flag_, why);
   return true;
 }
 
@@ -353,77 +398,224 @@ void OutputFolder::commit() {
     committed_ = true;
     return;
   }
-  struct Entry {
-    fs::path staged, dest, backup;
-    bool replaced = false, placed = false;
-  };
-  std::vector<Entry> entries;
   std::error_code ec;
-  // Check every entry before moving any, so that nothing is half-replaced by a foreseeable problem.
-  std::vector<std::string> staged_names;
-  for (const auto& e : fs::directory_iterator(staging_, ec)) {
-    const std::string n = e.path().filename().string();
-    if (n == kLockName || n == ".replaced") continue;
-    Entry en{e.path(), out_ / e.path().filename(), staging_ / ".replaced" / e.path().filename()};
-    en.replaced = check_entry(n, e.is_directory());
-    entries.push_back(std::move(en));
-    staged_names.push_back(n);
+  // The staged files, by their path relative to --out.
+  std::vector<std::string> files;
+  for (auto it = fs::recursive_directory_iterator(staging_, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    const fs::path rel = it->path().lexically_relative(staging_);
+    if (it.depth() == 0 && (rel == kLockName || rel == ".replaced")) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (!it->is_directory()) files.push_back(rel.generic_string());
   }
   if (ec) throw InputError(staging_.string(), 0, flag_, fmt::format("cannot list the staged files: {}", ec.message()));
-  // What this command writes and did not write this time is an earlier run's: it goes with the
-  // rest of that run (moved aside like a replaced entry, so a failure puts it back). Never an input.
-  std::vector<std::string> removed;
-  for (const auto& n : owned_) {
-    if (std::find(staged_names.begin(), staged_names.end(), n) != staged_names.end()) continue;
-    const fs::path dest = out_ / n;
-    const auto st = fs::symlink_status(dest, ec);
-    if (ec || !fs::exists(st)) continue;
+  std::sort(files.begin(), files.end());
+  const std::set<std::string> staged(files.begin(), files.end());
+  std::set<std::string> needed_folders;  // every folder a staged file lies in
+  for (const auto& f : files)
+    for (auto& p : parents_of(f)) needed_folders.insert(std::move(p));
+
+#ifndef __EMSCRIPTEN__
+  // One commit at a time into one folder: two commands finishing together would each write a record
+  // without the other's files (which then count as the user's: refused later, never removed).
+  int folder_fd = fs::is_directory(out_, ec) ? ::open(out_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC) : -1;
+  if (folder_fd >= 0) [[maybe_unused]] const int locked = ::flock(folder_fd, LOCK_EX);
+  struct CloseFd {
+    int& fd;
+    ~CloseFd() {
+      if (fd >= 0) ::close(fd);
+    }
+  } close_folder{folder_fd};
+#endif
+  // Files the user named (--junit FILE) replace what is there and keep no record.
+  const bool named = command_.empty();
+  OutputManifest m = named ? OutputManifest{} : OutputManifest::read(out_);
+
+  // Check every file before moving any, so that nothing is half-replaced by a foreseeable problem.
+  std::vector<fs::path> aside;  // chutelab's earlier files in --out, moved aside and removed at the end
+  for (const auto& f : files) {
+    const fs::path dest = out_ / f;
+    check_not_input(dest, false);
+    for (const auto& p : parents_of(f)) {
+      const Kind k = kind_of(out_ / p);
+      if (k == Kind::none) break;
+      if (k != Kind::folder)
+        throw InputError((out_ / p).string(), 0, flag_, "is a file where chutelab writes a folder; move it away");
+    }
+    if (const std::string why = not_ours(dest, f, m, named); !why.empty()) throw InputError(dest.string(), 0, flag_, why);
+    if (kind_of(dest) != Kind::none) aside.push_back(dest);
+  }
+  // What an earlier run of this command wrote and this run does not write describes another run: it
+  // goes with the rest of that run (moved aside like a replaced file, so a failure puts it back).
+  // A file changed since it was written is the user's now: kept, and no longer in the record.
+  std::vector<std::string> removed, kept, dropped, stale_folders;
+  for (const auto& [rel, r] : m.records) {
+    if (staged.count(rel)) continue;
+    const fs::path dest = out_ / rel;
+    bool plain_path = true;  // never through a link or a file (a record cannot reach outside --out)
+    for (const auto& p : parents_of(rel)) plain_path = plain_path && kind_of(out_ / p) == Kind::folder;
+    const Kind k = kind_of(dest);
+    if (!plain_path || k == Kind::none || (r.folder && k != Kind::folder)) {
+      dropped.push_back(rel);
+      continue;
+    }
+    if (r.command != command_ && std::find(taken_.begin(), taken_.end(), r.command) == taken_.end()) continue;
+    if (r.folder) {
+      if (!needed_folders.count(rel)) stale_folders.push_back(rel);
+      continue;
+    }
+    if (!OutputManifest::intact(dest, r)) {
+      kept.push_back(rel);
+      dropped.push_back(rel);
+      continue;
+    }
     try {
-      check_not_input(dest, fs::is_directory(st));
+      check_not_input(dest, false);
     } catch (const InputError&) {
       continue;
     }
-    Entry en{fs::path(), dest, staging_ / ".replaced" / n};
-    en.replaced = true;
-    entries.push_back(std::move(en));
-    removed.push_back(n);
+    aside.push_back(dest);
+    removed.push_back(rel);
   }
+  // A dataset's file this run does not write would be read as part of the new dataset (in a folder
+  // of them, such as logs/, every file).
+  const std::set<std::string> going(removed.begin(), removed.end());
+  for (const auto& name : together_) {
+    std::vector<std::string> there;
+    if (kind_of(out_ / name) == Kind::folder) {
+      for (auto it = fs::recursive_directory_iterator(out_ / name, ec); !ec && it != fs::recursive_directory_iterator();
+           it.increment(ec))
+        if (!it->is_directory()) there.push_back(it->path().lexically_relative(out_).generic_string());
+      ec.clear();
+    } else if (kind_of(out_ / name) != Kind::none) {
+      there.push_back(name);
+    }
+    const auto foreign = std::find_if(there.begin(), there.end(),
+                                      [&](const std::string& n) { return !staged.count(n) && !going.count(n); });
+    if (foreign == there.end()) continue;
+    const std::string n = *foreign;
+    const fs::path dest = out_ / n;
+    const auto it = m.records.find(n);
+    const bool changed = std::find(kept.begin(), kept.end(), n) != kept.end();
+    throw InputError(dest.string(), 0, flag_,
+                     fmt::format("{}, and it would be read as part of what {} writes here; move it away or choose "
+                                 "another folder",
+                                 changed ? std::string("was changed since chutelab wrote it")
+                                 : it == m.records.end() || it->second.folder
+                                     ? std::string("chutelab did not write it")
+                                     : fmt::format("chutelab {} wrote it", it->second.command),
+                                 command_));
+  }
+  const fs::path record_path = out_ / OutputManifest::kFileName;
+  if (!named && kind_of(record_path) == Kind::folder)
+    throw InputError(record_path.string(), 0, flag_,
+                     "is a folder where chutelab keeps the record of what it wrote here; move it away");
   ec.clear();
 
   std::lock_guard lock(registry_mutex());  // an interrupt waits until --out is whole again
   const bool created = !fs::exists(out_);
   fs::create_directories(out_, ec);
   if (ec) throw InputError(out_.string(), 0, flag_, fmt::format("cannot create the folder: {}", ec.message()));
-  fs::create_directory(staging_ / ".replaced", ec);
+  const fs::path replaced = staging_ / ".replaced";
+  fs::create_directory(replaced, ec);
+  // What was done, undone in reverse order when a later step fails.
+  struct Step {
+    enum { moved_aside, placed, made_folder, removed_folder } what;
+    fs::path a, b;
+  };
+  std::vector<Step> done;
   auto roll_back = [&] {
     std::error_code e2;
-    for (auto it = entries.rbegin(); it != entries.rend(); ++it) {
-      if (it->placed && !it->staged.empty()) fs::rename(it->dest, it->staged, e2);
-      if (it->replaced && fs::exists(it->backup, e2)) fs::rename(it->backup, it->dest, e2);
+    for (auto it = done.rbegin(); it != done.rend(); ++it) {
+      switch (it->what) {
+        case Step::moved_aside: fs::rename(it->b, it->a, e2); break;   // backup -> dest
+        case Step::placed: fs::rename(it->b, it->a, e2); break;        // dest -> staged
+        case Step::made_folder: fs::remove(it->a, e2); break;
+        case Step::removed_folder: fs::create_directory(it->a, e2); break;
+      }
     }
     if (created) fs::remove(out_, e2);
   };
-  for (auto& en : entries) {
-    ec.clear();
-    if (en.replaced) fs::rename(en.dest, en.backup, ec);
-    if (!ec && !en.staged.empty()) fs::rename(en.staged, en.dest, ec);
-    if (ec) {
-      const std::string why = ec.message();
-      if (en.replaced && !fs::exists(en.dest)) {
-        std::error_code e2;
-        fs::rename(en.backup, en.dest, e2);
-      }
-      en.replaced = false;
-      roll_back();
-      throw InputError(en.dest.string(), 0, flag_, fmt::format("cannot write: {}", why));
+  auto fail = [&](const fs::path& where, const std::string& why) {
+    roll_back();
+    throw InputError(where.string(), 0, flag_, fmt::format("cannot write: {}", why));
+  };
+  for (std::size_t k = 0; k < aside.size(); ++k) {
+    const fs::path backup = replaced / std::to_string(k);
+    fs::rename(aside[k], backup, ec);
+    if (ec) fail(aside[k], ec.message());
+    done.push_back({Step::moved_aside, aside[k], backup});
+  }
+  std::vector<std::string> made;
+  for (const auto& f : files) {
+    for (const auto& p : parents_of(f)) {
+      const fs::path dir = out_ / p;
+      if (kind_of(dir) == Kind::folder) continue;
+      fs::create_directory(dir, ec);
+      if (ec) fail(dir, ec.message());
+      done.push_back({Step::made_folder, dir, {}});
+      made.push_back(p);
     }
-    en.placed = true;
+    fs::rename(staging_ / f, out_ / f, ec);
+    if (ec) fail(out_ / f, ec.message());
+    done.push_back({Step::placed, staging_ / f, out_ / f});
+  }
+  // Folders this command made and no longer uses, once empty (a user's file inside keeps one).
+  std::sort(stale_folders.begin(), stale_folders.end(), [](const std::string& a, const std::string& b) {
+    return a.size() > b.size();  // the deepest first
+  });
+  for (const auto& rel : stale_folders) {
+    if (fs::remove(out_ / rel, ec)) {
+      done.push_back({Step::removed_folder, out_ / rel, {}});
+      dropped.push_back(rel);
+    }
+    ec.clear();
+  }
+  // The record: last, so that a process killed before it leaves files unrecorded (refused later,
+  // never removed) rather than records of files that are not there.
+  for (const auto& rel : removed) m.records.erase(rel);
+  for (const auto& rel : dropped) m.records.erase(rel);
+  for (const auto& f : files) m.records[f] = OutputManifest::of_file(out_ / f, command_);
+  for (const auto& p : made) {
+    OutputRecord r;
+    r.command = command_;
+    r.folder = true;
+    m.records[p] = r;
+  }
+  if (!named) {
+    const fs::path next = staging_ / ".manifest";
+    std::ofstream f(next, std::ios::binary | std::ios::trunc);
+    const std::string text = m.text();
+    f.write(text.data(), static_cast<std::streamsize>(text.size()));
+    f.close();
+    if (!f) fail(record_path, "cannot write the record of what chutelab wrote (disk full?)");
+    fs::rename(next, record_path, ec);
+    if (ec) fail(record_path, ec.message());
   }
   committed_ = true;
-  if (!removed.empty())
-    std::cerr << one_line(fmt::format("chutelab: removed from {} what an earlier run left there and this run does "
+  if (!removed.empty()) {
+    // Said by the top entries of --out: "dem/ (12 files)" rather than every file under it.
+    std::vector<std::string> said;
+    std::map<std::string, int> under;
+    for (const auto& rel : removed) {
+      const auto slash = rel.find('/');
+      if (slash == std::string::npos) said.push_back(rel);
+      else if (under[rel.substr(0, slash)]++ == 0) said.push_back(rel.substr(0, slash) + "/");
+    }
+    for (auto& s : said)
+      if (s.back() == '/') s += fmt::format(" ({} file{})", under[s.substr(0, s.size() - 1)],
+                                            under[s.substr(0, s.size() - 1)] == 1 ? "" : "s");
+    std::cerr << one_line(fmt::format("chutelab: removed from {} what an earlier {} wrote there and this run does "
                                       "not write: {}",
-                                      out_.string(), fmt::join(removed, ", ")))
+                                      out_.string(), command_, fmt::join(said, ", ")))
+              << "\n";
+  }
+  for (const auto& rel : kept)
+    std::cerr << one_line(fmt::format("chutelab: kept {}: an earlier {} wrote it, but it was changed since, so it is "
+                                      "left as it is",
+                                      (out_ / rel).string(), command_))
               << "\n";
   fs::remove_all(staging_, ec);
   auto& r = registry();

@@ -1,9 +1,17 @@
 #pragma once
-// The one way a command writes its --out folder. Everything is written to a staging folder beside
-// --out first; commit() then moves each entry into --out by rename, after checking that every move
-// can succeed, keeping what it replaces until the last move succeeded. So a failure at any point
-// (bad input found late, a folder where a file must go, a full disk, Ctrl-C) leaves --out exactly as
-// it was, and no staging file behind. Files of --out that the command does not write are untouched.
+// The one way a command writes its --out folder. Everything is written to a staging folder first
+// (inside --out when it exists, so on its file system; beside it otherwise); commit() then moves each
+// file into --out by rename, after checking that every move can succeed, keeping what it replaces
+// until the last move succeeded. So a failure at any point (bad input found late, a folder where a
+// file must go, a full disk, Ctrl-C) leaves --out exactly as it was, and no staging file behind.
+//
+// A command replaces or removes only what chutelab wrote: the folder keeps the record
+// (core/output_manifest.h, OUT/.chutelab-manifest) of every file chutelab wrote there and which
+// command wrote it. A file in the way that the record does not list, or lists with other content
+// (the user's own, or one they edited), is refused with exit 2, never overwritten; what an earlier
+// run of the same command wrote and this run does not write is removed (a line on stderr names it),
+// so --out never holds a mix of two runs of one command; what other commands wrote stays
+// (`diagnose` into the folder of a `validate` leaves its report).
 //
 // Under mpirun only rank 0 stages and commits; the other ranks make the same checks (so all fail
 // alike) but write nothing, and their staging() folder does not exist.
@@ -11,17 +19,23 @@
 // No output may land on a file the command reads: the constructor takes the inputs and throws
 // InputError when --out is an input folder or an output path resolves to an input file.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "core/output_manifest.h"
 
 namespace chutelab {
 
 class OutputFolder {
  public:
   // `out` is --out; `inputs` are the files and folders the command reads (a folder: --out may not
-  // be it, nor hold it in a sub-folder the command replaces). Throws InputError for an unusable --out.
-  OutputFolder(const std::filesystem::path& out, std::vector<std::filesystem::path> inputs = {},
+  // be it); `command` names the writer in the folder's record (validate, diagnose, synthesize, ...),
+  // or is empty for a folder that receives only files the user named (--junit FILE, estimate --svg
+  // FILE): those replace what is there, and the folder keeps no record. Throws InputError for an
+  // unusable --out.
+  OutputFolder(const std::filesystem::path& out, std::vector<std::filesystem::path> inputs, std::string_view command,
                std::string_view flag = "out");
   ~OutputFolder();  // removes the staging folder unless committed
   OutputFolder(const OutputFolder&) = delete;
@@ -32,26 +46,31 @@ class OutputFolder {
   const std::filesystem::path& out() const { return out_; }
   // Writes one file (name relative to --out) into the staging folder.
   void write(const std::string& name, std::string_view content);
-  // Whether entry `name` of --out (a file, or a folder when is_dir) can be replaced: throws the
+  // Whether entry `name` of --out (a file, or a folder when is_dir) can be written: throws the
   // InputError commit() would, so that a command can refuse before its long runs; true when it exists.
   bool check_entry(const std::string& name, bool is_dir) const;
-  // Moves every staged entry into --out, all or none. Throws InputError naming the entry that
-  // cannot be placed (then --out is as it was).
+  // Names that readers of the folder take as part of what this command writes (a dataset's files):
+  // one this run does not write may be there only when an earlier run of this command wrote it
+  // (then it is removed); anything else there is refused, as it would be read as part of the output.
+  void read_together(std::initializer_list<std::string_view> names);
+  // Other commands whose earlier files in --out this command takes for its own (removes when it does
+  // not write them): the writers of one kind of folder (a dataset's).
+  void takes_over(std::initializer_list<std::string_view> commands);
+  // Moves every staged file into --out, all or none, and updates the folder's record. Throws
+  // InputError naming the entry that cannot be placed (then --out is as it was).
   void commit();
-  // The entries (files or folders) this command may write in --out: those it does not write this
-  // time are an earlier run's and are removed by commit() (all or none, like the rest; never an
-  // input; a line on stderr names them), so --out never holds a mix of two runs' outputs.
-  void owns(std::initializer_list<std::string_view> names);
   // staging() / name, after checking that name is a relative path of plain components (no "..",
   // no root): a name from the data can never make a command write outside --out.
   std::filesystem::path staged_path(const std::string& name) const;
 
  private:
   void check_not_input(const std::filesystem::path& dest, bool is_dir) const;
+  const OutputManifest& manifest() const;
   std::filesystem::path out_, staging_;
   std::vector<std::filesystem::path> inputs_;  // weakly canonical
-  std::vector<std::string> owned_;
-  std::string flag_;
+  std::vector<std::string> together_, taken_;
+  std::string command_, flag_;
+  mutable std::optional<OutputManifest> manifest_;  // as read for check_entry(); commit() reads it again
   bool committed_ = false;
   bool writer_ = true;  // rank 0 (or no MPI)
   [[maybe_unused]] int lock_fd_ = -1;  // held while the staging folder is in use (sweep_dead_staging())

@@ -502,10 +502,10 @@ std::unique_ptr<Diagnosed> diagnose(const validation::Dataset& d, const std::vec
 // Writes a result's files into `out` as the command line's --out does: all or nothing, never onto
 // a file the run read.
 void write_files(const std::vector<validation::OutputFile>& files, const std::vector<std::filesystem::path>& inputs,
-                 const std::filesystem::path& out) {
+                 const std::filesystem::path& out, const char* command) {
   if (out.empty()) throw InputError("", 0, "out", "is empty; give a folder");
   py::gil_scoped_release free;
-  validation::write_outputs(out, files, inputs);
+  validation::write_outputs(out, files, inputs, command);
 }
 
 // estimate(): the library's result, kept for its views.
@@ -582,12 +582,12 @@ void synthesize(const validation::Dataset& source, const std::vector<std::string
   if (out.empty()) throw InputError("", 0, "out", "is empty; give a folder");
   // The same refusal as the command line's before any work: out may not be the source.
   o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
-    OutputFolder check(out, plan.inputs);
+    OutputFolder check(out, plan.inputs, "synthesize");
     return {};
   };
   py::gil_scoped_release free;
   const api::SynthesizeResult r = api::synthesize(source, o);
-  validation::write_dataset(out, r.files, source.dir);
+  validation::write_dataset(out, r.files, source.dir, "synthesize");
 }
 
 void import_logs(const std::filesystem::path& dataset, const std::filesystem::path& out) {
@@ -596,12 +596,12 @@ void import_logs(const std::filesystem::path& dataset, const std::filesystem::pa
   api::check(o);
   if (out.empty()) throw InputError("", 0, "out", "is empty; give a folder");
   o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
-    OutputFolder check(out, plan.inputs);
+    OutputFolder check(out, plan.inputs, "import-logs");
     return {};
   };
   py::gil_scoped_release free;
   const api::ImportLogsResult r = api::import_logs(o);
-  validation::write_dataset(out, r.files(), r.dataset.dir);
+  validation::write_dataset(out, r.files(), r.dataset.dir, "import-logs");
 }
 
 void synthesize_logs(const std::filesystem::path& dataset, const std::filesystem::path& truth,
@@ -619,12 +619,12 @@ void synthesize_logs(const std::filesystem::path& dataset, const std::filesystem
   api::check(o);
   if (out.empty()) throw InputError("", 0, "out", "is empty; give a folder");
   o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
-    OutputFolder check(out, plan.inputs);
+    OutputFolder check(out, plan.inputs, "synthesize-logs");
     return {};
   };
   py::gil_scoped_release free;
   const api::SynthesizeLogsResult r = api::synthesize_logs(o);
-  validation::write_dataset(out, r.files, r.source.dir);
+  validation::write_dataset(out, r.files, r.source.dir, "synthesize-logs");
 }
 
 }  // namespace
@@ -709,12 +709,12 @@ PYBIND11_MODULE(_chutelab, m) {
   py::class_<Validated>(m, "Validated")
       .def("numbers", &validation_numbers)
       .def("write", [](const Validated& v, const std::filesystem::path& out) {
-        write_files(v.result.files(), v.inputs, out);
+        write_files(v.result.files(), v.inputs, out, "validate");
       });
   py::class_<Diagnosed>(m, "Diagnosed")
       .def("numbers", &diagnosed_numbers)
       .def("write", [](const Diagnosed& d, const std::filesystem::path& out) {
-        write_files(d.result.files(), d.inputs, out);
+        write_files(d.result.files(), d.inputs, out, "diagnose");
       });
 
   m.def("validate", &validate, py::arg("dataset"), py::arg("models"), py::arg("effects"), py::arg("tolerances"),

@@ -10,10 +10,12 @@ std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& di
 }
 
 void write_dataset(const std::filesystem::path& out, const std::vector<OutputFile>& files,
-                   const std::filesystem::path& source_dir) {
-  OutputFolder folder(out, dataset_files(source_dir));
-  folder.owns({"setup.toml", "conditions.csv", "measurements.csv", "trajectory.csv", "plate_map.csv",
-               "tolerances.toml", "README.md", "log_provenance.csv", "log_checks.csv", "logs"});
+                   const std::filesystem::path& source_dir, std::string_view command) {
+  OutputFolder folder(out, dataset_files(source_dir), command);
+  // The folder is one dataset, whichever of these made it before.
+  folder.takes_over({"synthesize", "synthesize-logs", "import-logs"});
+  folder.read_together({"setup.toml", "conditions.csv", "measurements.csv", "trajectory.csv", "plate_map.csv",
+                        "tolerances.toml", "README.md", "log_provenance.csv", "log_checks.csv", "logs"});
   for (const auto& [name, content] : files) folder.write(name, content);
   folder.commit();
 }

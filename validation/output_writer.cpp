@@ -6,8 +6,8 @@
 namespace chutelab::validation {
 
 void write_outputs(const std::filesystem::path& dir, const std::vector<OutputFile>& files,
-                   const std::vector<std::filesystem::path>& inputs) {
-  OutputFolder out(dir, inputs);
+                   const std::vector<std::filesystem::path>& inputs, std::string_view command) {
+  OutputFolder out(dir, inputs, command);
   for (const auto& [name, content] : files) out.write(name, content);
   out.commit();
 }

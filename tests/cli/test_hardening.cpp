@@ -43,7 +43,19 @@ bool staging_left(const fs::path& parent) {
   return false;
 }
 
-// A copy of the bundled LIGGGHTS rig to spoil, and an --out holding an earlier result.
+// An earlier validate's --out (its files and the record that chutelab wrote them), made once.
+const fs::path& earlier_result() {
+  static const fs::path dir = [] {
+    const fs::path d = fresh_dir("harden-earlier") / "out";
+    const auto r = run_chutelab("validate --dataset '" + kRig.string() + "' --out '" + d.string() + "'");
+    BOOST_REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+    return d;
+  }();
+  return dir;
+}
+
+// A copy of the bundled LIGGGHTS rig to spoil, and an --out holding an earlier result and a file
+// of the user's.
 struct Case {
   fs::path root, data, out;
   explicit Case(const std::string& name) {
@@ -52,7 +64,7 @@ struct Case {
     out = root / "out";
     fs::create_directories(data);
     for (const auto& f : fs::directory_iterator(kRig)) fs::copy_file(f.path(), data / f.path().filename());
-    write_file(out / "report.md", "earlier result\n");
+    fs::copy(earlier_result(), out, fs::copy_options::recursive);
     write_file(out / "keep.txt", "not ours\n");
   }
   std::string args(const std::string& cmd) const {
@@ -106,6 +118,7 @@ BOOST_AUTO_TEST_SUITE(hardening)
 BOOST_AUTO_TEST_CASE(class1_no_abort_and_out_left_as_it_was) {
   Case c("abort");
   // A folder where an output file goes: an abort half-way would leave a mix and .partial files.
+  fs::remove(c.out / "errors.csv");
   fs::create_directories(c.out / "errors.csv");
   expect_refused(c, c.args("validate"), 2, "errors.csv: --out: is a folder where chutelab writes a file");
   fs::remove(c.out / "errors.csv");
@@ -170,6 +183,7 @@ BOOST_AUTO_TEST_CASE(class2_output_never_overwrites_an_input) {
                  "is the input folder");
   // An output file that is a symlink to the tolerances the command reads.
   write_file(c.root / "tol.toml", "[korzen]\nnormal_force_N = { relative = 0.5 }\n");
+  fs::remove(c.out / "summary.csv");
   fs::create_symlink(c.root / "tol.toml", c.out / "summary.csv");
   const auto tol_before = read_file(c.root / "tol.toml");
   expect_refused(c, c.args("validate") + " --tolerances '" + (c.root / "tol.toml").string() + "'", 2,

@@ -247,7 +247,8 @@ BOOST_AUTO_TEST_CASE(class4_every_signal_cleans_up) {
 }
 
 // Class 5: a command owns its output set. validate after validate --diagnose removes the earlier
-// diagnosis (it described another run) and says so; files that are not chutelab's stay.
+// diagnosis (it described another run) and says so; files that are not chutelab's stay
+// (tests/cli/test_outputs.cpp has the rest: only what chutelab wrote is chutelab's).
 BOOST_AUTO_TEST_CASE(class5_earlier_outputs_do_not_survive_as_current) {
   Sandbox s("stale");
   BOOST_REQUIRE(accepted(s, s.args("validate") + " --diagnose").exit_code == 0);
@@ -260,14 +261,18 @@ BOOST_AUTO_TEST_CASE(class5_earlier_outputs_do_not_survive_as_current) {
   BOOST_TEST(r.err.find("diagnosis.csv, diagnosis.md") != std::string::npos);
   BOOST_TEST(read_file(s.out / "notes.txt") == "mine\n");
   // A synthetic dataset into a folder holding another dataset: no file of the old one is left to be
-  // read as part of the new (plate_map.csv, tolerances.toml).
+  // read as part of the new (plate_map.csv, tolerances.toml); as chutelab did not write them, they
+  // are not removed either: refused, and left as they are (issue 50, class 2).
   const fs::path synth = s.root / "synth";
   write_file(synth / "plate_map.csv", "stale\n");
   write_file(synth / "tolerances.toml", "[korzen]\n");
-  BOOST_TEST(run_chutelab("synthesize --dataset " + s.q(s.data) + " --out " + s.q(synth)).exit_code == 0);
-  BOOST_TEST(!fs::exists(synth / "plate_map.csv"));
-  BOOST_TEST(!fs::exists(synth / "tolerances.toml"));
-  BOOST_TEST(fs::exists(synth / "measurements.csv"));
+  const auto refused_synth = run_chutelab("synthesize --dataset " + s.q(s.data) + " --out " + s.q(synth));
+  BOOST_TEST(refused_synth.exit_code == 2);
+  BOOST_TEST(refused_synth.err.find("plate_map.csv: --out: chutelab did not write it, and it would be read as part") !=
+             std::string::npos, refused_synth.err);
+  BOOST_TEST(read_file(synth / "plate_map.csv") == "stale\n");
+  BOOST_TEST(read_file(synth / "tolerances.toml") == "[korzen]\n");
+  BOOST_TEST(!fs::exists(synth / "measurements.csv"));
 }
 
 // Class 6: a check that cannot be computed does not pass. A measured 0 against a relative limit has

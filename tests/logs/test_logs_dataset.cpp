@@ -78,7 +78,7 @@ BOOST_AUTO_TEST_CASE(the_verdict_from_logs_is_the_verdict_from_the_true_means) {
   so.noise_scale = 0.0;
   const api::SynthesizeResult truth = api::synthesize(so);
   const auto dir = test::fresh_dir("logs-truth") / "t";
-  validation::write_dataset(dir, truth.files, truth.source.dir);
+  validation::write_dataset(dir, truth.files, truth.source.dir, "synthesize");
   validation::Dataset means = validation::read_dataset(kSource / "datasets" / "hidden-effect");
   std::map<std::pair<std::string, Quantity>, double> value;
   for (const auto& m : validation::read_measurements(dir / "measurements.csv", nullptr))

@@ -290,7 +290,8 @@ BOOST_AUTO_TEST_CASE(diagnosis_and_before_after_report_renders_in_chromium) {
   validation::SynthesizeOptions so;
   so.effects = {drag->make(0.6)};
   so.seed = 5;
-  validation::write_outputs(dir / "data", validation::synthesize(rig, validation::make_models({"korzen", "booth-cema"}), so));
+  validation::write_outputs(dir / "data", validation::synthesize(rig, validation::make_models({"korzen", "booth-cema"}), so), {},
+                            "synthesize");
   const auto d = validation::read_dataset(dir / "data");
 
   const auto models = validation::make_models({"korzen", "booth-cema"});

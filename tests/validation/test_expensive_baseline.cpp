@@ -50,7 +50,7 @@ BOOST_AUTO_TEST_CASE(expensive_model_runs_once_per_condition_plus_confirmation) 
   so.effects = {chutelab::effects::find("air_drag")->make(0.6)};
   so.seed = 6190;  // outside 7100-7199, which the blind acceptance test reserves
   const auto dir = test::fresh_dir("expensive");
-  write_outputs(dir, synthesize(rig, {slow}, so));
+  write_outputs(dir, synthesize(rig, {slow}, so), {}, "synthesize");
   const auto d = read_dataset(dir);
   calls = 0;
   DiagnoseOptions one;
@@ -117,7 +117,7 @@ BOOST_AUTO_TEST_CASE(expensive_model_gives_its_own_signature) {
   so.seed = 6191;
   so.noise_scale = 0.3;
   const auto dir = test::fresh_dir("own-signature");
-  write_outputs(dir, synthesize(rig, {own}, so));
+  write_outputs(dir, synthesize(rig, {own}, so), {}, "synthesize");
   const auto d = read_dataset(dir);
   calls = 0;
   DiagnoseOptions opt;
@@ -163,7 +163,7 @@ BOOST_AUTO_TEST_CASE(gain_and_flow_bias_are_indistinguishable) {
   so.effects = {chutelab::effects::find("load_cell_gain")->make(0.1)};
   so.seed = 6192;
   const auto dir = test::fresh_dir("gain");
-  write_outputs(dir, synthesize(rig, cheap, so));
+  write_outputs(dir, synthesize(rig, cheap, so), {}, "synthesize");
   const auto d = read_dataset(dir);
   const auto r = diagnose(d, cheap);
   BOOST_REQUIRE(r.best());
@@ -237,7 +237,7 @@ BOOST_AUTO_TEST_CASE(expensive_strength_and_its_uncertainty_come_from_a_profile_
   so.seed = 6193;
   so.noise_scale = 0.5;
   const auto dir = test::fresh_dir("nonlinear-profile");
-  write_outputs(dir, synthesize(rig, {model}, so));
+  write_outputs(dir, synthesize(rig, {model}, so), {}, "synthesize");
   const auto d = read_dataset(dir);
   DiagnoseOptions opt;
   opt.pairs = false;

@@ -57,7 +57,7 @@ Dataset synthesize_and_read(const Dataset& rig, const analytical::EffectList& fx
   so.seed = seed;
   so.noise_scale = noise_scale;
   const fs::path dir = test::fresh_dir(fmt::format("synth-{}-{}", seed, noise_scale));
-  write_outputs(dir, synthesize(rig, synthesis_models(), so));
+  write_outputs(dir, synthesize(rig, synthesis_models(), so), {}, "synthesize");
   return read_dataset(dir);
 }
 

@@ -1,0 +1,187 @@
+// What commands write, and only that: one test per class of defect in outputs, through the real
+// binary as a user runs it. A command replaces or removes only what chutelab wrote (the folder's
+// record, OUT/.chutelab-manifest); outputs are placed all together or not at all, on any file
+// system; messages name what the user gave.
+#include <boost/test/unit_test.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <fmt/format.h>
+#include <map>
+#include <string>
+
+#include "cli_runner.h"
+
+using namespace chutelab::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kSrc = CHUTELAB_SOURCE_DIR;
+const fs::path kRig = kSrc / "datasets" / "liggghts-rig";
+const fs::path kDemCache = kSrc / "tests" / "peer" / "dem-cache";
+
+// Every entry under `root` (relative path -> bytes; folders "<dir>", links "<link>target").
+std::map<std::string, std::string> snapshot(const fs::path& root) {
+  std::map<std::string, std::string> s;
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(root, ec))) return s;
+  for (auto it = fs::recursive_directory_iterator(root, fs::directory_options::none, ec);
+       it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    const auto rel = fs::relative(it->path(), root).string();
+    if (it->is_symlink()) s[rel] = "<link>" + fs::read_symlink(it->path()).string();
+    else if (it->is_directory()) s[rel] = "<dir>";
+    else s[rel] = read_file(it->path());
+  }
+  return s;
+}
+
+bool staging_left(const fs::path& root) {
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+    if (it->path().filename().string().find(".partial") != std::string::npos) return true;
+  return false;
+}
+
+// A copy of the bundled LIGGGHTS rig and an --out beside it.
+struct Sandbox {
+  fs::path root, data, out;
+  explicit Sandbox(const std::string& name) {
+    root = fresh_dir("outputs-" + name);
+    data = root / "data";
+    out = root / "out";
+    fs::create_directories(data);
+    for (const auto& f : fs::directory_iterator(kRig)) fs::copy_file(f.path(), data / f.path().filename());
+  }
+  static std::string q(const fs::path& p) { return fmt::format("'{}'", p.string()); }
+  std::string args(const std::string& cmd, const fs::path& to = {}) const {
+    return cmd + " --dataset " + q(data) + " --out " + q(to.empty() ? out : to);
+  }
+};
+
+RunResult ok(const std::string& args, int code = 0) {
+  const auto r = run_chutelab(args);
+  BOOST_TEST(r.exit_code == code, "chutelab " << args.substr(0, 300) << "\nstderr: " << r.err.substr(0, 2000));
+  return r;
+}
+
+// The promise for a refusal: exit 2, one line saying `says`, nothing changed under `root`.
+RunResult refused(const fs::path& root, const std::string& args, const std::string& says) {
+  const auto before = snapshot(root);
+  const auto r = run_chutelab(args);
+  BOOST_TEST_INFO("chutelab " << args.substr(0, 300) << "\nstderr: " << r.err.substr(0, 2000));
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(count_lines(r.err) == 1);
+  BOOST_TEST(r.err.find(says) != std::string::npos);
+  BOOST_TEST((snapshot(root) == before));
+  BOOST_TEST(!staging_left(root));
+  return r;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(outputs)
+
+// Issue 50, class 2: a command removes or replaces only what chutelab wrote. Ownership by name
+// removed a user's own dem/ folder from --out, a tolerances.toml of theirs when synthesizing into
+// it, and `diagnose` into the folder of a `validate` removed its report (docs/diagnosis.md's own
+// walk-through does exactly that).
+BOOST_AUTO_TEST_CASE(class2_only_what_chutelab_wrote_is_removed) {
+  Sandbox s("owned");
+  // The user's own dem/ folder and notes inside --out: validate without the DEM leaves them.
+  write_file(s.out / "dem" / "mine.txt", "my notes\n");
+  write_file(s.out / "notes.txt", "mine\n");
+  ok(s.args("validate"));
+  BOOST_TEST(read_file(s.out / "dem" / "mine.txt") == "my notes\n");
+  BOOST_TEST(read_file(s.out / "notes.txt") == "mine\n");
+  BOOST_TEST(fs::exists(s.out / "report.html"));
+  BOOST_TEST(fs::is_regular_file(s.out / ".chutelab-manifest"));
+  // docs/diagnosis.md: validate, then diagnose into the same folder. The report stays.
+  const auto report = read_file(s.out / "report.md");
+  const auto d = ok(s.args("diagnose"));
+  BOOST_TEST(read_file(s.out / "report.md") == report);
+  for (const char* f : {"report.html", "predictions.csv", "errors.csv", "summary.csv", "diagnosis.md", "diagnosis.csv"})
+    BOOST_TEST(fs::exists(s.out / f), f);
+  BOOST_TEST(d.err.find("removed") == std::string::npos, d.err);
+  // An earlier run of the same command: what it wrote and this run does not is removed, and said.
+  ok(s.args("validate") + " --diagnose");
+  const auto again = ok(s.args("validate"));
+  BOOST_TEST(!fs::exists(s.out / "diagnosis.csv"));
+  BOOST_TEST(!fs::exists(s.out / "diagnosis.md"));
+  BOOST_TEST(again.err.find("removed from") != std::string::npos);
+  BOOST_TEST(again.err.find("diagnosis.csv, diagnosis.md") != std::string::npos, again.err);
+  // ... unless the user changed it since: then it is theirs, kept, and said.
+  ok(s.args("validate") + " --diagnose");
+  write_file(s.out / "diagnosis.md", read_file(s.out / "diagnosis.md") + "\nmy comment\n");
+  const auto kept = ok(s.args("validate"));
+  BOOST_TEST(read_file(s.out / "diagnosis.md").find("my comment") != std::string::npos);
+  BOOST_TEST(!fs::exists(s.out / "diagnosis.csv"));
+  BOOST_TEST(kept.err.find("kept") != std::string::npos, kept.err);
+  // A file of the user's where chutelab would write one is refused, not overwritten: the user's
+  // report.md in a new folder, and the diagnosis.md they edited (no longer chutelab's).
+  const fs::path mine = s.root / "mine";
+  write_file(mine / "report.md", "my report\n");
+  refused(s.root, s.args("validate", mine), "report.md: --out: chutelab did not write it");
+  refused(s.root, s.args("validate", s.out) + " --diagnose", "diagnosis.md: --out: chutelab did not write it");
+  fs::remove(s.out / "diagnosis.md");
+  // A file chutelab wrote, edited by the user, is refused as changed.
+  write_file(s.out / "summary.csv", read_file(s.out / "summary.csv") + "x\n");
+  refused(s.root, s.args("validate"), "summary.csv: --out: was changed since chutelab wrote it");
+  fs::remove(s.out / "summary.csv");
+  // A copy of a chutelab file (another time, the same bytes) is still chutelab's.
+  ok(s.args("validate"));
+  const std::string errors = read_file(s.out / "errors.csv");
+  fs::remove(s.out / "errors.csv");
+  write_file(s.out / "errors.csv", errors);
+  ok(s.args("validate"));
+  // A tolerances.toml of the user's in the folder synthesize writes a dataset into: it would be read
+  // as part of the new dataset, and it is not chutelab's to remove: refused, left as it is.
+  const fs::path synth = s.root / "synth";
+  write_file(synth / "tolerances.toml", "[korzen]\nnormal_force_N = { relative = 0.1 }\n");
+  refused(s.root, "synthesize --dataset " + s.q(s.data) + " --out " + s.q(synth),
+          "tolerances.toml: --out: chutelab did not write it, and it would be read as part of what synthesize writes");
+  // Without it, a dataset; synthesized again over its own earlier one, replaced.
+  fs::remove(synth / "tolerances.toml");
+  ok("synthesize --dataset " + s.q(s.data) + " --out " + s.q(synth));
+  const std::string first = read_file(synth / "measurements.csv");
+  ok("synthesize --dataset " + s.q(s.data) + " --out " + s.q(synth) + " --seed 2");
+  BOOST_TEST(read_file(synth / "measurements.csv") != first);
+  // A record naming a file outside the folder (the manifest is a text file anyone may edit) reaches
+  // nothing outside it.
+  const std::string keep = "keep me\n";
+  write_file(s.root / "outside.txt", keep);
+  std::uint64_t h = 1469598103934665603ull;  // the manifest's FNV-1a, so that only the path is wrong
+  for (unsigned char c : keep) h = (h ^ c) * 1099511628211ull;
+  write_file(s.out / ".chutelab-manifest", read_file(s.out / ".chutelab-manifest") +
+                                                fmt::format("file\tvalidate\t{}\t0\t{:016x}\t../outside.txt\n"
+                                                            "file\tvalidate\t{}\t0\t{:016x}\t{}\n",
+                                                            keep.size(), h, keep.size(), h,
+                                                            (s.root / "outside.txt").string()));
+  ok(s.args("validate") + " --models korzen");
+  BOOST_TEST(read_file(s.root / "outside.txt") == "keep me\n");
+  BOOST_TEST(!staging_left(s.root));
+}
+
+// Class 2 inside a folder: the DEM's per-condition files are chutelab's, a file the user put among
+// them is not. validate with the DEM (its runs from the recorded cache of tests/peer: no run here),
+// then without: chutelab's files under dem/ go, the user's stays with its folder.
+BOOST_AUTO_TEST_CASE(class2_a_users_file_inside_chutelabs_folder_stays) {
+  Sandbox s("dem-folder");
+  const std::string dem = " --models korzen,dem --dem-quality standard --dem-ladder off --dem-cache-only --dem-cache " +
+                          Sandbox::q(kDemCache);
+  // The user's own dem/ folder: chutelab adds its files and leaves the user's.
+  write_file(s.out / "dem" / "mine.txt", "my notes\n");
+  ok(s.args("validate") + dem);
+  BOOST_TEST(fs::is_regular_file(s.out / "dem" / "V3-41" / "timeseries.csv"));
+  BOOST_TEST(read_file(s.out / "dem" / "mine.txt") == "my notes\n");
+  write_file(s.out / "dem" / "V3-41" / "theirs.txt", "also mine\n");
+  const auto r = ok(s.args("validate"));
+  BOOST_TEST(r.err.find("dem/ (") != std::string::npos, r.err);
+  BOOST_TEST(read_file(s.out / "dem" / "mine.txt") == "my notes\n");
+  BOOST_TEST(read_file(s.out / "dem" / "V3-41" / "theirs.txt") == "also mine\n");
+  BOOST_TEST(!fs::exists(s.out / "dem" / "V3-41" / "timeseries.csv"));
+  BOOST_TEST(!fs::exists(s.out / "dem" / "V2-26"));  // a folder chutelab made, now empty: gone
+  BOOST_TEST(!staging_left(s.root));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
