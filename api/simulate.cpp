@@ -4,6 +4,7 @@
 
 #include "core/campaign.h"
 #include "core/input_error.h"
+#include "core/message.h"
 #include "dem/station/cache.h"
 #include "dem/station/progress.h"
 #include "dem/world.h"
@@ -116,7 +117,9 @@ SimulateResult simulate(const SimulateOptions& o) {
   }
   // Same key as the harness model: a later validate of "dem" with these settings is instant.
   if (o.store_in_cache)
-    st::ResultCache(st::ResultCache::default_dir()).store(validation::dem_cache_key(fx, res.settings, table), res.run);
+    if (const auto w = st::ResultCache(st::ResultCache::default_dir()).store(validation::dem_cache_key(fx, res.settings, table), res.run);
+        !w)
+      warn(fmt::format("the run is not cached: {}", w.problem));
   return res;
 }
 

@@ -3,12 +3,12 @@
 #   scripts/fuzz.sh build                 # build only
 #   scripts/fuzz.sh run TARGET SECONDS    # one target, corpus copied from tests/fuzz/corpus/TARGET
 #   scripts/fuzz.sh all SECONDS           # every target in turn
-# Targets: dataset setup tolerances mapping stl dem_table studies. Crashes are written to build/fuzz/crashes/TARGET/.
+# Targets: dataset setup tolerances mapping stl dem_table studies dem_cache. Crashes are written to build/fuzz/crashes/TARGET/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 bdir=${CHUTELAB_FUZZ_BUILD:-$root/build/fuzz}
-targets=(dataset setup tolerances mapping stl dem_table studies)
+targets=(dataset setup tolerances mapping stl dem_table studies dem_cache)
 
 build() {
   local launcher=()

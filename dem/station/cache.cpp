@@ -1,18 +1,24 @@
 #include "dem/station/cache.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <functional>
-#include <thread>
-#include <unistd.h>
-#include <csignal>
-#include <cerrno>
-#include <vector>
-#include <fstream>
-#include <sstream>
+#include <limits>
+#include <set>
 #include <string_view>
+#include <thread>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -21,14 +27,20 @@
 namespace chutelab::dem::station {
 namespace {
 
-// Version 5 ends with an "end" line, so a file cut short (a writer that died, a file system that
-// shows a rename before the data) is a miss, not a result with half its series, and carries the
-// plate maps with their block means. Version 2 files (no end line, no maps, written by an atomic
-// rename only) are still read: a standard or paper run is too dear to repeat for a picture
-// (--no-dem-cache does). Any other version is a miss.
-constexpr const char* kMagic = "chutelab-dem-result 5";
-constexpr const char* kMagicV2 = "chutelab-dem-result 2";
-constexpr const char* kEnd = "end\n";
+// Format 6 ends with "end <FNV-1a 64 of everything before that line>", so a file cut short (a
+// writer that died, a file system that shows a rename before the data) or changed afterwards is
+// refused, not a result with half its series or an edited number. Format 5 ends with a bare "end"
+// line (no check sum): the recorded runs of tests/peer/dem-cache are format 5 and too dear to run
+// again, so it is still read, under the same strict parse. Any other format is refused (format 2
+// had no end line at all, so a file cut at a line end could not be told from a whole one).
+constexpr const char* kMagicPrefix = "chutelab-dem-result ";
+constexpr const char* kFormat = "6";
+constexpr const char* kFormatV5 = "5";
+constexpr const char* kMagic = "chutelab-dem-result 6";
+constexpr const char* kMagicV5 = "chutelab-dem-result 5";
+constexpr const char* kEndV5 = "\nend\n";
+// A standard run's entry is ~1 MB; a 400 x 400 map with 50 blocks per cell ~0.5 GB.
+constexpr std::size_t kMaxEntryBytes = std::size_t{1} << 31;
 
 std::string num(double v) { return fmt::format("{:.17g}", v); }
 
@@ -36,24 +48,9 @@ void put(std::string& o, const char* name, const Estimate& e) {
   o += fmt::format("scalar {} {} {} {}\n", name, num(e.value), num(e.se), e.n);
 }
 
-bool read_estimate(std::istringstream& in, Estimate& e) {
-  std::string v, s;
-  in >> v >> s >> e.n;
-  if (!in) return false;
-  e.value = std::strtod(v.c_str(), nullptr);
-  e.se = std::strtod(s.c_str(), nullptr);
-  return true;
-}
-
-double rd(std::istringstream& in) {
-  std::string v;
-  in >> v;
-  return std::strtod(v.c_str(), nullptr);
-}
-
 }  // namespace
 
-std::uint64_t fnv1a64(const std::string& s) {
+std::uint64_t fnv1a64(std::string_view s) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
   for (unsigned char c : s) {
     h ^= c;
@@ -153,220 +150,384 @@ std::string to_text(const StationResult& r) {
 
 namespace {
 
-// The readers of from_text, one per line tag: each reads the rest of its line into the result and
-// returns false when the line cannot be read (the entry is then a miss).
-using LineReader = bool (*)(std::istringstream& in, const std::string& rest, StationResult& r);
+// A line that cannot be read: what of it, and why (from_text adds the line number).
+struct Bad {
+  std::string field, problem;
+};
 
-bool read_run(std::istringstream& in, const std::string&, StationResult& r) {
-  int early = 0;
-  r.diameter = rd(in); r.dt = rd(in); r.collision_time = rd(in); r.rayleigh_time = rd(in);
-  r.simulated_time = rd(in);
-  in >> r.steps;
-  r.wall_seconds = rd(in);
-  in >> early >> r.peak_particles;
-  r.side_view_time = rd(in);
-  r.early_stop = early != 0;
-  if (!(in >> r.rebuilds)) r.rebuilds = -1;
-  return true;
+// The tokens of one line after its tag, split at the single spaces the writer puts between them,
+// each read in full or refused: a number never comes from part of a token, an empty one or a word.
+class Fields {
+ public:
+  Fields(std::string_view tag, std::string_view rest) : tag_(tag) {
+    for (std::size_t at = 0;;) {
+      const std::size_t sp = rest.find(' ', at);
+      tokens_.push_back(rest.substr(at, sp == std::string_view::npos ? std::string_view::npos : sp - at));
+      if (sp == std::string_view::npos) break;
+      at = sp + 1;
+    }
+  }
+  std::size_t size() const { return tokens_.size(); }
+  // The line has exactly `n` tokens (or `m`, a shorter older form).
+  void expect(std::size_t n, std::size_t m = 0) const {
+    if (size() != n && (m == 0 || size() != m))
+      fail("", fmt::format("has {} fields, expected {}{}", size(), n, m ? fmt::format(" or {}", m) : ""));
+  }
+  [[noreturn]] void fail(std::string_view what, const std::string& problem) const {
+    throw Bad{std::string(tag_), what.empty() ? problem : fmt::format("{}: {}", what, problem)};
+  }
+  std::string_view text(std::size_t i, std::string_view what) const {
+    if (i >= tokens_.size() || tokens_[i].empty()) fail(what, "missing");
+    return tokens_[i];
+  }
+
+  // A double as {:.17g} writes it: finite, or NaN where `nan_ok`; never inf.
+  double real(std::size_t i, std::string_view what, bool nan_ok = false) const {
+    const std::string_view t = text(i, what);
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (end != t.data() + t.size() || (ec != std::errc() && ec != std::errc::result_out_of_range))
+      fail(what, fmt::format("'{}' is not a number", t));
+    if (ec == std::errc::result_out_of_range) v = subnormal(t, what);
+    if (std::isinf(v) || (std::isnan(v) && !nan_ok)) fail(what, fmt::format("'{}' is not a finite number", t));
+    return v;
+  }
+  double at_least(std::size_t i, std::string_view what, double low, bool nan_ok = false) const {
+    const double v = real(i, what, nan_ok);
+    if (v < low) fail(what, fmt::format("{} is below {}", tokens_[i], low));
+    return v;
+  }
+  double positive(std::size_t i, std::string_view what) const {
+    const double v = real(i, what);
+    if (!(v > 0.0)) fail(what, fmt::format("{} is not positive", tokens_[i]));
+    return v;
+  }
+  float single(std::size_t i, std::string_view what) const {
+    const std::string_view t = text(i, what);
+    float v = 0.0f;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (end != t.data() + t.size() || ec != std::errc() || !std::isfinite(v))
+      fail(what, fmt::format("'{}' is not a finite number", t));
+    return v;
+  }
+  long long whole(std::size_t i, std::string_view what, long long low, long long high) const {
+    const std::string_view t = text(i, what);
+    long long v = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (end != t.data() + t.size() || ec != std::errc()) fail(what, fmt::format("'{}' is not a whole number", t));
+    if (v < low || v > high) fail(what, fmt::format("{} is outside {}..{}", v, low, high));
+    return v;
+  }
+  long long count(std::size_t i, std::string_view what) const {
+    return whole(i, what, 0, std::numeric_limits<int>::max());
+  }
+  bool flag(std::size_t i, std::string_view what) const { return whole(i, what, 0, 1) == 1; }
+  // A mean, its standard error and its count as the DEM makes them (steady_state.h): no values and
+  // no mean (NaN) go together; a mean has a finite, non-negative error or none (NaN: too few blocks).
+  Estimate estimate(std::size_t i, std::string_view what) const {
+    Estimate e;
+    e.value = real(i, what, true);
+    e.se = at_least(i + 1, what, 0.0, true);
+    e.n = static_cast<int>(count(i + 2, what));
+    if ((e.n == 0) != std::isnan(e.value))
+      fail(what, e.n == 0 ? fmt::format("a mean {} of no values", tokens_[i]) : fmt::format("no mean of {} values", e.n));
+    if (std::isnan(e.value) && !std::isnan(e.se)) fail(what, "a standard error without a mean");
+    return e;
+  }
+
+ private:
+  // from_chars calls a subnormal out of range; the writer can write one.
+  double subnormal(std::string_view t, std::string_view what) const {
+    const std::string s(t);
+    char* stop = nullptr;
+    const double v = std::strtod(s.c_str(), &stop);
+    if (stop != s.c_str() + s.size() || !std::isfinite(v) || std::abs(v) >= std::numeric_limits<double>::min())
+      fail(what, fmt::format("'{}' is out of range", t));
+    return v;
+  }
+  std::string_view tag_;
+  std::vector<std::string_view> tokens_;
+};
+
+constexpr std::string_view kScalars[] = {"normal_force",   "shear_force",     "resultant_force",      "impact_point_y",
+                                         "impact_velocity", "impact_velocity_fast", "exit_velocity", "layer_speed",
+                                         "layer_height",   "stream_thickness", "mass_flux",           "momentum_balance"};
+
+Estimate* scalar_of(StationResult& r, std::string_view n) {
+  Estimate* all[] = {&r.normal_force,  &r.shear_force,      &r.resultant_force, &r.impact_point_y,
+                     &r.impact_velocity, &r.impact_velocity_fast, &r.exit_velocity, &r.layer_speed,
+                     &r.layer_height,  &r.stream_thickness, &r.mass_flux,       &r.momentum_balance};
+  for (std::size_t k = 0; k < std::size(kScalars); ++k)
+    if (kScalars[k] == n) return all[k];
+  return nullptr;
 }
 
-bool read_window(std::istringstream& in, const std::string&, StationResult& r) {
-  int found = 0;
-  in >> found;
-  r.window.start = rd(in); r.window.end = rd(in);
-  in >> r.window.blocks;
-  r.window.found = found != 0;
-  return true;
+// What the text held so far: the lines every entry has once, and where the series are.
+struct Reading {
+  std::set<std::string, std::less<>> once;
+  std::optional<double> last_x, last_force_t, last_snap_t;
+  long long last_gcell = -1;
+};
+
+void read_run(const Fields& f, StationResult& r) {
+  // The rebuild count came later: entries written before it end the line there (read back as unknown).
+  f.expect(11, 10);
+  r.diameter = f.positive(0, "diameter");
+  r.dt = f.positive(1, "dt");
+  r.collision_time = f.at_least(2, "collision time", 0.0);
+  r.rayleigh_time = f.at_least(3, "Rayleigh time", 0.0);
+  r.simulated_time = f.at_least(4, "simulated time", 0.0);
+  r.steps = f.whole(5, "steps", 0, std::numeric_limits<long long>::max());
+  r.wall_seconds = f.at_least(6, "wall time", 0.0);
+  r.early_stop = f.flag(7, "early stop");
+  r.peak_particles = static_cast<std::size_t>(f.whole(8, "peak particles", 0, std::numeric_limits<long long>::max()));
+  r.side_view_time = f.at_least(9, "side view time", 0.0);
+  r.rebuilds = f.size() == 11 ? f.whole(10, "rebuilds", 0, std::numeric_limits<long long>::max()) : -1;
 }
 
-bool read_restart(std::istringstream& in, const std::string&, StationResult& r) {
-  r.restart_time = rd(in);
-  r.transient_end = rd(in);
-  return true;
+void read_window(const Fields& f, StationResult& r) {
+  f.expect(4);
+  r.window.found = f.flag(0, "found");
+  r.window.start = f.real(1, "start");
+  r.window.end = f.real(2, "end");
+  r.window.blocks = static_cast<int>(f.count(3, "blocks"));
+  if (r.window.start > r.window.end) f.fail("start", "after the end");
 }
 
-bool read_mass(std::istringstream& in, const std::string&, StationResult& r) {
-  r.inserted = rd(in); r.discharged = rd(in); r.escaped = rd(in); r.in_domain = rd(in);
-  return true;
+void read_restart(const Fields& f, StationResult& r) {
+  f.expect(2);
+  r.restart_time = f.at_least(0, "restart time", 0.0);
+  r.transient_end = f.real(1, "transient end");
 }
 
-bool read_scalar(std::istringstream& in, const std::string&, StationResult& r) {
-  std::string n;
-  in >> n;
-  Estimate* e = n == "normal_force" ? &r.normal_force : n == "shear_force" ? &r.shear_force
-              : n == "resultant_force" ? &r.resultant_force : n == "impact_point_y" ? &r.impact_point_y
-              : n == "impact_velocity" ? &r.impact_velocity : n == "impact_velocity_fast" ? &r.impact_velocity_fast
-              : n == "exit_velocity" ? &r.exit_velocity : n == "layer_speed" ? &r.layer_speed
-              : n == "stream_thickness" ? &r.stream_thickness : n == "mass_flux" ? &r.mass_flux
-              : n == "layer_height" ? &r.layer_height : n == "momentum_balance" ? &r.momentum_balance
-              : nullptr;
-  return e && read_estimate(in, *e);
+void read_mass(const Fields& f, StationResult& r) {
+  f.expect(4);
+  r.inserted = f.at_least(0, "inserted", 0.0);
+  r.discharged = f.at_least(1, "discharged", 0.0);
+  r.escaped = f.at_least(2, "escaped", 0.0);
+  r.in_domain = f.at_least(3, "in domain", 0.0);
 }
 
-bool read_trajectory_row(std::istringstream& in, const std::string&, StationResult& r) {
+void read_scalar(const Fields& f, StationResult& r, Reading& seen) {
+  f.expect(4);
+  const std::string_view n = f.text(0, "name");
+  Estimate* e = scalar_of(r, n);
+  if (!e) f.fail("name", fmt::format("unknown quantity '{}'", n));
+  if (!seen.once.insert("scalar " + std::string(n)).second) f.fail(n, "appears twice");
+  *e = f.estimate(1, n);
+}
+
+// Series in time (or along x) go forward: a line moved or repeated is a damaged file.
+void forward(const Fields& f, std::optional<double>& last, double now, std::string_view what) {
+  if (last && !(now > *last)) f.fail(what, fmt::format("{:.17g} does not follow {:.17g}", now, *last));
+  last = now;
+}
+
+void read_trajectory_row(const Fields& f, StationResult& r, Reading& seen) {
+  f.expect(10);
   TrajectoryRow t;
-  t.x = rd(in);
-  if (!read_estimate(in, t.upper) || !read_estimate(in, t.lower) || !read_estimate(in, t.centre)) return false;
+  t.x = f.real(0, "x");
+  forward(f, seen.last_x, t.x, "x");
+  t.upper = f.estimate(1, "upper");
+  t.lower = f.estimate(4, "lower");
+  t.centre = f.estimate(7, "centre");
   r.trajectory.push_back(t);
-  return true;
 }
 
-bool read_force_sample(std::istringstream& in, const std::string&, StationResult& r) {
-  ForceSample f;
-  f.t = rd(in); f.normal = rd(in); f.shear = rd(in); f.moment = rd(in);
-  f.mass_through = rd(in); f.momentum_in = rd(in); f.momentum_floor = rd(in); f.momentum_content = rd(in);
-  r.forces.push_back(f);
-  return true;
+void read_force_sample(const Fields& f, StationResult& r, Reading& seen) {
+  f.expect(8);
+  ForceSample s;
+  s.t = f.at_least(0, "t", 0.0);
+  forward(f, seen.last_force_t, s.t, "t");
+  s.normal = f.real(1, "normal");
+  s.shear = f.real(2, "shear");
+  s.moment = f.real(3, "moment");
+  s.mass_through = f.real(4, "mass through");
+  s.momentum_in = f.real(5, "momentum in");
+  s.momentum_floor = f.real(6, "momentum floor");
+  s.momentum_content = f.real(7, "momentum content");
+  r.forces.push_back(s);
 }
 
-bool read_snapshot(std::istringstream& in, const std::string&, StationResult& r) {
+void read_snapshot(const Fields& f, StationResult& r, Reading& seen) {
+  f.expect(10);
   SnapshotStats s;
-  s.t = rd(in);
-  in >> s.particles;
-  s.vp_sum = rd(in);
-  in >> s.vp_n;
-  s.vp_fast_sum = rd(in);
-  in >> s.vp_fast_n;
-  s.layer_speed_sum = rd(in);
-  s.layer_height_sum = rd(in);
-  in >> s.layer_n;
-  s.stream_thickness = rd(in);
-  if (!in) return false;
+  s.t = f.at_least(0, "t", 0.0);
+  forward(f, seen.last_snap_t, s.t, "t");
+  s.particles = static_cast<std::size_t>(f.whole(1, "particles", 0, std::numeric_limits<long long>::max()));
+  s.vp_sum = f.real(2, "V_p sum");
+  s.vp_n = static_cast<int>(f.count(3, "V_p count"));
+  s.vp_fast_sum = f.real(4, "fast V_p sum");
+  s.vp_fast_n = static_cast<int>(f.count(5, "fast V_p count"));
+  s.layer_speed_sum = f.real(6, "layer speed sum");
+  s.layer_height_sum = f.real(7, "layer height sum");
+  s.layer_n = static_cast<int>(f.count(8, "layer count"));
+  s.stream_thickness = f.at_least(9, "stream thickness", 0.0, true);  // NaN: no particles in the window
   r.snapshots.push_back(s);
-  return true;
 }
 
-Vec3 read_vec3(std::istringstream& in) {
-  const double x = rd(in), y = rd(in), z = rd(in);  // in order: function arguments are evaluated in no fixed order
+Vec3 read_vec3(const Fields& f, std::size_t i, std::string_view what) {
+  const double x = f.real(i, what), y = f.real(i + 1, what), z = f.real(i + 2, what);  // in order
   return Vec3(x, y, z);
 }
 
-bool read_map(std::istringstream& in, const std::string&, StationResult& r) {
+void read_map(const Fields& f, std::string_view rest, StationResult& r, Reading& seen) {
   PlateMap m;
-  m.duration = rd(in);
-  in >> std::ws;
-  std::getline(in, m.wall);
+  m.duration = f.at_least(0, "duration", 0.0);
+  // The wall's name (an STL file) may hold spaces: the rest of the line.
+  const std::size_t sp = rest.find(' ');
+  if (sp == std::string_view::npos || sp + 1 == rest.size()) f.fail("wall", "missing");
+  m.wall = std::string(rest.substr(sp + 1));
   r.maps.push_back(std::move(m));
-  return true;
+  seen.last_gcell = -1;
 }
 
 // A grid map's geometry: its cells are rebuilt empty, and its gcell lines fill those with a contact.
-bool read_grid(std::istringstream& in, const std::string&, StationResult& r) {
-  if (r.maps.empty()) return false;
+void read_grid(const Fields& f, StationResult& r) {
+  f.expect(14);
+  if (r.maps.empty() || r.maps.back().grid || !r.maps.back().cells.empty()) f.fail("", "not right after a map line");
   MapGrid g;
-  g.origin = read_vec3(in);
-  g.down = read_vec3(in);
-  g.across = read_vec3(in);
-  g.height = rd(in);
-  g.width = rd(in);
-  std::size_t nb = 0;
-  in >> g.rows >> g.cols >> nb;
-  if (!in || g.rows < 1 || g.cols < 1 || g.rows > 400 || g.cols > 400 || nb > 10000) return false;
+  g.origin = read_vec3(f, 0, "origin");
+  g.down = read_vec3(f, 3, "down");
+  g.across = read_vec3(f, 6, "across");
+  g.height = f.positive(9, "height");
+  g.width = f.positive(10, "width");
+  g.rows = static_cast<int>(f.whole(11, "rows", 1, 400));
+  g.cols = static_cast<int>(f.whole(12, "columns", 1, 400));
+  const auto nb = static_cast<std::size_t>(f.whole(13, "blocks", 0, 10000));
   PlateMap& m = r.maps.back();
   m.grid = g;
   for (const auto& t : g.triangles()) m.cells.push_back(empty_cell(t, false, nb));
-  return true;
 }
 
-// One grid cell with a contact: its two triangles' sums.
-bool read_grid_cell(std::istringstream& in, const std::string&, StationResult& r) {
-  if (r.maps.empty() || !r.maps.back().grid) return false;
+// One grid cell with a contact: its two triangles' sums, cells in order.
+void read_grid_cell(const Fields& f, StationResult& r, Reading& seen) {
+  if (r.maps.empty() || !r.maps.back().grid) f.fail("", "not in a grid map");
   PlateMap& m = r.maps.back();
-  std::size_t b = 0;
-  int flip = 0;
-  in >> b >> flip;
-  if (!in || 2 * b + 1 >= m.cells.size()) return false;
-  const double fx = rd(in), fy = rd(in), fz = rd(in);
-  const double ip = rd(in), sp = rd(in), ls = rd(in), fm = rd(in), im = rd(in);
+  const auto b = static_cast<std::size_t>(f.whole(0, "cell", 0, static_cast<long long>(m.cells.size() / 2) - 1));
+  if (static_cast<long long>(b) <= seen.last_gcell) f.fail("cell", fmt::format("{} out of order", b));
+  seen.last_gcell = static_cast<long long>(b);
   const std::size_t nb = m.cells[2 * b].block_normal.size();
+  f.expect(10 + 3 * nb);
+  const bool flip = f.flag(1, "flip");
+  const Vec3 force = read_vec3(f, 2, "force");
+  const double ip = f.at_least(5, "impact power", 0.0), sp = f.real(6, "sliding power"),
+               ls = f.real(7, "load slip"), fm = f.at_least(8, "Finnie measure", 0.0),
+               im = f.at_least(9, "impacts", 0.0);
   std::vector<double> bn(nb), bl(nb), bf(nb);
-  for (std::size_t k = 0; k < nb; ++k) bn[k] = rd(in), bl[k] = rd(in), bf[k] = rd(in);
-  if (!in) return false;
+  for (std::size_t k = 0; k < nb; ++k) {
+    bn[k] = f.real(10 + 3 * k, "block normal");
+    bl[k] = f.real(11 + 3 * k, "block load slip");
+    bf[k] = f.real(12 + 3 * k, "block Finnie");
+  }
   for (std::size_t t = 2 * b; t < 2 * b + 2; ++t) {
     MapCell& c = m.cells[t];
     if (flip) c.normal = -c.normal;
-    c.force = Vec3(fx, fy, fz);
+    c.force = force;
     c.impact_power = ip; c.sliding_power = sp; c.load_slip = ls; c.finnie_measure = fm; c.impacts = im;
     c.block_normal = bn; c.block_load_slip = bl; c.block_finnie = bf;
   }
-  return true;
 }
 
 // One triangle of a map of any mesh, with its geometry.
-bool read_cell(std::istringstream& in, const std::string&, StationResult& r) {
-  if (r.maps.empty()) return false;
+void read_cell(const Fields& f, StationResult& r) {
+  if (r.maps.empty() || r.maps.back().grid) f.fail("", "not in a mesh map");
+  const auto nb = static_cast<std::size_t>(f.whole(21, "blocks", 0, 10000));
+  f.expect(22 + 3 * nb);
   MapCell c;
-  for (auto& p : c.corners) p = read_vec3(in);
-  c.normal = read_vec3(in);
-  c.area = rd(in);
-  c.force = read_vec3(in);
-  c.impact_power = rd(in); c.sliding_power = rd(in); c.load_slip = rd(in); c.finnie_measure = rd(in);
-  c.impacts = rd(in);
-  std::size_t nb = 0;
-  in >> nb;
-  if (!in || nb > 10000) return false;
+  for (std::size_t k = 0; k < 3; ++k) c.corners[k] = read_vec3(f, 3 * k, "corner");
+  c.normal = read_vec3(f, 9, "normal");
+  c.area = f.at_least(12, "area", 0.0);
+  c.force = read_vec3(f, 13, "force");
+  c.impact_power = f.at_least(16, "impact power", 0.0);
+  c.sliding_power = f.real(17, "sliding power");
+  c.load_slip = f.real(18, "load slip");
+  c.finnie_measure = f.at_least(19, "Finnie measure", 0.0);
+  c.impacts = f.at_least(20, "impacts", 0.0);
   for (std::size_t b = 0; b < nb; ++b) {
-    const double fn = rd(in), ls = rd(in), fi = rd(in);
-    c.block_normal.push_back(fn);
-    c.block_load_slip.push_back(ls);
-    c.block_finnie.push_back(fi);
+    c.block_normal.push_back(f.real(22 + 3 * b, "block normal"));
+    c.block_load_slip.push_back(f.real(23 + 3 * b, "block load slip"));
+    c.block_finnie.push_back(f.real(24 + 3 * b, "block Finnie"));
   }
-  if (!in) return false;
-  r.maps.back().cells.push_back(c);
-  return true;
+  r.maps.back().cells.push_back(std::move(c));
 }
 
-bool read_side_point(std::istringstream& in, const std::string&, StationResult& r) {
-  SidePoint p{};
-  in >> p.x >> p.y >> p.z >> p.speed;
-  if (!in) return false;
-  r.side_view.push_back(p);
-  return true;
+void read_side_point(const Fields& f, StationResult& r) {
+  f.expect(4);
+  r.side_view.push_back({f.single(0, "x"), f.single(1, "y"), f.single(2, "z"), f.single(3, "speed")});
 }
 
-struct TaggedReader {
-  std::string_view tag;
-  LineReader read;
-};
-
-constexpr TaggedReader kReaders[] = {
-    {"condition", [](std::istringstream&, const std::string& rest, StationResult& r) { r.condition = rest; return true; }},
-    {"quality", [](std::istringstream&, const std::string& rest, StationResult& r) { r.quality = rest; return true; }},
-    {"shape", [](std::istringstream&, const std::string& rest, StationResult& r) { r.shape = rest; return true; }},
-    {"note", [](std::istringstream&, const std::string& rest, StationResult& r) { r.notes.push_back(rest); return true; }},
-    {"run", read_run},
-    {"window", read_window},
-    {"restart", read_restart},
-    {"mass", read_mass},
-    {"scalar", read_scalar},
-    {"traj", read_trajectory_row},
-    {"force", read_force_sample},
-    {"snap", read_snapshot},
-    {"map", read_map},
-    {"grid", read_grid},
-    {"gcell", read_grid_cell},
-    {"cell", read_cell},
-    {"side", read_side_point},
-};
+// One line of the text into the result; throws Bad.
+void read_line(std::string_view tag, std::string_view rest, StationResult& r, Reading& seen) {
+  const Fields f(tag, rest);
+  auto single = [&](const char* what) {
+    if (!seen.once.insert(what).second) f.fail("", "appears twice");
+  };
+  auto words = [&](std::string& to) {
+    if (rest.empty()) f.fail("", "is empty");
+    to = std::string(rest);
+  };
+  if (tag == "condition") single("condition"), words(r.condition);
+  else if (tag == "quality") single("quality"), words(r.quality);
+  else if (tag == "shape") {
+    single("shape"), words(r.shape);
+    if (r.shape != "sphere" && r.shape != "clump") f.fail("", fmt::format("unknown shape '{}'", r.shape));
+  } else if (tag == "note") r.notes.emplace_back(rest);
+  else if (tag == "run") single("run"), read_run(f, r);
+  else if (tag == "window") single("window"), read_window(f, r);
+  else if (tag == "restart") single("restart"), read_restart(f, r);
+  else if (tag == "mass") single("mass"), read_mass(f, r);
+  else if (tag == "scalar") read_scalar(f, r, seen);
+  else if (tag == "traj") read_trajectory_row(f, r, seen);
+  else if (tag == "force") read_force_sample(f, r, seen);
+  else if (tag == "snap") read_snapshot(f, r, seen);
+  else if (tag == "map") read_map(f, rest, r, seen);
+  else if (tag == "grid") read_grid(f, r);
+  else if (tag == "gcell") read_grid_cell(f, r, seen);
+  else if (tag == "cell") read_cell(f, r);
+  else if (tag == "side") read_side_point(f, r);
+  else throw Bad{std::string(tag), "unknown line"};
+}
 
 }  // namespace
 
-std::optional<StationResult> from_text(const std::string& text) {
+std::optional<StationResult> from_text(const std::string& text, TextProblem* why) {
   StationResult r;
-  std::istringstream all(text);
-  std::string line;
-  while (std::getline(all, line)) {
-    if (line.empty()) continue;
-    const auto sp = line.find(' ');
-    const std::string tag = line.substr(0, sp);
-    const std::string rest = sp == std::string::npos ? std::string() : line.substr(sp + 1);
-    const auto reader = std::find_if(std::begin(kReaders), std::end(kReaders),
-                                     [&](const TaggedReader& t) { return t.tag == tag; });
-    if (reader == std::end(kReaders)) return std::nullopt;  // a file of another version: a miss
-    std::istringstream in(rest);
-    if (!reader->read(in, rest, r)) return std::nullopt;
+  Reading seen;
+  long line_no = 0;
+  auto refuse = [&](long line, std::string field, std::string problem) -> std::optional<StationResult> {
+    if (why) *why = {line, std::move(field), std::move(problem)};
+    return std::nullopt;
+  };
+  std::size_t at = 0;
+  while (at < text.size()) {
+    ++line_no;
+    const std::size_t nl = text.find('\n', at);
+    if (nl == std::string::npos) return refuse(line_no, "", "the last line does not end: the text is cut short");
+    const std::string_view line(text.data() + at, nl - at);
+    at = nl + 1;
+    const std::size_t sp = line.find(' ');
+    const std::string_view tag = line.substr(0, sp);
+    const std::string_view rest = sp == std::string_view::npos ? std::string_view() : line.substr(sp + 1);
+    try {
+      read_line(tag, rest, r, seen);
+    } catch (const Bad& b) {
+      return refuse(line_no, b.field, b.problem);
+    }
   }
+  for (const char* required : {"condition", "quality", "run", "window", "mass"})
+    if (!seen.once.count(required)) return refuse(0, required, "the line is missing");
+  for (std::string_view s : kScalars)
+    if (!seen.once.count("scalar " + std::string(s))) return refuse(0, "scalar", fmt::format("{} is missing", s));
   return r;
+}
+
+std::string CacheEntry::said() const {
+  if (!refused) return {};
+  std::string s = file;
+  if (refused->line > 0) s += fmt::format(":{}", refused->line);
+  if (!refused->field.empty()) s += ": " + refused->field;
+  return s + ": " + refused->problem;
 }
 
 ResultCache::ResultCache(std::string dir) : dir_(std::move(dir)) {}
@@ -383,35 +544,122 @@ std::string ResultCache::path_for(const std::string& key) const {
   return (std::filesystem::path(dir_) / fmt::format("{:016x}.txt", fnv1a64(key))).string();
 }
 
-std::optional<StationResult> ResultCache::load(const std::string& key) const {
-  std::ifstream f(path_for(key));
-  if (!f) return std::nullopt;
-  std::stringstream ss;
-  ss << f.rdbuf();
-  const std::string text = ss.str();
-  // Layout: magic line, "key <bytes>" line, the key, then the result.
-  std::istringstream in(text);
-  std::string magic, head;
-  if (!std::getline(in, magic) || (magic != kMagic && magic != kMagicV2) || !std::getline(in, head) ||
-      head.rfind("key ", 0) != 0)
+namespace {
+
+// The whole of a regular file, or why not. Opened without blocking, so a FIFO or a device put where
+// an entry belongs is refused at once instead of waiting for a writer that never comes.
+std::optional<std::string> read_regular(const std::string& path, std::optional<TextProblem>& refused) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    if (errno != ENOENT && errno != ENOTDIR) refused = TextProblem{0, "", fmt::format("cannot be read: {}", std::strerror(errno))};
     return std::nullopt;
-  const std::size_t bytes = std::strtoull(head.c_str() + 4, nullptr, 10);
-  const std::size_t at = static_cast<std::size_t>(in.tellg());
-  if (at + bytes > text.size() || text.compare(at, bytes, key) != 0) return std::nullopt;
-  std::size_t body_end = text.size();
-  if (magic == kMagic) {
-    const std::size_t end_len = std::char_traits<char>::length(kEnd);
-    if (text.size() < at + bytes + end_len || text.compare(text.size() - end_len, end_len, kEnd) != 0) return std::nullopt;
-    body_end -= end_len;
   }
-  return from_text(text.substr(at + bytes, body_end - at - bytes));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    refused = TextProblem{0, "", fmt::format("cannot be read: {}", std::strerror(errno))};
+    return std::nullopt;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    refused = TextProblem{0, "", S_ISDIR(st.st_mode) ? "is a folder, not a cache entry"
+                                 : S_ISFIFO(st.st_mode) ? "is a FIFO, not a cache entry (not opened for reading)"
+                                                        : "is not a regular file (a device or a socket): not read"};
+    return std::nullopt;
+  }
+  if (static_cast<unsigned long long>(st.st_size) > kMaxEntryBytes) {
+    refused = TextProblem{0, "", fmt::format("is {} bytes, more than any DEM result ({} at most)", st.st_size, kMaxEntryBytes)};
+    return std::nullopt;
+  }
+  std::string text(static_cast<std::size_t>(st.st_size), '\0');
+  std::size_t got = 0;
+  while (got < text.size()) {
+    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      refused = TextProblem{0, "", fmt::format("cannot be read: {}", std::strerror(errno))};
+      return std::nullopt;
+    }
+    if (n == 0) break;
+    got += static_cast<std::size_t>(n);
+  }
+  // A file that changed size while read (another writer replaces entries by rename, never in place).
+  char more = 0;
+  if (got != text.size() || ::read(fd, &more, 1) > 0) {
+    refused = TextProblem{0, "", "changed while it was read"};
+    return std::nullopt;
+  }
+  return text;
 }
 
-bool ResultCache::store(const std::string& key, const StationResult& r) const {
+long lines_in(std::string_view s) { return static_cast<long>(std::count(s.begin(), s.end(), '\n')); }
+
+}  // namespace
+
+CacheEntry ResultCache::lookup(const std::string& key) const {
+  CacheEntry e;
+  e.file = path_for(key);
+  const std::optional<std::string> read = read_regular(e.file, e.refused);
+  if (!read) return e;
+  const std::string& text = *read;
+  auto refuse = [&](long line, std::string field, std::string problem) {
+    e.refused = TextProblem{line, std::move(field), std::move(problem)};
+    return e;
+  };
+  // Layout: magic line, "key <bytes>" line, the key, the result's lines, then the end line.
+  const std::size_t nl1 = text.find('\n');
+  const std::string_view magic(text.data(), nl1 == std::string::npos ? text.size() : nl1);
+  if (!magic.starts_with(kMagicPrefix)) return refuse(1, "", "not a DEM cache entry");
+  const bool v5 = magic == kMagicV5;
+  if (magic != kMagic && !v5)
+    return refuse(1, "", fmt::format("format {} is not read by this chutelab (it reads {} and {})",
+                                     magic.substr(std::string_view(kMagicPrefix).size()), kFormat, kFormatV5));
+  // Where the end line starts, and for format 6 the check sum of everything before it.
+  std::size_t body_end = 0;
+  if (v5) {
+    if (!text.ends_with(kEndV5)) return refuse(0, "end", "the end line is missing: the file is cut short");
+    body_end = text.size() - std::string_view(kEndV5).size() + 1;
+  } else {
+    const std::size_t last = text.size() < 2 || text.back() != '\n' ? std::string::npos : text.rfind('\n', text.size() - 2);
+    if (last == std::string::npos || !std::string_view(text).substr(last + 1).starts_with("end "))
+      return refuse(0, "end", "the end line is missing: the file is cut short");
+    body_end = last + 1;
+  }
+  const std::size_t nl2 = nl1 == std::string::npos ? std::string::npos : text.find('\n', nl1 + 1);
+  if (nl2 == std::string::npos || nl2 > body_end) return refuse(2, "key", "the key line is missing");
+  const std::string_view head(text.data() + nl1 + 1, nl2 - nl1 - 1);
+  std::size_t bytes = 0;
+  const auto [stop, ec] = std::from_chars(head.data() + std::min<std::size_t>(4, head.size()), head.data() + head.size(), bytes);
+  if (!head.starts_with("key ") || ec != std::errc() || stop != head.data() + head.size() || head.size() == 4)
+    return refuse(2, "key", "not a key length");
+  const std::size_t at = nl2 + 1;
+  if (bytes > body_end - at) return refuse(2, "key", "the key is longer than the file");
+  // Another key's entry (a stale file, or another key with the same hash): a plain miss.
+  if (text.compare(at, bytes, key) != 0) return e;
+  TextProblem why;
+  auto r = from_text(text.substr(at + bytes, body_end - at - bytes), &why);
+  if (!r) {
+    const long offset = lines_in(std::string_view(text.data(), at + bytes));
+    return refuse(why.line > 0 ? why.line + offset : 0, why.field, why.problem);
+  }
+  // Every line read, in range: the sum says whether they are the lines that were written.
+  if (!v5) {
+    const std::string_view end_line(text.data() + body_end, text.size() - body_end - 1);
+    if (end_line != fmt::format("end {:016x}", fnv1a64(std::string_view(text.data(), body_end))))
+      return refuse(lines_in(std::string_view(text.data(), body_end)) + 1, "end",
+                    "the check sum does not match: the file was changed or damaged after it was written");
+  }
+  e.result = std::move(r);
+  return e;
+}
+
+CacheWrite ResultCache::store(const std::string& key, const StationResult& r) const {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(dir_, ec);
-  if (ec) return false;
+  if (ec) return {false, fmt::format("cannot make the cache folder {}: {}", dir_, ec.message())};
   const std::string path = path_for(key);
   // A name no other writer uses, even ranks of one job on other hosts sharing the folder (host, pid,
   // thread, a counter), then an atomic rename: a reader sees the old file or the new one, whole.
@@ -428,20 +676,42 @@ bool ResultCache::store(const std::string& key, const StationResult& r) const {
     std::string p;
     ~Unregister() { unregister_temporary(p); }
   } unregister{tmp};
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f) return false;
-    f << kMagic << "\nkey " << key.size() << "\n" << key << to_text(r) << kEnd;
-    f.close();
-    if (!f) {
-      fs::remove(tmp, ec);
-      return false;
+  // Never an entry the reader would refuse (it would be run again every time): the text is checked first.
+  const std::string body = to_text(r);
+  if (TextProblem why; !from_text(body, &why))
+    return {false, fmt::format("the result does not pass the cache's own check (line {}, {}: {})", why.line, why.field,
+                               why.problem)};
+  std::string text = fmt::format("{}\nkey {}\n", kMagic, key.size());
+  text += key;
+  text += body;
+  text += fmt::format("end {:016x}\n", fnv1a64(text));
+  const auto failed = [&](const std::string& what) {
+    const std::string why = fmt::format("cannot write {}: {}", path, what);
+    fs::remove(tmp, ec);
+    return CacheWrite{false, why};
+  };
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) return failed(std::strerror(errno));
+  for (std::size_t done = 0; done < text.size();) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string why = n < 0 ? std::strerror(errno) : "nothing written";
+      ::close(fd);
+      return failed(why);
     }
+    done += static_cast<std::size_t>(n);
   }
+  // On the disk before the rename: a full disk or a failing one shows here, not as a short entry later.
+  if (::fsync(fd) != 0) {
+    const std::string why = std::strerror(errno);
+    ::close(fd);
+    return failed(why);
+  }
+  if (::close(fd) != 0) return failed(std::strerror(errno));
   fs::rename(tmp, path, ec);
-  if (!ec) return true;
-  fs::remove(tmp, ec);
-  return false;
+  if (ec) return failed(ec.message());
+  return {true, {}};
 }
 
 void ResultCache::sweep_dead_temporaries(const std::string& host) const {

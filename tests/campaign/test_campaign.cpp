@@ -125,6 +125,7 @@ BOOST_AUTO_TEST_CASE(cache_tolerates_concurrent_writers) {
   dem::station::StationResult r;
   r.condition = "V3-41";
   r.quality = "quick";
+  r.diameter = 0.0136;
   r.dt = 1.0 / 3.0;
   r.normal_force = {35.123456789012345, 0.1, 3};
   for (int k = 0; k < 4000; ++k) r.forces.push_back({k * 1e-3, 1.0 / (k + 1), 0.5, 0.25, 0, 0, 0, 0});

@@ -4,10 +4,17 @@
 #define BOOST_TEST_MODULE dem_station_cli
 #include <boost/test/unit_test.hpp>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "../cli/cli_runner.h"
 
@@ -124,4 +131,73 @@ BOOST_AUTO_TEST_CASE(validate_with_dem_is_cached) {
   BOOST_TEST(quiet.err.empty(), quiet.err);
   // The same results on stdout: --quiet silences progress only.
   BOOST_TEST(quiet.out.substr(0, quiet.out.find("report: ")) == second.out.substr(0, second.out.find("report: ")));
+}
+
+// The DEM cache trusts an entry only whole (dem/station/cache.h). An unparsable R_n was read as 0
+// N, a FIFO in an entry's place blocked the command for ever, and a run that could not be cached
+// was reported "cached as FILE".
+BOOST_AUTO_TEST_CASE(a_damaged_cache_entry_is_refused_not_read) {
+  const std::string ds = tiny_dataset().string();
+  const fs::path cache = fresh_dir("cache-damaged");
+  const std::string args = "validate --dataset " + ds + " --models korzen,dem --dem-ladder off --dem-cache " + cache.string();
+  const fs::path a = fresh_dir("damaged-a");
+  const auto first = run_chutelab(args + " --out " + a.string());
+  BOOST_REQUIRE_MESSAGE(first.exit_code == 0, first.err);
+  fs::path entry;
+  for (const auto& e : fs::directory_iterator(cache))
+    if (e.path().extension() == ".txt") entry = e.path();
+  BOOST_REQUIRE(!entry.empty());
+  const std::string text = read_file(entry);
+  BOOST_TEST(read_file(a / "report.md").find("cached as " + entry.string()) != std::string::npos);
+  // R_n unreadable: under --dem-cache-only bad input naming the file, its line and what is wrong.
+  const std::size_t at = text.find("\nscalar normal_force ") + 21;
+  BOOST_REQUIRE(at > 21);
+  write_file(entry, text.substr(0, at) + "abc" + text.substr(text.find(' ', at)));
+  const auto only = run_chutelab(args + " --dem-cache-only --out " + fresh_dir("damaged-b").string());
+  BOOST_TEST(only.exit_code == 2);
+  // One error line (a log's progress line says the run failed).
+  BOOST_TEST(only.err.find("chutelab: ") == only.err.rfind("chutelab: "), only.err);
+  const long line = 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  BOOST_TEST(only.err.find(entry.string() + ":" + std::to_string(line) + ": scalar: normal_force: 'abc' is not a number") !=
+                 std::string::npos,
+             only.err);
+  // Without it the run is made again, said on stderr and in the report, and its entry is whole again.
+  const fs::path c = fresh_dir("damaged-c");
+  const auto again = run_chutelab(args + " --out " + c.string());
+  BOOST_REQUIRE_MESSAGE(again.exit_code == 0, again.err);
+  BOOST_TEST(again.err.find("DEM cache entry refused") != std::string::npos, again.err);
+  BOOST_TEST(read_file(c / "report.md").find("refused and run again") != std::string::npos);
+  BOOST_TEST(read_file(c / "predictions.csv") == read_file(a / "predictions.csv"));
+  BOOST_TEST(run_chutelab(args + " --dem-cache-only --out " + fresh_dir("damaged-d").string()).exit_code == 0);
+  // A FIFO where the entry belongs: refused at once (a writer opens it after 60 s, should the
+  // command wait for one).
+  fs::remove(entry);
+  BOOST_REQUIRE(::mkfifo(entry.c_str(), 0600) == 0);
+  std::atomic<bool> done{false};
+  std::thread rescue([&] {
+    for (int k = 0; k < 600 && !done; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const int fd = ::open(entry.c_str(), O_WRONLY | O_NONBLOCK);
+    if (fd >= 0) ::close(fd);
+  });
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto fifo = run_chutelab(args + " --dem-cache-only --out " + fresh_dir("damaged-e").string());
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  done = true;
+  rescue.join();
+  BOOST_TEST(waited < 30.0);
+  BOOST_TEST(fifo.exit_code == 2);
+  BOOST_TEST(fifo.err.find("is a FIFO") != std::string::npos, fifo.err);
+  fs::remove(entry);
+  // A cache that cannot be written (a file stands where its folder would be): the run is said to
+  // be not cached, and why.
+  const fs::path blocked = fresh_dir("damaged-blocked");
+  write_file(blocked / "file", "x");
+  const fs::path f = fresh_dir("damaged-f");
+  const auto unwritable = run_chutelab("validate --dataset " + ds + " --models korzen,dem --dem-ladder off --dem-cache " +
+                                       (blocked / "file" / "cache").string() + " --out " + f.string());
+  BOOST_REQUIRE_MESSAGE(unwritable.exit_code == 0, unwritable.err);
+  const std::string report = read_file(f / "report.md");
+  BOOST_TEST(report.find("cached as") == std::string::npos);
+  BOOST_TEST(report.find("not cached (cannot make the cache folder") != std::string::npos);
+  BOOST_TEST(unwritable.err.find("not cached") != std::string::npos, unwritable.err);
 }

@@ -239,7 +239,7 @@ BOOST_AUTO_TEST_CASE(cache_round_trip) {
 
   const ResultCache cache(temp_dir("cache").string());
   BOOST_TEST(!cache.load("key A\n").has_value());
-  BOOST_TEST(cache.store("key A\n", r));
+  BOOST_TEST(cache.store("key A\n", r).written);
   const auto hit = cache.load("key A\n");
   BOOST_REQUIRE(hit.has_value());
   BOOST_TEST(hit->steps == 9876);

@@ -13,6 +13,7 @@
 
 #include "core/file_name.h"
 #include "core/input_error.h"
+#include "core/message.h"
 #include "core/campaign.h"
 #include "dem/station/cache.h"
 #include "dem/station/progress.h"
@@ -73,15 +74,40 @@ std::map<std::string, std::string>& ready() {
   return r;
 }
 
-std::string result_text(const st::StationResult& r, bool from_cache) {
-  return std::string(from_cache ? "cached 1\n" : "cached 0\n") + st::to_text(r);
+// How a run's result was had, for its note: from the cache, or run now and then cached or not;
+// and a damaged entry found in the cache on the way (refused, so the run was made again).
+struct CacheOutcome {
+  bool from_cache = false;
+  std::string refused;    // the refused entry's "FILE:LINE: field: problem"
+  std::string unwritten;  // why the run could not be cached
+  std::string file;       // the entry's path
+};
+
+// A campaign job's result: "cached 0|1\n", "refused TEXT\n" and "unwritten TEXT\n" when set, then
+// to_text. The outcome travels with the numbers, so every rank's note says what happened.
+std::string result_text(const st::StationResult& r, const CacheOutcome& how) {
+  std::string o = how.from_cache ? "cached 1\n" : "cached 0\n";
+  if (!how.refused.empty()) o += "refused " + one_line(how.refused) + "\n";
+  if (!how.unwritten.empty()) o += "unwritten " + one_line(how.unwritten) + "\n";
+  return o + st::to_text(r);
 }
 
-std::optional<std::pair<st::StationResult, bool>> parse_result(const std::string& text) {
+std::optional<std::pair<st::StationResult, CacheOutcome>> parse_result(const std::string& text) {
   if (text.rfind("cached ", 0) != 0 || text.size() < 9) return std::nullopt;
-  auto r = st::from_text(text.substr(9));
+  CacheOutcome how;
+  how.from_cache = text[7] == '1';
+  std::size_t at = 9;
+  for (const auto& [tag, to] : {std::pair{std::string_view("refused "), &how.refused},
+                                std::pair{std::string_view("unwritten "), &how.unwritten}})
+    if (std::string_view(text).substr(at).starts_with(tag)) {
+      const std::size_t nl = text.find('\n', at);
+      if (nl == std::string::npos) return std::nullopt;
+      *to = text.substr(at + tag.size(), nl - at - tag.size());
+      at = nl + 1;
+    }
+  auto r = st::from_text(text.substr(at));
   if (!r) return std::nullopt;
-  return std::make_pair(std::move(*r), text[7] == '1');
+  return std::make_pair(std::move(*r), std::move(how));
 }
 
 // The plate map's value at a point of the face (the triangle whose (z, y) projection holds it) and
@@ -146,16 +172,15 @@ class DemModel final : public Model {
     const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file);
     const st::RunSettings settings = st::resolve(table, overrides_for(request));
     const DemEffectInputs fx = dem_effect_inputs(station, effects);
-    bool from_cache = false;
-    std::string cache_file;
-    const st::StationResult r = run_or_load(station, fx, settings, table, &from_cache, &cache_file);
+    CacheOutcome how;
+    const st::StationResult r = run_or_load(station, fx, settings, table, how);
     if (!c_.output_dir.empty() && campaign::output_rank()) {
       // The condition's name is data ("../../ds"): mapped to one plain folder name (core/file_name.h).
       const auto dir = std::filesystem::path(c_.output_dir) / file_name_for(station.condition);
       st::write_result_files(dir.string(), r);
       st::write_side_view_vtk((dir / "side_view.vtk").string(), r.side_view);
     }
-    ModelPrediction p = to_prediction(r, fx, request, from_cache, cache_file);
+    ModelPrediction p = to_prediction(r, fx, request, how);
     if (request.discretisation && c_.ladder) add_ladder(p, station, effects, fx, settings, table, request);
     return p;
   }
@@ -233,27 +258,40 @@ class DemModel final : public Model {
     return o;
   }
 
-  // The run of these inputs: from the cache, or run now (and cached).
+  // The run of these inputs: from the cache, or run now (and cached). An entry that is there but
+  // damaged is refused, said, and run again; told never to run, that is an error naming the file.
   st::StationResult run_or_load(const Station& station, const DemEffectInputs& fx, const st::RunSettings& settings,
-                                const st::DemTable& table, bool* from_cache, std::string* cache_file) const {
+                                const st::DemTable& table, CacheOutcome& out) const {
     const Plan how = plan(station, fx, settings, table);
     const std::string& key = how.key;
     const st::ResultCache cache = this->cache();
-    if (cache_file) *cache_file = cache.path_for(key);
+    out.file = cache.path_for(key);
     {  // a campaign's result (validation/campaign_runs.h): the same text on every rank
       const std::lock_guard<std::mutex> lock(ready_mutex());
       if (auto it = ready().find(key); it != ready().end())
         if (auto got = parse_result(it->second)) {
-          if (from_cache) *from_cache = got->second;
+          const std::string file = out.file;
+          out = std::move(got->second);
+          out.file = file;
           return std::move(got->first);
         }
     }
-    if (c_.use_cache)
-      if (auto cached = cache.load(key)) {
-        if (from_cache) *from_cache = true;
-        cached->wear = settings.wear;  // the cache keeps the maps' sums; the rates use these wear inputs
-        return std::move(*cached);
+    if (c_.use_cache) {
+      st::CacheEntry entry = cache.lookup(key);
+      if (entry.result) {
+        out.from_cache = true;
+        entry.result->wear = settings.wear;  // the cache keeps the maps' sums; the rates use these wear inputs
+        return std::move(*entry.result);
       }
+      if (entry.refused) {
+        if (c_.cache_only)
+          throw InputError(entry.file, entry.refused->line, entry.refused->field,
+                           fmt::format("{}; the DEM cache entry of condition {} is refused and {} does not run it again",
+                                       entry.refused->problem, station.condition, mention("dem.cache_only")));
+        out.refused = entry.said();
+        warn(fmt::format("DEM cache entry refused, running condition {} again: {}", station.condition, out.refused));
+      }
+    }
     if (c_.cache_only)
       throw InputError("", 0, "dem.cache_only",
                        fmt::format("no cached DEM run of condition {} ({} mm particles) with these settings and "
@@ -273,9 +311,17 @@ class DemModel final : public Model {
       if (std::filesystem::exists(o.save_state)) o.save_state.clear();
     }
     st::StationResult r = st::run_station(fx.station, o);
-    if (c_.use_cache) cache.store(key, r);
+    if (c_.use_cache) {
+      if (const st::CacheWrite w = cache.store(key, r); !w) {
+        out.unwritten = w.problem;
+        warn(fmt::format("DEM run of condition {} not cached: {}", station.condition, w.problem));
+      }
+    } else {
+      out.unwritten = "the cache is off";
+    }
     // Read back from its text, as a campaign's result is: the same numbers to the last bit.
-    return *st::from_text(st::to_text(r));
+    if (auto back = st::from_text(st::to_text(r))) return std::move(*back);
+    return r;
   }
 
  public:
@@ -341,7 +387,7 @@ class DemModel final : public Model {
     // A continued run comes after the run it continues (which keeps its state), when both are jobs.
     if (how.restart) j.job.cost *= 0.5;
     j.job.run = [this, station, fx, settings, table, optional_run](const campaign::JobContext& ctx) -> std::string {
-      bool from_cache = false;
+      CacheOutcome how;
       // Runs side by side (ranks, --jobs) each take the threads the campaign gives them unless the
       // user chose; the thread count is not part of the result (nor of the cache key).
       st::RunSettings s = settings;
@@ -350,9 +396,9 @@ class DemModel final : public Model {
         s.extra_threads = ctx.idle;
       }
       try {
-        const st::StationResult r = run_or_load(station, fx, s, table, &from_cache, nullptr);
-        if (from_cache && ctx.reused) *ctx.reused = true;
-        return result_text(r, from_cache);
+        const st::StationResult r = run_or_load(station, fx, s, table, how);
+        if (how.from_cache && ctx.reused) *ctx.reused = true;
+        return result_text(r, how);
       } catch (const InputError&) {
         if (!optional_run || c_.cache_only) throw;
         return std::string();
@@ -444,8 +490,8 @@ class DemModel final : public Model {
       const DemEffectInputs fs = dem_effect_inputs(s, effects);
       ModelPrediction fine, coarse;
       try {
-        fine = to_prediction(run_or_load(s, fs, settings, table, nullptr, nullptr), fs, plain, true, "");
-        coarse = to_prediction(run_or_load(s, fs, l.coarser.front().second, table, nullptr, nullptr), fs, plain, true, "");
+        fine = rung_prediction(s, fs, settings, table, plain);
+        coarse = rung_prediction(s, fs, l.coarser.front().second, table, plain);
       } catch (const InputError&) {
         if (c_.cache_only) throw;
         return std::nullopt;
@@ -521,7 +567,7 @@ class DemModel final : public Model {
     plain.curves = false;
     auto level = [&](const st::RunSettings& s, const char* what) -> std::optional<ModelPrediction> {
       try {
-        return to_prediction(run_or_load(station, fx, s, table, nullptr, nullptr), fx, plain, true, "");
+        return rung_prediction(station, fx, s, table, plain);
       } catch (const InputError& e) {
         if (c_.cache_only) throw;
         p.notes.push_back(fmt::format("no {} part of u_num,disc: its ladder run cannot be made ({})", what, e.what()));
@@ -562,11 +608,23 @@ class DemModel final : public Model {
 
 
  private:
+  // A ladder run's prediction.
+  ModelPrediction rung_prediction(const Station& s, const DemEffectInputs& fx, const st::RunSettings& settings,
+                                  const st::DemTable& table, const PredictRequest& plain) const {
+    CacheOutcome how;
+    return to_prediction(run_or_load(s, fx, settings, table, how), fx, plain, how);
+  }
+
   static ModelPrediction to_prediction(const st::StationResult& r, const DemEffectInputs& fx,
-                                       const PredictRequest& request, bool from_cache, const std::string& cache_file) {
+                                       const PredictRequest& request, const CacheOutcome& how) {
     ModelPrediction p = dem_station_prediction(r, fx, request);
-    p.notes.push_back(from_cache ? fmt::format("from the DEM cache ({})", cache_file)
-                                 : fmt::format("DEM run of {:.0f} s wall time, cached as {}", r.wall_seconds, cache_file));
+    if (!how.refused.empty()) p.notes.push_back(fmt::format("DEM cache entry refused and run again: {}", how.refused));
+    if (how.from_cache)
+      p.notes.push_back(fmt::format("from the DEM cache ({})", how.file));
+    else if (how.unwritten.empty())
+      p.notes.push_back(fmt::format("DEM run of {:.0f} s wall time, cached as {}", r.wall_seconds, how.file));
+    else
+      p.notes.push_back(fmt::format("DEM run of {:.0f} s wall time, not cached ({})", r.wall_seconds, how.unwritten));
     return p;
   }
 

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/file_name.h"
+#include "core/message.h"
 #include "dem/liggghts/run.h"
 #include "dem/station/cache.h"
 #include "dem/station/progress.h"
@@ -59,7 +60,12 @@ class LiggghtsModel final : public Model {
     key += fx.key;
 
     const st::ResultCache cache(dc.cache_dir.empty() ? st::ResultCache::default_dir() : dc.cache_dir);
-    std::optional<st::StationResult> cached = dc.use_cache ? cache.load(key) : std::nullopt;
+    st::CacheEntry entry = dc.use_cache ? cache.lookup(key) : st::CacheEntry{};
+    std::optional<st::StationResult>& cached = entry.result;
+    std::string unwritten = dc.use_cache ? "" : "the cache is off";
+    if (entry.refused)
+      warn(fmt::format("DEM cache entry refused, running condition {} in LIGGGHTS again: {}", station.condition,
+                       entry.said()));
     st::StationResult r;
     if (cached) {
       r = std::move(*cached);
@@ -72,7 +78,11 @@ class LiggghtsModel final : public Model {
       r = lg::run_station(fx.station, o);
       std::error_code ec;
       fs::remove(work / lg::Deck::dump_file, ec);
-      if (dc.use_cache) cache.store(key, r);
+      if (dc.use_cache)
+        if (const st::CacheWrite w = cache.store(key, r); !w) {
+          unwritten = w.problem;
+          warn(fmt::format("LIGGGHTS run of condition {} not cached: {}", station.condition, w.problem));
+        }
     }
     if (!dc.output_dir.empty()) {
       const auto dir = fs::path(dc.output_dir) / "liggghts" / file_name_for(station.condition);
@@ -83,9 +93,11 @@ class LiggghtsModel final : public Model {
     ModelPrediction p = dem_station_prediction(r, fx, request);
     if (!ignored.empty())
       p.notes.push_back(fmt::format("not written to the LIGGGHTS deck: {}", fmt::join(ignored, ", ")));
+    if (entry.refused) p.notes.push_back(fmt::format("DEM cache entry refused and run again: {}", entry.said()));
     p.notes.push_back(cached ? fmt::format("from the DEM cache ({})", cache.path_for(key))
-                             : fmt::format("LIGGGHTS run of {:.0f} s wall time, cached as {}", r.wall_seconds,
-                                           cache.path_for(key)));
+                      : unwritten.empty()
+                          ? fmt::format("LIGGGHTS run of {:.0f} s wall time, cached as {}", r.wall_seconds, cache.path_for(key))
+                          : fmt::format("LIGGGHTS run of {:.0f} s wall time, not cached ({})", r.wall_seconds, unwritten));
     return p;
   }
 
