@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "api/effects.h"
 #include "core/input_error.h"
 #include "core/units.h"
 #include "validation/dataset.h"
@@ -91,6 +92,7 @@ EstimatePoint estimate_point(const Station& st, const analytical::EffectList& fx
 EstimateResult estimate(const EstimateOptions& o) {
   check(o);
   const Station st = resolve_station(o);
+  check_records(o.effects, {}, {st});
   std::vector<effects::EffectSetting> settings;
   for (const auto& s : o.effects) settings.push_back(effects::parse_setting(s, false));
   EstimatePoint p = estimate_point(st, effects::instantiate(settings));

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "api/effects.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
 #include "core/message.h"
@@ -78,6 +79,7 @@ SimulateResult simulate(const SimulateOptions& o) {
   res.setup = validation::read_setup(setup_file);
   const auto stations = validation::read_conditions(dir / "conditions.csv", res.setup);
   res.station = validation::condition_row(stations, o.condition, dir / "conditions.csv", "condition");
+  check_records(o.effects, {}, {res.station});
 
   const st::DemTable table = st::read_dem_table(setup_file.string());
   res.settings = st::resolve(table, overrides_of(o));

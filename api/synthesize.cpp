@@ -34,6 +34,7 @@ SynthesizeResult synthesize(validation::Dataset source, const SynthesizeOptions&
   check(o);
   SynthesizeResult res;
   res.source = std::move(source);
+  check_records(o.effects, o.inputs, res.source.stations, o.allow_out_of_range);
   if (o.prepare_output) {
     OutputPlan plan;
     plan.inputs = validation::dataset_files(res.source.dir);

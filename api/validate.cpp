@@ -89,6 +89,7 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
   else if (fs::exists(fs::symlink_status(dir / "tolerances.toml")))
     res.tolerances = validation::Tolerances::read(dir / "tolerances.toml");
   const bool diagnosing = o.diagnose || o.add_missing || (o.diagnose_with_effects && !given.empty());
+  check_records(o.effects, o.inputs, d.stations);
 
   // The models as named (an unknown one is bad input here), then the caller's output folder, then
   // the models again with the folder their per-condition files go to.

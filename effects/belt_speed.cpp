@@ -16,9 +16,10 @@ EffectInfo info() {
                "V_true = (1 + e) V_recorded: the stream leaves faster or slower, thinner or thicker.",
                "",
                0.0, -20.0, 20.0, 5.0,
-               recorded_input("belt_speed", [](Station& s, double x) { s.belt_speed *= 1.0 + x * kPercent; }),
+               {},
                "a tachometer on the belt or a timed mark over a measured length"};
-  e.kind = EffectInfo::Kind::record;
+  set_record(e, [](Station& s, double x) { s.belt_speed *= 1.0 + x * kPercent; },
+             {"belt speed", "m/s", 1.0, 0.0, 50.0, true, [](const Station& s) { return std::optional<double>(s.belt_speed); }});
   e.per_condition = true;
   e.prior_width = 2.0;
   e.input = "belt_speed";

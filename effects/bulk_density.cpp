@@ -17,9 +17,10 @@ EffectInfo info() {
                "rho_true = (1 + e) rho_recorded: h_b from continuity shrinks by 1 / (1 + e).",
                "",
                0.0, -30.0, 30.0, 10.0,
-               recorded_input("bulk_density", [](Station& s, double x) { s.material.bulk_density *= 1.0 + x * kPercent; }),
+               {},
                "a weighed sample of the layer cut from a stopped belt (or a bulk density test of the material as it ran)"};
-  e.kind = EffectInfo::Kind::record;
+  set_record(e, [](Station& s, double x) { s.material.bulk_density *= 1.0 + x * kPercent; },
+             rig_field_limits("bulk_density_kgm3", "bulk density", "kg/m³", [](const Station& s) { return s.material.bulk_density; }));
   e.prior_width = 5.0;
   e.input = "material.bulk_density_kgm3";
   e.width_in_unit = relative_width([](const Station& s) { return s.material.bulk_density; });

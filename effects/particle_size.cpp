@@ -16,9 +16,10 @@ EffectInfo info() {
                "d_true = (1 + e) d_recorded: drag per unit mass and the DEM's packing change.",
                "",
                0.0, -50.0, 50.0, 20.0,
-               recorded_input("particle_size", [](Station& s, double x) { s.material.particle_diameter *= 1.0 + x * kPercent; }),
+               {},
                "a sieve analysis of the material as it ran"};
-  e.kind = EffectInfo::Kind::record;
+  set_record(e, [](Station& s, double x) { s.material.particle_diameter *= 1.0 + x * kPercent; },
+             rig_field_limits("particle_diameter_mm", "particle diameter", "mm", [](const Station& s) { return s.material.particle_diameter; }));
   e.prior_width = 10.0;
   e.input = "material.particle_diameter_mm";
   e.width_in_unit = relative_width([](const Station& s) { return s.material.particle_diameter; });

@@ -16,9 +16,10 @@ EffectInfo info() {
                "beta_true = beta_recorded + d_beta: the stream's momentum splits differently into R_n and R_s.",
                "",
                0.0, -15.0, 15.0, 4.0,
-               recorded_input("plate_angle", [](Station& s, double x) { s.plate.angle += x * kDeg; }),
+               {},
                "an inclinometer on the plate face"};
-  e.kind = EffectInfo::Kind::record;
+  set_record(e, [](Station& s, double x) { s.plate.angle += x * kDeg; },
+             rig_field_limits("angle_deg", "plate angle", "deg", [](const Station& s) { return s.plate.angle; }));
   e.per_condition = true;
   e.prior_width = 1.0;
   e.input = "plate.angle_deg";

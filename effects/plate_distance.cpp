@@ -18,9 +18,10 @@ EffectInfo info() {
                "Z_true = Z_recorded + dZ: the stream strikes the plate further along its flight (lower, faster).",
                "",
                0.0, -150.0, 150.0, 25.0,
-               recorded_input("plate_distance", [](Station& s, double x) { s.plate_distance += x * kMm; }),
+               {},
                "a tape or laser distance from the pulley axis to the plate face at its top edge"};
-  e.kind = EffectInfo::Kind::record;
+  set_record(e, [](Station& s, double x) { s.plate_distance += x * kMm; },
+             {"plate distance", "mm", kMm, 0.0, 1e5, true, [](const Station& s) { return std::optional<double>(s.plate_distance); }});
   e.per_condition = true;
   e.prior_width = 10.0;
   e.input = "plate_distance";

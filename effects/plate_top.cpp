@@ -16,9 +16,10 @@ EffectInfo info() {
                "y_top,true = y_top,recorded + dy: the plate sits higher or lower in the stream.",
                "",
                0.0, -150.0, 150.0, 25.0,
-               recorded_input("plate_top", [](Station& s, double x) { s.plate_top += x * kMm; }),
+               {},
                "a tape or level from the pulley axis to the plate's top edge"};
-  e.kind = EffectInfo::Kind::record;
+  set_record(e, [](Station& s, double x) { s.plate_top += x * kMm; },
+             {"plate top", "mm", kMm, -1e5, 1e5, false, [](const Station& s) { return std::optional<double>(s.plate_top); }});
   e.per_condition = true;
   e.prior_width = 10.0;
   e.input = "plate_top";

@@ -17,9 +17,10 @@ EffectInfo info() {
                "D_true = D_recorded + dD: the discharge radius R_b = D/2 + t_b grows by dD/2.",
                "",
                0.0, -100.0, 100.0, 25.0,
-               recorded_input("pulley_diameter", [](Station& s, double x) { s.belt.pulley_diameter += x * kMm; }),
+               {},
                "a tape round the lagged pulley (circumference / pi)"};
-  e.kind = EffectInfo::Kind::record;
+  set_record(e, [](Station& s, double x) { s.belt.pulley_diameter += x * kMm; },
+             rig_field_limits("pulley_diameter_mm", "pulley diameter", "mm", [](const Station& s) { return s.belt.pulley_diameter; }));
   e.prior_width = 5.0;
   e.input = "belt.pulley_diameter_mm";
   e.width_in_unit = offset_width(kMm);

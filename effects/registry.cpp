@@ -76,6 +76,29 @@ EffectSetting parse_setting(const std::string& text, bool allow_fit, bool outsid
   return {info, v};
 }
 
+std::string RecordLimits::problem(double si, double recorded_si) const {
+  const double v = si / to_si;
+  if (v <= upper && (open_below ? v > lower : v >= lower)) return "";
+  return fmt::format("the {} as really built would be {:.4g} {} (recorded {:.4g} {}), outside its physical range {}{}, {}] {}",
+                     what, v, unit, recorded_si / to_si, unit, open_below ? "(" : "[", lower, upper, unit);
+}
+
+std::string impossible_at(const EffectInfo& e, double strength, const std::vector<Station>& stations) {
+  const auto effect = e.make(strength);
+  for (const Station& st : stations) try {
+      Station s = st;
+      effect->adjust_station(s);
+    } catch (const InputError& err) {
+      return fmt::format("at {}: {}", st.condition, err.problem());
+    }
+  return "";
+}
+
+bool stated_anywhere(const EffectInfo& e, const std::vector<Station>& stations) {
+  if (!e.limits.value) return true;
+  return std::any_of(stations.begin(), stations.end(), [&](const Station& s) { return e.limits.value(s).has_value(); });
+}
+
 analytical::EffectList instantiate(const std::vector<EffectSetting>& fixed) {
   analytical::EffectList out;
   for (const auto& s : fixed)

@@ -11,6 +11,23 @@
 
 namespace chutelab::effects {
 
+// record: what the input as really built (the record corrected by a strength) must stay within: the
+// dataset reader's own range for it (a belt of no thickness, particles of no size, a plate behind
+// the pulley have no answer). A strength that takes it outside at a station makes that station
+// impossible: a fit counts the trial infeasible, a value given is refused naming its option.
+struct RecordLimits {
+  std::string what;               // "belt thickness"
+  std::string unit;               // of the reader's column or key: "mm", "deg", "m/s", "kg/m³"
+  double to_si = 1.0;             // unit -> SI
+  double lower = 0.0, upper = 0.0;  // in `unit`
+  bool open_below = false;        // `lower` itself is impossible (a plate at x = 0)
+  // The input at a station, SI; absent where the station does not state it (a condition without a
+  // stream thickness has none to be wrong). Empty: the record has no station limit (an instrument's).
+  std::function<std::optional<double>(const Station&)> value = {};
+  // "" when `si` lies within; else why not, in words, beside the recorded value it came from.
+  std::string problem(double si, double recorded_si) const;
+};
+
 struct EffectInfo {
   std::string name;          // DESIGN.md §4 name, e.g. "air_drag"
   std::string parameter;     // name of the strength parameter with unit, e.g. "drag_coefficient"
@@ -44,7 +61,17 @@ struct EffectInfo {
   // other speeds), not only for the whole rig (a drawing error): the diagnosis then asks which.
   // Such a candidate acts through adjust_station alone.
   bool per_condition = false;
+  // record: its physical limits and where a station states it (declared with `make` by
+  // effects/recorded_input.h's set_record).
+  RecordLimits limits = {};
 };
+
+// The first station where `e` at `strength` leaves the rig without a physical answer, in words
+// naming the condition ("" = none).
+std::string impossible_at(const EffectInfo& e, double strength, const std::vector<Station>& stations);
+// Whether any station states the record `e` corrects: false for a stream thickness where no
+// condition gives one (correcting it would change nothing). Always true for physics.
+bool stated_anywhere(const EffectInfo& e, const std::vector<Station>& stations);
 
 // How far a fit may go past the physical range when it asks what strength the data want, whatever
 // physics allows (a negative drag coefficient: particles faster than ballistic): the physical range
