@@ -1,7 +1,6 @@
 #include "validation/synthesize.h"
 #include "core/csv_field.h"
 
-#include <charconv>
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
@@ -156,7 +155,6 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
   // Measurements are drawn for every condition first and written after the outliers are placed.
   struct Row {
     std::size_t station;
-    bool given;
     Drawn d;
   };
   std::vector<Row> rows;
@@ -174,18 +172,28 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
           traj_u.push_back(2e-3);
         }
     const auto same = truth_of(src, i, st, models, opt.effects, queries);
+    // What the rig's record predicts, without the hidden effects: the instrument's uncertainty at
+    // this condition comes from it. Not from the reading: a reading the noise pushed up would get a
+    // larger uncertainty than one pushed down, and every weighted fit on the data would lean low (a
+    // strength 0.3-0.5 % off, which at 10 000 conditions is several of its sd). Not from the true
+    // value either: that would carry the hidden effect past the noise (u / 0.02 of a force would be
+    // its true value). The record's prediction is what the diagnosis computes anyway. Where the
+    // record alone has no answer (the hidden effects make the rig possible), the truth stands in.
+    std::optional<std::vector<ConditionResult>> recorded;
+    try {
+      recorded = truth_of(src, i, st, models, {}, queries);
+    } catch (const InputError&) {
+    }
     for (Quantity q : kAllQuantities) {
       const auto truth = first_value(same, q);
       if (!truth) continue;
-      // The noise follows the true value (a load cell's error scales with the load it carries),
-      // but the stated uncertainty is computed from the reading, as a lab computes it: one
-      // computed from the noise-free value would carry that value, effect included, past the
-      // noise (u / 0.02 of a force would be its noise-free value).
       auto it = given_u.find({st.condition, q});
       const bool given = it != given_u.end();
       if (info(q).optional && !given) continue;  // a rig not instrumented for it
-      const double sigma = (given ? it->second : default_uncertainty(q, *truth)) * opt.noise_scale;
-      rows.push_back({i, given, {q, reading(q, *truth, sigma * opt.noise_factor, noise), sigma}});
+      const auto expected = recorded ? first_value(*recorded, q) : std::nullopt;
+      // The noise is drawn with the uncertainty the dataset states (noise_factor aside).
+      const double sigma = (given ? it->second : default_uncertainty(q, expected.value_or(*truth))) * opt.noise_scale;
+      rows.push_back({i, {q, reading(q, *truth, sigma * opt.noise_factor, noise), sigma}});
     }
     for (std::size_t k = 0; k < queries.size(); ++k) {
       const auto truth = first_point(same, k);
@@ -205,11 +213,7 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
     const Quantity q = r.d.q;
     const double s = info(q).to_boundary;
     const std::string value = fmt::format("{:.4f}", r.d.value * s);
-    double written = 0.0;  // what the reader will see: the uncertainty is a function of it alone
-    std::from_chars(value.data(), value.data() + value.size(), written);
-    written /= s;
-    const std::string u = two_significant(
-        (r.given ? given_u.at({st.condition, q}) : default_uncertainty(q, written)) * opt.noise_scale * s);
+    const std::string u = two_significant(r.d.sigma * s);
     meas += fmt::format("{},{},{},{}\n", csv_field(st.condition), name(q), value, u);
   }
   std::string readme = fmt::format(
@@ -218,9 +222,9 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
       "as `setup.toml` and `conditions.csv`), random seed {}. `measurements.csv` and `trajectory.csv` hold\n"
       "values computed by chutelab's analytical models with Gaussian noise of one stated uncertainty\n"
       "added to each; magnitudes (R, V_p, V_a) never read below zero, their noise is the normal\n"
-      "truncated there. Each uncertainty is computed from the written value (two significant\n"
-      "figures). What else went into the generating model is deliberately not recorded here, so\n"
-      "the dataset can serve as a blind test of `chutelab diagnose`.\n",
+      "truncated there. Each uncertainty is the instrument's for the value the rig's record\n"
+      "predicts (two significant figures), whatever else went into the generating model. What\n"
+      "that was is deliberately not recorded here, so the dataset can serve as a blind test of `chutelab diagnose`.\n",
       src.setup.name.empty() ? src.dir.filename().string() : src.setup.name, opt.seed);
   // What makes the data break the diagnosis's assumptions on purpose is said (not which effect).
   if (opt.noise_factor != 1.0)

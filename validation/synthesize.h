@@ -30,8 +30,10 @@ struct SynthesizeOptions {
 // Uncertainties: those of the source dataset's measurements where it has them; otherwise 2 % of
 // each force (at least 0.2 N), 0.04 m/s for speeds, 2.5 mm for the impact point and 2 mm for
 // stream limits (upper, lower, centre every 50 mm from x = 100 mm to 50 mm before the plate).
-// The noise is drawn with the uncertainty of the true value; the stated uncertainty is that of the
-// written value, to two significant figures, so it says nothing the value does not. Magnitudes
+// The default ones are the instrument's for the value the rig's record predicts (the models
+// without the hidden effects), stated to two significant figures and used to draw the noise: they
+// carry neither the hidden effect nor the noise, so that weighted fits on the data are unbiased and
+// the data stay a blind test. Magnitudes
 // (QuantityInfo::magnitude) get noise truncated at zero. Each quantity comes from the first model
 // (in the order given) that predicts it.
 std::vector<OutputFile> synthesize(const Dataset& source, const std::vector<ModelPtr>& models,
