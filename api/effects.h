@@ -41,14 +41,6 @@ AppliedEffects diagnosed_effects(const validation::DiagnosisResult& diagnosis,
                                  const std::vector<std::string>& skip,
                                  std::vector<reports::EffectDescription>& described);
 
-// Records among the effects and inputs given (NAME=VALUE|fit) checked against the stations before
-// any run: a value that leaves a station's input outside its physical limits (a belt -5 mm thick)
-// is refused, and so is any record that no station states (a stream thickness where no condition
-// gives one: there is nothing to correct). InputError with the key "input" for an argument of
-// `inputs`, "effect" for one of `effects`; `outside_range` as effects::parse_setting.
-void check_records(const std::vector<std::string>& effects, const std::vector<std::string>& inputs,
-                   const std::vector<Station>& stations, bool outside_range = false);
-
 // Inputs NAME=VALUE|fit: a recorded input's error (effects/registry.h, Kind::record), given as an
 // effect is; the effects followed by the inputs. An input that names a physical effect is refused
 // (key "input"), naming the recorded inputs there are.

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "api/effects.h"
+#include "api/record_check.h"
 #include "core/input_error.h"
 #include "core/units.h"
 #include "validation/dataset.h"

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "api/effects.h"
+#include "api/record_check.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
 #include "core/message.h"

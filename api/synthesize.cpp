@@ -1,6 +1,7 @@
 #include "api/synthesize.h"
 
 #include "api/effects.h"
+#include "api/record_check.h"
 #include "core/option_check.h"
 #include "logs/dataset_logs.h"
 #include "effects/registry.h"
