@@ -26,6 +26,22 @@ void check(const ValidateOptions& o) {
   parse_effects(given);
   if (o.add_missing && !o.effects.empty())
     throw InputError("", 0, "add_missing", "excludes " + mention("effect"));
+  if (o.accept_with_effects) {
+    if (o.add_missing)
+      throw InputError("", 0, "accept_with_effects",
+                       "excludes " + mention("add_missing") +
+                           ": an effect fitted to the measurements it is judged on passes for the wrong reason; "
+                           "give the effect a fixed strength (" + mention("effect") + " NAME=VALUE)");
+    if (given.empty())
+      throw InputError("", 0, "accept_with_effects",
+                       "needs an effect or input with a fixed strength (" + mention("effect") + " NAME=VALUE)");
+    if (const auto to_fit = parse_effects(given).to_fit; !to_fit.empty())
+      throw InputError("", 0, "accept_with_effects",
+                       fmt::format("cannot judge {0}=fit: a strength fitted to the measurements it is judged on "
+                                   "passes for the wrong reason; give it a fixed value ({0}=VALUE, e.g. one fitted "
+                                   "on other measurements)",
+                                   to_fit.front().info->name));
+  }
   kJobs.check(static_cast<double>(o.jobs));
   check(o.dem);
 }
@@ -44,6 +60,7 @@ reports::ReportInput ValidateResult::report() const {
     in.log_charts = log_charts(*logs);
     in.log_lines = log_lines(*logs);
   }
+  in.accepted_with_effects = accepted_with_effects;
   return in;
 }
 
@@ -137,6 +154,7 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
   // add_missing: what the diagnosis recommends, at the strengths its verdict states (its own fit,
   // not a refit of every point as stated, which may go the other way: api/effects.h).
   res.added_missing = o.add_missing;
+  res.accepted_with_effects = o.accept_with_effects;
   std::vector<reports::EffectDescription> diagnosed_words;
   AppliedEffects diagnosed;
   if (o.add_missing && res.diagnosis) {

@@ -30,7 +30,13 @@
 namespace chutelab::api {
 
 // Errors name the keys "dataset", "models", "effect", "input", "tolerances", "studies", "diagnose",
-// "add_missing", "jobs" and the DEM's "dem.*".
+// "add_missing", "accept_with_effects", "jobs" and the DEM's "dem.*".
+//
+// The acceptance (tolerances) judges the models as delivered: what they would do with an effect
+// added, fitted or fixed, is reported beside it and never decides. accept_with_effects makes the
+// models with the effects the ones judged; it takes fixed strengths only (an effect fitted to the
+// very measurements it is judged on would pass for the wrong reason), so it excludes add_missing
+// and NAME=fit.
 struct ValidateOptions {
   std::filesystem::path dataset;                      // folder with measurements
   std::vector<std::string> models{"korzen", "booth-cema"};
@@ -39,6 +45,7 @@ struct ValidateOptions {
   std::filesystem::path tolerances;                   // "" = the dataset's tolerances.toml when present
   bool diagnose = false;                              // also rank the candidate missing effects
   bool add_missing = false;                           // diagnose, then add what it points to, as its verdict states
+  bool accept_with_effects = false;                   // the acceptance judges the models with the effects
   // Effects and inputs imply the diagnosis, so that the report shows why they were added.
   bool diagnose_with_effects = true;
   std::vector<std::filesystem::path> studies;         // calibrate / sensitivity output folders or files
@@ -65,9 +72,20 @@ struct ValidateResult {
   // The dataset's logs, when its plate measurements came from them (logs/dataset_logs.h): the
   // report shows each with its window, zero and trend.
   std::optional<logs::LogImport> logs;
+  bool accepted_with_effects = false;                    // the options' accept_with_effects
 
   const validation::ValidationResult& final_result() const { return with_effects ? *with_effects : baseline; }
-  bool acceptance_failed() const { return final_result().acceptance_failed; }
+  // The result the acceptance judges (the exit code, the JUnit file's failures): the models as
+  // delivered, or with the effects under accept_with_effects.
+  const validation::ValidationResult& accepted() const {
+    return accepted_with_effects && with_effects ? *with_effects : baseline;
+  }
+  // The other one, reported beside the acceptance and never deciding it (null without effects).
+  const validation::ValidationResult* beside_acceptance() const {
+    if (!with_effects) return nullptr;
+    return accepted_with_effects ? &baseline : &*with_effects;
+  }
+  bool acceptance_failed() const { return accepted().acceptance_failed; }
   // The report's input: views into this result (valid while it lives, unmoved).
   reports::ReportInput report() const;
   // predictions.csv, errors.csv, summary.csv, report.md, report.html and, with a diagnosis,

@@ -412,6 +412,9 @@ struct Validated {
 py::dict validation_numbers(const Validated& v) {
   const api::ValidateResult& res = v.result;
   const validation::ValidationResult& result = res.final_result();
+  // The acceptance judges the models as delivered unless accept_with_effects (api/validate.h).
+  const validation::ValidationResult& judged = res.accepted();
+  const validation::ValidationResult* beside = res.beside_acceptance();
   const validation::Tolerances* tol = res.tolerances ? &*res.tolerances : nullptr;
   py::dict r;
   r["predictions"] = predictions_table(result);
@@ -422,10 +425,13 @@ py::dict validation_numbers(const Validated& v) {
   for (const auto& e : res.effects) fx.append(strength(e.name, e.parameter, e.value, e.uncertainty, e.fitted));
   r["effects"] = fx;
   r["notes"] = res.notes;
-  r["brief"] = result.brief();
-  r["acceptance_checked"] = result.acceptance_checked;
-  r["acceptance_failed"] = result.acceptance_failed;
-  r["acceptance_problems"] = result.acceptance_problems;
+  r["brief"] = result.brief(&result == &judged);
+  r["acceptance_checked"] = judged.acceptance_checked;
+  r["acceptance_failed"] = judged.acceptance_failed;
+  r["acceptance_problems"] = judged.acceptance_problems;
+  r["accepted_with_effects"] = res.accepted_with_effects && res.with_effects;
+  r["outside_tolerance_beside"] =
+      beside && beside->acceptance_checked ? py::object(py::int_(beside->failed_count())) : py::object(py::none());
   r["combined_rms_normalised_error"] = or_nan(result.combined_rms_normalised());
   py::dict overall;
   for (const auto& m : result.models) overall[py::str(m)] = or_nan(result.overall_rms_normalised(m));
@@ -436,13 +442,14 @@ py::dict validation_numbers(const Validated& v) {
 
 std::unique_ptr<Validated> validate(const validation::Dataset& d, const std::vector<std::string>& model_names,
                                     const std::vector<std::string>& effect_args, const std::string& tolerances,
-                                    bool diagnose, const std::string& dem_quality, std::optional<int> dem_threads,
+                                    bool diagnose, bool accept_with_effects, const std::string& dem_quality, std::optional<int> dem_threads,
                                     const std::string& dem_cache, bool no_dem_cache) {
   api::ValidateOptions o;
   o.models = model_names;
   o.effects = effect_args;
   o.tolerances = tolerances;
   o.diagnose = diagnose;
+  o.accept_with_effects = accept_with_effects;
   o.dem = dem_options(dem_quality, dem_threads, dem_cache, no_dem_cache);
   std::vector<std::filesystem::path> inputs;
   o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
@@ -718,7 +725,7 @@ PYBIND11_MODULE(_chutelab, m) {
       });
 
   m.def("validate", &validate, py::arg("dataset"), py::arg("models"), py::arg("effects"), py::arg("tolerances"),
-        py::arg("diagnose"), py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"),
+        py::arg("diagnose"), py::arg("accept_with_effects"), py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"),
         py::arg("no_dem_cache"));
   m.def("diagnose", &diagnose, py::arg("dataset"), py::arg("models"), py::arg("alpha"), py::arg("pairs"),
         py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"), py::arg("no_dem_cache"),

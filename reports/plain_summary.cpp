@@ -221,12 +221,16 @@ std::vector<std::string> in_short(const ReportInput& in) {
   }
 
   // 3. What to do.
-  const auto* last = in.with_effects ? in.with_effects : in.baseline;
-  if (last->acceptance_checked && last->acceptance_failed) {
-    out.push_back(fmt::format("Acceptance failed: {} of {} checked values are outside their tolerance (listed under "
-                              "\"Outside tolerance\").",
-                              last->failed_count(), last->checked_count()));
-  } else if (in.with_effects && !in.effects.empty() && best && !effect_choice_warning(in).empty()) {
+  // The acceptance judges the models as delivered (api/validate.h), whatever was added beside them.
+  const auto& judged = in.accepted();
+  if (judged.acceptance_checked && judged.acceptance_failed)
+    out.push_back(fmt::format("Acceptance failed{}: {} of {} checked values are outside their tolerance (listed "
+                              "under \"Outside tolerance\").",
+                              !in.with_effects             ? ""
+                              : in.accepted_with_effects ? " for the models with the effects"
+                                                         : " for the models as delivered",
+                              judged.failed_count(), judged.checked_count()));
+  if (in.with_effects && !in.effects.empty() && best && !effect_choice_warning(in).empty()) {
     out.push_back(fmt::format("The measurements point to {} instead: validate with add_missing to see the models "
                               "with it.",
                               spaced(best->label())));

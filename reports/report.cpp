@@ -343,13 +343,27 @@ Doc assemble(const ReportInput& in) {
                                in.dataset->trajectory.size()));
     meta.push_back(fmt::format("Models: {}; effects: {}", fmt::join(in.baseline->models, ", "),
                                in.with_effects ? effects_label(*in.with_effects) : std::string("none")));
-    if (last.acceptance_checked)
-      meta.push_back(last.acceptance_failed
-                         ? fmt::format("Acceptance: FAILED, {} of {} checked values outside tolerance (marked ✗)",
-                                       last.failed_count(), last.checked_count())
-                         : fmt::format("Acceptance: passed, {} values checked", last.checked_count()));
-    else
+    // Both verdicts: the one the acceptance (validate's exit code, the JUnit file) gives, and the
+    // other result's count beside it, which decides nothing (api/validate.h).
+    const ValidationResult& judged = in.accepted();
+    const bool effects_judged = in.accepted_with_effects && in.with_effects;
+    if (judged.acceptance_checked) {
+      const std::string who = !in.with_effects ? std::string()
+                              : effects_judged ? " of the models with " + effects_label(*in.with_effects)
+                                               : std::string(" of the models as delivered");
+      meta.push_back(judged.acceptance_failed
+                         ? fmt::format("Acceptance{}: FAILED, {} of {} checked values outside tolerance (marked ✗; "
+                                       "listed under \"Outside tolerance\")",
+                                       who, judged.failed_count(), judged.checked_count())
+                         : fmt::format("Acceptance{}: passed, {} values checked", who, judged.checked_count()));
+      if (const ValidationResult* other = in.beside_acceptance())
+        meta.push_back(fmt::format("{}: {} of {} checked values outside tolerance (beside the acceptance; not judged)",
+                                   effects_judged ? std::string("Models as delivered")
+                                                  : "With " + effects_label(*other),
+                                   other->failed_count(), other->checked_count()));
+    } else {
       meta.push_back("Acceptance: no tolerances set");
+    }
     if (c.conditions_left_out > 0)
       meta.push_back(fmt::format("Shown: the {} conditions of largest misfit (largest |E/u_val|) in every "
                                  "per-condition table and chart; {} more are in predictions.csv and errors.csv and in "
@@ -387,15 +401,38 @@ Doc assemble(const ReportInput& in) {
     }
   }
 
-  // ---- Values outside tolerance (the CI's question) ----
-  if (last.acceptance_checked && (last.acceptance_failed || !last.acceptance_problems.empty())) {
-    d.h(2, "failures", "Outside tolerance");
-    const Table failed = failure_table(last);
-    if (failed.rows.empty()) d.p("No value is outside its limits; acceptance failed for the reasons below.");
-    d.table(failed);
-    std::vector<std::string> problems;
-    for (const auto& p : last.acceptance_problems) problems.push_back("Acceptance problem: " + p);
-    d.list(problems);
+  // ---- Values outside tolerance (the CI's question): those judged, then those beside ----
+  {
+    const ValidationResult& judged = in.accepted();
+    const ValidationResult* other = in.beside_acceptance();
+    const bool judged_out = judged.acceptance_checked && (judged.acceptance_failed || !judged.acceptance_problems.empty());
+    const bool other_out = other && other->acceptance_checked && other->failed_count() > 0;
+    if (judged_out || other_out) {
+      d.h(2, "failures", "Outside tolerance");
+      const std::string judged_title = !other                    ? std::string()
+                                       : in.accepted_with_effects ? "The models with " + effects_label(judged)
+                                                                  : std::string("The models as delivered");
+      if (judged_out) {
+        if (other) d.p(judged_title + " (judged by the acceptance):");
+        const Table failed = failure_table(judged);
+        if (failed.rows.empty()) d.p("No value is outside its limits; acceptance failed for the reasons below.");
+        d.table(failed);
+        std::vector<std::string> problems;
+        for (const auto& p : judged.acceptance_problems) problems.push_back("Acceptance problem: " + p);
+        d.list(problems);
+      } else {
+        d.p(judged_title + " (judged by the acceptance): every checked value is within its limits.");
+      }
+      if (other_out) {
+        d.p(fmt::format("{} (beside the acceptance, not judged):",
+                        in.accepted_with_effects ? std::string("The models as delivered")
+                                                 : "With " + effects_label(*other)));
+        Table t = failure_table(*other);
+        t.id = "failures-table-beside";
+        t.caption = "Values outside tolerance beside the acceptance";
+        d.table(t);
+      }
+    }
   }
 
   // ---- What an added effect changes, then the diagnosis's evidence ----

@@ -33,6 +33,16 @@ struct ReportInput {
   const std::vector<StudySection>* studies = nullptr;       // optional: calibrate / sensitivity sections
   std::vector<LogChart> log_charts;                         // optional: the rig's logs, one chart a condition
   std::vector<std::string> log_lines;                       // optional: what each log gave and said, in words
+  // Which result the acceptance judges: the models as delivered (baseline), unless this is set and
+  // with_effects exists. The other is reported beside it.
+  bool accepted_with_effects = false;
+  const validation::ValidationResult& accepted() const {
+    return accepted_with_effects && with_effects ? *with_effects : *baseline;
+  }
+  const validation::ValidationResult* beside_acceptance() const {
+    if (!with_effects) return nullptr;
+    return accepted_with_effects ? baseline : with_effects;
+  }
 };
 
 std::string report_markdown(const ReportInput& in);

@@ -75,7 +75,7 @@ std::vector<FailedValue> failed_values(const ValidationResult& r) {
   return out;
 }
 
-std::string failure_table_text(const ValidationResult& r, std::size_t max_rows) {
+std::string failure_table_text(const ValidationResult& r, std::size_t max_rows, const std::string& rest_in) {
   const auto failed = failed_values(r);
   if (failed.empty()) return {};
   std::vector<std::array<std::string, 7>> rows = {
@@ -98,8 +98,7 @@ std::string failure_table_text(const ValidationResult& r, std::size_t max_rows) 
     o += line + "\n";
   }
   if (failed.size() > max_rows)
-    o += fmt::format("  ... and {} more (every one in errors.csv, column tolerance, and in report.md)\n",
-                     failed.size() - max_rows);
+    o += fmt::format("  ... and {} more (every one in {})\n", failed.size() - max_rows, rest_in);
   return o;
 }
 

@@ -23,7 +23,8 @@ struct FailedValue {
 std::vector<FailedValue> failed_values(const ValidationResult& r);
 
 // An aligned plain-text table of at most max_rows rows (then one line saying how many more and
-// where they are), headed by one line with the counts. Empty when nothing failed.
-std::string failure_table_text(const ValidationResult& r, std::size_t max_rows = 40);
+// where they are: `rest_in`), headed by one line with the counts. Empty when nothing failed.
+std::string failure_table_text(const ValidationResult& r, std::size_t max_rows = 40,
+                               const std::string& rest_in = "errors.csv, column tolerance, and in report.md");
 
 }  // namespace chutelab::validation

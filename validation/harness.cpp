@@ -103,7 +103,7 @@ std::optional<double> ValidationResult::combined_rms_normalised() const {
   return std::sqrt(sum / static_cast<double>(chosen.size()));
 }
 
-std::string ValidationResult::brief() const {
+std::string ValidationResult::brief(bool judged) const {
   std::string s = fmt::format("{}: {} conditions x {} model{}", one_line(dataset_folder.empty() ? dataset_name : dataset_folder, 120),
                               predictions.size() / std::max<std::size_t>(1, models.size()),
                               models.size(), models.size() == 1 ? "" : "s");
@@ -113,11 +113,13 @@ std::string ValidationResult::brief() const {
   if (models.size() > 1)
     if (auto z = combined_rms_normalised()) rms.push_back(fmt::format("combined {:.2f}", *z));
   if (!rms.empty()) s += fmt::format("; RMS E/u_val {}", fmt::join(rms, ", "));
-  if (acceptance_checked)
+  if (acceptance_checked && !judged)
+    s += fmt::format("; {} of {} checked values outside tolerance (not judged)", failed_count(), checked_count());
+  else if (acceptance_checked)
     s += acceptance_failed ? fmt::format("; ACCEPTANCE FAILED ({} of {} checked values outside tolerance)",
                                          failed_count(), checked_count())
                            : fmt::format("; acceptance passed ({} values checked)", checked_count());
-  if (!acceptance_problems.empty())
+  if (!acceptance_problems.empty() && judged)
     s += fmt::format(" ({}{})", acceptance_problems.front(),
                      acceptance_problems.size() > 1 ? fmt::format("; and {} more", acceptance_problems.size() - 1) : "");
   return s;

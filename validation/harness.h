@@ -84,8 +84,11 @@ struct ValidationResult {
   // model, in registry order (booth-cema, korzen, ...), that predicts it. This is the figure the
   // diagnosis works on.
   std::optional<double> combined_rms_normalised() const;
-  // One line for a terminal: the folder, the counts and the RMS E/u_val per model and combined.
-  std::string brief() const;
+  // One line for a terminal: the folder, the counts and the RMS E/u_val per model and combined, and
+  // the acceptance. `judged` false: this result is reported beside the acceptance, not judged by it
+  // (the models with an effect fitted here, validate's contract): its count says so and never
+  // "passed" or "FAILED".
+  std::string brief(bool judged = true) const;
   // How many checked values are outside their tolerance.
   int failed_count() const;
   int checked_count() const;

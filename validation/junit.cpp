@@ -58,9 +58,8 @@ struct Suite {
   int failures = 0, skipped = 0;
 };
 
-}  // namespace
-
-std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSummary* out_summary) {
+// One suite per model, one case per condition x quantity with a tolerance.
+std::vector<Suite> suites_of(const ValidationResult& r, const Tolerances* tol) {
   std::vector<Suite> suites;
   for (const auto& m : r.models) {
     Suite s;
@@ -74,67 +73,94 @@ std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSum
     }
     if (!s.cases.empty()) suites.push_back(std::move(s));
   }
+  return suites;
+}
 
+// `judged` false: every case <skipped>, its message what the values would have given.
+std::string suite_xml(Suite& s, const ValidationResult& r, const Tolerances& tol, const std::string& dataset,
+                      bool judged, const std::string& label, int& outside) {
+  std::string cases;
+  const std::string klass = fmt::format("chutelab.{}.{}{}", dataset, xml_escape(s.model),
+                                        judged ? std::string() : "." + xml_escape(label));
+  for (const auto& k : s.cases) {
+    const Tolerance& t = *tol.find(s.model, k.quantity);
+    const std::string unit = unit_of(*k.values.front());
+    const std::string name = fmt::format("{} {}", k.condition, k.quantity);
+    cases += fmt::format("    <testcase name=\"{}\" classname=\"{}\">\n", xml_escape(name), klass);
+    std::vector<const Comparison*> predicted, failed;
+    for (const Comparison* c : k.values) {
+      if (!c->predicted) continue;
+      predicted.push_back(c);
+      if (c->verdict.checked && !c->verdict.passed) failed.push_back(c);
+    }
+    const std::string limit = describe(t, unit);
+    std::string lines;
+    for (const Comparison* c : predicted) lines += detail(*c) + "\n";
+    // The message carries the worst value; the text lists every compared value.
+    std::string msg;
+    if (!failed.empty()) {
+      const Comparison* worst = failed.front();
+      for (const Comparison* c : failed)
+        if (std::abs(c->error()) > std::abs(worst->error())) worst = c;
+      msg = fmt::format("{}: measured {}, predicted {}, error {}; limit {}", k.quantity,
+                        value(worst->measured, worst->scale, unit), value(*worst->predicted, worst->scale, unit),
+                        value(worst->error(), worst->scale, unit), worst->verdict.limit);
+      if (worst->boundary) msg += fmt::format(" at x = {} mm", csv_number(worst->x * 1e3));
+      if (failed.size() > 1) msg += fmt::format(" ({} of {} points outside)", failed.size(), predicted.size());
+    }
+    if (!judged) {
+      ++s.skipped;
+      if (!failed.empty()) ++outside;
+      const std::string would = predicted.empty() ? fmt::format("{} does not predict {}", s.model, k.quantity)
+                                : failed.empty()  ? std::string("within tolerance")
+                                                  : "outside tolerance: " + msg;
+      cases += fmt::format("      <skipped message=\"{}\"/>\n",
+                           xml_escape(fmt::format("not judged ({}, beside the acceptance): {}", label, would)));
+      if (!predicted.empty())
+        cases += fmt::format("      <system-out>tolerance: {}\n{}</system-out>\n", xml_text(limit), xml_text(lines));
+    } else if (predicted.empty()) {
+      ++s.skipped;
+      cases += fmt::format("      <skipped message=\"{}\"/>\n",
+                           xml_escape(fmt::format("{} does not predict {}; tolerance {} not checked", s.model,
+                                                  k.quantity, limit)));
+    } else if (!failed.empty()) {
+      ++s.failures;
+      cases += fmt::format("      <failure message=\"{}\" type=\"tolerance\">tolerance: {}\n{}</failure>\n",
+                           xml_escape(msg), xml_text(limit), xml_text(lines));
+    } else {
+      cases += fmt::format("      <system-out>tolerance: {}\n{}</system-out>\n", xml_text(limit), xml_text(lines));
+    }
+    cases += "    </testcase>\n";
+  }
+  const int n = static_cast<int>(s.cases.size());
+  std::string body = fmt::format(
+      "  <testsuite name=\"{}.{}{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" skipped=\"{}\">\n", dataset,
+      xml_escape(s.model), judged ? std::string() : "." + xml_escape(label), n, s.failures, s.skipped);
+  body += "    <properties>\n";
+  body += fmt::format("      <property name=\"dataset\" value=\"{}\"/>\n", dataset);
+  body += fmt::format("      <property name=\"model\" value=\"{}\"/>\n", xml_escape(s.model));
+  body += fmt::format("      <property name=\"tolerances\" value=\"{}\"/>\n", xml_escape(tol.file()));
+  body += fmt::format("      <property name=\"judged\" value=\"{}\"/>\n",
+                      judged ? "yes: the acceptance" : "no: beside the acceptance");
+  for (const auto& e : r.effects)
+    body += fmt::format("      <property name=\"effect\" value=\"{}\"/>\n", xml_escape(e));
+  return body + "    </properties>\n" + cases + "  </testsuite>\n";
+}
+
+}  // namespace
+
+std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSummary* out_summary,
+                      const ValidationResult* beside, const std::string& beside_label) {
   JunitSummary sum;
   // The folder the user gave, as the report's title and validate's first line name it.
   const std::string dataset = xml_escape(r.dataset_folder.empty() ? r.dataset_name : r.dataset_folder);
   std::string body;
-  for (auto& s : suites) {
-    std::string cases;
-    for (const auto& k : s.cases) {
-      const Tolerance& t = *tol->find(s.model, k.quantity);
-      const std::string unit = unit_of(*k.values.front());
-      const std::string name = fmt::format("{} {}", k.condition, k.quantity);
-      cases += fmt::format("    <testcase name=\"{}\" classname=\"chutelab.{}.{}\">\n",
-                           xml_escape(name), dataset, xml_escape(s.model));
-      std::vector<const Comparison*> predicted, failed;
-      for (const Comparison* c : k.values) {
-        if (!c->predicted) continue;
-        predicted.push_back(c);
-        if (c->verdict.checked && !c->verdict.passed) failed.push_back(c);
-      }
-      const std::string limit = describe(t, unit);
-      std::string lines;
-      for (const Comparison* c : predicted) lines += detail(*c) + "\n";
-      if (predicted.empty()) {
-        ++s.skipped;
-        cases += fmt::format("      <skipped message=\"{}\"/>\n",
-                             xml_escape(fmt::format("{} does not predict {}; tolerance {} not checked",
-                                                    s.model, k.quantity, limit)));
-      } else if (!failed.empty()) {
-        ++s.failures;
-        // The message carries the worst value; the text lists every compared value.
-        const Comparison* worst = failed.front();
-        for (const Comparison* c : failed)
-          if (std::abs(c->error()) > std::abs(worst->error())) worst = c;
-        std::string msg = fmt::format("{}: measured {}, predicted {}, error {}; limit {}", k.quantity,
-                                      value(worst->measured, worst->scale, unit),
-                                      value(*worst->predicted, worst->scale, unit),
-                                      value(worst->error(), worst->scale, unit), worst->verdict.limit);
-        if (worst->boundary) msg += fmt::format(" at x = {} mm", csv_number(worst->x * 1e3));
-        if (failed.size() > 1) msg += fmt::format(" ({} of {} points outside)", failed.size(), predicted.size());
-        cases += fmt::format("      <failure message=\"{}\" type=\"tolerance\">tolerance: {}\n{}</failure>\n",
-                             xml_escape(msg), xml_text(limit), xml_text(lines));
-      } else {
-        cases += fmt::format("      <system-out>tolerance: {}\n{}</system-out>\n", xml_text(limit),
-                             xml_text(lines));
-      }
-      cases += "    </testcase>\n";
-    }
-    const int n = static_cast<int>(s.cases.size());
-    sum.tests += n;
+  int unused = 0;
+  for (auto& s : suites_of(r, tol)) {
+    body += suite_xml(s, r, *tol, dataset, true, "", unused);
+    sum.tests += static_cast<int>(s.cases.size());
     sum.failures += s.failures;
     sum.skipped += s.skipped;
-    body += fmt::format(
-        "  <testsuite name=\"{}.{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" skipped=\"{}\">\n",
-        dataset, xml_escape(s.model), n, s.failures, s.skipped);
-    body += "    <properties>\n";
-    body += fmt::format("      <property name=\"dataset\" value=\"{}\"/>\n", dataset);
-    body += fmt::format("      <property name=\"model\" value=\"{}\"/>\n", xml_escape(s.model));
-    body += fmt::format("      <property name=\"tolerances\" value=\"{}\"/>\n", xml_escape(tol->file()));
-    for (const auto& e : r.effects)
-      body += fmt::format("      <property name=\"effect\" value=\"{}\"/>\n", xml_escape(e));
-    body += "    </properties>\n" + cases + "  </testsuite>\n";
   }
 
   // Nothing checked is not a pass: one test case in error says why.
@@ -153,12 +179,17 @@ std::string junit_xml(const ValidationResult& r, const Tolerances* tol, JunitSum
         "  </testsuite>\n",
         dataset, dataset, xml_escape(why));
   }
+  if (beside && tol)
+    for (auto& s : suites_of(*beside, tol)) {
+      body += suite_xml(s, *beside, *tol, dataset, false, beside_label, sum.beside_outside);
+      sum.beside += static_cast<int>(s.cases.size());
+    }
   if (out_summary) *out_summary = sum;
   return fmt::format(
              "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
              "<testsuites name=\"chutelab validate {}\" tests=\"{}\" failures=\"{}\" errors=\"{}\" "
              "skipped=\"{}\">\n",
-             dataset, sum.tests, sum.failures, sum.errors, sum.skipped) +
+             dataset, sum.tests + sum.beside, sum.failures, sum.errors, sum.skipped + sum.beside) +
          body + "</testsuites>\n";
 }
 

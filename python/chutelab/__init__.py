@@ -407,7 +407,11 @@ class Validation:
     effects      [Strength]: the effects added, fitted ones with their ± (empty without effects)
     brief        the command's one-line summary; notes: e.g. the fit's chi^2
     rms_normalised_error {model: float}; combined_rms_normalised_error: float
-    acceptance_checked, acceptance_failed (bools), acceptance_problems (texts)
+    acceptance_checked, acceptance_failed (bools), acceptance_problems (texts): the acceptance of
+                 the models as delivered, also when effects were added (as the command line's exit
+                 code); of the models with the effects only with accept_with_effects=True
+    accepted_with_effects (bool); outside_tolerance_beside: how many checked values of the other
+                 result (with the effects, or as delivered) are outside tolerance, or None
     diagnosis    the Diagnosis validate ran (with effects, or diagnose=True), or None
     write_report(out) writes report.html, report.md and the CSV files, as validate --out
     """
@@ -437,6 +441,8 @@ class Validation:
         self.acceptance_checked = raw["acceptance_checked"]
         self.acceptance_failed = raw["acceptance_failed"]
         self.acceptance_problems = list(raw["acceptance_problems"])
+        self.accepted_with_effects = raw["accepted_with_effects"]
+        self.outside_tolerance_beside = raw["outside_tolerance_beside"]
         self.rms_normalised_error = dict(raw["rms_normalised_error"])
         self.combined_rms_normalised_error = raw["combined_rms_normalised_error"]
         self.diagnosis = Diagnosis._make(raw["diagnosis"]) if raw["diagnosis"] is not None else None
@@ -456,7 +462,7 @@ class Validation:
 
 def validate(dataset: Union[Dataset, PathLike], models: Union[str, Sequence[str]] = ("korzen", "booth-cema"),
              effects: EffectsArg = None, *, tolerances: Optional[PathLike] = None, diagnose: bool = False,
-             dem_quality: Optional[str] = None, dem_threads: Optional[int] = None,
+             accept_with_effects: bool = False, dem_quality: Optional[str] = None, dem_threads: Optional[int] = None,
              dem_cache: Optional[PathLike] = None, no_dem_cache: bool = False) -> Validation:
     """Every condition of `dataset` (a Dataset or a folder) through `models`, compared with its
     measurements, as `chutelab validate`.
@@ -464,12 +470,16 @@ def validate(dataset: Union[Dataset, PathLike], models: Union[str, Sequence[str]
     effects: {"air_drag": 0.7} fixed or {"air_drag": "fit"} calibrated on the dataset; the tables
     are then those of the models with the effects (call once without effects for "before"), and
     the diagnosis runs too, as on the command line. diagnose=True ranks the candidate effects
-    without adding any. tolerances: a tolerances.toml (default: the dataset's own when present).
+    without adding any. tolerances: a tolerances.toml (default: the dataset's own when present);
+    acceptance_failed judges the models as delivered, and the models with the effects only with
+    accept_with_effects=True, which takes fixed strengths alone (a strength fitted to the
+    measurements it is judged on passes for the wrong reason).
     Models include "dem" (dem_quality, dem_threads, dem_cache, no_dem_cache; slow, cached as on
     the command line)."""
     d = _dataset(dataset)
     core = _chutelab.validate(d._core, _model_list(models), _effect_args(effects), _path("tolerances", tolerances),
-                              _flag("diagnose", diagnose), _text("dem_quality", dem_quality),
+                              _flag("diagnose", diagnose), _flag("accept_with_effects", accept_with_effects),
+                              _text("dem_quality", dem_quality),
                               _whole("dem_threads", dem_threads, True), _path("dem_cache", dem_cache),
                               _flag("no_dem_cache", no_dem_cache))
     return Validation._make(core)

@@ -303,6 +303,21 @@ def test_tolerances_and_acceptance(tmp_path):
     assert list(file.tolerance.str.startswith("fail")) == list(~v.errors.within_tolerance)
 
 
+def test_acceptance_judges_the_models_as_delivered(tmp_path):
+    # As the command line's exit code (docs/guide-ci.md): a fitted effect is reported beside the
+    # acceptance, never judged; a fixed one only with accept_with_effects=True.
+    tol = tmp_path / "tol.toml"
+    tol.write_text("[korzen]\nnormal_force_N = { relative = 0.04 }\n")
+    fitted = chutelab.validate(HIDDEN, effects={"air_drag": "fit"}, tolerances=tol)
+    assert fitted.acceptance_failed and not fitted.accepted_with_effects
+    assert fitted.outside_tolerance_beside == 0
+    fixed = chutelab.validate(HIDDEN, effects={"air_drag": 0.75}, tolerances=tol, accept_with_effects=True)
+    assert not fixed.acceptance_failed and fixed.accepted_with_effects and fixed.outside_tolerance_beside > 0
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.validate(HIDDEN, effects={"air_drag": "fit"}, tolerances=tol, accept_with_effects=True)
+    assert e.value.field == "accept_with_effects" and "air_drag=fit" in str(e.value)
+
+
 def test_the_dem_through_python_gives_the_command_lines_numbers(tmp_path):
     # One condition at quick quality (~4 s of CPU), in a cache of its own; the command line then
     # finds the run in that cache and must report the same predictions.
