@@ -34,10 +34,11 @@ int resolve_jobs(int jobs) { return jobs > 0 ? jobs : dem::station::effective_th
 
 validation::ModelSettings model_settings(const DemOptions& o, const std::filesystem::path& dataset_dir,
                                          const std::filesystem::path& output_dir, bool progress,
-                                         std::span<const Station> conditions) {
+                                         std::span<const Station> conditions, const validation::DatasetFile* setup) {
   check(o);
   validation::DemModelConfig dc;
-  dc.setup_file = (dataset_dir / "setup.toml").string();
+  dc.setup_file = setup ? setup->shown : (dataset_dir / "setup.toml").string();
+  if (setup) dc.setup_text = setup->text;
   if (!o.quality.empty()) dc.overrides.quality = dem::station::parse_quality(o.quality);
   dc.overrides.threads = o.threads;
   dc.overrides.plate_cells = o.plate_cells;

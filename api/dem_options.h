@@ -7,6 +7,7 @@
 #include <span>
 #include <string>
 
+#include "validation/dataset.h"
 #include "validation/models/model_settings.h"
 
 namespace chutelab::api {
@@ -34,9 +35,11 @@ void check(const DemOptions& o);
 // The models' settings for a dataset folder (its setup.toml's [dem] table); the DEM's per-condition
 // files (series, side views, VTK) go to `output_dir` when it is not empty. Checks `o` first.
 // `conditions`: the dataset's, from which the DEM picks the conditions its time-step ladder runs at.
+// `setup`: the dataset's setup.toml as read with it (Dataset::sources), when it was.
 validation::ModelSettings model_settings(const DemOptions& o, const std::filesystem::path& dataset_dir,
                                          const std::filesystem::path& output_dir, bool progress,
-                                         std::span<const Station> conditions = {});
+                                         std::span<const Station> conditions = {},
+                                         const validation::DatasetFile* setup = nullptr);
 
 // Independent runs side by side in one process: `jobs`, or for 0 one per core other processes
 // leave free (the DEM's own thread default).

@@ -59,7 +59,7 @@ DiagnoseResult diagnose(validation::Dataset dataset, const DiagnoseOptions& o) {
   // An expensive model (the DEM) runs once per condition, and once more per condition for every
   // candidate it can represent (its own signature); the others take the analytical models'
   // signatures, and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
-  const auto models = validation::make_models(o.models, model_settings(o.dem, d.dir, {}, o.progress, d.stations));
+  const auto models = validation::make_models(o.models, model_settings(o.dem, d.dir, {}, o.progress, d.stations, d.source("setup.toml")));
   res.diagnosis = validation::diagnose(d, models, opt);
   if (o.self_check > 0) {
     validation::SelfCheckOptions so;

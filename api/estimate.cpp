@@ -35,17 +35,21 @@ Station resolve_station(const EstimateOptions& o) {
   namespace fs = std::filesystem;
   if (!o.dataset.empty() && !o.setup.empty())
     throw InputError("", 0, "setup", fmt::format("give either {} or {}, not both", mention("dataset"), mention("setup")));
-  const fs::path dir = o.dataset.empty() ? o.default_dataset : o.dataset;
+  const validation::Dataset* read = o.dataset_read;
+  if (read && !o.setup.empty())
+    throw InputError("", 0, "setup", fmt::format("give either {} or {}, not both", mention("dataset"), mention("setup")));
+  const fs::path dir = read ? read->dir : o.dataset.empty() ? o.default_dataset : o.dataset;
   const fs::path setup_path = o.setup.empty() ? dir / "setup.toml" : o.setup;
-  const Setup setup = validation::read_setup(setup_path);
+  const Setup setup = read ? read->setup : validation::read_setup(setup_path);
 
   std::optional<Station> base;
   if (!o.condition.empty()) {
     if (!o.setup.empty())
       throw InputError("", 0, "condition", fmt::format("{} picks a row of a dataset's conditions.csv; use {}",
                                                        mention("condition"), mention("dataset")));
-    base = validation::condition_row(validation::read_conditions(dir / "conditions.csv", setup), o.condition,
-                                     dir / "conditions.csv", "condition");
+    const validation::DatasetFile* rows = read ? read->source("conditions.csv") : nullptr;
+    base = validation::condition_row(read ? read->stations : validation::read_conditions(dir / "conditions.csv", setup),
+                                     o.condition, rows ? fs::path(rows->shown) : dir / "conditions.csv", "condition");
   }
   auto need = [&](const std::optional<double>& value, const char* key, double from_base) {
     if (value) return *value;

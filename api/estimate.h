@@ -17,6 +17,10 @@
 #include "api/estimate_output.h"
 #include "effects/registry.h"
 
+namespace chutelab::validation {
+struct Dataset;
+}
+
 namespace chutelab::api {
 
 // What to estimate. Boundary units (m/s, t/h, mm), as a conditions.csv row. Errors name the keys
@@ -24,6 +28,7 @@ namespace chutelab::api {
 // "stream_thickness", "effect".
 struct EstimateOptions {
   std::filesystem::path dataset, setup;   // a dataset folder, or a setup.toml alone (not both)
+  const validation::Dataset* dataset_read = nullptr;  // a dataset already read, in place of `dataset`
   std::string condition;                  // start from this row of the dataset's conditions.csv
   std::filesystem::path default_dataset;  // used when neither dataset nor setup is given
   std::optional<double> belt_speed, mass_flow, plate_distance, plate_top, stream_thickness;

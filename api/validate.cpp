@@ -103,15 +103,19 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
     const fs::path f = fs::is_directory(s) ? s / "sensitivity.csv" : s;
     if (f.filename() == "sensitivity.csv" && fs::exists(f)) sensitivity = studies::read_sensitivity_csv(f);
   }
+  // The dataset's own tolerances.toml as it was read with the dataset (its folder may have changed
+  // since); one it could not read is read again here, to say why.
+  const validation::DatasetFile* own = d.source("tolerances.toml");
   if (!o.tolerances.empty()) res.tolerances = validation::Tolerances::read(o.tolerances);
-  else if (fs::exists(fs::symlink_status(dir / "tolerances.toml")))
+  else if (own && !own->unread) res.tolerances = validation::Tolerances::read(own->shown, &own->text);
+  else if ((own || !d.sources) && !dir.empty() && fs::exists(fs::symlink_status(dir / "tolerances.toml")))
     res.tolerances = validation::Tolerances::read(dir / "tolerances.toml");
   const bool diagnosing = o.diagnose || o.add_missing || (o.diagnose_with_effects && !given.empty());
   check_records(o.effects, o.inputs, d.stations);
 
   // The models as named (an unknown one is bad input here), then the caller's output folder, then
   // the models again with the folder their per-condition files go to.
-  auto models = validation::make_models(o.models, model_settings(o.dem, dir, {}, o.progress, d.stations));
+  auto models = validation::make_models(o.models, model_settings(o.dem, dir, {}, o.progress, d.stations, d.source("setup.toml")));
   OutputPlan plan;
   plan.inputs = validation::dataset_files(dir);
   if (res.tolerances) plan.inputs.emplace_back(res.tolerances->file());
@@ -126,7 +130,7 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
   plan.model_folder = std::any_of(models.begin(), models.end(), [](const auto& m) { return m->expensive(); });
   if (o.prepare_output)
     if (const fs::path out = o.prepare_output(plan); !out.empty())
-      models = validation::make_models(o.models, model_settings(o.dem, dir, out, o.progress, d.stations));
+      models = validation::make_models(o.models, model_settings(o.dem, dir, out, o.progress, d.stations, d.source("setup.toml")));
 
   validation::ValidateOptions base;
   base.tolerances = res.tolerances ? &*res.tolerances : nullptr;

@@ -30,6 +30,8 @@
 #include "core/progress.h"
 #include "core/units.h"
 #include "effects/registry.h"
+#include "core/csv_field.h"
+#include "validation/csv_table.h"
 #include "validation/dataset.h"
 #include "validation/dataset_output.h"
 #include "validation/diagnosis.h"
@@ -576,8 +578,10 @@ py::dict estimate_flight(const Estimated& e, int points) {
   return tb.dict();
 }
 
-void synthesize(const validation::Dataset& source, const std::vector<std::string>& effect_args,
-                const py::object& seed_arg, double noise_scale, const std::filesystem::path& out) {
+// The synthetic dataset: written to `out` and read back from there, or without `out` made in memory
+// from its files (it has no folder).
+validation::Dataset synthesize(const validation::Dataset& source, const std::vector<std::string>& effect_args,
+                               const py::object& seed_arg, double noise_scale, const std::filesystem::path& out) {
   api::SynthesizeOptions o;
   const double seed_checked = whole_number(seed_arg, options::rules::seed);
   o.seed = py::isinstance<py::float_>(seed_arg)
@@ -586,15 +590,74 @@ void synthesize(const validation::Dataset& source, const std::vector<std::string
   o.noise_scale = noise_scale;
   o.effects = effect_args;
   api::check(o);
-  if (out.empty()) throw InputError("", 0, "out", "is empty; give a folder");
   // The same refusal as the command line's before any work: out may not be the source.
-  o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
-    OutputFolder check(out, plan.inputs, "synthesize");
-    return {};
-  };
+  if (!out.empty())
+    o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
+      OutputFolder check(out, plan.inputs, "synthesize");
+      return {};
+    };
   py::gil_scoped_release free;
   const api::SynthesizeResult r = api::synthesize(source, o);
-  validation::write_dataset(out, r.files, source.dir, "synthesize");
+  if (!out.empty()) {
+    validation::write_dataset(out, r.files, source.dir, "synthesize");
+    return validation::read_dataset(out);
+  }
+  validation::DatasetTexts files;
+  for (const auto& [name, text] : r.files)
+    if (name.ends_with(".csv") || name.ends_with(".toml")) files[name] = {name, text};
+  return validation::read_dataset(files, {});
+}
+
+// A dataset's files as Python keeps them: {name: (shown, text, unread)}.
+py::dict dataset_sources(const validation::Dataset& d) {
+  py::dict out;
+  if (d.sources)
+    for (const auto& [name, f] : *d.sources) out[py::str(name)] = py::make_tuple(f.shown, py::bytes(f.text), f.unread);
+  return out;
+}
+
+validation::Dataset dataset_from_sources(const py::dict& files, const std::string& dir, bool measurements_required) {
+  validation::DatasetTexts texts;
+  for (const auto& [name, entry] : files) {
+    const auto t = entry.cast<py::tuple>();
+    texts[name.cast<std::string>()] = {t[0].cast<std::string>(), t[1].cast<std::string>(), t[2].cast<bool>()};
+  }
+  py::gil_scoped_release free;
+  return validation::read_dataset(texts, dir, measurements_required ? validation::MeasurementsRequired::yes
+                                                                    : validation::MeasurementsRequired::no);
+}
+
+// A CSV text's header and rows of cells, as chutelab's reader splits them (quotes, the writer's
+// apostrophe before a formula character, trimmed edges).
+py::tuple csv_cells(const std::string& text, const std::string& file) {
+  const validation::CsvTable t = validation::CsvTable::parse(text, file);
+  py::list rows;
+  for (const auto& r : t.rows()) rows.append(py::cast(r.cells));
+  return py::make_tuple(py::cast(t.header()), rows);
+}
+
+// A CSV text from a header and rows of cells: a str as a text cell, a number as the shortest
+// decimal that reads back as the same double (NaN or None: an empty cell), as chutelab writes CSV.
+std::string csv_text(const std::vector<std::string>& header, const py::list& rows) {
+  auto line = [](const auto& cells, auto cell) {
+    std::string o;
+    bool first = true;
+    for (const auto& c : cells) {
+      if (!first) o += ',';
+      first = false;
+      o += cell(c);
+    }
+    return o + "\n";
+  };
+  std::string out = line(header, [](const std::string& h) { return csv_field(h); });
+  for (const auto& row : rows)
+    out += line(row.cast<py::list>(), [](const py::handle& c) -> std::string {
+      if (c.is_none()) return {};
+      if (py::isinstance<py::str>(c)) return csv_field(c.cast<std::string>());
+      if (py::isinstance<py::bool_>(c)) return c.cast<bool>() ? "1" : "0";
+      return csv_number(c.cast<double>());
+    });
+  return out;
 }
 
 void import_logs(const std::filesystem::path& dataset, const std::filesystem::path& out) {
@@ -678,9 +741,10 @@ PYBIND11_MODULE(_chutelab, m) {
       [](std::optional<double> belt_speed, std::optional<double> mass_flow, std::optional<double> plate_distance,
          std::optional<double> plate_top, std::optional<double> stream_thickness, const std::string& dataset,
          const std::string& setup, const std::string& condition, const std::vector<std::string>& effect_args,
-         const std::string& default_dataset) {
+         const std::string& default_dataset, const validation::Dataset* dataset_read) {
         api::EstimateOptions in;
         in.dataset = dataset;
+        in.dataset_read = dataset_read;
         in.setup = setup;
         in.condition = condition;
         in.default_dataset = default_dataset;
@@ -694,12 +758,13 @@ PYBIND11_MODULE(_chutelab, m) {
       },
       py::arg("belt_speed"), py::arg("mass_flow"), py::arg("plate_distance"), py::arg("plate_top"),
       py::arg("stream_thickness"), py::arg("dataset"), py::arg("setup"), py::arg("condition"),
-      py::arg("effects"), py::arg("default_dataset"));
+      py::arg("effects"), py::arg("default_dataset"), py::arg("dataset_read") = nullptr);
 
   py::class_<validation::Dataset>(m, "Dataset")
       .def_property_readonly("dir", [](const validation::Dataset& d) { return d.dir.string(); })
       .def_property_readonly("name", [](const validation::Dataset& d) { return d.setup.name; })
       .def_property_readonly("setup", [](const validation::Dataset& d) { return setup_dict(d.setup); })
+      .def("sources", &dataset_sources)
       .def("conditions", &conditions_table)
       .def("measurements", &measurements_table)
       .def("trajectory", &trajectory_table);
@@ -735,6 +800,10 @@ PYBIND11_MODULE(_chutelab, m) {
   m.def("import_logs", &import_logs, py::arg("dataset"), py::arg("out"));
   m.def("synthesize_logs", &synthesize_logs, py::arg("dataset"), py::arg("truth"), py::arg("sensor"),
         py::arg("dem_series"), py::arg("seed"), py::arg("out"));
+  m.def("dataset_from_sources", &dataset_from_sources, py::arg("files"), py::arg("dir"),
+        py::arg("measurements_required"));
+  m.def("csv_cells", &csv_cells, py::arg("text"), py::arg("file"));
+  m.def("csv_text", &csv_text, py::arg("header"), py::arg("rows"));
 
   // The quantity vocabulary (core/quantity.h) and the stream boundaries trajectory.csv compares, for
   // axis labels: name (as in the tables), symbol, label, unit.

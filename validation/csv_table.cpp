@@ -60,12 +60,16 @@ std::vector<std::string> split(std::string_view line, const std::string& file, l
 
 CsvTable CsvTable::read(const std::filesystem::path& path,
                        std::initializer_list<std::string_view> required) {
-  CsvTable t;
-  t.file_ = path.string();
   // Checked before any line is split (core/text_file.h): a NUL would end a line early ("row has 1
   // fields"), UTF-16 reads as NULs, and a byte-order mark in mid-file would stick to the first cell
   // of its line.
-  const std::string content = read_text_file(t.file_);
+  return parse(read_text_file(path.string()), path.string(), required);
+}
+
+CsvTable CsvTable::parse(std::string_view content, std::string file, std::initializer_list<std::string_view> required) {
+  CsvTable t;
+  t.file_ = std::move(file);
+  if (auto p = text_encoding_problem(content)) throw InputError(t.file_, p->line, "", p->problem);
   bool warned_latin1 = false;
   bool have_header = false;
   long line_no = 0;

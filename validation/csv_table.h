@@ -20,6 +20,10 @@ class CsvTable {
   // reported as such rather than as every row being too long.
   static CsvTable read(const std::filesystem::path& file,
                        std::initializer_list<std::string_view> required = {});
+  // The same for a text already in memory (a dataset's file as read, a table from Python); `file`
+  // names it in messages. Its encoding is checked as a file's is.
+  static CsvTable parse(std::string_view content, std::string file,
+                        std::initializer_list<std::string_view> required = {});
 
   const std::string& file() const { return file_; }
   const std::vector<std::string>& header() const { return header_; }

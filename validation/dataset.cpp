@@ -1,6 +1,7 @@
 #include "validation/dataset.h"
 
 #include <cmath>
+#include <functional>
 #include <fmt/format.h>
 #include <iostream>
 #include <algorithm>
@@ -13,6 +14,7 @@
 
 #include "core/input_error.h"
 #include "core/message.h"
+#include "core/text_file.h"
 #include "core/toml_file.h"
 #include "core/units.h"
 #include "validation/csv_table.h"
@@ -174,9 +176,10 @@ InputUncertainties read_uncertainty_table(const toml::table& doc, const std::str
 
 }  // namespace
 
-Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
-  const std::string file = path.string();
-  toml::table doc = read_toml_file(file);
+namespace {
+
+Setup setup_from(const std::string& file, const DatasetFile* text, InputUncertainties* uncertainty) {
+  toml::table doc = text ? parse_toml_text(text->text, file) : read_toml_file(file);
   Setup s;
   // Texts, when given: `name = 42` is a mistake to say, not a name to drop.
   for (const char* key : {"name", "source"})
@@ -241,6 +244,17 @@ Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
   return s;
 }
 
+// A dataset's CSV file, from the folder or as already read.
+CsvTable table_from(const fs::path& path, const DatasetFile* text, std::initializer_list<std::string_view> required) {
+  return text ? CsvTable::parse(text->text, text->shown, required) : CsvTable::read(path, required);
+}
+
+}  // namespace
+
+Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
+  return setup_from(path.string(), nullptr, uncertainty);
+}
+
 void check_operating_input(std::string_view column, double v, const std::string& field) {
   // The fastest belts run ~15 m/s, the largest carry ~40 000 t/h.
   auto fail = [&](const std::string& why) { throw InputError("", 0, field, why); };
@@ -289,12 +303,13 @@ const Station& condition_row(const std::vector<Station>& stations, std::string_v
                    fmt::format("no condition named '{}' (known: {})", condition, fmt::join(names, ", ")));
 }
 
-std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
-                                     std::vector<SourceLine>* lines,
-                                     std::vector<InputUncertainties>* uncertainties,
+namespace {
+
+std::vector<Station> conditions_from(const fs::path& path, const DatasetFile* text, const Setup& setup,
+                                     std::vector<SourceLine>* lines, std::vector<InputUncertainties>* uncertainties,
                                      const InputUncertainties& defaults) {
-  const CsvTable t = CsvTable::read(
-      path, {"condition", "belt_speed_mps", "mass_flow_tph", "plate_distance_mm", "plate_top_mm"});
+  const CsvTable t = table_from(
+      path, text, {"condition", "belt_speed_mps", "mass_flow_tph", "plate_distance_mm", "plate_top_mm"});
   const std::size_t c_id = t.require("condition");
   const std::size_t c_speed = t.require("belt_speed_mps");
   const std::size_t c_flow = t.require("mass_flow_tph");
@@ -370,6 +385,15 @@ std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
   }
   if (out.empty()) throw InputError(t.file(), 0, "", "no conditions in the file");
   return out;
+}
+
+}  // namespace
+
+std::vector<Station> read_conditions(const fs::path& path, const Setup& setup,
+                                     std::vector<SourceLine>* lines,
+                                     std::vector<InputUncertainties>* uncertainties,
+                                     const InputUncertainties& defaults) {
+  return conditions_from(path, nullptr, setup, lines, uncertainties, defaults);
 }
 
 namespace {
@@ -449,8 +473,10 @@ std::optional<double> uncertainty_cell(const CsvTable& t, const CsvRow& row,
 
 }  // namespace
 
-std::vector<Measurement> read_measurements(const fs::path& path, const Dataset* d) {
-  const CsvTable t = CsvTable::read(path, {"condition", "quantity", "value"});
+namespace {
+
+std::vector<Measurement> measurements_from(const fs::path& path, const DatasetFile* text, const Dataset* d) {
+  const CsvTable t = table_from(path, text, {"condition", "quantity", "value"});
   const std::size_t c_id = t.require("condition");
   const std::size_t c_q = t.require("quantity");
   const std::size_t c_v = t.require("value");
@@ -491,8 +517,8 @@ std::vector<Measurement> read_measurements(const fs::path& path, const Dataset* 
   return out;
 }
 
-std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset* d) {
-  const CsvTable t = CsvTable::read(path, {"condition", "boundary", "x_mm", "y_mm"});
+std::vector<TrajectoryPoint> trajectory_from(const fs::path& path, const DatasetFile* text, const Dataset* d) {
+  const CsvTable t = table_from(path, text, {"condition", "boundary", "x_mm", "y_mm"});
   const std::size_t c_id = t.require("condition");
   const std::size_t c_b = t.require("boundary");
   const std::size_t c_x = t.require("x_mm");
@@ -544,8 +570,8 @@ std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset
   return out;
 }
 
-std::vector<PlatePoint> read_plate_map(const fs::path& path, const Dataset& d) {
-  const CsvTable t = CsvTable::read(path, {"condition", "y_mm", "z_mm", "quantity", "value"});
+std::vector<PlatePoint> plate_map_from(const fs::path& path, const DatasetFile* text, const Dataset& d) {
+  const CsvTable t = table_from(path, text, {"condition", "y_mm", "z_mm", "quantity", "value"});
   const std::size_t c_id = t.require("condition");
   const std::size_t c_y = t.require("y_mm");
   const std::size_t c_z = t.require("z_mm");
@@ -594,6 +620,21 @@ std::vector<PlatePoint> read_plate_map(const fs::path& path, const Dataset& d) {
   return out;
 }
 
+}  // namespace
+
+std::vector<Measurement> read_measurements(const fs::path& path, const Dataset* d) {
+  return measurements_from(path, nullptr, d);
+}
+
+std::vector<TrajectoryPoint> read_trajectory(const fs::path& path, const Dataset* d) {
+  return trajectory_from(path, nullptr, d);
+}
+
+const DatasetFile* Dataset::source(std::string_view name) const {
+  if (!sources) return nullptr;
+  const auto it = sources->find(name);
+  return it == sources->end() ? nullptr : &it->second;
+}
 
 const std::vector<std::pair<std::string, double>>& plate_quantities() {
   static const std::vector<std::pair<std::string, double>> q = {
@@ -605,6 +646,36 @@ const std::vector<std::pair<std::string, double>>& plate_quantities() {
   return q;
 }
 
+namespace {
+
+// The reader of both: `file(name)` gives a file as read (nullptr: not there), in the order the
+// checks need them, so a folder's files are read, each once, in the order they always were.
+using FileOf = std::function<const DatasetFile*(const char* name)>;
+
+Dataset read_files(const FileOf& file, const fs::path& dir, MeasurementsRequired need,
+                   std::shared_ptr<const DatasetTexts> kept) {
+  Dataset d;
+  d.dir = dir;
+  InputUncertainties setup_uncertainty;
+  const DatasetFile* setup = file("setup.toml");
+  d.setup = setup_from(setup->shown, setup, &setup_uncertainty);
+  const DatasetFile* conditions = file("conditions.csv");
+  d.stations = conditions_from(conditions->shown, conditions, d.setup, &d.station_lines, &d.input_uncertainty,
+                               setup_uncertainty);
+  if (const DatasetFile* meas = file("measurements.csv"))
+    d.measurements = measurements_from(meas->shown, meas, &d);
+  else if (need == MeasurementsRequired::yes)
+    throw InputError((dir / "measurements.csv").string(), 0, "",
+                     "file not found (a dataset to validate needs measurements)");
+  if (const DatasetFile* traj = file("trajectory.csv")) d.trajectory = trajectory_from(traj->shown, traj, &d);
+  if (const DatasetFile* plate = file("plate_map.csv")) d.plate_map = plate_map_from(plate->shown, plate, d);
+  file("tolerances.toml");  // kept for validate (it is read there, with the other options)
+  d.sources = std::move(kept);
+  return d;
+}
+
+}  // namespace
+
 Dataset read_dataset(const fs::path& dir, MeasurementsRequired need) {
   std::error_code ec;
   const auto st = fs::status(dir, ec);
@@ -614,22 +685,31 @@ Dataset read_dataset(const fs::path& dir, MeasurementsRequired need) {
   if (!fs::is_directory(st)) throw InputError(dir.string(), 0, "", "is a file; give the dataset folder");
   fs::directory_iterator probe(dir, ec);  // an unreadable folder fails here, not half-way
   if (ec) throw InputError(dir.string(), 0, "", fmt::format("cannot read the dataset folder: {}", ec.message()));
-  Dataset d;
-  d.dir = dir;
-  InputUncertainties setup_uncertainty;
-  d.setup = read_setup(dir / "setup.toml", &setup_uncertainty);
-  d.stations = read_conditions(dir / "conditions.csv", d.setup, &d.station_lines, &d.input_uncertainty,
-                               setup_uncertainty);
-  const fs::path meas = dir / "measurements.csv";
-  if (fs::exists(fs::symlink_status(meas, ec)))
-    d.measurements = read_measurements(meas, &d);
-  else if (need == MeasurementsRequired::yes)
-    throw InputError(meas.string(), 0, "", "file not found (a dataset to validate needs measurements)");
-  const fs::path traj = dir / "trajectory.csv";
-  if (fs::exists(fs::symlink_status(traj, ec))) d.trajectory = read_trajectory(traj, &d);
-  const fs::path plate = dir / "plate_map.csv";
-  if (fs::exists(fs::symlink_status(plate, ec))) d.plate_map = read_plate_map(plate, d);
-  return d;
+  auto files = std::make_shared<DatasetTexts>();
+  const FileOf read = [&](const char* name) -> const DatasetFile* {
+    const fs::path p = dir / name;
+    const std::string_view n(name);
+    if (n != "setup.toml" && n != "conditions.csv" && !fs::exists(fs::symlink_status(p, ec))) return nullptr;
+    const std::size_t max = n.ends_with(".toml") ? kTomlMaxBytes : kTextFileMaxBytes;
+    if (n == "tolerances.toml") try {
+        return &((*files)[name] = DatasetFile{p.string(), read_text_file(p.string(), max)});
+      } catch (const InputError&) {
+        return &((*files)[name] = DatasetFile{p.string(), {}, true});
+      }
+    return &((*files)[name] = DatasetFile{p.string(), read_text_file(p.string(), max)});
+  };
+  return read_files(read, dir, need, files);
+}
+
+Dataset read_dataset(const DatasetTexts& files, const fs::path& dir, MeasurementsRequired need) {
+  const FileOf find = [&](const char* name) -> const DatasetFile* {
+    const auto it = files.find(name);
+    if (it != files.end()) return &it->second;
+    const std::string_view n(name);
+    if (n == "setup.toml" || n == "conditions.csv") throw InputError((dir / name).string(), 0, "", "file not found");
+    return nullptr;
+  };
+  return read_files(find, dir, need, std::make_shared<const DatasetTexts>(files));
 }
 
 }  // namespace chutelab::validation

@@ -3,6 +3,7 @@
 // Reading either gives a complete, checked Dataset or throws one InputError naming file, line and
 // field; nothing is half-read.
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <unordered_map>
@@ -63,8 +64,25 @@ struct PlatePoint {
 // The plate quantities and their SI -> boundary factor.
 const std::vector<std::pair<std::string, double>>& plate_quantities();
 
+// A dataset's file as read: its text and the name messages give it (the path, or for a table from
+// Python a name of its own).
+struct DatasetFile {
+  std::string shown;
+  std::string text;
+  bool unread = false;  // there but unreadable, and not needed to read the dataset (tolerances.toml):
+                        // whoever needs it reads it again and says why
+};
+// By file name: setup.toml, conditions.csv, and those of the optional files that are there.
+using DatasetTexts = std::map<std::string, DatasetFile, std::less<>>;
+
 struct Dataset {
-  std::filesystem::path dir;
+  std::filesystem::path dir;           // where it was read from; empty for a dataset that has no folder
+  // The files as read. Whatever reads the dataset later (the DEM's [dem] table, the default
+  // tolerances.toml, synthesize's copies of setup.toml and conditions.csv) takes them from here,
+  // never from the folder, which may have changed or gone since. Null for a dataset made in code
+  // (a self-check's replica); shared by copies.
+  std::shared_ptr<const DatasetTexts> sources;
+  const DatasetFile* source(std::string_view name) const;
   Setup setup;
   std::vector<Station> stations;       // one per conditions.csv row, overrides applied
   std::vector<SourceLine> station_lines;
@@ -93,6 +111,11 @@ enum class MeasurementsRequired { no, yes };
 // setup-wide defaults of the operating inputs); an unknown key there is an error.
 Setup read_setup(const std::filesystem::path& file, InputUncertainties* uncertainty = nullptr);
 Dataset read_dataset(const std::filesystem::path& dir,
+                     MeasurementsRequired need = MeasurementsRequired::yes);
+// The same from files already in memory (`files` by name, as read_dataset keeps them in
+// Dataset::sources): every check and message of the folder's reader. `dir` is the folder they stand
+// for, empty for none.
+Dataset read_dataset(const DatasetTexts& files, const std::filesystem::path& dir,
                      MeasurementsRequired need = MeasurementsRequired::yes);
 // The rig's conditions only (e.g. for estimate/synthesize on a dataset without measurements).
 // `uncertainties`, when given, receives one entry per row: `defaults` (e.g. from read_setup)

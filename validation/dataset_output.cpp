@@ -5,6 +5,7 @@
 namespace chutelab::validation {
 
 std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& dir) {
+  if (dir.empty()) return {};  // a dataset in memory (Python's, synthesized without a folder)
   return {dir, dir / "setup.toml", dir / "conditions.csv", dir / "measurements.csv", dir / "trajectory.csv",
           dir / "plate_map.csv", dir / "tolerances.toml", dir / "README.md", dir / "logs"};
 }

@@ -13,7 +13,7 @@
 namespace chutelab::validation {
 
 // What a command reads from a dataset folder: the folder itself (an output folder may not be it)
-// and every file the dataset reader may open in it.
+// and every file the dataset reader may open in it; nothing for a dataset without a folder.
 std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& dir);
 
 // Writes `files` as the dataset folder `out`, made from the dataset in `source_dir` by `command`

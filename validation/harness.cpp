@@ -21,6 +21,7 @@ namespace {
 
 // "datasets/hidden-effect/" -> "hidden-effect": the name the user typed, for titles.
 std::string folder_name(const std::filesystem::path& dir) {
+  if (dir.empty()) return {};  // a dataset in memory: titles say its setup's name
   std::filesystem::path p = dir.lexically_normal();
   if (p.filename().empty()) p = p.parent_path();
   if (p.empty() || p == ".") p = std::filesystem::absolute(dir).lexically_normal();

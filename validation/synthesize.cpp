@@ -238,8 +238,13 @@ std::vector<OutputFile> synthesize(const Dataset& src, const std::vector<ModelPt
               "(no real rig behaves so).\n";
   // Copied as read, but in UTF-8 like the files written beside them: a Latin-1 conditions.csv
   // would otherwise make one dataset of two encodings.
-  return {{"setup.toml", to_utf8(slurp(src.dir / "setup.toml"))},
-          {"conditions.csv", to_utf8(slurp(src.dir / "conditions.csv"))},
+  // The source's files as they were read with it (its folder may have changed since, or it has none).
+  auto copy = [&](const char* name) {
+    const DatasetFile* f = src.source(name);
+    return to_utf8(f ? f->text : slurp(src.dir / name));
+  };
+  return {{"setup.toml", copy("setup.toml")},
+          {"conditions.csv", copy("conditions.csv")},
           {"measurements.csv", meas},
           {"trajectory.csv", traj},
           {"README.md", readme}};

@@ -42,10 +42,10 @@ long line_of(const toml::key& k, const toml::node& n) {
 
 }  // namespace
 
-Tolerances Tolerances::read(const std::filesystem::path& path) {
+Tolerances Tolerances::read(const std::filesystem::path& path, const std::string* text) {
   Tolerances t;
   t.file_ = path.string();
-  toml::table doc = read_toml_file(t.file_, "tolerances");
+  toml::table doc = text ? parse_toml_text(*text, t.file_) : read_toml_file(t.file_, "tolerances");
   const auto models = tolerance_models();
   const auto known_quantities = tolerance_quantities();
   for (const auto& [model, node] : doc) {

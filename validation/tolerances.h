@@ -40,7 +40,8 @@ struct ToleranceVerdict {
 
 class Tolerances {
  public:
-  static Tolerances read(const std::filesystem::path& file);
+  // With `text`, the file as already read (a dataset's own, Dataset::sources).
+  static Tolerances read(const std::filesystem::path& file, const std::string* text = nullptr);
   using Key = std::pair<std::string, std::string>;  // model (or "*"), quantity
   const Tolerance* find(const std::string& model, const std::string& quantity) const;
   // The entry find() would use, so that the harness can tell which limits checked something.

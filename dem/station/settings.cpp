@@ -181,9 +181,9 @@ void read_feed_table(const toml::node& node, const std::string& file, const std:
 
 }  // namespace
 
-DemTable read_dem_table(const std::string& file) {
+DemTable read_dem_table(const std::string& file, const std::string* text) {
   DemTable t;
-  toml::table doc = read_toml_file(file);
+  toml::table doc = text ? parse_toml_text(*text, file) : read_toml_file(file);
   const toml::node* dem_node = doc.get("dem");
   if (!dem_node) return t;
   t.file = file;

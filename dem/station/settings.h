@@ -207,8 +207,9 @@ struct DemTable {
 };
 
 // Reads [dem] from a setup.toml (absent table = all empty). Unknown keys and bad values throw
-// InputError naming the file, line and key.
-DemTable read_dem_table(const std::string& setup_file);
+// InputError naming the file, line and key. With `text`, the file as already read (a dataset's own);
+// relative STL paths are still taken from the file's folder.
+DemTable read_dem_table(const std::string& setup_file, const std::string* text = nullptr);
 
 // Overrides a preset with what a [dem] table sets (quality is handled by the caller).
 void apply(const DemTable& t, RunSettings& s);

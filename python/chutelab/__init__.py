@@ -29,9 +29,12 @@ import tempfile as _tempfile
 from collections.abc import Mapping as _Mapping
 from typing import Any, Dict, Iterable, Iterator, List, Optional, Sequence, Union
 
+from types import MappingProxyType as _MappingProxy
+
 from ._tables import table as _table, np as _np
 from ._types import Quantity, Strength
 from . import _chutelab
+from . import _edits
 
 InputError = _chutelab.InputError
 InputError.__doc__ = ("Bad input: a ValueError with .file and .line (\"\", 0 when an argument, not a file, "
@@ -239,55 +242,122 @@ class Estimate(_Mapping):
 
 def estimate(belt_speed: Optional[float] = None, mass_flow: Optional[float] = None,
              plate_distance: Optional[float] = None, plate_top: Optional[float] = None,
-             stream_thickness: Optional[float] = None, *, dataset: Optional[PathLike] = None,
+             stream_thickness: Optional[float] = None, *, dataset: Union["Dataset", PathLike, None] = None,
              setup: Optional[PathLike] = None, condition: Optional[str] = None,
              effects: EffectsArg = None) -> Estimate:
     """The analytical answer (Booth/CEMA + Korzen) for one condition, in milliseconds.
 
     belt_speed in m/s, mass_flow in t/h, plate_distance, plate_top and stream_thickness in mm.
-    dataset (a folder) or setup (a setup.toml) picks the rig (default: the bundled grima2010);
+    dataset (a Dataset, as edited, or a folder) or setup (a setup.toml) picks the rig (default:
+    the bundled grima2010);
     condition starts from a row of the dataset's conditions.csv, the numbers given replace its
     values; effects as {"air_drag": 0.5}. Returns an Estimate (see help(chutelab.Estimate)).
     Raises InputError naming the keyword for a missing, impossible or mistyped value."""
+    read = _dataset(dataset, measurements_required=False) if isinstance(dataset, Dataset) else None
     core = _chutelab.estimate(_real("belt_speed", belt_speed, True), _real("mass_flow", mass_flow, True),
                               _real("plate_distance", plate_distance, True), _real("plate_top", plate_top, True),
-                              _real("stream_thickness", stream_thickness, True), _path("dataset", dataset),
+                              _real("stream_thickness", stream_thickness, True),
+                              "" if read is not None else _path("dataset", dataset),
                               _path("setup", setup), _text("condition", condition), _effect_args(effects),
-                              DEFAULT_DATASET)
+                              DEFAULT_DATASET, read)
     return Estimate._make(core)
 
 
 # ---- datasets ------------------------------------------------------------------------------------
 
+_TABLES = ("conditions", "measurements", "trajectory")
+
+
 class Dataset:
-    """A dataset folder read by the strict reader (docs/datasets.md), from read_dataset().
+    """A dataset in memory, from read_dataset() or synthesize() (docs/datasets.md has the files).
 
-    name, dir, setup ({"section.key": value} in the file's units), and the tables conditions
-    (resolved per condition: plate_angle_deg and belt_incline_deg included), measurements and
-    trajectory, with the files' column names and units (a number as the file holds it)."""
+    name, dir (the folder it was read from; None for one synthesize() made without out=), setup
+    ({"section.key": value} in the file's units; read-only), and the tables conditions (resolved
+    per condition: plate_angle_deg and belt_incline_deg included), measurements and trajectory,
+    with the files' column names and units (a number as the file holds it).
 
-    name: str
-    dir: str
-    setup: Dict[str, Any]
+    It owns what it read: read_dataset() copies the folder's files, so the folder may change or go
+    afterwards. The tables may be edited (a value, a row added or dropped, a table replaced):
+    validate(), diagnose(), synthesize() and estimate() take the tables as they are then, read
+    again by the files' own reader with every check it makes, and a bad edit raises InputError
+    naming the table, its row (1 = the first) and column. In conditions, an edited cell replaces
+    that condition's value in conditions.csv (a new column there: a per-condition override, or an
+    input uncertainty); what is not edited keeps the file's own text. name, dir and setup cannot be
+    changed (edit setup.toml and read the dataset again)."""
 
     @classmethod
     def _make(cls, core) -> "Dataset":
         self = _new(cls)
         self._core = core
-        self.name = core.name
-        self.dir = core.dir
-        self.setup = core.setup
+        self._sources = dict(core.sources())
+        self._name = core.name
+        self._dir = core.dir or None
+        self._setup = _MappingProxy(dict(core.setup))
         self.conditions = _table(core.conditions())
         self.measurements = _table(core.measurements())
         self.trajectory = _table(core.trajectory())
+        self._seen = {t: _edits.copy(getattr(self, t)) for t in _TABLES}
+        # A dataset of rig logs has measurements that are in no measurements.csv (logs/): after an
+        # edit of any table they are written from the measurements table, not lost.
+        meas = self._sources.get("measurements.csv")
+        in_file = len(_chutelab.csv_cells(meas[1], meas[0])[1]) if meas else 0
+        self._measured_elsewhere = len(self.measurements) != in_file
         return self
+
+    name = property(lambda self: self._name, doc="The setup's name.")
+    dir = property(lambda self: self._dir, doc="The folder it was read from (None: made in memory).")
+    setup = property(lambda self: self._setup, doc="setup.toml as {\"section.key\": value}, read-only.")
+
+    def _current(self, measurements_required: bool = False):
+        """The C++ dataset of the tables as they are now (read again when one was edited)."""
+        edited = [t for t in _TABLES if not _edits.same(getattr(self, t), self._seen[t])]
+        if edited:
+            if self._measured_elsewhere and "measurements" not in edited:
+                edited.append("measurements")
+            files = dict(self._sources)
+            for t in edited:
+                table = getattr(self, t)
+                try:
+                    if t == "conditions":
+                        shown, text, _ = files["conditions.csv"]
+                        text = _edits.conditions_csv(table, self._seen[t], text, shown)
+                    else:
+                        text = _edits.table_csv(table)
+                except KeyError as e:
+                    raise _refuse(t, f"the table has no column {e.args[0]!r}") from None
+                except AttributeError:
+                    raise _refuse(t, f"must be a table, got {type(table).__name__}") from None
+                files[f"{t}.csv"] = (f"the {t} table", text.encode("utf-8"), False)
+            try:
+                core = _chutelab.dataset_from_sources(files, self._dir or "", False)
+            except InputError as e:
+                raise self._edit_error(e, edited) from None
+            self._core, self._sources, self._measured_elsewhere = core, files, False
+            self._seen = {t: _edits.copy(getattr(self, t)) for t in _TABLES}
+        if measurements_required and "measurements.csv" not in self._sources and not len(self.measurements):
+            _chutelab.dataset_from_sources(self._sources, self._dir or "", True)  # raises the reader's error
+        return self._core
+
+    def _edit_error(self, e, edited):
+        """The reader's error in an edited table, said by table, row and column."""
+        for t in edited:
+            if e.file == f"the {t} table":
+                k = e.line - 2  # the header is line 1
+                table = getattr(self, t)
+                where = f"{t} table" + (f", row {k + 1} (index {_edits.index_of(table, k)!r})" if 0 <= k < len(table)
+                                        else "")
+                err = InputError(f"{where}: {e.field + ': ' if e.field else ''}{e.problem}")
+                err.file, err.line, err.field, err.problem = f"{t} table", max(k + 1, 0), e.field, e.problem
+                return err
+        return e
 
     def __repr__(self) -> str:
         return f"chutelab.Dataset({self.name!r}, dir={self.dir!r})"
 
 
 def read_dataset(path: PathLike, measurements_required: bool = False) -> Dataset:
-    """Reads a dataset folder; raises InputError naming file, line and field on bad input.
+    """Reads a dataset folder into memory; raises InputError naming file, line and field on bad
+    input. The Dataset keeps what it read (help(chutelab.Dataset)).
 
     measurements.csv may be absent (a rig and its conditions, e.g. DEFAULT_DATASET) unless
     measurements_required; validate() and diagnose() need it."""
@@ -295,13 +365,11 @@ def read_dataset(path: PathLike, measurements_required: bool = False) -> Dataset
                                                 _flag("measurements_required", measurements_required)))
 
 
-def _dataset(d, measurements_required=True, field="dataset") -> Dataset:
+def _dataset(d, measurements_required=True, field="dataset"):
+    """The C++ dataset of a Dataset (its tables as they are now) or of a folder."""
     if isinstance(d, Dataset):
-        if measurements_required and not (_os.path.exists(_os.path.join(d.dir, "measurements.csv"))
-                                          or _os.path.exists(_os.path.join(d.dir, "logs", "layout.toml"))):
-            read_dataset(d.dir, True)  # raises the reader's InputError
-        return d
-    return read_dataset(_path(field, d, optional=False), measurements_required)
+        return d._current(measurements_required)
+    return read_dataset(_path(field, d, optional=False), measurements_required)._core
 
 
 def _strengths(rows) -> List[Strength]:
@@ -380,7 +448,7 @@ def diagnose(dataset: Union[Dataset, PathLike], models: Union[str, Sequence[str]
     design (replicas from `seed` on) and reports the false-alarm rate and power. Models include
     "dem" (dem_quality "quick"/"standard"/..., dem_threads, dem_cache; slow, cached)."""
     d = _dataset(dataset)
-    core = _chutelab.diagnose(d._core, _model_list(models), _real("alpha", alpha), _flag("pairs", pairs),
+    core = _chutelab.diagnose(d, _model_list(models), _real("alpha", alpha), _flag("pairs", pairs),
                               _text("dem_quality", dem_quality), _whole("dem_threads", dem_threads, True),
                               _path("dem_cache", dem_cache), _flag("no_dem_cache", no_dem_cache),
                               _seed_like("self_check", self_check), _seed_like("seed", seed))
@@ -477,7 +545,7 @@ def validate(dataset: Union[Dataset, PathLike], models: Union[str, Sequence[str]
     Models include "dem" (dem_quality, dem_threads, dem_cache, no_dem_cache; slow, cached as on
     the command line)."""
     d = _dataset(dataset)
-    core = _chutelab.validate(d._core, _model_list(models), _effect_args(effects), _path("tolerances", tolerances),
+    core = _chutelab.validate(d, _model_list(models), _effect_args(effects), _path("tolerances", tolerances),
                               _flag("diagnose", diagnose), _flag("accept_with_effects", accept_with_effects),
                               _text("dem_quality", dem_quality),
                               _whole("dem_threads", dem_threads, True), _path("dem_cache", dem_cache),
@@ -498,21 +566,20 @@ def write_report(result: Union[Validation, Diagnosis], out: PathLike) -> None:
 def synthesize(dataset: Union[Dataset, PathLike, None] = None, effects: EffectsArg = None, *, seed: int = 1,
                noise_scale: float = 1.0, out: Optional[PathLike] = None) -> Dataset:
     """A synthetic dataset, as `chutelab synthesize`: the analytical models plus hidden effects
-    plus Gaussian noise on the rig and conditions of `dataset` (default: the bundled grima2010).
+    plus Gaussian noise on the rig and conditions of `dataset` (a Dataset, as edited, or a folder;
+    default: the bundled grima2010).
 
-    Written to `out` when given (and read back from there); otherwise to a temporary folder that
-    is removed once the dataset is read, so the returned Dataset's dir no longer exists."""
+    Written to the folder `out` when given (all files or none, never onto the source) and read
+    back from there; without out= it lives in memory only (its dir is None) and is validated,
+    diagnosed or synthesized from like any other."""
     source = _dataset(DEFAULT_DATASET if dataset is None else dataset, measurements_required=False)
     args = _effect_args(effects)
     seed = _seed_like("seed", seed)
     scale = _real("noise_scale", noise_scale)
-    if out is not None:
-        target = _path("out", out, optional=False)
-        _chutelab.synthesize(source._core, args, seed, scale, target)
-        return read_dataset(target)
-    with _tempfile.TemporaryDirectory(prefix="chutelab-synthetic-") as tmp:
-        _chutelab.synthesize(source._core, args, seed, scale, tmp)
-        return read_dataset(tmp)
+    target = "" if out is None else _path("out", out, optional=False)
+    if out is not None and not target:
+        raise _refuse("out", "is empty; give a folder")
+    return Dataset._make(_chutelab.synthesize(source, args, seed, scale, target))
 
 
 # ---- rig logs ------------------------------------------------------------------------------------

@@ -424,7 +424,7 @@ def test_synthesize_writes_what_the_command_line_writes(tmp_path):
     # Without out= the files go to a temporary folder; the dataset is the same.
     again = chutelab.synthesize(effects={"air_drag": 0.7}, seed=3)
     assert_same_table(again.measurements, ours.measurements)
-    assert not os.path.exists(again.dir)
+    assert again.dir is None
 
 
 def test_registry_views():
@@ -588,3 +588,121 @@ def test_a_deep_or_huge_toml_file_is_refused_not_a_crash(tmp_path):
             chutelab.validate(ds, models=["korzen"], tolerances=tol)
         assert e.value.file == str(tol) and e.value.line == 1 and "levels deep" in str(e.value)
         assert _tree(tmp_path) == before
+
+
+# ---- a Dataset owns its tables -------------------------------------------------------------
+
+def _same_frame(a, b):
+    """The same table: columns, text and numbers bit for bit (NaN where NaN)."""
+    pd.testing.assert_frame_equal(a.reset_index(drop=True), b.reset_index(drop=True), check_exact=True)
+
+
+def _rig_copy(tmp_path, name="rig"):
+    ds = tmp_path / name
+    shutil.copytree(RIG, ds)
+    return ds
+
+
+def test_a_dataset_outlives_its_folder(tmp_path):
+    folder = _rig_copy(tmp_path)
+    (folder / "tolerances.toml").write_text("[korzen]\nshear_force_N = { relative = 0.15 }\n")
+    ds = chutelab.read_dataset(folder)
+    before = chutelab.validate(ds)
+    assert before.acceptance_checked
+    shutil.rmtree(folder)
+    after = chutelab.validate(ds)  # the files it read are in memory, tolerances.toml too
+    for name in ("predictions", "errors", "summary"):
+        _same_frame(getattr(after, name), getattr(before, name))
+    assert after.acceptance_checked and after.acceptance_failed == before.acceptance_failed
+    _same_frame(chutelab.diagnose(ds, pairs=False).ranking, chutelab.diagnose(RIG, pairs=False).ranking)
+    _same_frame(chutelab.synthesize(ds, seed=2).measurements, chutelab.synthesize(RIG, seed=2).measurements)
+    # A folder that changes after reading changes nothing either.
+    folder = _rig_copy(tmp_path, "rig2")
+    ds = chutelab.read_dataset(folder)
+    (folder / "measurements.csv").write_text("condition,quantity,value\nV2-26,normal_force_N,1\n")
+    _same_frame(chutelab.validate(ds).errors, chutelab.validate(RIG).errors)
+
+
+def test_a_synthesized_dataset_lives_in_memory(tmp_path):
+    mem = chutelab.synthesize(effects={"air_drag": 0.7}, seed=3)
+    assert mem.dir is None and len(mem.measurements) > 0
+    on_disk = chutelab.synthesize(effects={"air_drag": 0.7}, seed=3, out=tmp_path / "synth")
+    v_mem, v_disk = chutelab.validate(mem), chutelab.validate(on_disk)
+    for name in ("predictions", "errors", "summary"):
+        _same_frame(getattr(v_mem, name), getattr(v_disk, name))
+    d = chutelab.diagnose(mem)
+    assert d.best == "air_drag" and d.best == chutelab.diagnose(on_disk).best
+    # Its report goes anywhere (it has no folder to protect); a synthesis from it works too.
+    v_mem.write_report(tmp_path / "report")
+    assert (tmp_path / "report" / "report.html").stat().st_size > 10000
+    again = chutelab.synthesize(mem, seed=4)
+    assert again.dir is None and len(again.measurements) == len(mem.measurements)
+
+
+def test_edits_to_a_datasets_tables_are_honoured(tmp_path):
+    ds = chutelab.read_dataset(RIG)
+    # R_n of V3-41 read 10 % higher; V4-28 run at 4.2 m/s; the trajectory of V2-26 dropped.
+    m = ds.measurements
+    rn = m.index[(m.condition == "V3-41") & (m.quantity == "normal_force_N")][0]
+    m.loc[rn, "value"] = m.loc[rn, "value"] * 1.1
+    ds.conditions.loc[ds.conditions.condition == "V4-28", "belt_speed_mps"] = 4.2
+    ds.trajectory = ds.trajectory[ds.trajectory.condition != "V2-26"].reset_index(drop=True)
+    ours = chutelab.validate(ds)
+    # The same edits in the files, through the command line.
+    folder = _rig_copy(tmp_path)
+    meas = read_csv(folder / "measurements.csv")
+    meas.loc[rn, "value"] = m.loc[rn, "value"]
+    meas.to_csv(folder / "measurements.csv", index=False, float_format="%.17g")
+    cond = (folder / "conditions.csv").read_text().replace("\nV4-28,4.0,", "\nV4-28,4.2,")
+    assert cond != (folder / "conditions.csv").read_text()
+    (folder / "conditions.csv").write_text(cond)
+    traj = (folder / "trajectory.csv").read_text().splitlines(keepends=True)
+    (folder / "trajectory.csv").write_text("".join(l for l in traj if not l.startswith("V2-26,")))
+    r = cli("validate", "--dataset", str(folder), "--out", str(tmp_path / "out"))
+    assert r.returncode == 0, r.stderr
+    for name in ("predictions", "errors", "summary"):
+        file = read_csv(tmp_path / "out" / f"{name}.csv").drop(columns=["tolerance", "within_tolerance"], errors="ignore")
+        assert_same_table(getattr(ours, name), file)
+    assert ours.brief.split(": ", 1)[1] == r.stdout.splitlines()[0].split(": ", 1)[1]
+    # estimate takes the edited row too.
+    e = chutelab.estimate(dataset=ds, condition="V4-28")
+    assert e.values["belt_speed_mps"] == 4.2
+    r = cli("estimate", "--dataset", str(folder), "--condition", "V4-28", "--format", "json")
+    assert r.returncode == 0, r.stderr
+    assert e == json.loads(r.stdout)
+    # A conditions row added: a new condition of the rig (the other rows keep their own cells).
+    c = ds.conditions
+    ds.conditions = pd.concat([c, c[c.condition == "V3-41"].assign(condition="V3-41b", mass_flow_tph=30.0)],
+                              ignore_index=True)
+    v = chutelab.validate(ds)
+    assert "V3-41b" not in set(v.errors.condition)  # no measurements of it
+    assert chutelab.estimate(dataset=ds, condition="V3-41b").values["mass_flow_tph"] == 30.0
+
+
+def test_a_bad_edit_is_refused_naming_table_row_and_column(tmp_path):
+    ds = chutelab.read_dataset(RIG)
+    assert ds.measurements.quantity[2] == "resultant_force_N"
+    ds.measurements.loc[2, "value"] = -5.0  # a resultant force below zero
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.validate(ds)
+    assert (e.value.file, e.value.line, e.value.field) == ("measurements table", 3, "value")
+    assert str(e.value).startswith("measurements table, row 3 (index 2): value: "), str(e.value)
+    ds.measurements.loc[2, "value"] = 15.0
+    ds.measurements.loc[5, "condition"] = "nowhere"
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.diagnose(ds)
+    assert e.value.line == 6 and "not in conditions.csv" in str(e.value)
+    ds.measurements = ds.measurements.drop(columns=["value"])
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.validate(ds)
+    assert e.value.file == "measurements table" and e.value.field == "value" and "missing" in str(e.value)
+    ds = chutelab.read_dataset(RIG)
+    ds.conditions.loc[1, "belt_speed_mps"] = math.nan
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.estimate(dataset=ds, condition="V2-26")
+    assert (e.value.file, e.value.line, e.value.field) == ("conditions table", 2, "belt_speed_mps")
+    # What is not a table cannot be changed, rather than be ignored.
+    with pytest.raises(TypeError):
+        ds.setup["plate.angle_deg"] = 10.0
+    with pytest.raises(AttributeError):
+        ds.name = "other"

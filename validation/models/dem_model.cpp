@@ -169,7 +169,7 @@ class DemModel final : public Model {
 
   ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
                           const PredictRequest& request) const override {
-    const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file);
+    const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file, c_.setup_text ? &*c_.setup_text : nullptr);
     const st::RunSettings settings = st::resolve(table, overrides_for(request));
     const DemEffectInputs fx = dem_effect_inputs(station, effects);
     CacheOutcome how;
@@ -329,7 +329,7 @@ class DemModel final : public Model {
   // the run itself and, when it asks for u_num's discretisation part, its ladder's runs.
   std::vector<ModelJob> campaign_jobs(const Station& station, const analytical::EffectList& effects,
                                       const PredictRequest& request) const override {
-    const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file);
+    const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file, c_.setup_text ? &*c_.setup_text : nullptr);
     st::SettingsOverrides over = overrides_for(request);
     const st::RunSettings settings = st::resolve(table, over);
     const DemEffectInputs fx = dem_effect_inputs(station, effects);

@@ -29,6 +29,7 @@ namespace chutelab::validation {
 struct DemModelConfig {
   dem::station::SettingsOverrides overrides;  // e.g. --dem-quality; beats the dataset's [dem]
   std::string setup_file;    // the dataset's setup.toml, for its optional [dem] table
+  std::optional<std::string> setup_text;  // its text as read with the dataset (else read from setup_file)
   bool use_cache = true;
   bool cache_only = false;   // a run missing from the cache is an error, not a run
   // Runs with effects continue the steady state of the same run without them (dem/station/run.h

@@ -31,7 +31,7 @@ class LiggghtsModel final : public Model {
                           const PredictRequest& request) const override {
     namespace fs = std::filesystem;
     const DemModelConfig& dc = c_.dem;
-    const st::DemTable table = dc.setup_file.empty() ? st::DemTable{} : st::read_dem_table(dc.setup_file);
+    const st::DemTable table = dc.setup_file.empty() ? st::DemTable{} : st::read_dem_table(dc.setup_file, dc.setup_text ? &*dc.setup_text : nullptr);
     lg::Options o;
     o.settings = st::resolve(table, dc.overrides);
     o.geometry = table;
