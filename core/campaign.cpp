@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "core/interrupt.h"
 #include "core/progress.h"
 
 #ifdef CHUTELAB_HAVE_MPI
@@ -39,6 +40,8 @@ std::string ok_text(std::string result) { return "ok\n" + result; }
 std::string error_text(const std::exception_ptr& e) {
   try {
     std::rethrow_exception(e);
+  } catch (const interrupt::Interrupted&) {
+    return "interrupted\n";
   } catch (const InputError& x) {
     return fmt::format("input-error\n{}\n{}\n{}\n", x.file().size(), x.line(), x.field().size()) + x.file() +
            x.field() + x.problem();
@@ -52,6 +55,7 @@ std::string error_text(const std::exception_ptr& e) {
 // The result, or the job's exception rethrown.
 std::string unwrap(std::string text) {
   if (text.rfind("ok\n", 0) == 0) return text.substr(3);
+  if (text == "interrupted\n") throw interrupt::Interrupted();
   if (text.rfind("input-error\n", 0) == 0) {
     std::size_t at = 12;
     auto next = [&] {
@@ -74,6 +78,7 @@ std::string unwrap(std::string text) {
 std::string run_one(const Job& job, const JobContext& ctx) {
   const progress::CampaignJobScope scope;
   try {
+    interrupt::point();
     return ok_text(job.run(ctx));
   } catch (...) {
     return error_text(std::current_exception());
@@ -105,8 +110,8 @@ struct Tally {
     if (!o.progress) return;
     const bool ok = out.rfind("ok\n", 0) == 0;
     if (!was_reused || !ok)
-      progress::line(fmt::format("{}[{}/{}] {} {} in {}", prefix(o), done, total, one_line(job.key, 120), ok ? "done" : "failed",
-                                 clock(seconds)));
+      progress::line(fmt::format("{}[{}/{}] {} {} in {}", prefix(o), done, total, one_line(job.key, 120),
+                                 ok ? "done" : out == "interrupted\n" ? "stopped" : "failed", clock(seconds)));
     show();
   }
   void close(const std::string& how) const {
@@ -129,6 +134,7 @@ std::vector<std::string> run_threads(std::span<const Job> jobs, const Options& o
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return jobs[a].cost > jobs[b].cost; });
   std::atomic<std::size_t> next{0};
   std::atomic<int> idle{0};
+  std::atomic<std::size_t> finished{0};
   std::mutex print;
   const int n = std::min<int>(o.threads, static_cast<int>(jobs.size()));
   Tally tally{o, jobs.size()};
@@ -145,10 +151,11 @@ std::vector<std::string> run_threads(std::span<const Job> jobs, const Options& o
       tally.finished(jobs[k], out[k], reused, seconds_since(t));
     }
     idle.fetch_add(1);  // no job left for this worker: its core is free for the jobs still running
+    finished.fetch_add(1);
   };
   std::vector<std::thread> pool;
   for (int t = 0; t < n; ++t) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  interrupt::join(pool, finished);
   tally.close(fmt::format(", {} side by side", n));
   return out;
 }

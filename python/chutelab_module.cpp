@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <fmt/format.h>
 
 #include "analytical/streamline_path.h"
@@ -24,6 +25,7 @@
 #include "logs/dataset_logs.h"
 #include "api/validate.h"
 #include "core/input_error.h"
+#include "core/interrupt.h"
 #include "core/message.h"
 #include "core/option_check.h"
 #include "core/output_folder.h"
@@ -85,6 +87,39 @@ double whole_number(const py::object& v, const options::NumberRule& rule) {
   const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
   if (!i) throw py::error_already_set();
   return rule.check(std::string(py::repr(i)));
+}
+
+// Ctrl-C during a long call. The library asks this at its interruption points (core/interrupt.h),
+// on the calling thread; Python's handler runs there (KeyboardInterrupt, or the user's own), and
+// the exception it raises is kept until the call has unwound.
+std::optional<py::error_already_set>& pending_signal() {
+  static std::optional<py::error_already_set> e;
+  return e;
+}
+
+bool python_signalled() {
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() == 0) return false;
+  pending_signal().emplace();  // takes (and clears) the handler's exception
+  return true;
+}
+
+// `f` without the GIL, hearing Ctrl-C: an interrupted call raises the signal handler's exception.
+template <class F>
+auto interruptible(F&& f) -> decltype(f()) {
+  const interrupt::Scope scope(python_signalled);
+  try {
+    py::gil_scoped_release free;
+    return f();
+  } catch (const interrupt::Interrupted&) {
+    if (auto& e = pending_signal()) {
+      py::error_already_set raised = std::move(*e);
+      e.reset();
+      throw raised;
+    }
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  }
 }
 
 api::DemOptions dem_options(const std::string& quality, std::optional<int> threads, const std::string& cache,
@@ -458,8 +493,7 @@ std::unique_ptr<Validated> validate(const validation::Dataset& d, const std::vec
     inputs = plan.inputs;
     return {};
   };
-  py::gil_scoped_release free;
-  return std::make_unique<Validated>(Validated{api::validate(d, o), std::move(inputs)});
+  return interruptible([&] { return std::make_unique<Validated>(Validated{api::validate(d, o), std::move(inputs)}); });
 }
 
 struct Diagnosed {
@@ -504,8 +538,7 @@ std::unique_ptr<Diagnosed> diagnose(const validation::Dataset& d, const std::vec
     inputs = plan.inputs;
     return {};
   };
-  py::gil_scoped_release free;
-  return std::make_unique<Diagnosed>(Diagnosed{api::diagnose(d, o), std::move(inputs)});
+  return interruptible([&] { return std::make_unique<Diagnosed>(Diagnosed{api::diagnose(d, o), std::move(inputs)}); });
 }
 
 // Writes a result's files into `out` as the command line's --out does: all or nothing, never onto
@@ -596,8 +629,8 @@ validation::Dataset synthesize(const validation::Dataset& source, const std::vec
       OutputFolder check(out, plan.inputs, "synthesize");
       return {};
     };
+  const api::SynthesizeResult r = interruptible([&] { return api::synthesize(source, o); });
   py::gil_scoped_release free;
-  const api::SynthesizeResult r = api::synthesize(source, o);
   if (!out.empty()) {
     validation::write_dataset(out, r.files, source.dir, "synthesize");
     return validation::read_dataset(out);

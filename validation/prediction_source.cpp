@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "core/input_error.h"
+#include "core/interrupt.h"
 #include "validation/campaign_runs.h"
 #include "validation/harness.h"
 #include "validation/parallel_runs.h"
@@ -184,6 +185,7 @@ void PredictionSource::for_conditions(std::span<const effects::EffectInfo* const
   auto condition = [&](std::size_t i, std::vector<ModelPrediction>& scratch) {
     const std::size_t c = only[i];
     scratch.clear();
+    interrupt::point();
     try {
       predict_condition(c, list, fx, strengths, how, reuse_raw, scratch);
     } catch (const InputError& e) {

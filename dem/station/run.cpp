@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "core/interrupt.h"
 #include "dem/io/vtk.h"
 #include "dem/io/vtk_series.h"
 
@@ -207,6 +208,7 @@ Marched march(const RunOptions& o, const Schedule& schedule, Scene& sc, Sensors&
   });
   const int base_threads = w.threads();
   while (w.step_count() - first_step < schedule.max_steps) {
+    interrupt::point();  // a caller that asked to stop (Python's Ctrl-C) is heard between samples
     force = Vec3::Zero();
     moment = 0.0;
     if (s.extra_threads) w.set_threads(base_threads + s.extra_threads->load(std::memory_order_relaxed));

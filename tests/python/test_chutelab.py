@@ -590,7 +590,7 @@ def test_a_deep_or_huge_toml_file_is_refused_not_a_crash(tmp_path):
         assert _tree(tmp_path) == before
 
 
-# ---- a Dataset owns its tables -------------------------------------------------------------
+# ---- a Dataset owns its tables; long calls hear Ctrl-C -------------------------------------------
 
 def _same_frame(a, b):
     """The same table: columns, text and numbers bit for bit (NaN where NaN)."""
@@ -706,3 +706,49 @@ def test_a_bad_edit_is_refused_naming_table_row_and_column(tmp_path):
         ds.setup["plate.angle_deg"] = 10.0
     with pytest.raises(AttributeError):
         ds.name = "other"
+
+
+def test_ctrl_c_stops_a_long_call_promptly_and_writes_nothing(tmp_path):
+    # A DEM validation (minutes) and a large self-check, each stopped by SIGINT a second after it
+    # started: KeyboardInterrupt within seconds, no cache temporaries, every cache entry whole.
+    cache = tmp_path / "cache"
+    code = f"""
+import sys, time, chutelab
+for what in ("dem", "self_check"):
+    print("start", what, flush=True)
+    t0 = time.monotonic()
+    try:
+        if what == "dem":
+            chutelab.validate({RIG!r}, models=["dem"], dem_quality="quick", dem_threads=1, dem_cache={str(cache)!r})
+        else:
+            chutelab.diagnose({RIG!r}, self_check=2000)
+        print("finished", what, flush=True)
+    except KeyboardInterrupt:
+        print("interrupted", what, round(time.monotonic() - t0, 2), flush=True)
+"""
+    import signal
+    import time
+    child = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, env=os.environ)
+    try:
+        for what in ("dem", "self_check"):
+            assert child.stdout.readline().split() == ["start", what]
+            time.sleep(1.5)
+            sent = time.monotonic()
+            child.send_signal(signal.SIGINT)
+            import select
+            ready, _, _ = select.select([child.stdout], [], [], 30)
+            assert ready, f"{what}: no answer 30 s after Ctrl-C"
+            line = child.stdout.readline().split()
+            assert line[:2] == ["interrupted", what], line
+            assert time.monotonic() - sent < 15
+        assert child.wait(timeout=30) == 0, child.stderr.read()
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+    left = os.listdir(cache) if cache.exists() else []
+    assert not [f for f in left if f.endswith(".tmp")]
+    for f in left:
+        if f.endswith(".txt"):
+            assert (cache / f).read_bytes().splitlines()[-1].startswith(b"end "), f
