@@ -19,8 +19,10 @@ std::vector<validation::ModelPtr> in_registry_order(const std::vector<validation
 }
 
 std::vector<std::string> effects_and_inputs(const std::vector<std::string>& effects,
-                                            const std::vector<std::string>& inputs) {
+                                            const std::vector<std::string>& inputs, bool allow_fit,
+                                            bool outside_range) {
   std::vector<std::string> out = effects;
+  std::vector<const effects::EffectInfo*> seen;
   for (const auto& a : inputs) {
     const std::string name = a.substr(0, a.find('='));
     const auto* e = effects::find(name);
@@ -33,6 +35,10 @@ std::vector<std::string> effects_and_inputs(const std::vector<std::string>& effe
                                    name, e ? "a physical effect (give it with " + mention("effect") + ")" : "not a recorded input",
                                    mention("input"), fmt::join(names, ", ")));
     }
+    const auto s = effects::parse_setting(a, allow_fit, outside_range, "input");
+    if (std::find(seen.begin(), seen.end(), s.info) != seen.end())
+      throw InputError("", 0, "input", fmt::format("{} given twice", s.info->name));
+    seen.push_back(s.info);
     out.push_back(a);
   }
   return out;

@@ -43,9 +43,12 @@ AppliedEffects diagnosed_effects(const validation::DiagnosisResult& diagnosis,
 
 // Inputs NAME=VALUE|fit: a recorded input's error (effects/registry.h, Kind::record), given as an
 // effect is; the effects followed by the inputs. An input that names a physical effect is refused
-// (key "input"), naming the recorded inputs there are.
+// (key "input"), naming the recorded inputs there are; so is any other problem of an input (a value
+// that is no number, out of range, `fit` where nothing is fitted, given twice), checked here as
+// effects::parse_setting(text, allow_fit, outside_range) checks an effect.
 std::vector<std::string> effects_and_inputs(const std::vector<std::string>& effects,
-                                            const std::vector<std::string>& inputs);
+                                            const std::vector<std::string>& inputs, bool allow_fit = true,
+                                            bool outside_range = false);
 
 // Models in registry order (where they overlap, fits take each quantity from the first).
 std::vector<validation::ModelPtr> in_registry_order(const std::vector<validation::ModelPtr>& models);

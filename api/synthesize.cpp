@@ -12,7 +12,7 @@ namespace chutelab::api {
 namespace {
 std::vector<effects::EffectSetting> settings_of(const SynthesizeOptions& o) {
   std::vector<effects::EffectSetting> out;
-  for (const auto& e : effects_and_inputs(o.effects, o.inputs))
+  for (const auto& e : effects_and_inputs(o.effects, o.inputs, false, o.allow_out_of_range))
     out.push_back(effects::parse_setting(e, false, o.allow_out_of_range));
   return out;
 }

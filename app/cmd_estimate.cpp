@@ -10,6 +10,7 @@
 #include "app/flag_names.h"
 #include "app/sweep.h"
 #include "core/input_error.h"
+#include "core/output_folder.h"
 #include "core/units.h"
 #include "effects/registry.h"
 #include "reports/design.h"
@@ -27,29 +28,19 @@ struct EstimateCli : api::EstimateOptions {
   std::string format = "table", svg, sweep, dxf, points;
 };
 
-// --svg, --dxf, --points FILE: never over a file this run reads, and never half-written.
-void write_export(const EstimateCli& o, const std::string& file, const char* flag, const std::string& content) {
+// --svg, --dxf, --points FILE: never over a file this run reads, never two flags on one file, and
+// all placed together or none (core/output_folder.h).
+OutputFolder export_files(const EstimateCli& o) {
   namespace fs = std::filesystem;
-  const fs::path out = fs::absolute(file);
   std::vector<fs::path> read = {o.setup};
   if (o.setup.empty()) {
     const fs::path dir = o.dataset.empty() ? o.default_dataset : o.dataset;
     read = {dir / "setup.toml", dir / "conditions.csv"};
   }
-  std::error_code ec;
-  for (const auto& r : read)
-    if (!r.empty() && fs::exists(out, ec) && fs::equivalent(out, r, ec))
-      throw InputError(file, 0, flag, "is an input of this run; choose another file");
-  if (fs::is_directory(out, ec)) throw InputError(file, 0, flag, "is a folder; give a file name");
-  // The same inputs to the one writer, which refuses them whatever a check above missed.
   std::vector<fs::path> inputs;
   for (const auto& r : read)
     if (!r.empty()) inputs.push_back(r);
-  validation::write_outputs(out.parent_path(), {{out.filename().string(), content}}, inputs, "");
-}
-
-void write_svg(const EstimateCli& o, const std::string& svg) {
-  write_export(o, o.svg, "--svg", reports::standalone_svg(svg));
+  return OutputFolder(inputs);
 }
 
 QuantityValues korzen_reading(const ModelValues& models) {
@@ -108,7 +99,11 @@ int run_sweep(const EstimateCli& o, const analytical::EffectList& fixed,
   }
   if (std::none_of(rows.begin(), rows.end(), [](const SweepRow& r) { return r.point.has_value(); }))
     throw InputError("", 0, "--sweep", fmt::format("no point of the sweep has an answer: {}", rows.front().note));
-  if (!o.svg.empty()) write_svg(o, sweep_chart(spec, rows));
+  if (!o.svg.empty()) {
+    OutputFolder files = export_files(o);
+    files.write_file(o.svg, "--svg", reports::standalone_svg(sweep_chart(spec, rows)));
+    files.commit();
+  }
   if (o.format == "json")
     std::cout << sweep_json(spec, rows, settings);
   else if (o.format == "csv")
@@ -126,9 +121,12 @@ int run_estimate(EstimateCli o) {
     return run_sweep(o, effects::instantiate(settings), settings);
   }
   const api::EstimateResult r = api::estimate(o);
-  if (!o.svg.empty()) write_svg(o, reports::design_svg(r.analysis, korzen_reading(r.models)));
-  if (!o.dxf.empty()) write_export(o, o.dxf, "--dxf", reports::design_dxf(r.analysis));
-  if (!o.points.empty()) write_export(o, o.points, "--points", api::streamline_points_csv(r.analysis));
+  OutputFolder files = export_files(o);
+  if (!o.svg.empty())
+    files.write_file(o.svg, "--svg", reports::standalone_svg(reports::design_svg(r.analysis, korzen_reading(r.models))));
+  if (!o.dxf.empty()) files.write_file(o.dxf, "--dxf", reports::design_dxf(r.analysis));
+  if (!o.points.empty()) files.write_file(o.points, "--points", api::streamline_points_csv(r.analysis));
+  files.commit();
   std::cout << (o.format == "json" ? r.json() : o.format == "csv" ? r.csv() : r.table());
   return kExitOk;
 }

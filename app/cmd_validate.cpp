@@ -74,18 +74,15 @@ int run_validate(const ValidateCli& o) {
   const auto& judged = r.accepted();
   const auto* beside = r.beside_acceptance();
   for (const auto& [name, content] : r.files()) out->write(name, content);
+  validation::JunitSummary junit;
+  // Placed with --out by the one commit: a --junit that cannot be written leaves --out as it was.
+  if (!o.junit.empty())
+    out->write_file(o.junit, "--junit",
+                    validation::junit_xml(judged, r.tolerances ? &*r.tolerances : nullptr, &junit, beside,
+                                          r.accepted_with_effects ? "as-delivered" : "with-effects"));
   out->commit();
   progress::clear();
   for (const auto& p : judged.acceptance_problems) std::cerr << "chutelab: acceptance: " << p << "\n";
-  validation::JunitSummary junit;
-  if (!o.junit.empty()) {  // after the others, under a temporary name first
-    const fs::path f(o.junit);
-    validation::write_outputs(
-        f.parent_path().empty() ? fs::path(".") : f.parent_path(),
-        {{f.filename().string(), validation::junit_xml(judged, r.tolerances ? &*r.tolerances : nullptr, &junit, beside,
-                                                       r.accepted_with_effects ? "as-delivered" : "with-effects")}},
-        {}, "");
-  }
   std::cout << validate_console(r.report(), o.add_missing, (fs::path(o.out) / "report.html").string());
   if (!o.junit.empty()) {
     std::cout << fmt::format("junit: {} ({} test case{}, {} failed, {} skipped{}{})\n", o.junit, junit.tests,

@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -172,7 +175,18 @@ int main(int argc, char** argv) {
   // The one exception barrier: bad input is exit 2 with file:line:field; a file-system failure on a
   // path the user gave is exit 2 naming it; anything else is a bug, said in one line, exit 3.
   try {
-    return action ? action() : kExitBadInput;
+    const int code = action ? action() : kExitBadInput;
+    // Results that never reached their reader are no success (a full disk behind `> FILE`, /dev/full).
+    errno = 0;
+    const bool flushed = std::fflush(stdout) == 0;
+    const int err = errno;
+    if (!flushed || std::ferror(stdout) || std::cout.bad()) {
+      quiet_interrupts();
+      std::cerr << "chutelab: standard output: cannot write the results: "
+                << (!flushed && err != 0 ? std::strerror(err) : "a write failed") << "\n";
+      return kExitBadInput;
+    }
+    return code;
   } catch (...) {
     quiet_interrupts();  // the one line below is the whole story, however the process then ends
     try {

@@ -254,26 +254,40 @@ OutputFolder::OutputFolder(const fs::path& out, std::vector<fs::path> inputs, st
                        fmt::format("is the input folder {}; its files would be overwritten, choose another folder",
                                    i.string()));
   }
-
-  fs::path parent = out_.parent_path();
-  if (parent.empty()) parent = ".";
   writer_ = writes_files();
   // Inside an existing --out, so that every rename stays on its file system (--out may be a mount
   // point, or a link to another disk); beside a new one, on the file system it will be made on.
-  const bool exists = fs::is_directory(st);
-  staging_ = exists ? out_ / fmt::format(".chutelab.partial-{}", static_cast<long>(::getpid()))
-                    : parent / fmt::format(".{}.partial-{}", out_.filename().string(), static_cast<long>(::getpid()));
+  if (fs::is_directory(st)) {
+    open_staging(out_, true, flag_);
+  } else {
+    fs::path parent = out_.parent_path();
+    if (parent.empty()) parent = ".";
+    if (writer_) fs::create_directories(parent, ec);
+    if (ec) throw InputError(parent.string(), 0, flag_, fmt::format("cannot create the folder: {}", ec.message()));
+    open_staging(parent, false, flag_);
+  }
+}
+
+OutputFolder::OutputFolder(std::vector<fs::path> inputs) : folder_(false), flag_("out") {
+  for (const auto& i : inputs) inputs_.push_back(resolved_path(i, flag_));
+  writer_ = writes_files();
+}
+
+// The staging folder in `dir`: dir/.chutelab.partial-PID inside --out (or, with no --out, in the
+// folder of the first file named), dir/.OUT.partial-PID beside a new --out.
+void OutputFolder::open_staging(const fs::path& dir, bool in_dir, const std::string& flag) {
+  const auto pid = static_cast<long>(::getpid());
+  staging_ = in_dir ? dir / fmt::format(".chutelab.partial-{}", pid)
+                    : dir / fmt::format(".{}.partial-{}", out_.filename().string(), pid);
   if (!writer_) return;
-  if (!exists) fs::create_directories(parent, ec);
-  if (ec) throw InputError(parent.string(), 0, flag_, fmt::format("cannot create the folder: {}", ec.message()));
-  sweep_dead_staging(out_);
+  std::error_code ec;
+  sweep_dead_staging(in_dir ? dir : out_);
   fs::remove_all(staging_, ec);  // left by a killed run of the same process id
   register_temporary(staging_);
   fs::create_directory(staging_, ec);
   if (ec) {
     unregister_temporary(staging_);
-    throw InputError((exists ? out_ : parent).string(), 0, flag_,
-                     fmt::format("cannot write in this folder: {}", ec.message()));
+    throw InputError(dir.string(), 0, flag, fmt::format("cannot write in this folder: {}", ec.message()));
   }
 #ifndef __EMSCRIPTEN__
   // Held while this process lives (the kernel releases it however the process ends): a later run
@@ -284,7 +298,7 @@ OutputFolder::OutputFolder(const fs::path& out, std::vector<fs::path> inputs, st
 }
 
 OutputFolder::~OutputFolder() {
-  if (!writer_) return;
+  if (!writer_ || staging_.empty()) return;
   std::error_code ec;
   if (!committed_) fs::remove_all(staging_, ec);
   unregister_temporary(staging_);
@@ -343,11 +357,10 @@ Kind kind_of(const fs::path& p) {
 
 // Why chutelab may not replace `dest` (relative path `rel` of --out) with a file: empty when it may
 // (absent, or a file chutelab wrote there and nobody changed since).
-std::string not_ours(const fs::path& dest, const std::string& rel, const OutputManifest& m, bool named) {
+std::string not_ours(const fs::path& dest, const std::string& rel, const OutputManifest& m) {
   const Kind k = kind_of(dest);
   if (k == Kind::none) return {};
   if (k == Kind::folder) return "is a folder where chutelab writes a file; move it away";
-  if (named) return {};  // the file the user named is the one to replace
   const auto it = m.records.find(rel);
   if (it == m.records.end() || it->second.folder)
     return fmt::format("chutelab did not write it (no earlier run recorded it in {}); it is left as it is: move it "
@@ -365,6 +378,38 @@ std::vector<std::string> parents_of(const std::string& rel) {
   return p;
 }
 
+// The folders from the first one missing down to `dir` (none when it exists).
+std::vector<fs::path> missing_folders(const fs::path& dir) {
+  std::vector<fs::path> m;
+  for (fs::path d = dir; !d.empty() && kind_of(d) == Kind::none; d = d.parent_path()) {
+    m.insert(m.begin(), d);
+    if (d == d.parent_path()) break;
+  }
+  return m;
+}
+
+// A name beside `p` in its own folder (so on its file system): .NAME.what-PID.
+fs::path beside(const fs::path& p, const char* what) {
+  return p.parent_path() / fmt::format(".{}.{}-{}", p.filename().string(), what, static_cast<long>(::getpid()));
+}
+
+// Moves the file `from` to `to` (replacing it): by rename; across file systems (--out, or a file
+// the user named, on another disk or under a mount point), by a copy beside `to` renamed over it, so
+// that `to` is never seen half-written. (A process killed during the copy leaves that copy.)
+std::error_code move_file(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::rename(from, to, ec);
+  if (ec != std::errc::cross_device_link) return ec;
+  ec.clear();
+  const fs::path tmp = beside(to, "partial");
+  fs::copy_file(from, tmp, fs::copy_options::overwrite_existing, ec);
+  if (!ec) fs::rename(tmp, to, ec);
+  std::error_code e2;
+  if (ec) fs::remove(tmp, e2);
+  else fs::remove(from, e2);
+  return ec;
+}
+
 }  // namespace
 
 bool OutputFolder::check_entry(const std::string& name, bool is_dir) const {
@@ -376,7 +421,7 @@ bool OutputFolder::check_entry(const std::string& name, bool is_dir) const {
     if (k != Kind::folder) throw InputError(dest.string(), 0, flag_, "is a file where chutelab writes a folder; move it away");
     return true;
   }
-  if (const std::string why = not_ours(dest, name, manifest(), command_.empty()); !why.empty())
+  if (const std::string why = not_ours(dest, name, manifest()); !why.empty())
     throw InputError(dest.string(), 0, flag_, why);
   return true;
 }
@@ -393,24 +438,53 @@ void OutputFolder::write(const std::string& name, std::string_view content) {
   if (!f) throw InputError((out_ / name).string(), 0, flag_, "cannot write the file (disk full or no permission?)");
 }
 
+void OutputFolder::write_file(const fs::path& file, std::string_view flag, std::string_view content) {
+  const std::string fl(flag);
+  if (file.empty()) throw InputError("", 0, fl, "is empty; give a file name");
+  std::error_code ec;
+  if (fs::is_directory(file, ec)) throw InputError(file.string(), 0, fl, "is a folder; give a file name");
+  const fs::path r = resolved_path(file, fl);
+  for (const auto& i : inputs_)
+    if (r == i) throw InputError(file.string(), 0, fl, "is an input of this run; choose another file");
+  for (const auto& n : named_)
+    if (n.resolved == r)
+      throw InputError(file.string(), 0, fl, fmt::format("is also the file of {}; give each its own file", n.flag));
+  if (staging_.empty()) {  // no --out: staged in the nearest folder of the file that exists
+    fs::path dir = fs::absolute(file, ec).parent_path();
+    while (dir.has_parent_path() && dir != dir.parent_path() && kind_of(dir) != Kind::folder) dir = dir.parent_path();
+    open_staging(dir, true, fl);
+  }
+  Named n{file, r, staging_ / ".named" / std::to_string(named_.size()), fl};
+  if (writer_) {
+    fs::create_directories(n.staged.parent_path(), ec);
+    std::ofstream f(n.staged, std::ios::binary | std::ios::trunc);
+    f.write(content.data(), static_cast<std::streamsize>(content.size()));
+    f.close();
+    if (!f) throw InputError(file.string(), 0, fl, "cannot write the file (disk full or no permission?)");
+  }
+  named_.push_back(std::move(n));
+}
+
 void OutputFolder::commit() {
-  if (!writer_) {
+  if (!writer_ || staging_.empty()) {  // another rank's, or nothing named
     committed_ = true;
     return;
   }
   std::error_code ec;
-  // The staged files, by their path relative to --out.
+  // The staged files of --out, by their path relative to it.
   std::vector<std::string> files;
-  for (auto it = fs::recursive_directory_iterator(staging_, ec); !ec && it != fs::recursive_directory_iterator();
-       it.increment(ec)) {
-    const fs::path rel = it->path().lexically_relative(staging_);
-    if (it.depth() == 0 && (rel == kLockName || rel == ".replaced")) {
-      it.disable_recursion_pending();
-      continue;
+  if (folder_) {
+    for (auto it = fs::recursive_directory_iterator(staging_, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
+      const fs::path rel = it->path().lexically_relative(staging_);
+      if (it.depth() == 0 && (rel == kLockName || rel == ".replaced" || rel == ".named")) {
+        it.disable_recursion_pending();
+        continue;
+      }
+      if (!it->is_directory()) files.push_back(rel.generic_string());
     }
-    if (!it->is_directory()) files.push_back(rel.generic_string());
+    if (ec) throw InputError(staging_.string(), 0, flag_, fmt::format("cannot list the staged files: {}", ec.message()));
   }
-  if (ec) throw InputError(staging_.string(), 0, flag_, fmt::format("cannot list the staged files: {}", ec.message()));
   std::sort(files.begin(), files.end());
   const std::set<std::string> staged(files.begin(), files.end());
   std::set<std::string> needed_folders;  // every folder a staged file lies in
@@ -420,7 +494,7 @@ void OutputFolder::commit() {
 #ifndef __EMSCRIPTEN__
   // One commit at a time into one folder: two commands finishing together would each write a record
   // without the other's files (which then count as the user's: refused later, never removed).
-  int folder_fd = fs::is_directory(out_, ec) ? ::open(out_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC) : -1;
+  int folder_fd = folder_ && fs::is_directory(out_, ec) ? ::open(out_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC) : -1;
   if (folder_fd >= 0) [[maybe_unused]] const int locked = ::flock(folder_fd, LOCK_EX);
   struct CloseFd {
     int& fd;
@@ -429,12 +503,16 @@ void OutputFolder::commit() {
     }
   } close_folder{folder_fd};
 #endif
-  // Files the user named (--junit FILE) replace what is there and keep no record.
-  const bool named = command_.empty();
-  OutputManifest m = named ? OutputManifest{} : OutputManifest::read(out_);
+  OutputManifest m = folder_ ? OutputManifest::read(out_) : OutputManifest{};
 
+  // A move: the staged file `from` to `dest`, named by `flag` in messages.
+  struct Move {
+    fs::path from, dest;
+    std::string flag;
+  };
+  std::vector<Move> moves;
+  std::vector<std::pair<fs::path, std::string>> aside;  // files to move aside (replaced or removed), their flag
   // Check every file before moving any, so that nothing is half-replaced by a foreseeable problem.
-  std::vector<fs::path> aside;  // chutelab's earlier files in --out, moved aside and removed at the end
   for (const auto& f : files) {
     const fs::path dest = out_ / f;
     check_not_input(dest, false);
@@ -444,8 +522,9 @@ void OutputFolder::commit() {
       if (k != Kind::folder)
         throw InputError((out_ / p).string(), 0, flag_, "is a file where chutelab writes a folder; move it away");
     }
-    if (const std::string why = not_ours(dest, f, m, named); !why.empty()) throw InputError(dest.string(), 0, flag_, why);
-    if (kind_of(dest) != Kind::none) aside.push_back(dest);
+    if (const std::string why = not_ours(dest, f, m); !why.empty()) throw InputError(dest.string(), 0, flag_, why);
+    if (kind_of(dest) != Kind::none) aside.emplace_back(dest, flag_);
+    moves.push_back({staging_ / f, dest, flag_});
   }
   // What an earlier run of this command wrote and this run does not write describes another run: it
   // goes with the rest of that run (moved aside like a replaced file, so a failure puts it back).
@@ -476,7 +555,7 @@ void OutputFolder::commit() {
     } catch (const InputError&) {
       continue;
     }
-    aside.push_back(dest);
+    aside.emplace_back(dest, flag_);
     removed.push_back(rel);
   }
   // A dataset's file this run does not write would be read as part of the new dataset (in a folder
@@ -509,92 +588,133 @@ void OutputFolder::commit() {
                                  command_));
   }
   const fs::path record_path = out_ / OutputManifest::kFileName;
-  if (!named && kind_of(record_path) == Kind::folder)
+  if (folder_ && kind_of(record_path) == Kind::folder)
     throw InputError(record_path.string(), 0, flag_,
                      "is a folder where chutelab keeps the record of what it wrote here; move it away");
+  // Files the user named: never one --out writes or keeps its record in, never a folder, their
+  // folders made as needed.
+  for (const auto& n : named_) {
+    if (folder_) {
+      for (const auto& f : files)
+        if (resolved_path(out_ / f, n.flag) == n.resolved)
+          throw InputError(n.dest.string(), 0, n.flag, fmt::format("is {}, which --out gets from this run; "
+                                                                   "choose another file", (out_ / f).string()));
+      for (const auto& [rel, r] : m.records)
+        if (resolved_path(out_ / rel, n.flag) == n.resolved)
+          throw InputError(n.dest.string(), 0, n.flag,
+                           fmt::format("is {}, a file chutelab keeps in --out; choose another file", (out_ / rel).string()));
+      if (resolved_path(record_path, n.flag) == n.resolved)
+        throw InputError(n.dest.string(), 0, n.flag, "is the record chutelab keeps in --out; choose another file");
+    }
+    fs::path up = n.dest.parent_path();
+    for (; !up.empty() && kind_of(up) == Kind::none; up = up.parent_path())
+      if (up == up.parent_path()) break;
+    if (!up.empty() && kind_of(up) != Kind::folder && fs::is_directory(up, ec) == false)
+      throw InputError(up.string(), 0, n.flag, "is a file where a folder is needed for this file");
+    const Kind k = kind_of(n.dest);
+    if (k == Kind::folder) throw InputError(n.dest.string(), 0, n.flag, "is a folder; give a file name");
+    if (k != Kind::none) aside.emplace_back(n.dest, n.flag);
+    moves.push_back({n.staged, n.dest, n.flag});
+  }
   ec.clear();
 
-  std::lock_guard lock(registry_mutex());  // an interrupt waits until --out is whole again
-  const bool created = !fs::exists(out_);
-  fs::create_directories(out_, ec);
-  if (ec) throw InputError(out_.string(), 0, flag_, fmt::format("cannot create the folder: {}", ec.message()));
+  std::lock_guard lock(registry_mutex());  // an interrupt waits until every output is whole again
+  const bool created = folder_ && !fs::exists(out_);
+  if (folder_) {
+    fs::create_directories(out_, ec);
+    if (ec) throw InputError(out_.string(), 0, flag_, fmt::format("cannot create the folder: {}", ec.message()));
+  }
   const fs::path replaced = staging_ / ".replaced";
   fs::create_directory(replaced, ec);
+  ec.clear();
   // What was done, undone in reverse order when a later step fails.
   struct Step {
-    enum { moved_aside, placed, made_folder, removed_folder } what;
+    enum { moved_aside, placed, made_folder } what;
     fs::path a, b;
   };
   std::vector<Step> done;
+  std::vector<fs::path> backups_beside;  // backups kept beside their file (another file system)
   auto roll_back = [&] {
     std::error_code e2;
     for (auto it = done.rbegin(); it != done.rend(); ++it) {
       switch (it->what) {
-        case Step::moved_aside: fs::rename(it->b, it->a, e2); break;   // backup -> dest
-        case Step::placed: fs::rename(it->b, it->a, e2); break;        // dest -> staged
+        case Step::moved_aside: fs::rename(it->b, it->a, e2); break;  // backup -> where it was
+        case Step::placed: fs::remove(it->a, e2); break;
         case Step::made_folder: fs::remove(it->a, e2); break;
-        case Step::removed_folder: fs::create_directory(it->a, e2); break;
       }
     }
     if (created) fs::remove(out_, e2);
   };
-  auto fail = [&](const fs::path& where, const std::string& why) {
+  auto fail = [&](const fs::path& where, const std::string& flag, const std::string& why) {
     roll_back();
-    throw InputError(where.string(), 0, flag_, fmt::format("cannot write: {}", why));
+    throw InputError(where.string(), 0, flag, fmt::format("cannot write: {}", why));
   };
   for (std::size_t k = 0; k < aside.size(); ++k) {
-    const fs::path backup = replaced / std::to_string(k);
-    fs::rename(aside[k], backup, ec);
-    if (ec) fail(aside[k], ec.message());
-    done.push_back({Step::moved_aside, aside[k], backup});
+    const auto& [dest, flag] = aside[k];
+    // Into the staging folder when it is on the same file system, else beside the file.
+    fs::path backup = replaced / std::to_string(k);
+    fs::rename(dest, backup, ec);
+    if (ec == std::errc::cross_device_link) {
+      ec.clear();
+      backup = beside(dest, "replaced");
+      fs::rename(dest, backup, ec);
+      if (!ec) backups_beside.push_back(backup);
+    }
+    if (ec) fail(dest, flag, ec.message());
+    done.push_back({Step::moved_aside, dest, backup});
   }
   std::vector<std::string> made;
-  for (const auto& f : files) {
-    for (const auto& p : parents_of(f)) {
-      const fs::path dir = out_ / p;
-      if (kind_of(dir) == Kind::folder) continue;
+  for (const auto& mv : moves) {
+    for (const auto& dir : missing_folders(mv.dest.parent_path())) {
       fs::create_directory(dir, ec);
-      if (ec) fail(dir, ec.message());
+      if (ec) fail(dir, mv.flag, ec.message());
       done.push_back({Step::made_folder, dir, {}});
-      made.push_back(p);
+      if (folder_ && mv.flag == flag_ && inside(dir, out_) && dir != out_)
+        made.push_back(dir.lexically_relative(out_).generic_string());
     }
-    fs::rename(staging_ / f, out_ / f, ec);
-    if (ec) fail(out_ / f, ec.message());
-    done.push_back({Step::placed, staging_ / f, out_ / f});
-  }
-  // Folders this command made and no longer uses, once empty (a user's file inside keeps one).
-  std::sort(stale_folders.begin(), stale_folders.end(), [](const std::string& a, const std::string& b) {
-    return a.size() > b.size();  // the deepest first
-  });
-  for (const auto& rel : stale_folders) {
-    if (fs::remove(out_ / rel, ec)) {
-      done.push_back({Step::removed_folder, out_ / rel, {}});
-      dropped.push_back(rel);
-    }
-    ec.clear();
+    ec = move_file(mv.from, mv.dest);
+    if (ec) fail(mv.dest, mv.flag, ec.message());
+    done.push_back({Step::placed, mv.dest, {}});
   }
   // The record: last, so that a process killed before it leaves files unrecorded (refused later,
   // never removed) rather than records of files that are not there.
-  for (const auto& rel : removed) m.records.erase(rel);
-  for (const auto& rel : dropped) m.records.erase(rel);
-  for (const auto& f : files) m.records[f] = OutputManifest::of_file(out_ / f, command_);
-  for (const auto& p : made) {
-    OutputRecord r;
-    r.command = command_;
-    r.folder = true;
-    m.records[p] = r;
-  }
-  if (!named) {
+  auto write_record = [&]() -> std::error_code {
     const fs::path next = staging_ / ".manifest";
     std::ofstream f(next, std::ios::binary | std::ios::trunc);
     const std::string text = m.text();
     f.write(text.data(), static_cast<std::streamsize>(text.size()));
     f.close();
-    if (!f) fail(record_path, "cannot write the record of what chutelab wrote (disk full?)");
-    fs::rename(next, record_path, ec);
-    if (ec) fail(record_path, ec.message());
+    if (!f) return std::make_error_code(std::errc::no_space_on_device);
+    return move_file(next, record_path);
+  };
+  if (folder_) {
+    for (const auto& rel : removed) m.records.erase(rel);
+    for (const auto& rel : dropped) m.records.erase(rel);
+    for (const auto& f : files) m.records[f] = OutputManifest::of_file(out_ / f, command_);
+    for (const auto& p : made) {
+      OutputRecord r;
+      r.command = command_;
+      r.folder = true;
+      m.records[p] = r;
+    }
+    if ((ec = write_record())) fail(record_path, flag_, ec.message());
   }
   committed_ = true;
+  for (const auto& b : backups_beside) fs::remove(b, ec);
+  // Folders this command made and no longer uses, once empty (a user's file inside keeps one), and
+  // the record again without them.
+  std::sort(stale_folders.begin(), stale_folders.end(), [](const std::string& a, const std::string& b) {
+    return a.size() > b.size();  // the deepest first
+  });
+  bool emptied = false;
+  for (const auto& rel : stale_folders) {
+    if (fs::remove(out_ / rel, ec)) {
+      m.records.erase(rel);
+      emptied = true;
+    }
+    ec.clear();
+  }
+  if (emptied) ec = write_record();  // a failure here leaves records of folders that are gone: dropped next time
   if (!removed.empty()) {
     // Said by the top entries of --out: "dem/ (12 files)" rather than every file under it.
     std::vector<std::string> said;

@@ -5,6 +5,12 @@
 // until the last move succeeded. So a failure at any point (bad input found late, a folder where a
 // file must go, a full disk, Ctrl-C) leaves --out exactly as it was, and no staging file behind.
 //
+// Files the user named outside --out (--junit FILE; estimate's --svg, --dxf and --points, which have
+// no --out) are staged with the rest and placed by the same commit(): a command that fails writes
+// none of its outputs, whichever failed. A move that crosses file systems (--out or a named file on
+// another disk, a mount point inside --out) is a copy beside the destination renamed over it, so no
+// destination is ever seen half-written.
+//
 // A command replaces or removes only what chutelab wrote: the folder keeps the record
 // (core/output_manifest.h, OUT/.chutelab-manifest) of every file chutelab wrote there and which
 // command wrote it. A file in the way that the record does not list, or lists with other content
@@ -31,12 +37,12 @@ namespace chutelab {
 class OutputFolder {
  public:
   // `out` is --out; `inputs` are the files and folders the command reads (a folder: --out may not
-  // be it); `command` names the writer in the folder's record (validate, diagnose, synthesize, ...),
-  // or is empty for a folder that receives only files the user named (--junit FILE, estimate --svg
-  // FILE): those replace what is there, and the folder keeps no record. Throws InputError for an
-  // unusable --out.
+  // be it); `command` names the writer in the folder's record (validate, diagnose, synthesize, ...).
+  // Throws InputError for an unusable --out.
   OutputFolder(const std::filesystem::path& out, std::vector<std::filesystem::path> inputs, std::string_view command,
                std::string_view flag = "out");
+  // Without an output folder: only files the user names (write_file()).
+  explicit OutputFolder(std::vector<std::filesystem::path> inputs);
   ~OutputFolder();  // removes the staging folder unless committed
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
@@ -46,6 +52,10 @@ class OutputFolder {
   const std::filesystem::path& out() const { return out_; }
   // Writes one file (name relative to --out) into the staging folder.
   void write(const std::string& name, std::string_view content);
+  // Stages `content` for `file`, a file the user named with `flag` (--junit, --svg, ...), placed by
+  // commit() with everything else; it replaces what is there, keeping no record. Throws InputError
+  // naming `flag` when it is a folder, a file this command reads, or the file of another flag.
+  void write_file(const std::filesystem::path& file, std::string_view flag, std::string_view content);
   // Whether entry `name` of --out (a file, or a folder when is_dir) can be written: throws the
   // InputError commit() would, so that a command can refuse before its long runs; true when it exists.
   bool check_entry(const std::string& name, bool is_dir) const;
@@ -64,9 +74,16 @@ class OutputFolder {
   std::filesystem::path staged_path(const std::string& name) const;
 
  private:
+  struct Named {
+    std::filesystem::path dest, resolved, staged;
+    std::string flag;
+  };
   void check_not_input(const std::filesystem::path& dest, bool is_dir) const;
   const OutputManifest& manifest() const;
+  void open_staging(const std::filesystem::path& dir, bool inside, const std::string& flag);
   std::filesystem::path out_, staging_;
+  bool folder_ = true;  // false: no --out, only named files
+  std::vector<Named> named_;
   std::vector<std::filesystem::path> inputs_;  // weakly canonical
   std::vector<std::string> together_, taken_;
   std::string command_, flag_;

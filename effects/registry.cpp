@@ -32,44 +32,47 @@ const EffectInfo* find(const std::string& name) {
 
 Range extended_range(const EffectInfo& e) {
   const double span = e.upper - e.lower;
-  return {e.lower - span, e.upper + span};
+  // The sum rounded to 12 significant digits and read back: the nearest double to the decimal a
+  // reader computes, so that the stated end is inside.
+  auto decimal = [](double v) { return parse_number(fmt::format("{:.12g}", v)).value_or(v); };
+  return {decimal(e.lower - span), decimal(e.upper + span)};
 }
 
 bool in_physical_range(const EffectInfo& e, double strength) { return strength >= e.lower && strength <= e.upper; }
 
-EffectSetting parse_setting(const std::string& text, bool allow_fit, bool outside_range) {
+EffectSetting parse_setting(const std::string& text, bool allow_fit, bool outside_range, const std::string& key) {
   const auto eq = text.find('=');
   const std::string name = text.substr(0, eq);
   const EffectInfo* info = find(name);
   if (!info) {
     std::vector<std::string> names;
     for (const auto& e : library()) names.push_back(e.name);
-    throw InputError("", 0, "effect",
+    throw InputError("", 0, key,
                      fmt::format("unknown effect '{}' (known: {})", name, fmt::join(names, ", ")));
   }
   if (eq == std::string::npos)
-    throw InputError("", 0, "effect",
+    throw InputError("", 0, key,
                      fmt::format("'{}' needs a value: {}=VALUE{}", text, name,
                                  allow_fit ? " or " + name + "=fit" : ""));
   const std::string value = text.substr(eq + 1);
   if (value == "fit") {
     if (!allow_fit)
-      throw InputError("", 0, "effect",
+      throw InputError("", 0, key,
                        fmt::format("'{}': fitting needs measurements; give a value here", text));
     return {info, std::nullopt};
   }
   const auto parsed = parse_number(value);
   const double v = parsed.value_or(0.0);
   if (!parsed || !std::isfinite(v))
-    throw InputError("", 0, "effect", fmt::format("'{}': '{}' is not a number", text, value));
+    throw InputError("", 0, key, fmt::format("'{}': '{}' is not a number", text, value));
   if (outside_range) {
     const Range r = extended_range(*info);
     if (v < r.lower || v > r.upper)
-      throw InputError("", 0, "effect",
+      throw InputError("", 0, key,
                        fmt::format("'{}': {} must lie in [{}, {}] {} (its physical range [{}, {}] widened by its span on each side)",
                                    text, info->parameter, r.lower, r.upper, info->unit, info->lower, info->upper));
   } else if (!in_physical_range(*info, v)) {
-    throw InputError("", 0, "effect",
+    throw InputError("", 0, key,
                      fmt::format("'{}': {} must lie in its physical range [{}, {}] {}", text,
                                  info->parameter, info->lower, info->upper, info->unit));
   }

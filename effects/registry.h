@@ -76,7 +76,8 @@ bool stated_anywhere(const EffectInfo& e, const std::vector<Station>& stations);
 // How far a fit may go past the physical range when it asks what strength the data want, whatever
 // physics allows (a negative drag coefficient: particles faster than ballistic): the physical range
 // widened by its own span on each side. The effects' formulas stay defined there; where the
-// analytical chain has no answer, a trial gives a large misfit, as inside the range.
+// analytical chain has no answer, a trial gives a large misfit, as inside the range. Its ends are the
+// decimals the messages state (-0.3 - 0.6 is -0.9, not the -0.8999999999999999 of the sum).
 struct Range {
   double lower = 0.0, upper = 0.0;
 };
@@ -98,8 +99,10 @@ struct EffectSetting {
   std::optional<double> value;  // absent: fit to the data
 };
 // `outside_range`: strengths beyond the physical range (within extended_range) are accepted: only
-// to make test data that break physics on purpose.
-EffectSetting parse_setting(const std::string& text, bool allow_fit, bool outside_range = false);
+// to make test data that break physics on purpose. `key`: the input the text came from, named in
+// every message (effect; input for a recorded input's error).
+EffectSetting parse_setting(const std::string& text, bool allow_fit, bool outside_range = false,
+                            const std::string& key = "effect");
 analytical::EffectList instantiate(const std::vector<EffectSetting>& fixed);
 
 }  // namespace chutelab::effects

@@ -16,8 +16,7 @@ std::string summary_csv(const ValidationResult& r);
 using OutputFile = std::pair<std::string, std::string>;  // file name, content
 
 // Writes every file through an OutputFolder (core/output_folder.h): all or nothing, never onto one
-// of `inputs` (the files and folders the command read), recorded as `command`'s in the folder (an
-// empty command: files the user named, which replace what is there).
+// of `inputs` (the files and folders the command read), recorded as `command`'s in the folder.
 void write_outputs(const std::filesystem::path& dir, const std::vector<OutputFile>& files,
                    const std::vector<std::filesystem::path>& inputs, std::string_view command);
 

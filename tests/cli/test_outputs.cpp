@@ -5,10 +5,14 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
 #include <string>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "cli_runner.h"
 
@@ -182,6 +186,145 @@ BOOST_AUTO_TEST_CASE(class2_a_users_file_inside_chutelabs_folder_stays) {
   BOOST_TEST(!fs::exists(s.out / "dem" / "V3-41" / "timeseries.csv"));
   BOOST_TEST(!fs::exists(s.out / "dem" / "V2-26"));  // a folder chutelab made, now empty: gone
   BOOST_TEST(!staging_left(s.root));
+}
+
+// Class 7: outputs are all or nothing. --svg and --dxf naming one file were both written (the second
+// over the first); an export that could not be written ended in exit 2 ("nothing written") after the
+// others had been written, and a --junit that could not be written did so after --out was filled.
+BOOST_AUTO_TEST_CASE(class7_outputs_are_placed_together_or_not_at_all) {
+  Sandbox s("together");
+  const std::string est = "estimate --dataset " + Sandbox::q(s.data) + " --condition V3-41";
+  auto q = [&](const char* f) { return Sandbox::q(s.root / f); };
+  // One file for two flags: refused, naming both.
+  refused(s.root, est + " --svg " + q("d.out") + " --dxf " + q("d.out"), "d.out: --dxf: is also the file of --svg");
+  // The last export cannot be written (a folder in its way): none is.
+  fs::create_directories(s.root / "p.csv");
+  refused(s.root, est + " --svg " + q("a.svg") + " --dxf " + q("a.dxf") + " --points " + q("p.csv"),
+          "p.csv: --points: is a folder");
+  // ... nor when the folder of the last one cannot be made (a file where it must be).
+  write_file(s.root / "file", "x\n");
+  refused(s.root, est + " --svg " + q("a.svg") + " --points " + Sandbox::q(s.root / "file" / "p.csv"), "--points: ");
+  // Each in place when all can be, a new folder made for one.
+  ok(est + " --svg " + q("a.svg") + " --dxf " + q("a.dxf") + " --points " + Sandbox::q(s.root / "new" / "p.csv"));
+  BOOST_TEST(read_file(s.root / "a.svg").find("<svg") != std::string::npos);
+  BOOST_TEST(read_file(s.root / "a.dxf").find("SECTION") != std::string::npos);
+  BOOST_TEST(read_file(s.root / "new" / "p.csv").find("x_mm") != std::string::npos);
+  // validate --junit that cannot be written: --out is not made, and the message names --junit.
+  refused(s.root, s.args("validate") + " --junit " + Sandbox::q(s.root / "file" / "junit.xml"), "--junit: ");
+  BOOST_TEST(!fs::exists(s.out));
+  // ... nor changed when it holds an earlier run.
+  ok(s.args("validate") + " --diagnose");
+  refused(s.root, s.args("validate") + " --junit " + Sandbox::q(s.root / "file" / "junit.xml"), "--junit: ");
+  BOOST_TEST(fs::exists(s.out / "diagnosis.md"));
+  // --junit inside --out (the CI guide's layout) is the user's file, replaced run after run.
+  ok(s.args("validate") + " --junit " + Sandbox::q(s.out / "junit.xml"));
+  ok(s.args("validate") + " --junit " + Sandbox::q(s.out / "junit.xml"));
+  BOOST_TEST(read_file(s.out / "junit.xml").find("<testsuites") != std::string::npos);
+  // ... but never a file --out gets from the run.
+  refused(s.root, s.args("validate") + " --junit " + Sandbox::q(s.out / "summary.csv"), "--junit: ");
+  BOOST_TEST(!staging_left(s.root));
+}
+
+namespace {
+// Runs a shell script; its exit status.
+int sh(const fs::path& dir, const std::string& script) {
+  write_file(dir / "script.sh", script);
+  const int status = std::system(("sh '" + (dir / "script.sh").string() + "' >'" + (dir / "script.out").string() +
+                                  "' 2>&1").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+}  // namespace
+
+// Class 12: an --out on another file system (here a link to one, /dev/shm) or a mount point ended in
+// "Invalid cross-device link", and so did a --junit or --svg there; the staging folder now lies on
+// --out's own file system, and a move that still crosses one (a mount point inside --out) is a copy
+// renamed into place.
+BOOST_AUTO_TEST_CASE(class12_outputs_on_another_file_system) {
+  Sandbox s("devices");
+  struct stat a {}, b {};
+  const fs::path shm = fs::path("/dev/shm") / fmt::format("chutelab-test-{}", ::getpid());
+  std::error_code ec;
+  fs::create_directories(shm / "out", ec);
+  if (ec || ::stat(s.root.c_str(), &a) != 0 || ::stat(shm.c_str(), &b) != 0 || a.st_dev == b.st_dev) {
+    BOOST_TEST_MESSAGE("no second file system at /dev/shm: the cross-device part is not run");
+  } else {
+    fs::create_directory_symlink(shm, s.root / "shm");
+    const fs::path link = s.root / "shm";
+    ok(s.args("validate", link / "out") + " --junit " + Sandbox::q(link / "junit.xml"));
+    BOOST_TEST(fs::exists(shm / "out" / "report.html"));
+    BOOST_TEST(read_file(shm / "junit.xml").find("<testsuites") != std::string::npos);
+    ok("estimate --dataset " + Sandbox::q(s.data) + " --condition V3-41 --svg " + Sandbox::q(link / "x.svg") +
+       " --dxf " + Sandbox::q(s.root / "x.dxf"));
+    BOOST_TEST(fs::exists(shm / "x.svg"));
+    BOOST_TEST(fs::exists(s.root / "x.dxf"));
+    // --out on this disk, the --junit file on the other: placed across.
+    ok(s.args("validate") + " --junit " + Sandbox::q(link / "j2.xml"));
+    BOOST_TEST(fs::exists(shm / "j2.xml"));
+    BOOST_TEST(!staging_left(shm));
+  }
+  fs::remove_all(shm, ec);
+  // A mount point as --out, and one inside it (OUT/dem), in a mount namespace of a user namespace
+  // (no root needed; skipped where the kernel allows none).
+  const fs::path mnt = s.root / "mnt";
+  fs::create_directories(mnt / "dem");
+  const int probe = sh(s.root, "unshare --user --map-root-user --mount sh -c 'mount -t tmpfs none " + mnt.string() + "'");
+  if (probe != 0) {
+    BOOST_TEST_MESSAGE("no user namespaces here: the mount-point part is not run");
+  } else {
+    const std::string dem = " --models korzen,dem --dem-quality standard --dem-ladder off --dem-cache-only --dem-cache " +
+                            Sandbox::q(kDemCache);
+    const int rc = sh(s.root,
+                      "unshare --user --map-root-user --mount sh -e -c '"
+                      "mount -t tmpfs none \"" + mnt.string() + "\"; mkdir \"" + (mnt / "dem").string() + "\"; "
+                      "mount -t tmpfs none \"" + (mnt / "dem").string() + "\"; " +
+                      "\"" + CHUTELAB_BINARY + "\" validate --dataset \"" + s.data.string() + "\" --out \"" +
+                      mnt.string() + "\"" + dem + "; "
+                      "test -f \"" + (mnt / "report.html").string() + "\"; "
+                      "test -f \"" + (mnt / "dem" / "V3-41" / "timeseries.csv").string() + "\"; "
+                      "\"" + CHUTELAB_BINARY + "\" validate --dataset \"" + s.data.string() + "\" --out \"" +
+                      mnt.string() + "\"; "
+                      "test ! -e \"" + (mnt / "dem" / "V3-41").string() + "\"; "
+                      "! ls -a \"" + mnt.string() + "\" \"" + (mnt / "dem").string() + "\" | grep partial'");
+    BOOST_TEST(rc == 0, read_file(s.root / "script.out"));
+  }
+}
+
+// Class 12: a result that cannot reach its reader is no success: `estimate > /dev/full` exited 0.
+BOOST_AUTO_TEST_CASE(class12_a_failed_write_to_stdout_fails) {
+  const fs::path dir = fresh_dir("outputs-stdout");
+  const std::string bin = std::string("'") + CHUTELAB_BINARY + "'";
+  if (!fs::exists("/dev/full")) return;
+  for (const char* fmt_ : {"table", "json", "csv"}) {
+    const int rc = sh(dir, bin + " estimate --belt-speed 4 --mass-flow 35 --plate-distance 450 --format " + fmt_ +
+                               " >/dev/full");
+    BOOST_TEST(rc == 2, fmt_);
+    BOOST_TEST(read_file(dir / "script.out").find("chutelab: standard output: cannot write the results") !=
+               std::string::npos, read_file(dir / "script.out"));
+  }
+  Sandbox s("stdout");
+  BOOST_TEST(sh(dir, bin + " " + s.args("validate") + " >/dev/full") == 2);
+}
+
+// Class 12: a message names the flag the user gave (an --input's problems were said as --effect's,
+// a --junit's or --dxf's as --out's), and the documented end of a range is inside it (-0.9 for a
+// gain error whose range is [-0.3, 0.3] widened by its span was refused as below
+// -0.8999999999999999).
+BOOST_AUTO_TEST_CASE(class12_messages_name_what_was_given) {
+  Sandbox s("flags");
+  refused(s.root, s.args("validate") + " --input plate_angle=abc", "--input: 'plate_angle=abc': 'abc' is not a number");
+  refused(s.root, s.args("validate") + " --input plate_angle=1 --input plate_angle=2", "--input: plate_angle given twice");
+  refused(s.root, s.args("synthesize") + " --input plate_angle=fit", "--input: 'plate_angle=fit': fitting needs");
+  refused(s.root, s.args("synthesize") + " --input plate_angle=1e6", "--input: 'plate_angle=1e6'");
+  write_file(s.root / "file", "x\n");
+  const auto j = refused(s.root, s.args("validate") + " --junit " + Sandbox::q(s.root / "file" / "j.xml"), "--junit: ");
+  BOOST_TEST(j.err.find("--out") == std::string::npos, j.err);
+  const auto d = refused(s.root, "estimate --belt-speed 4 --mass-flow 35 --plate-distance 450 --dxf " +
+                                     Sandbox::q(s.root / "file" / "d.dxf"), "--dxf: ");
+  BOOST_TEST(d.err.find("--out") == std::string::npos, d.err);
+  // The ends of the widened range, as its message states them.
+  refused(s.root, s.args("synthesize") + " --effect load_cell_gain=-0.91 --allow-out-of-range", "must lie in [-0.9, 0.9]");
+  ok(s.args("synthesize") + " --effect load_cell_gain=-0.9 --allow-out-of-range");
+  ok(s.args("synthesize") + " --effect load_cell_gain=0.9 --allow-out-of-range");
 }
 
 BOOST_AUTO_TEST_SUITE_END()
