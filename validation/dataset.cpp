@@ -16,6 +16,7 @@
 #include "core/message.h"
 #include "core/text_file.h"
 #include "core/toml_file.h"
+#include "core/unicode.h"
 #include "core/units.h"
 #include "validation/csv_table.h"
 
@@ -337,13 +338,25 @@ std::vector<Station> conditions_from(const fs::path& path, const DatasetFile* te
   }
 
   std::vector<Station> out;
-  std::map<std::string, long> seen;
+  // Conditions by the name a reader sees (core/unicode.h): two names that print alike would be
+  // tabled and plotted as two conditions nobody can tell apart.
+  std::map<std::string, std::pair<long, std::string>> seen;
   for (const auto& row : t.rows()) {
     const std::string& id = t.text(row, c_id);
     if (id.empty()) throw InputError(t.file(), row.line, "condition", "condition name is empty");
-    if (auto [it, fresh] = seen.emplace(id, row.line); !fresh)
+    const std::string printed = printed_form(id);
+    if (printed.empty())
       throw InputError(t.file(), row.line, "condition",
-                       fmt::format("duplicate condition '{}' (first on line {})", id, it->second));
+                       fmt::format("condition name {} prints as nothing (only spaces or invisible characters)", shown(id)));
+    if (auto [it, fresh] = seen.emplace(printed, std::pair{row.line, id}); !fresh) {
+      if (it->second.second == id)
+        throw InputError(t.file(), row.line, "condition",
+                         fmt::format("duplicate condition '{}' (first on line {})", id, it->second.first));
+      throw InputError(t.file(), row.line, "condition",
+                       fmt::format("condition {} prints the same as {} on line {} (they differ only by spaces, "
+                                   "invisible characters or the spelling of an accent); name them apart",
+                                   shown(id), shown(it->second.second), it->second.first));
+    }
     auto checked = [&](const char* column, double v) {
       try {
         check_operating_input(column, v, column);

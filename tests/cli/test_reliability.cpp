@@ -483,3 +483,36 @@ BOOST_AUTO_TEST_CASE(class11_messages) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+// Issue 50 (round four) -----------------------------------------------------------------------------
+
+BOOST_AUTO_TEST_SUITE(round_four)
+
+// Class 13: condition names that print the same are one name to a reader. A quoted trailing space,
+// a no-break space, a zero-width space, or an accent spelt precomposed and decomposed (NFC, NFD) made
+// two conditions that every table, chart and terminal shows alike.
+BOOST_AUTO_TEST_CASE(class13_names_that_print_the_same_are_refused) {
+  const std::string row = ",3.0,41.0,400.0,250.0,34.0\n";
+  const std::vector<std::pair<std::string, std::string>> twins = {
+      {"V3-41", "\"V3-41 \""},                // a quoted trailing space
+      {"K 1", "K\xC2\xA0" "1"},                // a no-break space
+      {"V3-41", "V3-4\xE2\x80\x8B" "1"},        // a zero-width space
+      {"K\xC3\xB6ln", "Ko\xCC\x88ln"},          // o-umlaut precomposed (NFC) and decomposed (NFD)
+  };
+  for (const auto& [first, second] : twins) {
+    Sandbox s("printed");
+    std::string conditions = read_file(s.data / "conditions.csv");
+    if (first != "V3-41") conditions += first + row;
+    conditions += second + row;
+    write_file(s.data / "conditions.csv", conditions);
+    refused(s, s.args("validate"), 2, "prints the same as");
+  }
+  // Names that only look related stay apart, and a name of invisible characters alone is none.
+  Sandbox s("printed-apart");
+  write_file(s.data / "conditions.csv", read_file(s.data / "conditions.csv") + "V3-41b" + row + "V3 41" + row);
+  accepted(s, s.args("validate"));
+  write_file(s.data / "conditions.csv", read_file(kRig / "conditions.csv") + "\xE2\x80\x8B" + row);
+  refused(s, s.args("validate"), 2, "prints as nothing");
+}
+
+BOOST_AUTO_TEST_SUITE_END()
