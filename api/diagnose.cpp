@@ -1,6 +1,10 @@
 #include "api/diagnose.h"
 
+#include <chrono>
+#include <fmt/format.h>
+
 #include "core/option_check.h"
+#include "core/progress.h"
 #include "logs/dataset_logs.h"
 #include "validation/dataset_output.h"
 
@@ -55,13 +59,23 @@ DiagnoseResult diagnose(validation::Dataset dataset, const DiagnoseOptions& o) {
   // Resolved once: the free cores may change between two readings. The expensive runs (baseline,
   // signatures, confirmation) go as campaigns with the same number side by side.
   opt.jobs = resolve_jobs(o.jobs);
-  opt.progress = o.progress;
+  // Progress lines are progress: --quiet (or the library's progress=False) leaves them out.
+  opt.progress = o.progress && !progress::quiet();
   // An expensive model (the DEM) runs once per condition, and once more per condition for every
   // candidate it can represent (its own signature); the others take the analytical models'
   // signatures, and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
   const auto models = validation::make_models(o.models, model_settings(o.dem, d.dir, {}, o.progress, d.stations, d.source("setup.toml")));
+  const auto started = std::chrono::steady_clock::now();
   res.diagnosis = validation::diagnose(d, models, opt);
   if (o.self_check > 0) {
+    // Up to two diagnoses a replica (effect-free, and with the explanation found), each about as
+    // long as this one or less (the replicas use the analytical models alone): said before a
+    // request of hours starts, not discovered after it.
+    const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
+    if (opt.progress)
+      progress::line(fmt::format("diagnose: self-check of up to {} replica diagnoses; this diagnosis took {:.1f} s, so "
+                                 "the self-check may take up to about {:.0f} min",
+                                 2 * o.self_check, took.count(), 2.0 * o.self_check * took.count() / 60.0));
     validation::SelfCheckOptions so;
     so.replicas = o.self_check;
     so.seed = o.seed;

@@ -1,5 +1,7 @@
 #include "api/validate.h"
 
+#include "core/progress.h"
+
 #include <algorithm>
 #include <fmt/format.h>
 
@@ -152,7 +154,7 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
       throw InputError("", 0, o.diagnose ? "diagnose" : o.add_missing ? "add_missing" : o.effects.empty() ? "input" : "effect",
                        "the diagnosis needs an analytical model in " + mention("models"));
     validation::DiagnoseOptions dopt;
-    dopt.progress = o.progress;
+    dopt.progress = o.progress && !progress::quiet();  // --quiet leaves the diagnosis's lines out too
     res.diagnosis = validation::diagnose(d, in_registry_order(cheap), dopt);
   }
   // add_missing: what the diagnosis recommends, at the strengths its verdict states (its own fit,

@@ -515,4 +515,30 @@ BOOST_AUTO_TEST_CASE(class13_names_that_print_the_same_are_refused) {
   refused(s, s.args("validate"), 2, "prints as nothing");
 }
 
+// Class 9 (the parts outside the diagnosis): --quiet leaves out the diagnosis's progress lines
+// (printed for 500 conditions or more), and a self-check says what it may cost before it starts.
+BOOST_AUTO_TEST_CASE(class9_quiet_diagnosis_and_a_self_check_estimated) {
+  Sandbox s("quiet");
+  std::string conditions = "condition,belt_speed_mps,mass_flow_tph,plate_distance_mm,plate_top_mm\n";
+  for (int k = 0; k < 500; ++k)
+    conditions += fmt::format("C{},{},{},{},250\n", k, 2.0 + 0.006 * k, 26.0 + 0.03 * k, 300 + (k % 5) * 50);
+  write_file(s.data / "conditions.csv", conditions);
+  fs::remove(s.data / "measurements.csv");
+  fs::remove(s.data / "trajectory.csv");
+  accepted(s, s.args("synthesize") + " --effect air_drag=0.5");
+  const std::string diagnose = "diagnose --no-pairs --dataset " + s.q(s.out) + " --out " + s.q(s.root / "d");
+  const auto loud = run_chutelab(diagnose);
+  BOOST_TEST(loud.err.find("diagnose: fitting") != std::string::npos, loud.err.substr(0, 2000));
+  const auto quiet = run_chutelab(diagnose + " --quiet");
+  BOOST_TEST(quiet.exit_code == loud.exit_code);
+  BOOST_TEST(quiet.err.find("diagnose:") == std::string::npos, quiet.err.substr(0, 2000));
+  // The self-check's cost, said before it starts (the rig's own 8 conditions: a second or two).
+  Sandbox r("self-check");
+  const auto checked = run_chutelab(r.args("diagnose") + " --no-pairs --self-check 2");
+  BOOST_TEST(checked.err.find("self-check of up to 4 replica diagnoses; this diagnosis took") != std::string::npos,
+             checked.err.substr(0, 2000));
+  const auto silent = run_chutelab(r.args("diagnose") + " --no-pairs --self-check 2 --quiet");
+  BOOST_TEST(silent.err.find("self-check") == std::string::npos, silent.err.substr(0, 2000));
+}
+
 BOOST_AUTO_TEST_SUITE_END()
