@@ -285,16 +285,26 @@ void find_window(const StationSeries& series, const RunSettings& s, StationResul
   StationSeries part;
   const StationSeries& settled = after(series, r.transient_end, part);
   r.window = load_cell_window(settled, s);
+  // A window is judged against the mean of the last detect_tail and must be min_window long: a run
+  // cut before both fit after its transient (a short --max-time) compares a plate still filling
+  // with itself, and a window found there is no steady state.
+  const double judged_from = (r.restart_time >= 0.0 ? r.transient_end : 0.0) + s.detect_tail + s.min_window;
+  const bool cut_short = r.simulated_time + 1e-9 < judged_from;
+  if (cut_short) r.window.found = false;
   if (r.window.found && r.window.end - r.window.start >= s.min_window - 1e-9) return;
   const bool none = !r.window.found;
   const int n = std::max(1, static_cast<int>(std::floor(s.min_window / s.mean_block + 1e-9)));
   r.window.end = r.simulated_time;
   r.window.start = std::max(std::max(0.0, r.restart_time), r.window.end - n * s.mean_block);
   r.window.blocks = static_cast<int>(std::floor((r.window.end - r.window.start) / s.mean_block + 1e-9));
-  r.notes.push_back(none ? fmt::format("no steady state detected within {:.2f} s: means over the last {:.1f} s, "
-                                       "uncertain", r.simulated_time, r.window.end - r.window.start)
-                         : fmt::format("steady window shorter than {:.1f} s at the time limit: means over the "
-                                       "last {:.1f} s", s.min_window, r.window.end - r.window.start));
+  r.notes.push_back(cut_short ? fmt::format("the run ended at {:.2f} s, before the plate's load could be judged steady "
+                                            "(that needs {:.2f} s): means over the last {:.1f} s of a plate that may "
+                                            "still be filling, uncertain",
+                                            r.simulated_time, judged_from, r.window.end - r.window.start)
+                    : none    ? fmt::format("no steady state detected within {:.2f} s: means over the last {:.1f} s, "
+                                            "uncertain", r.simulated_time, r.window.end - r.window.start)
+                              : fmt::format("steady window shorter than {:.1f} s at the time limit: means over the "
+                                            "last {:.1f} s", s.min_window, r.window.end - r.window.start));
 }
 
 // The steady window's bounds and the length of its blocks, s.
@@ -455,7 +465,16 @@ SteadyWindow load_cell_window(const StationSeries& x, const RunSettings& s) {
 std::vector<WindowDrift> window_drifts(const StationResult& r) {
   std::vector<WindowDrift> out;
   const SteadyWindow& w = r.window;
-  if (w.blocks < 3 || !(w.end > w.start) || r.forces.empty()) return out;
+  if (r.forces.empty()) return out;
+  // No steady window at all: every load's mean is that of a plate that may still be changing.
+  if (!w.found) {
+    for (const char* load : {"R_n", "R_s", "impact point"})
+      out.push_back({load, fmt::format("{}: the run found no steady window; its mean over {:.2f}-{:.2f} s may be that "
+                                       "of a plate still filling, and its ± does not include what a longer run would "
+                                       "read", load, w.start, w.end)});
+    return out;
+  }
+  if (w.blocks < 3 || !(w.end > w.start)) return out;
   const double block = (w.end - w.start) / w.blocks;
   std::vector<double> t, normal, shear, minus_moment;
   for (const ForceSample& f : r.forces) {

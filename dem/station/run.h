@@ -143,7 +143,8 @@ SteadyWindow load_cell_window(const StationSeries& series, const RunSettings& s)
 // Which plate loads still move through the steady window (judged on R_n alone unless
 // RunSettings::steady_all_loads): R_n, R_s and the impact point, each by the early stop's own test
 // (WindowTrend::drifting) on its 0.1 s block means, with a note for each. Read from r.forces and
-// r.window, so a cached result says the same as the run that made it.
+// r.window, so a cached result says the same as the run that made it. A run with no steady window
+// (none found, or cut before one could be judged: a short --max-time) names every load.
 struct WindowDrift {
   std::string load;  // "R_n", "R_s" or "impact point"
   std::string note;

@@ -6,7 +6,10 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <cstring>
+#include <string>
+#include <vector>
 
 #include "dem/station/run.h"
 #include "tiny_station.h"
@@ -102,6 +105,28 @@ BOOST_AUTO_TEST_CASE(layer_reaches_the_pulley_at_belt_speed) {
   const auto& r = tiny_run();
   BOOST_TEST_MESSAGE("layer speed " << r.layer_speed.value << " +- " << r.layer_speed.se << " m/s");
   BOOST_TEST(std::abs(r.layer_speed.value / 3.0 - 1.0) < 0.01);
+}
+
+// A run cut before the early stop could first have judged it (0.45 s, as `--max-time 0.45` sets
+// it: a 0.225 s window, first judged at 0.4 + 0.225 s) ends on a plate still filling: its means are
+// not called steady, a note says why, and every plate load is named unsteady (so a validation or a
+// diagnosis on it carries the caveat).
+BOOST_AUTO_TEST_CASE(a_run_cut_before_steady_state_says_so) {
+  RunOptions o;
+  o.settings = test::tiny_settings();
+  o.settings.max_time = 0.45;
+  o.settings.min_time = std::min(o.settings.min_time, 0.45);
+  o.settings.min_window = 0.225;
+  const StationResult r = run_station(test::tiny_station(), o);
+  BOOST_TEST_MESSAGE("cut at " << r.simulated_time << " s: window " << r.window.start << "-" << r.window.end
+                               << " s, R_n = " << r.normal_force.value << " +- " << r.normal_force.se << " N");
+  BOOST_TEST(!r.window.found);
+  bool said = false;
+  for (const auto& n : r.notes) said = said || n.find("before the plate's load could be judged steady") != std::string::npos;
+  BOOST_TEST(said);
+  std::vector<std::string> loads;
+  for (const auto& d : window_drifts(r)) loads.push_back(d.load);
+  BOOST_TEST(loads == (std::vector<std::string>{"R_n", "R_s", "impact point"}), boost::test_tools::per_element());
 }
 
 // Same inputs and seed give the same numbers, bit for bit, whatever the thread count; another seed
