@@ -9,6 +9,7 @@
 #include "app/commands.h"
 #include "app/dem_options.h"
 #include "app/option_checks.h"
+#include "app/validate_console.h"
 #include "core/input_error.h"
 #include "core/output_folder.h"
 
@@ -48,8 +49,8 @@ int run_diagnose(const DiagnoseCli& o) {
   out->commit();
   const auto& r = res.diagnosis;
   const auto& sc = res.self_check;
-  std::cout << r.verdict << "\n";
-  for (const auto& f : r.findings) std::cout << "- " << f << "\n";
+  std::cout << console_text(r.verdict) << "\n";
+  for (const auto& f : r.findings) std::cout << "- " << console_text(f) << "\n";
   if (sc) {
     std::cout << fmt::format("self-check ({} replicas of this design): {} false alarm{} among effect-free replicas",
                              sc->null_replicas, sc->false_alarms, sc->false_alarms == 1 ? "" : "s");

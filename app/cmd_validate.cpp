@@ -83,7 +83,7 @@ int run_validate(const ValidateCli& o) {
   out->commit();
   progress::clear();
   for (const auto& p : judged.acceptance_problems) std::cerr << "chutelab: acceptance: " << p << "\n";
-  std::cout << validate_console(r.report(), o.add_missing, (fs::path(o.out) / "report.html").string());
+  std::cout << console_text(validate_console(r.report(), o.add_missing, (fs::path(o.out) / "report.html").string()));
   if (!o.junit.empty()) {
     std::cout << fmt::format("junit: {} ({} test case{}, {} failed, {} skipped{}{})\n", o.junit, junit.tests,
                              junit.tests == 1 ? "" : "s", junit.failures, junit.skipped,

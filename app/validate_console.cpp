@@ -1,8 +1,11 @@
 #include "app/validate_console.h"
 
+#include <algorithm>
 #include <cctype>
+#include <string_view>
 #include <fmt/format.h>
 
+#include "core/message.h"
 #include "reports/plain_summary.h"
 #include "validation/failed_values.h"
 
@@ -105,6 +108,18 @@ std::string validate_console(const reports::ReportInput& in, bool added_missing,
   o += acceptance_lines(in, fmt::format("{}", fmt::join(added, " + ")));
   o += fmt::format("report: {}\n", report_path);
   return o;
+}
+
+std::string console_text(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    out += one_line(std::string_view(text).substr(at, end - at), std::string::npos);
+    if (end < text.size()) out += '\n';
+    at = end + 1;
+  }
+  return out;
 }
 
 }  // namespace chutelab::app

@@ -13,4 +13,10 @@ namespace chutelab::app {
 // diagnosis found nothing to add).
 std::string validate_console(const reports::ReportInput& in, bool added_missing, const std::string& report_path);
 
+// Lines for the console (the results a command prints): each line escaped as messages are
+// (core/message.h one_line: controls, bytes that are not UTF-8, invisible and direction-changing
+// code points), so that a name from the data cannot reorder or hide what is printed around it (a
+// right-to-left override in a condition name). Line ends are kept.
+std::string console_text(const std::string& text);
+
 }  // namespace chutelab::app

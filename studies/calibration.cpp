@@ -1,4 +1,5 @@
 #include "studies/calibration.h"
+#include "studies/csv_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -157,17 +158,17 @@ std::vector<CalibrationPoint> read_calibration_csv(const std::filesystem::path& 
     if (p.shape != "sphere" && p.shape != "clump")
       throw InputError(file.string(), r.line, "shape", fmt::format("must be sphere or clump, got '{}'", p.shape));
     p.grain = t.text(r, col("grain"));
-    p.rolling_friction = t.number(r, col("rolling_friction"));
-    p.solid_density = t.number(r, col("solid_density_kgm3"));
-    p.bulk_density = t.number(r, col("bulk_density_kgm3"));
-    p.pile_height = t.number(r, col("pile_height_mm")) * 1e-3;
-    p.repose_angle_deg = t.optional_number(r, col("repose_angle_deg")).value_or(std::nan(""));
-    p.particles = static_cast<long>(t.number(r, col("particles")));
-    p.settled = t.number(r, col("settled")) != 0.0;
+    p.rolling_friction = csv_in_range(t, r, col("rolling_friction"), 0.0, 10.0);
+    p.solid_density = csv_in_range(t, r, col("solid_density_kgm3"), 1e-3, 1e5);
+    p.bulk_density = csv_in_range(t, r, col("bulk_density_kgm3"), 0.0, 1e5);
+    p.pile_height = csv_in_range(t, r, col("pile_height_mm"), 0.0, 1e5) * 1e-3;
+    p.repose_angle_deg = csv_in_range(t, r, col("repose_angle_deg"), 0.0, 90.0, true);
+    p.particles = static_cast<long>(csv_count(t, r, col("particles")));
+    p.settled = csv_flag(t, r, col("settled"));
     // Older files carry the time; newer ones keep it in calibration-timing.csv beside them.
     p.run_seconds = t.column("run_seconds") ? t.number(r, col("run_seconds")) : std::nan("");
     p.distance = t.optional_number(r, col("target_distance"));
-    p.closest = t.number(r, col("closest")) != 0.0;
+    p.closest = csv_flag(t, r, col("closest"));
     // Provenance columns came later: optional, so a study written before them still reads.
     if (const auto c = t.column("dataset")) p.dataset = t.text(r, *c);
     if (const auto c = t.column("quality")) p.quality = t.text(r, *c);

@@ -1,4 +1,5 @@
 #include "studies/sensitivity.h"
+#include "studies/csv_checks.h"
 #include "core/csv_field.h"
 
 #include <algorithm>
@@ -312,9 +313,9 @@ SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
     o.fluct_resultant = opt(r, "fluctuation_resultant_N");
     o.wall_seconds = number_or(r, "run_seconds", std::nan(""));  // in files written before the timing file
     o.simulated = num(r, "simulated_s");
-    o.steps = static_cast<long long>(num(r, "steps"));
-    o.particles = static_cast<std::size_t>(num(r, "peak_particles"));
-    o.steady = num(r, "steady") != 0.0;
+    o.steps = csv_count(t, r, col("steps"));
+    o.particles = static_cast<std::size_t>(csv_count(t, r, col("peak_particles")));
+    o.steady = csv_flag(t, r, col("steady"));
     s.rows.push_back(row);
   }
   // Wall-clock times live beside the study (sensitivity-timing.csv), so the study's own files are

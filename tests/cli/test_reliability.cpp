@@ -541,4 +541,32 @@ BOOST_AUTO_TEST_CASE(class9_quiet_diagnosis_and_a_self_check_estimated) {
   BOOST_TEST(silent.err.find("self-check") == std::string::npos, silent.err.substr(0, 2000));
 }
 
+// Class 13: a study's numbers are checked as a dataset's: 1e300 particles in calibration.csv was cast
+// and printed as -9223372036854775808, and a step count or a steady flag of any value was taken.
+BOOST_AUTO_TEST_CASE(class13_study_numbers_are_checked) {
+  Sandbox s("studies");
+  const fs::path cal = s.root / "cal", sens = s.root / "sens";
+  fs::create_directories(cal);
+  fs::create_directories(sens);
+  std::string c = read_file(kSrc / "bench" / "calibration" / "calibration.csv");
+  c.replace(c.find(",803,1,3.32424,"), 15, ",1e300,1,3.32424,");
+  write_file(cal / "calibration.csv", c);
+  refused(s, s.args("validate") + " --studies " + s.q(cal), 2, "calibration.csv:2: particles: must be a whole number");
+  std::string t = read_file(kSrc / "bench" / "sensitivity" / "sensitivity.csv");
+  t.replace(t.find(",29869,5086,1,V3-41,"), 20, ",29869,5086,7,V3-41,");
+  write_file(sens / "sensitivity.csv", t);
+  refused(s, s.args("validate") + " --studies " + s.q(sens), 2, "sensitivity.csv:2: steady: must be 0 or 1");
+}
+
+// Class 13: a direction override in a condition name reached the console raw, reordering the line it
+// was printed in; the console now shows it escaped, as messages do.
+BOOST_AUTO_TEST_CASE(class13_bidi_overrides_are_escaped_on_the_console) {
+  Sandbox s("bidi");
+  for (const char* f : {"conditions.csv", "measurements.csv", "trajectory.csv"})
+    s.replace_in(f, "\nV2-26,", "\nV2-26\xE2\x80\xAE,");
+  const auto r = accepted(s, s.args("diagnose"));
+  BOOST_TEST(r.out.find("V2-26\\u202e") != std::string::npos, r.out.substr(0, 3000));
+  BOOST_TEST(r.out.find("\xE2\x80\xAE") == std::string::npos);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
