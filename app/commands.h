@@ -15,6 +15,7 @@ namespace chutelab::app {
 
 using Action = std::function<int()>;
 
+void add_init(CLI::App& app, Action& action);
 void add_estimate(CLI::App& app, Action& action);
 void add_validate(CLI::App& app, Action& action);
 void add_diagnose(CLI::App& app, Action& action);

@@ -156,6 +156,7 @@ int main(int argc, char** argv) {
   app::add_import_logs(app, action);
   app::add_synthesize_logs(app, action);
   app::add_design(app, action);
+  app::add_init(app, action);
   app::check_every_option(app);  // after every command's own rules (core/option_check.h)
   try {
     app.parse(argc, argv);

@@ -52,11 +52,13 @@ std::vector<RigField> make_fields() {
       {"material", "friction_belt", "friction_belt", 1.0, 0.0, 10.0, true, {},
        [](Setup& s) -> double& { return s.material.friction_belt; }, "friction, particle–belt"},
       {"material", "friction_side", "friction_side", 1.0, 0.0, 10.0, false, {},
-       [](Setup& s) -> double& { return s.material.friction_side; }, "friction, particle–side wall"},
+       [](Setup& s) -> double& { return s.material.friction_side; }, "friction, particle–side wall",
+       "friction_plate"},
       {"material", "rolling_friction_particle", "rolling_friction_particle", 1.0, 0.0, 10.0, true,
        {}, [](Setup& s) -> double& { return s.material.rolling_friction_particle; }, "rolling friction, particle–particle"},
       {"material", "rolling_friction_wall", "rolling_friction_wall", 1.0, 0.0, 10.0, false, {},
-       [](Setup& s) -> double& { return s.material.rolling_friction_wall; }, "rolling friction, particle–wall"},
+       [](Setup& s) -> double& { return s.material.rolling_friction_wall; }, "rolling friction, particle–wall",
+       "rolling_friction_particle"},
       {"material", "restitution_particle", "restitution_particle", 1.0, 0.0, 1.0, true, {},
        [](Setup& s) -> double& { return s.material.restitution_particle; }, "restitution, particle–particle"},
       {"material", "restitution_plate", "restitution_plate", 1.0, 0.0, 1.0, true, {},
@@ -86,9 +88,11 @@ void complete_defaults(Setup& setup, const std::vector<std::string_view>& presen
   };
   // Without a separate measurement, the walls get the particle-particle rolling resistance and
   // the side panels the plate friction: the reference study calibrated one rolling coefficient for both.
-  if (!has("rolling_friction_wall"))
-    setup.material.rolling_friction_wall = setup.material.rolling_friction_particle;
-  if (!has("friction_side")) setup.material.friction_side = setup.material.friction_plate;
+  for (const auto& f : rig_fields()) {
+    if (f.default_from.empty() || has(f.key)) continue;
+    for (const auto& from : rig_fields())
+      if (from.section == f.section && from.key == f.default_from) f.ref(setup) = from.ref(setup);
+  }
 }
 
 }  // namespace chutelab

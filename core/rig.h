@@ -84,11 +84,13 @@ struct RigField {
   std::optional<double> fallback;  // boundary value used when absent and not required
   std::function<double&(Setup&)> ref;
   std::string_view label = {};  // plain words with the unit, for people (the designer's page)
+  std::string_view default_from = {};  // when absent: the value of this key of the same table
 };
 const std::vector<RigField>& rig_fields();
 const RigField* find_override_column(std::string_view column);
 
-// Fill the defaults that depend on other fields (e.g. wall rolling friction = particle value).
+// Fill the defaults that depend on other fields (RigField::default_from: e.g. wall rolling friction =
+// particle value).
 void complete_defaults(Setup& setup, const std::vector<std::string_view>& present_keys);
 
 }  // namespace chutelab

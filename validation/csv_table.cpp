@@ -60,15 +60,26 @@ std::vector<std::string> split(std::string_view line, const std::string& file, l
 
 CsvTable CsvTable::read(const std::filesystem::path& path,
                        std::initializer_list<std::string_view> required) {
+  return read(path, std::vector<std::string_view>(required), {});
+}
+
+CsvTable CsvTable::read(const std::filesystem::path& path, const std::vector<std::string_view>& required,
+                        std::string layout) {
   // Checked before any line is split (core/text_file.h): a NUL would end a line early ("row has 1
   // fields"), UTF-16 reads as NULs, and a byte-order mark in mid-file would stick to the first cell
   // of its line.
-  return parse(read_text_file(path.string()), path.string(), required);
+  return parse(read_text_file(path.string()), path.string(), required, std::move(layout));
 }
 
 CsvTable CsvTable::parse(std::string_view content, std::string file, std::initializer_list<std::string_view> required) {
+  return parse(content, std::move(file), std::vector<std::string_view>(required), {});
+}
+
+CsvTable CsvTable::parse(std::string_view content, std::string file, const std::vector<std::string_view>& required,
+                         std::string layout) {
   CsvTable t;
   t.file_ = std::move(file);
+  t.layout_ = std::move(layout);
   if (auto p = text_encoding_problem(content)) throw InputError(t.file_, p->line, "", p->problem);
   bool warned_latin1 = false;
   bool have_header = false;
@@ -132,6 +143,9 @@ void CsvTable::explain_missing(std::string_view name, long line) const {
                          fmt::format("the header is separated by {}, not commas; save the file as comma-separated "
                                      "CSV (decimal point '.')",
                                      what));
+  if (!layout_.empty())
+    throw InputError(file_, line, std::string(name),
+                     fmt::format("required column is missing from the header; {}", layout_));
   throw InputError(file_, line, std::string(name), "required column is missing from the header");
 }
 

@@ -17,13 +17,19 @@ struct CsvRow {
 class CsvTable {
  public:
   // Columns in `required` are checked as soon as the header is read, so a missing column is
-  // reported as such rather than as every row being too long.
+  // reported as such rather than as every row being too long; `layout`, when given, says the file's
+  // header with an example row, shown with a missing column (a wide table sent where a long one is
+  // read learns the layout from the message).
   static CsvTable read(const std::filesystem::path& file,
                        std::initializer_list<std::string_view> required = {});
+  static CsvTable read(const std::filesystem::path& file, const std::vector<std::string_view>& required,
+                       std::string layout);
   // The same for a text already in memory (a dataset's file as read, a table from Python); `file`
   // names it in messages. Its encoding is checked as a file's is.
   static CsvTable parse(std::string_view content, std::string file,
                         std::initializer_list<std::string_view> required = {});
+  static CsvTable parse(std::string_view content, std::string file, const std::vector<std::string_view>& required,
+                        std::string layout);
 
   const std::string& file() const { return file_; }
   const std::vector<std::string>& header() const { return header_; }
@@ -40,7 +46,7 @@ class CsvTable {
 
  private:
   [[noreturn]] void explain_missing(std::string_view name, long line) const;
-  std::string file_;
+  std::string file_, layout_;
   std::vector<std::string> header_;
   std::vector<CsvRow> rows_;
 };

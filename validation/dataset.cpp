@@ -19,6 +19,7 @@
 #include "core/unicode.h"
 #include "core/units.h"
 #include "validation/csv_table.h"
+#include "validation/dataset_fields.h"
 
 namespace chutelab::validation {
 namespace fs = std::filesystem;
@@ -82,22 +83,6 @@ void check_geometry(const Setup& s, const std::string& file, long line) {
   }
 }
 
-// The operating inputs a condition may state an uncertainty of: conditions.csv column, the
-// [uncertainty] key of a setup-wide default, the unit, and where it goes.
-struct OperatingUncertainty {
-  std::string_view column, key;
-  double to_si;
-  std::optional<double> InputUncertainties::*member;
-};
-constexpr OperatingUncertainty kOperating[] = {
-    {"belt_speed_uncertainty_mps", "belt_speed_mps", 1.0, &InputUncertainties::belt_speed},
-    {"mass_flow_uncertainty_tph", "mass_flow_tph", units::tph, &InputUncertainties::mass_flow},
-    {"plate_distance_uncertainty_mm", "plate_distance_mm", units::mm, &InputUncertainties::plate_distance},
-    {"plate_top_uncertainty_mm", "plate_top_mm", units::mm, &InputUncertainties::plate_top},
-    {"stream_thickness_uncertainty_mm", "stream_thickness_mm", units::mm,
-     &InputUncertainties::stream_thickness},
-};
-
 // An input uncertainty is one standard deviation, finite and >= 0 (0 = known exactly), and no wider
 // than the whole range the input may take (`span`, in the key's unit): beyond it the perturbed inputs
 // leave any rig, and u_input silently went missing (5e307 m/s on the belt speed).
@@ -109,15 +94,6 @@ void check_input_uncertainty(double v, double span, const std::string& file, lon
                      fmt::format("uncertainty {:g} is wider than the whole range the input can take ({:g}); give "
                                  "one standard deviation in the key's unit",
                                  v, span));
-}
-
-// The range of an operating input (validation::check_operating_input's bounds), in its column's unit.
-double operating_span(std::string_view key) {
-  if (key == "belt_speed_mps") return 50.0;
-  if (key == "mass_flow_tph") return 1e5;
-  if (key == "plate_top_mm") return 2e5;
-  if (key == "stream_thickness_mm") return 1e4;
-  return 1e5;  // plate_distance_mm
 }
 
 // [uncertainty]: keys are the setup's own, dotted ("material.friction_plate" = 0.02) or in
@@ -142,9 +118,9 @@ InputUncertainties read_uncertainty_table(const toml::table& doc, const std::str
       throw InputError(file, line, field, "must be a number (one standard deviation, in the key's unit)");
     check_input_uncertainty(*v, std::numeric_limits<double>::infinity(), file, line, field);
     if (section.empty())
-      for (const auto& op : kOperating)
-        if (op.key == key) {
-          check_input_uncertainty(*v, operating_span(op.key), file, line, field);
+      for (const auto& op : operating_uncertainty_columns())
+        if (op.setup_key == key) {
+          check_input_uncertainty(*v, op.span, file, line, field);
           u.*op.member = *v * op.to_si;
           return;
         }
@@ -245,9 +221,13 @@ Setup setup_from(const std::string& file, const DatasetFile* text, InputUncertai
   return s;
 }
 
-// A dataset's CSV file, from the folder or as already read.
-CsvTable table_from(const fs::path& path, const DatasetFile* text, std::initializer_list<std::string_view> required) {
-  return text ? CsvTable::parse(text->text, text->shown, required) : CsvTable::read(path, required);
+// A dataset's CSV file, from the folder or as already read, with its required columns and the
+// layout a missing one is explained with (validation/dataset_fields.h).
+CsvTable table_from(const fs::path& path, const DatasetFile* text, std::span<const ColumnSpec> columns,
+                    const std::string& what) {
+  const std::string layout = fmt::format("{}: {}", what, layout_of(columns));
+  return text ? CsvTable::parse(text->text, text->shown, required_columns(columns), layout)
+              : CsvTable::read(path, required_columns(columns), layout);
 }
 
 }  // namespace
@@ -309,27 +289,25 @@ namespace {
 std::vector<Station> conditions_from(const fs::path& path, const DatasetFile* text, const Setup& setup,
                                      std::vector<SourceLine>* lines, std::vector<InputUncertainties>* uncertainties,
                                      const InputUncertainties& defaults) {
-  const CsvTable t = table_from(
-      path, text, {"condition", "belt_speed_mps", "mass_flow_tph", "plate_distance_mm", "plate_top_mm"});
+  const CsvTable t = table_from(path, text, condition_columns(), "conditions.csv has one test condition a row");
   const std::size_t c_id = t.require("condition");
   const std::size_t c_speed = t.require("belt_speed_mps");
   const std::size_t c_flow = t.require("mass_flow_tph");
   const std::size_t c_dist = t.require("plate_distance_mm");
   const std::size_t c_top = t.require("plate_top_mm");
   const auto c_thick = t.column("stream_thickness_mm");
-  std::vector<std::pair<std::size_t, const OperatingUncertainty*>> c_unc;
-  for (const auto& op : kOperating)
+  std::vector<std::pair<std::size_t, const UncertaintyColumn*>> c_unc;
+  for (const auto& op : operating_uncertainty_columns())
     if (auto c = t.column(std::string(op.column))) c_unc.emplace_back(*c, &op);
 
   std::vector<std::pair<std::size_t, const RigField*>> overrides;
-  static const std::set<std::string> base = {"condition",         "belt_speed_mps",
-                                             "mass_flow_tph",     "plate_distance_mm",
-                                             "plate_top_mm",      "stream_thickness_mm"};
   for (std::size_t i = 0; i < t.header().size(); ++i) {
     const std::string& col = t.header()[i];
-    if (base.count(col)) continue;
+    bool own = false;
+    for (const auto& c : condition_columns()) own = own || c.name == col;
+    if (own) continue;
     bool is_uncertainty = false;
-    for (const auto& op : kOperating) is_uncertainty = is_uncertainty || op.column == col;
+    for (const auto& op : operating_uncertainty_columns()) is_uncertainty = is_uncertainty || op.column == col;
     if (is_uncertainty) continue;
     if (const RigField* f = find_override_column(col))
       overrides.emplace_back(i, f);
@@ -390,7 +368,7 @@ std::vector<Station> conditions_from(const fs::path& path, const DatasetFile* te
       InputUncertainties u = defaults;
       for (const auto& [col, op] : c_unc)
         if (const auto v = t.optional_number(row, col)) {
-          check_input_uncertainty(*v, operating_span(op->key), t.file(), row.line, std::string(op->column));
+          check_input_uncertainty(*v, op->span, t.file(), row.line, std::string(op->column));
           u.*op->member = *v * op->to_si;
         }
       uncertainties->push_back(std::move(u));
@@ -489,7 +467,10 @@ std::optional<double> uncertainty_cell(const CsvTable& t, const CsvRow& row,
 namespace {
 
 std::vector<Measurement> measurements_from(const fs::path& path, const DatasetFile* text, const Dataset* d) {
-  const CsvTable t = table_from(path, text, {"condition", "quantity", "value"});
+  const CsvTable t = table_from(path, text, measurement_columns(),
+                                "measurements.csv has one measured value a row; a wide table (one row a test, one "
+                                "column a quantity) becomes one row per value here, its operating point a row of "
+                                "conditions.csv");
   const std::size_t c_id = t.require("condition");
   const std::size_t c_q = t.require("quantity");
   const std::size_t c_v = t.require("value");
@@ -531,7 +512,7 @@ std::vector<Measurement> measurements_from(const fs::path& path, const DatasetFi
 }
 
 std::vector<TrajectoryPoint> trajectory_from(const fs::path& path, const DatasetFile* text, const Dataset* d) {
-  const CsvTable t = table_from(path, text, {"condition", "boundary", "x_mm", "y_mm"});
+  const CsvTable t = table_from(path, text, trajectory_columns(), "trajectory.csv has one point of a stream's edge a row");
   const std::size_t c_id = t.require("condition");
   const std::size_t c_b = t.require("boundary");
   const std::size_t c_x = t.require("x_mm");
@@ -584,7 +565,7 @@ std::vector<TrajectoryPoint> trajectory_from(const fs::path& path, const Dataset
 }
 
 std::vector<PlatePoint> plate_map_from(const fs::path& path, const DatasetFile* text, const Dataset& d) {
-  const CsvTable t = table_from(path, text, {"condition", "y_mm", "z_mm", "quantity", "value"});
+  const CsvTable t = table_from(path, text, plate_map_columns(), "plate_map.csv has one value at a point of the plate a row");
   const std::size_t c_id = t.require("condition");
   const std::size_t c_y = t.require("y_mm");
   const std::size_t c_z = t.require("z_mm");
@@ -665,6 +646,29 @@ namespace {
 // checks need them, so a folder's files are read, each once, in the order they always were.
 using FileOf = std::function<const DatasetFile*(const char* name)>;
 
+// A value without an uncertainty has no E/u_val and no weight in chi^2 or the diagnosis: it drops
+// out of the statistics, which the user must hear of rather than find in the counts. One line a
+// value; past the first ten of a file, how many more.
+void warn_unstated_uncertainties(const Dataset& d) {
+  constexpr int kShown = 10;
+  std::map<std::string, int> count;
+  auto say = [&](const SourceLine& where, const std::string& what) {
+    if (++count[where.file] <= kShown)
+      warn(fmt::format("{}:{}: {} has no uncertainty: it is left out of E/u_val and the statistics (give one "
+                       "standard deviation in the uncertainty column)",
+                       where.file, where.line, what));
+  };
+  for (const auto& m : d.measurements)
+    if (!m.uncertainty) say(m.where, fmt::format("{} of {}", name(m.quantity), shown(m.condition)));
+  for (const auto& p : d.trajectory)
+    if (!p.uncertainty)
+      say(p.where, fmt::format("the {} edge of {} at x = {:g} mm", name(p.boundary), shown(p.condition), p.x * 1e3));
+  for (const auto& p : d.plate_map)
+    if (!p.uncertainty) say(p.where, fmt::format("{} of {}", p.quantity, shown(p.condition)));
+  for (const auto& [file, n] : count)
+    if (n > kShown) warn(fmt::format("{}: and {} more values without uncertainty", file, n - kShown));
+}
+
 Dataset read_files(const FileOf& file, const fs::path& dir, MeasurementsRequired need,
                    std::shared_ptr<const DatasetTexts> kept) {
   Dataset d;
@@ -683,6 +687,7 @@ Dataset read_files(const FileOf& file, const fs::path& dir, MeasurementsRequired
   if (const DatasetFile* traj = file("trajectory.csv")) d.trajectory = trajectory_from(traj->shown, traj, &d);
   if (const DatasetFile* plate = file("plate_map.csv")) d.plate_map = plate_map_from(plate->shown, plate, d);
   file("tolerances.toml");  // kept for validate (it is read there, with the other options)
+  warn_unstated_uncertainties(d);
   d.sources = std::move(kept);
   return d;
 }

@@ -12,8 +12,6 @@
 #include "validation/model.h"
 
 namespace chutelab::validation {
-namespace {
-
 // A tolerance that matches no comparison is never checked, so a misspelt name would let acceptance
 // pass without testing anything: every name must be one the harness compares under.
 std::vector<std::string> tolerance_models() {
@@ -28,6 +26,17 @@ std::vector<std::string> tolerance_quantities() {
   for (Boundary b : kAllBoundaries) q.push_back(trajectory_quantity(b));
   return q;
 }
+
+const std::vector<ToleranceLimit>& tolerance_limits() {
+  static const std::vector<ToleranceLimit> limits = {
+      {"relative", "the largest |E| as a fraction of the measured value (0.05: 5 %)", &Tolerance::relative},
+      {"normalised", "the largest |E|/u_val, in units of the validation uncertainty", &Tolerance::normalised},
+      {"absolute", "the largest |E|, in the quantity's unit", &Tolerance::absolute},
+  };
+  return limits;
+}
+
+namespace {
 
 bool contains(const std::vector<std::string>& v, std::string_view s) {
   return std::find(v.begin(), v.end(), s) != v.end();
@@ -72,10 +81,9 @@ Tolerances Tolerances::read(const std::filesystem::path& path, const std::string
       for (const auto& [kind, value] : *lt) {
         const std::string kfield = fmt::format("{}.{}", field, kind.str());
         const long vline = line_of(kind, value);
-        std::optional<double>* slot = kind == "relative"     ? &tol.relative
-                                      : kind == "normalised" ? &tol.normalised
-                                      : kind == "absolute"   ? &tol.absolute
-                                                             : nullptr;
+        std::optional<double>* slot = nullptr;
+        for (const auto& l : tolerance_limits())
+          if (kind.str() == l.key) slot = &(tol.*l.slot);
         if (!slot)
           throw InputError(t.file_, vline, kfield,
                            fmt::format("unknown limit '{}' (use relative, normalised or absolute)", kind.str()));

@@ -21,6 +21,17 @@
 
 namespace chutelab::validation {
 
+struct Tolerance;
+// The names a tolerances.toml may hold: the models' tables (and "*"), the quantities, the limits.
+std::vector<std::string> tolerance_models();
+std::vector<std::string> tolerance_quantities();
+struct ToleranceLimit {
+  const char* key;
+  const char* meaning;
+  std::optional<double> Tolerance::*slot;
+};
+const std::vector<ToleranceLimit>& tolerance_limits();
+
 struct Tolerance {
   std::optional<double> relative;
   std::optional<double> normalised;
