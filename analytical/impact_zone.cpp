@@ -23,7 +23,9 @@ ImpactZone impact_zone(const TransferAnalysis& a) {
   hi = std::clamp(hi, 0.0, p.height);
   // A stream thinner than nothing cannot load a line: keep a band of at least one particle's
   // diameter so the mean pressure stays finite when h_b -> 0.
-  const double min_band = std::max(a.station.material.particle_diameter, 1e-3);
+  // (A setup for the analytical models alone may leave the particle's size out: then 1 mm.)
+  const double d = a.station.material.particle_diameter;
+  const double min_band = std::isfinite(d) ? std::max(d, 1e-3) : 1e-3;
   if (hi - lo < min_band) {
     const double mid = 0.5 * (lo + hi);
     lo = std::clamp(mid - 0.5 * min_band, 0.0, std::max(0.0, p.height - min_band));

@@ -126,6 +126,13 @@ TransferAnalysis analyse_transfer(const Station& recorded, const EffectList& eff
   const FlightContext ctx{st.material.particle_diameter, st.material.solid_density};
   bool has_force = false;
   for (const auto& e : effects) has_force = has_force || e->has_flight_force();
+  // A force in flight (air drag) acts per unit mass of one particle: without its size and density
+  // there is no acceleration to give, and a setup for the plain chain may leave them out.
+  if (has_force && !(std::isfinite(ctx.particle_diameter) && std::isfinite(ctx.solid_density)))
+    throw InputError("setup.toml", 0,
+                     std::isfinite(ctx.particle_diameter) ? "material.solid_density_kgm3" : "material.particle_diameter_mm",
+                     "a force on the particles in flight (air drag) needs their size and density: give "
+                     "material.particle_diameter_mm and material.solid_density_kgm3 in setup.toml");
   AccelerationFn extra;
   if (has_force)
     // By value: the trajectory integrates lazily and may outlive the caller's list.

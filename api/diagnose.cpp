@@ -3,8 +3,10 @@
 #include <chrono>
 #include <fmt/format.h>
 
+#include "core/message.h"
 #include "core/option_check.h"
 #include "core/progress.h"
+#include "core/rig_needs.h"
 #include "logs/dataset_logs.h"
 #include "validation/dataset_output.h"
 
@@ -66,6 +68,7 @@ DiagnoseResult diagnose(validation::Dataset dataset, const DiagnoseOptions& o) {
   // signatures, and the winner is confirmed by a real run (DESIGN.md §5, validation/diagnosis.h).
   const auto models = validation::make_models(o.models, model_settings(o.dem, d.dir, {}, o.progress, d.stations, d.source("setup.toml")));
   const auto started = std::chrono::steady_clock::now();
+  if (const std::string why = air_drag_unavailable(d.stations); !why.empty()) warn(why);
   res.diagnosis = validation::diagnose(d, models, opt);
   if (o.self_check > 0) {
     // Up to two diagnoses a replica (effect-free, and with the explanation found), each about as

@@ -1,17 +1,41 @@
 #include "api/estimate.h"
 
+#include <array>
 #include <cmath>
+#include <stdexcept>
 #include <fmt/format.h>
 
 #include "api/effects.h"
 #include "api/record_check.h"
 #include "core/input_error.h"
+#include "core/rig.h"
 #include "core/units.h"
 #include "validation/dataset.h"
 #include "validation/harness.h"
 #include "validation/models/models.h"
 
 namespace chutelab::api {
+namespace {
+
+// The setup keys estimate takes as options: the rig's common geometry and material (core/rig.h's
+// ranges and units, mm and kg/m^3).
+struct RigOption {
+  const std::optional<double>* value;
+  std::string_view key;  // RigField::key
+  const char* option;    // the neutral key of the option
+};
+std::array<RigOption, 3> rig_options(const EstimateOptions& o) {
+  return {{{&o.pulley_diameter, "pulley_diameter_mm", "pulley_diameter"},
+           {&o.belt_width, "belt_width_mm", "belt_width"},
+           {&o.bulk_density, "bulk_density_kgm3", "bulk_density"}}};
+}
+const RigField& field(std::string_view key) {
+  for (const auto& f : rig_fields())
+    if (f.key == key) return f;
+  throw std::logic_error("no rig field " + std::string(key));
+}
+
+}  // namespace
 
 void check(const EstimateOptions& o) {
   if (!o.dataset.empty() && !o.setup.empty())
@@ -28,6 +52,13 @@ void check(const EstimateOptions& o) {
       {&o.stream_thickness, {"stream_thickness_mm", "stream_thickness"}}};
   for (const auto& [value, names] : given)
     if (*value) validation::check_operating_input(names.first, **value, names.second);
+  for (const auto& [value, key, option] : rig_options(o)) {
+    if (!*value) continue;
+    const RigField& f = field(key);
+    if (!std::isfinite(**value) || **value < f.min || **value > f.max)
+      throw InputError("", 0, option,
+                       fmt::format("{} {:g} is outside the physical range [{:g}, {:g}]", f.label, **value, f.min, f.max));
+  }
   for (const auto& e : o.effects) effects::parse_setting(e, false);
 }
 
@@ -81,6 +112,27 @@ Station resolve_station(const EstimateOptions& o) {
     st.plate = base->plate;
     st.material = base->material;
   }
+  // The options on top, checked as the setup is (a load wider than its belt, a bulk solid denser
+  // than its particles), naming the option.
+  for (const auto& [value, key, option] : rig_options(o)) {
+    if (!*value) continue;
+    const RigField& f = field(key);
+    Setup s;
+    s.belt = st.belt;
+    s.material = st.material;
+    f.ref(s) = **value * f.to_si;
+    st.belt = s.belt;
+    st.material = s.material;
+  }
+  if (o.belt_width && st.belt.loaded_width > st.belt.belt_width)
+    throw InputError("", 0, "belt_width",
+                     fmt::format("belt width {:g} mm is narrower than the loaded width {:g} mm of {}", *o.belt_width,
+                                 st.belt.loaded_width * 1e3, setup_path.string()));
+  if (o.bulk_density && st.material.bulk_density > st.material.solid_density)
+    throw InputError("", 0, "bulk_density",
+                     fmt::format("bulk density {:g} kg/m^3 is above the solid density {:g} kg/m^3 of {} (a bulk solid "
+                                 "has voids)",
+                                 *o.bulk_density, st.material.solid_density, setup_path.string()));
   return st;
 }
 

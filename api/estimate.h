@@ -25,13 +25,15 @@ namespace chutelab::api {
 
 // What to estimate. Boundary units (m/s, t/h, mm), as a conditions.csv row. Errors name the keys
 // "dataset", "setup", "condition", "belt_speed", "mass_flow", "plate_distance", "plate_top",
-// "stream_thickness", "effect".
+// "stream_thickness", "pulley_diameter", "belt_width", "bulk_density", "effect".
 struct EstimateOptions {
   std::filesystem::path dataset, setup;   // a dataset folder, or a setup.toml alone (not both)
   const validation::Dataset* dataset_read = nullptr;  // a dataset already read, in place of `dataset`
   std::string condition;                  // start from this row of the dataset's conditions.csv
   std::filesystem::path default_dataset;  // used when neither dataset nor setup is given
   std::optional<double> belt_speed, mass_flow, plate_distance, plate_top, stream_thickness;
+  // The rig's common geometry and material on top of the setup (or the row): mm, mm, kg/m^3.
+  std::optional<double> pulley_diameter, belt_width, bulk_density;
   std::vector<std::string> effects;       // "NAME=VALUE"
 };
 

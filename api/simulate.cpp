@@ -7,6 +7,7 @@
 #include "core/campaign.h"
 #include "core/input_error.h"
 #include "core/message.h"
+#include "core/rig_needs.h"
 #include "dem/station/cache.h"
 #include "dem/station/progress.h"
 #include "dem/world.h"
@@ -80,6 +81,7 @@ SimulateResult simulate(const SimulateOptions& o) {
   res.setup = validation::read_setup(setup_file);
   const auto stations = validation::read_conditions(dir / "conditions.csv", res.setup);
   res.station = validation::condition_row(stations, o.condition, dir / "conditions.csv", "condition");
+  require_dem_keys(res.station, setup_file.string());
   check_records(o.effects, {}, {res.station});
 
   const st::DemTable table = st::read_dem_table(setup_file.string());

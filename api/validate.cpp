@@ -9,7 +9,9 @@
 #include "api/record_check.h"
 #include "api/log_report.h"
 #include "core/input_error.h"
+#include "core/message.h"
 #include "core/option_check.h"
+#include "core/rig_needs.h"
 #include "reports/report.h"
 #include "studies/sensitivity.h"
 #include "validation/dataset_output.h"
@@ -155,6 +157,7 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
                        "the diagnosis needs an analytical model in " + mention("models"));
     validation::DiagnoseOptions dopt;
     dopt.progress = o.progress && !progress::quiet();  // --quiet leaves the diagnosis's lines out too
+    if (const std::string why = air_drag_unavailable(d.stations); !why.empty()) warn(why);
     res.diagnosis = validation::diagnose(d, in_registry_order(cheap), dopt);
   }
   // add_missing: what the diagnosis recommends, at the strengths its verdict states (its own fit,

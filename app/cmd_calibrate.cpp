@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "core/rig_needs.h"
 #include "app/dem_options.h"
 #include "app/option_checks.h"
 #include "core/campaign.h"
@@ -83,6 +84,13 @@ int run_calibrate(const CalibrateCli& o) {
   ctx.dataset = dir.string();
   ctx.quality = o.quality;
   ctx.setup = validation::read_setup(dir / "setup.toml");
+  {
+    Station probe;  // the slump tests and the incline are the DEM's: every contact value is needed
+    probe.material = ctx.setup.material;
+    probe.belt = ctx.setup.belt;
+    probe.plate = ctx.setup.plate;
+    require_dem_keys(probe, (dir / "setup.toml").string(), "calibrate's DEM");
+  }
   OutputFolder out(o.out, dataset_inputs(dir), "calibrate");  // checked before minutes of slump tests
   check_entries(out, {"calibration.csv", "incline.csv", "calibration.md", "calibration.html", "material.toml",
                       "calibration-timing.csv"});

@@ -1,6 +1,7 @@
 // `chutelab estimate`: the analytical answer for one condition, in milliseconds, for a designer.
 #include <cmath>
 #include <fmt/format.h>
+#include <tuple>
 #include <iostream>
 #include <optional>
 
@@ -62,6 +63,13 @@ int run_sweep(const EstimateCli& o, const analytical::EffectList& fixed,
     if (given)
       throw InputError("", 0, "--sweep", fmt::format("{} is swept; leave out {}", spec.column, spec.flag));
   }
+  if (spec.kind == SweepSpec::Kind::rig)
+    for (const auto& [value, column, flag] :
+         {std::tuple{&o.pulley_diameter, "pulley_diameter_mm", "--pulley-diameter"},
+          std::tuple{&o.belt_width, "belt_width_mm", "--belt-width"},
+          std::tuple{&o.bulk_density, "bulk_density_kgm3", "--bulk-density"}})
+      if (*value && spec.column == column)
+        throw InputError("", 0, "--sweep", fmt::format("{} is swept; leave out {}", spec.column, flag));
   if (spec.kind == SweepSpec::Kind::effect)
     for (const auto& s : settings)
       if (s.info == spec.effect)
@@ -150,6 +158,9 @@ void add_estimate(CLI::App& app, Action& action) {
                   "stream thickness h_b, mm (default: the --condition row's stream_thickness_mm, "
                   "else from continuity; --mass-flow or --belt-speed drops the row's value, so h_b "
                   "then comes from continuity)");
+  cmd->add_option("--pulley-diameter", o->pulley_diameter, "head pulley diameter, mm (default: the setup's)");
+  cmd->add_option("--belt-width", o->belt_width, "belt width, mm (default: the setup's)");
+  cmd->add_option("--bulk-density", o->bulk_density, "bulk density of the load, kg/m^3 (default: the setup's)");
   cmd->add_option("--effect", o->effects, "add a physical effect: NAME=VALUE (repeatable)");
   cmd->add_option("--svg", o->svg,
                   "also draw the design (pulley, streamlines, plate, impact point, Korzen readout) as SVG "

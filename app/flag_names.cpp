@@ -32,7 +32,7 @@ constexpr auto kPlain = std::to_array<std::string_view>({
     "models", "effect", "input", "dataset", "setup", "condition", "out", "tolerances", "studies", "junit",
     "mapping", "seed", "noise_scale", "noise_factor", "outliers", "alpha", "self_check", "jobs", "threads",
     "dem.threads", "dem.quality", "dem.cache", "diagnose", "add_missing", "accept_with_effects", "belt_speed", "mass_flow",
-    "plate_distance", "plate_top", "stream_thickness", "sweep", "svg", "dxf", "points", "format", "quality",
+    "plate_distance", "plate_top", "stream_thickness", "pulley_diameter", "belt_width", "bulk_density", "sweep", "svg", "dxf", "points", "format", "quality",
     "contact", "shape", "diameter_mm", "shear_modulus_scale", "dt_fraction", "max_time", "steady_on", "vtk_every",
     "plate_cells", "map_cell_mm", "no_cache", "rolling", "density", "target_bulk_density",
     "target_pile_height", "sizes", "only", "limit", "truth", "sensor", "dem_series"});

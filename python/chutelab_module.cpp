@@ -68,7 +68,8 @@ std::string python_mention(std::string_view key) {
   static const std::string_view keywords[] = {"dataset", "setup", "condition", "effect", "models", "tolerances",
                                               "seed", "noise_scale", "out", "alpha", "dem.quality", "dem.threads",
                                               "dem.cache", "dem.no_cache", "self_check", "belt_speed", "mass_flow",
-                                              "plate_distance", "plate_top", "stream_thickness", "diagnose"};
+                                              "plate_distance", "plate_top", "stream_thickness", "pulley_diameter",
+                                              "belt_width", "bulk_density", "diagnose"};
   for (const auto k : keywords)
     if (k == key) return python_keyword(key) + "=";
   return std::string(key);
@@ -772,7 +773,8 @@ PYBIND11_MODULE(_chutelab, m) {
   m.def(
       "estimate",
       [](std::optional<double> belt_speed, std::optional<double> mass_flow, std::optional<double> plate_distance,
-         std::optional<double> plate_top, std::optional<double> stream_thickness, const std::string& dataset,
+         std::optional<double> plate_top, std::optional<double> stream_thickness, std::optional<double> pulley_diameter,
+         std::optional<double> belt_width, std::optional<double> bulk_density, const std::string& dataset,
          const std::string& setup, const std::string& condition, const std::vector<std::string>& effect_args,
          const std::string& default_dataset, const validation::Dataset* dataset_read) {
         api::EstimateOptions in;
@@ -786,11 +788,15 @@ PYBIND11_MODULE(_chutelab, m) {
         in.plate_distance = plate_distance;
         in.plate_top = plate_top;
         in.stream_thickness = stream_thickness;
+        in.pulley_diameter = pulley_diameter;
+        in.belt_width = belt_width;
+        in.bulk_density = bulk_density;
         in.effects = effect_args;
         return std::make_unique<Estimated>(Estimated{api::estimate(in)});
       },
       py::arg("belt_speed"), py::arg("mass_flow"), py::arg("plate_distance"), py::arg("plate_top"),
-      py::arg("stream_thickness"), py::arg("dataset"), py::arg("setup"), py::arg("condition"),
+      py::arg("stream_thickness"), py::arg("pulley_diameter"), py::arg("belt_width"), py::arg("bulk_density"),
+      py::arg("dataset"), py::arg("setup"), py::arg("condition"),
       py::arg("effects"), py::arg("default_dataset"), py::arg("dataset_read") = nullptr);
 
   py::class_<validation::Dataset>(m, "Dataset")

@@ -15,6 +15,7 @@
 #include "core/input_error.h"
 #include "core/message.h"
 #include "core/text_file.h"
+#include "core/rig_needs.h"
 #include "core/toml_file.h"
 #include "core/unicode.h"
 #include "core/units.h"
@@ -169,14 +170,16 @@ Setup setup_from(const std::string& file, const DatasetFile* text, InputUncertai
     }
 
   std::vector<std::string_view> present;
+  std::vector<std::string> missing;
   for (const auto& f : rig_fields()) {
-    const std::string dotted =
-        f.section.empty() ? std::string(f.key) : fmt::format("{}.{}", f.section, f.key);
+    const std::string dotted = dotted_key(f);
     toml::node_view<toml::node> node =
         f.section.empty() ? doc[f.key] : doc[f.section][f.key];
     if (!node) {
-      if (f.required) throw InputError(file, 0, dotted, "required key is missing");
+      if (f.required) missing.push_back(dotted);
       if (f.fallback) f.ref(s) = *f.fallback * f.to_si;
+      // Absent, not zero: the DEM asks for it by name (core/rig_needs.h) rather than run on a 0.
+      if (read_by_dem_only(f)) f.ref(s) = std::numeric_limits<double>::quiet_NaN();
       continue;
     }
     const long line = static_cast<long>(node.node()->source().begin.line);
@@ -187,6 +190,12 @@ Setup setup_from(const std::string& file, const DatasetFile* text, InputUncertai
     f.ref(s) = *v * f.to_si;
     present.push_back(f.key);
   }
+  if (!missing.empty())
+    throw InputError(file, 0, missing.front(),
+                     fmt::format("required key{} missing: {} (every model reads {}; each key and its unit: "
+                                 "docs/dataset-reference.md)",
+                                 missing.size() == 1 ? " is" : "s are", fmt::join(missing, ", "),
+                                 missing.size() == 1 ? "it" : "them"));
   complete_defaults(s, present);
 
   // A table of its own that chutelab does not know is a typo ([materal]) or a misplaced key; its

@@ -5,6 +5,7 @@
 
 #include "analytical/transfer_station.h"
 #include "core/quantity.h"
+#include "core/rig_needs.h"
 #include "core/units.h"
 #include "dem/station/settings.h"
 #include "validation/dataset_fields.h"
@@ -36,6 +37,7 @@ std::string number(double v) { return fmt::format("{:g}", v); }
 
 std::string default_of(const RigField& f) {
   if (f.required) return "required";
+  if (read_by_dem_only(f)) return "required by the DEM";
   if (f.fallback) return number(*f.fallback);
   if (!f.default_from.empty()) return "the value of `" + std::string(f.default_from) + "`";
   return "–";
@@ -85,7 +87,11 @@ std::string dataset_reference_markdown() {
   o += "## setup.toml\n\nTOML. Texts at the top (optional):\n\n| key | meaning |\n|---|---|\n";
   for (const auto& t : setup_texts()) o += fmt::format("| `{}` | {} |\n", t.name, cell(t.meaning));
   o += "\nThe rig's tables `[belt]`, `[plate]`, `[material]` and one top-level number. A key with a default "
-       "may be left out. A key may be given per condition in `conditions.csv` under the column named (an "
+       "may be left out. A key *required by the DEM* is read by the DEM alone (`--models dem` or `liggghts`, "
+       "`simulate`, `calibrate`, `sensitivity`), which names every missing one in one message before it runs; "
+       "the analytical models (Booth/CEMA, Korzen) and `estimate` do without them, except that air drag "
+       "(`--effect air_drag=...`, a candidate of the diagnosis) needs `particle_diameter_mm` and "
+       "`solid_density_kgm3`. A key may be given per condition in `conditions.csv` under the column named (an "
        "empty cell keeps the setup's value).\n";
   std::string section = "?";
   for (const auto& f : rig_fields()) {
@@ -190,8 +196,9 @@ std::vector<OutputFile> dataset_skeleton(const Setup& example) {
       }
       Setup copy = example;
       const std::string line = fmt::format("{} = {:.6g}", f.key, f.ref(copy) / f.to_si);
-      const std::string why =
-          f.required ? std::string(f.label) : fmt::format("{}; optional, default: {}", f.label, default_of(f));
+      const std::string why = f.required           ? std::string(f.label)
+                              : read_by_dem_only(f) ? fmt::format("{}; read by the DEM only", f.label)
+                                                    : fmt::format("{}; optional, default: {}", f.label, default_of(f));
       setup += fmt::format("{:<34}# {}\n", line, why);
     }
 

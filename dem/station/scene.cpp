@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "core/rig_needs.h"
 #include "dem/contact/mixing.h"
 #include "dem/station/belt_cohesion.h"
 #include "dem/timestep.h"
@@ -465,6 +466,7 @@ void add_sinks(Scene& sc) {
 
 Scene build_scene(const Station& st, const RunSettings& s, const DemTable& geometry, const ExternalInputs& fx) {
   check(s);
+  require_dem_keys(st);
   Scene sc;
   const double d = particle_diameter(st, s);
   sc.belt_speed = st.belt_speed;

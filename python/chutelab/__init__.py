@@ -244,12 +244,14 @@ def estimate(belt_speed: Optional[float] = None, mass_flow: Optional[float] = No
              plate_distance: Optional[float] = None, plate_top: Optional[float] = None,
              stream_thickness: Optional[float] = None, *, dataset: Union["Dataset", PathLike, None] = None,
              setup: Optional[PathLike] = None, condition: Optional[str] = None,
-             effects: EffectsArg = None) -> Estimate:
+             effects: EffectsArg = None, pulley_diameter: Optional[float] = None,
+             belt_width: Optional[float] = None, bulk_density: Optional[float] = None) -> Estimate:
     """The analytical answer (Booth/CEMA + Korzen) for one condition, in milliseconds.
 
     belt_speed in m/s, mass_flow in t/h, plate_distance, plate_top and stream_thickness in mm.
     dataset (a Dataset, as edited, or a folder) or setup (a setup.toml) picks the rig (default:
     the bundled grima2010);
+    pulley_diameter and belt_width (mm) and bulk_density (kg/m^3) replace the rig's values;
     condition starts from a row of the dataset's conditions.csv, the numbers given replace its
     values; effects as {"air_drag": 0.5}. Returns an Estimate (see help(chutelab.Estimate)).
     Raises InputError naming the keyword for a missing, impossible or mistyped value."""
@@ -257,6 +259,8 @@ def estimate(belt_speed: Optional[float] = None, mass_flow: Optional[float] = No
     core = _chutelab.estimate(_real("belt_speed", belt_speed, True), _real("mass_flow", mass_flow, True),
                               _real("plate_distance", plate_distance, True), _real("plate_top", plate_top, True),
                               _real("stream_thickness", stream_thickness, True),
+                              _real("pulley_diameter", pulley_diameter, True), _real("belt_width", belt_width, True),
+                              _real("bulk_density", bulk_density, True),
                               "" if read is not None else _path("dataset", dataset),
                               _path("setup", setup), _text("condition", condition), _effect_args(effects),
                               DEFAULT_DATASET, read)

@@ -87,6 +87,19 @@ def test_estimate_with_a_dataset_row_and_an_effect_equals_the_command_line():
     assert ours["models"]["korzen"]["impact_velocity_mps"] < plain["models"]["korzen"]["impact_velocity_mps"]
 
 
+def test_estimate_takes_the_rigs_common_geometry_and_material_as_keywords():
+    args = dict(belt_speed=4, mass_flow=35, plate_distance=450)
+    ours = chutelab.estimate(**args, pulley_diameter=500, belt_width=600, bulk_density=800)
+    r = cli("estimate", "--belt-speed", "4", "--mass-flow", "35", "--plate-distance", "450", "--pulley-diameter",
+            "500", "--belt-width", "600", "--bulk-density", "800", "--format", "json")
+    assert r.returncode == 0, r.stderr
+    assert ours == json.loads(r.stdout)
+    assert ours != chutelab.estimate(**args)
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.estimate(**args, pulley_diameter=-5)
+    assert e.value.field == "pulley_diameter"
+
+
 def test_estimate_numbers_are_the_command_lines_doubles_bit_for_bit():
     # Odd inputs and a flight force (RK4 path), so the numbers have all their digits.
     args = dict(belt_speed=4.37, mass_flow=35.3, plate_distance=451.7)

@@ -1,5 +1,7 @@
 #include "validation/models/dem_model.h"
 
+#include "core/rig_needs.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -169,6 +171,7 @@ class DemModel final : public Model {
 
   ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
                           const PredictRequest& request) const override {
+    require_dem_keys(station, c_.setup_file.empty() ? std::string("setup.toml") : c_.setup_file);
     const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file, c_.setup_text ? &*c_.setup_text : nullptr);
     const st::RunSettings settings = st::resolve(table, overrides_for(request));
     const DemEffectInputs fx = dem_effect_inputs(station, effects);
@@ -329,6 +332,7 @@ class DemModel final : public Model {
   // the run itself and, when it asks for u_num's discretisation part, its ladder's runs.
   std::vector<ModelJob> campaign_jobs(const Station& station, const analytical::EffectList& effects,
                                       const PredictRequest& request) const override {
+    require_dem_keys(station, c_.setup_file.empty() ? std::string("setup.toml") : c_.setup_file);
     const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file, c_.setup_text ? &*c_.setup_text : nullptr);
     st::SettingsOverrides over = overrides_for(request);
     const st::RunSettings settings = st::resolve(table, over);

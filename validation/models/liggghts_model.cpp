@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/file_name.h"
+#include "core/rig_needs.h"
 #include "core/message.h"
 #include "dem/liggghts/run.h"
 #include "dem/station/cache.h"
@@ -31,6 +32,7 @@ class LiggghtsModel final : public Model {
                           const PredictRequest& request) const override {
     namespace fs = std::filesystem;
     const DemModelConfig& dc = c_.dem;
+    require_dem_keys(station, dc.setup_file.empty() ? std::string("setup.toml") : dc.setup_file, "LIGGGHTS");
     const st::DemTable table = dc.setup_file.empty() ? st::DemTable{} : st::read_dem_table(dc.setup_file, dc.setup_text ? &*dc.setup_text : nullptr);
     lg::Options o;
     o.settings = st::resolve(table, dc.overrides);
