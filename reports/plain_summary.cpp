@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
 
+#include "core/message.h"
 #include "effects/registry.h"
 
 namespace chutelab::reports {
@@ -69,12 +71,44 @@ std::string record_checks(const std::vector<EffectDescription>& effects) {
   return join_words(s);
 }
 
-// " with effect air_drag=0.752": what an estimate takes, by the inputs' neutral key (a report reads
-// the same whichever front end wrote it).
-std::string estimate_flags(const std::vector<EffectDescription>& effects) {
-  std::vector<std::string> s;
-  for (const auto& e : effects) s.push_back(fmt::format("{}={:.3g}", e.name, e.value));
-  return fmt::format(" with effect{} {}", s.size() > 1 ? "s" : "", fmt::join(s, ", "));
+// A hint is a command the reader pastes into a shell and runs as printed: the command line's
+// spelling whichever front end wrote the report, the dataset as it was given, a word the shell would
+// split or expand quoted.
+std::string shell_word(const std::string& s) {
+  // A control or invisible character never reaches the terminal (core/message.h): such a name is
+  // shown escaped, which a shell would not take as it is.
+  if (one_line(s) != s) return shown(s);
+  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./=,:+@%") ==
+                        std::string::npos)
+    return s;
+  std::string o = "'";
+  for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return o + "'";
+}
+
+std::string dataset_arg(const ReportInput& in) {
+  return "--dataset " + shell_word(in.dataset->dir.empty() ? std::string(".") : in.dataset->dir.string());
+}
+
+// A new folder for the hinted run, named after the dataset and what it adds.
+std::string out_arg(const ReportInput& in, std::string_view what) {
+  std::filesystem::path dir = in.dataset->dir;
+  std::string name = dir.filename().string();
+  if (name.empty() || name == ".") name = dir.parent_path().filename().string();
+  if (name.empty() || name == "." || name == "..") name = "dataset";
+  return "--out " + shell_word(fmt::format("out/{}-{}", name, what));
+}
+
+// "chutelab estimate --dataset D --condition V4-28 --effect air_drag=0.752": the condition with the
+// effects added, as estimate takes them.
+std::string estimate_command(const ReportInput& in, const std::string& condition) {
+  std::string c = fmt::format("chutelab estimate {} --condition {}", dataset_arg(in), shell_word(condition));
+  for (const auto& e : in.effects) c += " --effect " + shell_word(fmt::format("{}={:.3g}", e.name, e.value));
+  return c;
+}
+
+std::string validate_command(const ReportInput& in, std::string_view flag, std::string_view what) {
+  return fmt::format("chutelab validate {} {} {}", dataset_arg(in), flag, out_arg(in, what));
 }
 
 }  // namespace
@@ -212,9 +246,8 @@ std::vector<std::string> in_short(const ReportInput& in) {
                           ? fmt::format("{} ({} {:.3g})", spaced(best->effects[i]), spaced(best->parameters[i]),
                                         best->estimate[i])
                           : spaced(best->effects[i]));
-    out.push_back(fmt::format("The measurements point to {} as what the models miss: validate with add_missing "
-                              "(or the effect {}=fit) to see the models with it.",
-                              join_words(named), best->effects.front()));
+    out.push_back(fmt::format("The measurements point to {} as what the models miss; to see the models with it: {}.",
+                              join_words(named), validate_command(in, "--add-missing", "add-missing")));
   } else if (in.diagnosis && !bad.empty()) {
     out.push_back("No effect in chutelab's library explains this misfit well; \"What is missing\" in the report "
                   "shows where it lies.");
@@ -231,28 +264,29 @@ std::vector<std::string> in_short(const ReportInput& in) {
                                                          : " for the models as delivered",
                               judged.failed_count(), judged.checked_count()));
   if (in.with_effects && !in.effects.empty() && best && !effect_choice_warning(in).empty()) {
-    out.push_back(fmt::format("The measurements point to {} instead: validate with add_missing to see the models "
-                              "with it.",
-                              spaced(best->label())));
+    out.push_back(fmt::format("The measurements point to {} instead; to see the models with it: {}.",
+                              spaced(best->label()), validate_command(in, "--add-missing", "add-missing")));
   } else if (in.with_effects && !in.effects.empty() && !bad.empty()) {
     const auto& w = bad.front();
     if (left.empty() && all_records(in.effects))
       out.push_back(fmt::format("Check the rig's record before changing any model: measure the {} ({}) and correct "
-                                "the dataset; until then, predict with the corrected value (chutelab estimate{}): "
+                                "the dataset; until then, predict with the corrected value ({}): "
                                 "with the record as it is, the models put the {} up to {}.",
-                                short_effects(in.effects), record_checks(in.effects), estimate_flags(in.effects),
-                                w.label, validation::amount_words(w, w.worst_error)));
+                                short_effects(in.effects), record_checks(in.effects),
+                                estimate_command(in, w.worst_condition), w.label,
+                                validation::amount_words(w, w.worst_error)));
     else if (left.empty())
-      out.push_back(fmt::format("For this rig and material, predict with {} included (chutelab estimate{}): without "
+      out.push_back(fmt::format("For this rig and material, predict with {} included ({}): without "
                                 "it the models put the {} up to {}.",
-                                short_effects(in.effects), estimate_flags(in.effects), w.label,
+                                short_effects(in.effects), estimate_command(in, w.worst_condition), w.label,
                                 validation::amount_words(w, w.worst_error)));
     else
       out.push_back(fmt::format("Use the models' {} with care on this rig: even with {} it is off by more than the "
                                 "measurements' uncertainty.",
                                 left.front().label, short_effects(in.effects)));
   } else if (!in.diagnosis && !bad.empty()) {
-    out.push_back("Validate with diagnose to see which physical effect would explain it.");
+    out.push_back(fmt::format("To see which physical effect would explain it: {}.",
+                              validate_command(in, "--diagnose", "diagnosis")));
   }
   return out;
 }

@@ -3,7 +3,9 @@
 // a few lines, in the quantities' units, and ends with the report's path. A wrongly chosen effect
 // gets a note that the data point elsewhere.
 #include <boost/test/unit_test.hpp>
+#include <cstdlib>
 #include <filesystem>
+#include <sys/wait.h>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -46,6 +48,47 @@ std::pair<double, double> fall(const std::string& text) {
   std::smatch m;
   BOOST_REQUIRE_MESSAGE(std::regex_search(text, m, re), "no 'RMS E/u_val X -> Y' in: " + text);
   return {std::stod(m[1]), std::stod(m[2])};
+}
+
+// Every "chutelab COMMAND ..." the text prints, as a command line: the words up to the one that ends
+// its sentence or parenthesis.
+std::vector<std::string> printed_commands(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(flat(text));
+  std::vector<std::string> words;
+  for (std::string w; in >> w;) words.push_back(w);
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    if (words[i] != "chutelab" && words[i] != "(chutelab") continue;
+    std::string cmd;
+    for (std::size_t j = i + 1; j < words.size(); ++j) {
+      std::string w = words[j];
+      bool last = false;
+      while (!w.empty() && (w.back() == ')' || w.back() == ':' || w.back() == '.' || w.back() == ',' || w.back() == ';')) {
+        w.pop_back();
+        last = true;
+      }
+      cmd += (cmd.empty() ? "" : " ") + w;
+      if (last) break;
+    }
+    out.push_back(cmd);
+  }
+  return out;
+}
+
+// Runs every hint of `text` as printed (in a fresh working folder, where the hints' out/ goes).
+void run_hints(const std::string& text, std::size_t expected) {
+  const auto hints = printed_commands(text);
+  BOOST_TEST(hints.size() == expected, text);
+  const fs::path cwd = fresh_dir("first-run-hints");
+  for (const auto& h : hints) {
+    BOOST_TEST_CONTEXT("chutelab " << h) {
+      // As a user pastes it: a shell in that folder, `chutelab` being the binary under test.
+      const std::string line = "cd '" + cwd.string() + "' && '" + std::string(CHUTELAB_BINARY) + "' " +
+                               h + " >out.txt 2>err.txt </dev/null";
+      const int status = std::system(line.c_str());
+      BOOST_TEST((WIFEXITED(status) && WEXITSTATUS(status) == 0), read_file(cwd / "err.txt"));
+    }
+  }
 }
 
 }  // namespace
@@ -91,7 +134,8 @@ BOOST_AUTO_TEST_CASE(the_main_job_shows_the_loop_in_a_few_lines) {
   const auto [before, after] = fall(words);
   BOOST_TEST(before > 1.5);
   BOOST_TEST(after < 1.2);
-  BOOST_TEST(words.find("estimate with effect air_drag=0.") != std::string::npos, words);
+  BOOST_TEST(words.find("(chutelab estimate --dataset " + kHidden + " --condition ") != std::string::npos, words);
+  BOOST_TEST(words.find(" --effect air_drag=0.") != std::string::npos, words);
   // A unit is never cut from its number at a line break.
   for (const auto& l : lines)
     for (const char* unit : {"% ", "mm ", "m/s", "t/h"}) BOOST_TEST(!l.starts_with(unit), l);
@@ -109,6 +153,23 @@ BOOST_AUTO_TEST_CASE(an_effect_the_data_do_not_point_to_gets_a_note) {
     if (l.starts_with("note: ") || (!note.empty() && l.starts_with("      "))) note += l.substr(5);
   BOOST_TEST(note.find("The measurements point to air_drag, not to belt_slip") != std::string::npos, note);
   BOOST_TEST(flat(r.out).find("The measurements point to air drag instead") != std::string::npos);
+  // Its hint (validate --add-missing) runs as printed.
+  run_hints(r.out.substr(r.out.find("In short: ")), 1);
+}
+
+// Every command the console prints as a hint runs as printed: the estimate with the effect added,
+// the diagnosis of a plain validation.
+BOOST_AUTO_TEST_CASE(every_printed_hint_runs_as_printed) {
+  const fs::path root = fresh_dir("first-run-paste");
+  const auto added = run_chutelab("validate --dataset '" + kHidden + "' --add-missing --quiet --out '" +
+                                  (root / "a").string() + "'");
+  BOOST_REQUIRE(added.exit_code == 0);
+  run_hints(added.out.substr(added.out.find("In short: ")), 1);
+  const auto plain = run_chutelab("validate --dataset '" + kHidden + "' --quiet --out '" + (root / "p").string() + "'");
+  BOOST_REQUIRE(plain.exit_code == 0);
+  BOOST_TEST(flat(plain.out).find("To see which physical effect would explain it: chutelab validate") !=
+             std::string::npos, plain.out);
+  run_hints(plain.out.substr(plain.out.find("In short: ")), 1);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
