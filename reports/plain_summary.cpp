@@ -71,6 +71,8 @@ std::string record_checks(const std::vector<EffectDescription>& effects) {
   return join_words(s);
 }
 
+}  // namespace
+
 // A hint is a command the reader pastes into a shell and runs as printed: the command line's
 // spelling whichever front end wrote the report, the dataset as it was given, a word the shell would
 // split or expand quoted.
@@ -85,6 +87,8 @@ std::string shell_word(const std::string& s) {
   for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return o + "'";
 }
+
+namespace {
 
 std::string dataset_arg(const ReportInput& in) {
   return "--dataset " + shell_word(in.dataset->dir.empty() ? std::string(".") : in.dataset->dir.string());
@@ -107,11 +111,11 @@ std::string estimate_command(const ReportInput& in, const std::string& condition
   return c;
 }
 
+}  // namespace
+
 std::string validate_command(const ReportInput& in, std::string_view flag, std::string_view what) {
   return fmt::format("chutelab validate {} {} {}", dataset_arg(in), flag, out_arg(in, what));
 }
-
-}  // namespace
 
 std::string effect_words(const EffectDescription& e, bool brief) {
   std::string v = fmt::format("{:.3g}", e.value);

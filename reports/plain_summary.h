@@ -4,6 +4,7 @@
 // what an added effect changes, and what to do about it. The statistics (RMS E/u_val, chi^2) are
 // quoted as evidence after the words, never instead of them.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "reports/report.h"
@@ -25,6 +26,12 @@ std::vector<std::string> misfit_lines(const ReportInput& in, std::size_t max);
 // diagnosis) changes, and what to do. A model that agrees with the measurements on its own values
 // is named as agreeing, and one that misses is never covered by "the models agree".
 std::vector<std::string> in_short(const ReportInput& in);
+
+// A hint is a command the reader pastes into a shell and runs as printed, whichever front end wrote
+// the report: `s` as one shell word (quoted when the shell would split or expand it).
+std::string shell_word(const std::string& s);
+// "chutelab validate --dataset D FLAG --out out/D-WHAT": the dataset as it was given, a new folder.
+std::string validate_command(const ReportInput& in, std::string_view flag, std::string_view what);
 
 // When the effects added are not what the diagnosis points to: one sentence saying so (empty
 // otherwise, and without a diagnosis).

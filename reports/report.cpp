@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "effects/registry.h"
 #include "reports/common.h"
 #include "reports/plain_summary.h"
 #include "reports/studies.h"
@@ -257,6 +258,11 @@ void what_is_missing(Doc& d, const Context& c) {
         g.convincing ? (best->is_record() ? "The recorded input to check: " : "The recommended effect: ") + best->label()
                      : fmt::format("The best explanation, which leaves a misfit that is not noise: {}",
                                    best->label()));
+    // The command that fits the candidate (both effects of a pair) to the dataset, as the shell takes it.
+    std::string fit_flags;
+    for (const auto& nm : best->effects)
+      fit_flags += (fit_flags.empty() ? "" : " ") + std::string(best->is_record() ? "--input " : "--effect ") +
+                   shell_word(nm + "=fit");
     for (std::size_t i = 0; i < best->effects.size(); ++i) {
       const auto& nm = best->effects[i];
       std::string fit;
@@ -268,9 +274,9 @@ void what_is_missing(Doc& d, const Context& c) {
       const auto e = std::find_if(c.in.effects.begin(), c.in.effects.end(),
                                   [&](const EffectDescription& x) { return x.name == nm; });
       if (e == c.in.effects.end()) {
-        d.definition(nm, fit + " It is described in the effect library (effects/" + nm + ".cpp); validate with " +
-                             (best->is_record() ? "the recorded input " : "the effect ") + nm +
-                             "=fit to see the models with it.");
+        std::string body = fit;
+        if (const auto* info = effects::find(nm); info && !info->physics.empty()) body += " " + info->physics;
+        d.definition(nm, body + " To see the models with it: " + validate_command(c.in, fit_flags, fmt::format("{}", fmt::join(best->effects, "-"))) + ".");
         continue;
       }
       std::string body = fit;

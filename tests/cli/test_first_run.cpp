@@ -157,8 +157,8 @@ BOOST_AUTO_TEST_CASE(an_effect_the_data_do_not_point_to_gets_a_note) {
   run_hints(r.out.substr(r.out.find("In short: ")), 1);
 }
 
-// Every command the console prints as a hint runs as printed: the estimate with the effect added,
-// the diagnosis of a plain validation.
+// Every command the console and the report print as a hint runs as printed: the estimate with the
+// effect added, the diagnosis of a plain validation, the fit of a candidate the report names.
 BOOST_AUTO_TEST_CASE(every_printed_hint_runs_as_printed) {
   const fs::path root = fresh_dir("first-run-paste");
   const auto added = run_chutelab("validate --dataset '" + kHidden + "' --add-missing --quiet --out '" +
@@ -170,6 +170,20 @@ BOOST_AUTO_TEST_CASE(every_printed_hint_runs_as_printed) {
   BOOST_TEST(flat(plain.out).find("To see which physical effect would explain it: chutelab validate") !=
              std::string::npos, plain.out);
   run_hints(plain.out.substr(plain.out.find("In short: ")), 1);
+  // The report's hint for a candidate not applied (validate --diagnose), read as report.md renders it.
+  const auto diagnosed = run_chutelab("validate --dataset '" + kHidden + "' --diagnose --quiet --out '" +
+                                      (root / "d").string() + "'");
+  BOOST_REQUIRE(diagnosed.exit_code == 0);
+  const std::string md = read_file(root / "d" / "report.md");
+  const auto at = md.find("To see the models with it: chutelab validate");
+  BOOST_REQUIRE_MESSAGE(at != std::string::npos, md.substr(0, 4000));
+  std::string rendered;
+  for (std::size_t k = at; k < md.size() && md[k] != '\n'; ++k) {
+    if (md[k] == '\\' && k + 1 < md.size()) ++k;  // a Markdown escape shows the character after it
+    rendered += md[k];
+  }
+  BOOST_TEST(rendered.find("--effect air_drag=fit") != std::string::npos, rendered);
+  run_hints(rendered, 1);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
