@@ -5,6 +5,7 @@
 // The effects themselves live in effects/, one file each.
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,9 @@ class Effect {
  public:
   virtual ~Effect() = default;
   virtual std::string name() const = 0;
+  // Whether it acts at this station at all: an error in one condition's record acts there alone.
+  // Whoever applies a list of effects to a condition applies those that act there (acting_at).
+  virtual bool acts_at(const Station&) const { return true; }
 
   // The rig as it really was, from the rig as recorded (a plate further than the drawing says, a
   // belt faster than its nameplate): a wrong number in the record, not physics. Called first, by
@@ -68,7 +72,24 @@ class Effect {
   virtual void adjust_plate(PlateInteraction&) const {}
   // The measurement itself (instrument bias): applied to any model's predictions, DEM included.
   virtual void adjust_measurement(QuantityValues&) const {}
+  // ... and to the stream heights read off the trajectory (m), where the rig measured them.
+  virtual void adjust_trajectory(std::vector<std::optional<double>>& y) const { (void)y; }
 };
+
+// Whether every effect of a list acts at this station, so that the list applies there as it is.
+inline bool all_act_at(const EffectList& effects, const Station& s) {
+  for (const auto& e : effects)
+    if (!e->acts_at(s)) return false;
+  return true;
+}
+
+// The effects of a list that act at this station.
+inline EffectList acting_at(const EffectList& effects, const Station& s) {
+  EffectList here;
+  for (const auto& e : effects)
+    if (e->acts_at(s)) here.push_back(e);
+  return here;
+}
 
 // The station as every effect's adjust_station leaves it, in the order the effects were given.
 inline Station as_really_was(const Station& recorded, const EffectList& effects) {

@@ -3,6 +3,9 @@
 #include <chrono>
 #include <fmt/format.h>
 
+#include "api/effects.h"
+#include "api/record_check.h"
+#include "core/input_error.h"
 #include "core/message.h"
 #include "core/option_check.h"
 #include "core/progress.h"
@@ -21,6 +24,7 @@ void check(const DiagnoseOptions& o) {
   options::rules::alpha.check(o.alpha);
   kJobs.check(static_cast<double>(o.jobs));
   options::rules::self_check.check(static_cast<double>(o.self_check));
+  parse_effects(effects_and_inputs({}, o.inputs));
   check(o.dem);
 }
 
@@ -69,6 +73,17 @@ DiagnoseResult diagnose(validation::Dataset dataset, const DiagnoseOptions& o) {
   const auto models = validation::make_models(o.models, model_settings(o.dem, d.dir, {}, o.progress, d.stations, d.source("setup.toml")));
   const auto started = std::chrono::steady_clock::now();
   if (const std::string why = air_drag_unavailable(d.stations); !why.empty()) warn(why);
+  if (!o.inputs.empty()) {
+    std::vector<validation::ModelPtr> cheap;
+    for (const auto& m : models)
+      if (!m->expensive()) cheap.push_back(m);
+    if (cheap.empty()) throw InputError("", 0, "input", "correcting a record needs an analytical model in " + mention("models"));
+    check_records({}, o.inputs, d.stations);
+    std::vector<reports::EffectDescription> described;
+    const auto applied = resolve_effects(effects_and_inputs({}, o.inputs), d, in_registry_order(cheap), described);
+    opt.fixed = applied.effects;
+    res.inputs = applied.labels;
+  }
   res.diagnosis = validation::diagnose(d, models, opt);
   if (o.self_check > 0) {
     // Up to two diagnoses a replica (effect-free, and with the explanation found), each about as

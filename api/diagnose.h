@@ -22,13 +22,16 @@
 
 namespace chutelab::api {
 
-// Errors name the keys "dataset", "models", "alpha", "jobs", "self_check" and the DEM's "dem.*".
+// Errors name the keys "dataset", "models", "alpha", "jobs", "self_check", "input" and the DEM's "dem.*".
 struct DiagnoseOptions {
   std::filesystem::path dataset;
   std::vector<std::string> models{"booth-cema", "korzen"};  // each measurement: the first that predicts it
   double alpha = 0.01;             // family-wise false-alarm rate over all candidates
   bool pairs = true;               // also fit pairs of effects
   int jobs = 0;                    // expensive runs and fit threads side by side; 0: one per idle core
+  // Recorded inputs corrected before the diagnosis, NAME=ERROR (truth minus record) or NAME=fit
+  // (fitted first): the candidates are then what the corrected rig still misses.
+  std::vector<std::string> inputs;
   int self_check = 0;              // replicas of the design to diagnose too (0: none)
   std::uint64_t seed = 1;          // of the self-check's replicas
   DemOptions dem;
@@ -42,6 +45,7 @@ void check(const DiagnoseOptions& o);
 struct DiagnoseResult {
   validation::Dataset dataset;
   validation::DiagnosisResult diagnosis;
+  std::vector<std::string> inputs;  // the corrections applied, as "plate_distance=25 (fitted)"
   std::optional<validation::SelfCheckResult> self_check;
   double alpha = 0.01;
   // diagnosis.csv, diagnosis.md (with the self-check appended) and, with a self-check,

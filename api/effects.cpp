@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "core/input_error.h"
+#include "effects/at_condition.h"
 #include "validation/strength_fit.h"
 
 namespace chutelab::api {
@@ -110,7 +111,7 @@ AppliedEffects diagnosed_effects(const validation::DiagnosisResult& diagnosis, c
   const validation::EffectFit* best = diagnosis.best();
   if (!best) return out;
   for (std::size_t i = 0; i < best->effects.size(); ++i) {
-    const auto* e = effects::find(best->effects[i]);
+    const auto* e = effects::find_candidate(best->effects[i]);
     if (std::find(skip.begin(), skip.end(), e->name) != skip.end()) continue;
     out.effects.push_back(e->make(best->estimate[i]));
     out.labels.push_back(fmt::format("{}={:.4g} (fitted)", e->name, best->estimate[i]));

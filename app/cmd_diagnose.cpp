@@ -23,6 +23,7 @@ struct DiagnoseCli {
   int jobs = 0;
   int self_check = 0;
   std::uint64_t seed = 1;
+  std::vector<std::string> inputs;
   DemCli dem;
 };
 
@@ -36,6 +37,7 @@ int run_diagnose(const DiagnoseCli& o) {
   opt.jobs = o.jobs;
   opt.self_check = o.self_check;
   opt.seed = o.seed;
+  opt.inputs = o.inputs;
   opt.dem = dem_options(o.dem);
   opt.progress = true;
   std::optional<OutputFolder> out;
@@ -49,6 +51,7 @@ int run_diagnose(const DiagnoseCli& o) {
   out->commit();
   const auto& r = res.diagnosis;
   const auto& sc = res.self_check;
+  for (const auto& i : res.inputs) std::cout << "corrected record: " << console_text(i) << "\n";
   std::cout << console_text(r.verdict) << "\n";
   for (const auto& f : r.findings) std::cout << "- " << console_text(f) << "\n";
   if (sc) {
@@ -78,7 +81,10 @@ void add_diagnose(CLI::App& app, Action& action) {
   with_rule(cmd->add_option("--alpha", o->alpha, "family-wise false-alarm rate over all candidates")
                 ->capture_default_str(),
             options::rules::alpha);
-  cmd->add_flag("--no-pairs", o->no_pairs, "do not fit pairs of effects");
+  cmd->add_flag("--no-pairs", o->no_pairs, "name one cause at most (do not look for several at once)");
+  cmd->add_option("--input", o->inputs,
+                  "correct a recorded input before the diagnosis: NAME=ERROR (truth minus record, e.g. "
+                  "plate_distance=25 in mm) or NAME=fit; the candidates are then what the corrected rig still misses");
   cmd->add_option("--jobs", o->jobs,
                   "expensive (DEM) runs side by side, and threads of the analytical fits (default: one per core "
                   "other processes leave free; results do not depend on it)")

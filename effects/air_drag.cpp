@@ -32,13 +32,19 @@ class AirDrag final : public analytical::Effect {
   double cd_;
 };
 
-const Registration registration({
+EffectInfo info() {
+  EffectInfo e{
     "air_drag", "drag_coefficient", "", "flight",
     "a = -(3 rho_air C_d / (4 rho_s d)) |v| v on every particle in flight (quadratic drag on a "
     "sphere of diameter d, solid density rho_s; rho_air = 1.204 kg/m^3).",
     "Clift, Grace & Weber (1978), Bubbles, Drops and Particles: C_d ~ 0.44 for a sphere at Re ~ 1e3",
     0.0, 0.0, 1.5, 0.6, [](double v) { return std::make_shared<AirDrag>(v); },
-    "the stream's speed along its flight (e.g. high-speed video at two points), or a run at another particle size"});
+    "the stream's speed along its flight (e.g. high-speed video at two points), or a run at another particle size"};
+  e.growth = EffectInfo::Growth{"the drag", "belt speed", 2.0};
+  return e;
+}
+
+const Registration registration(info());
 
 }  // namespace
 }  // namespace chutelab::effects

@@ -64,6 +64,15 @@ struct EffectInfo {
   // record: its physical limits and where a station states it (declared with `make` by
   // effects/recorded_input.h's set_record).
   RecordLimits limits = {};
+  // How the effect grows with an operating variable where its physics says so (air drag: its force
+  // with the speed squared), so that a diagnosis finding the data want another dependence can say
+  // it in those terms ("grows about linearly with speed, not with its square").
+  struct Growth {
+    std::string what;    // "the drag"
+    std::string driver;  // "belt speed"
+    double power = 0.0;  // of the driver
+  };
+  std::optional<Growth> growth = std::nullopt;
 };
 
 // The first station where `e` at `strength` leaves the rig without a physical answer, in words

@@ -409,6 +409,7 @@ py::dict diagnosis_numbers(const validation::DiagnosisResult& x) {
   r["ranking"] = ranking_table(x.singles, false);
   r["pairs"] = ranking_table(x.pairs, true);
   r["verdict"] = x.verdict;
+  r["evidence"] = x.evidence;
   r["models"] = x.models;
   r["n_data"] = x.n_data;
   r["n_without_uncertainty"] = x.n_without_uncertainty;
@@ -523,8 +524,10 @@ py::dict diagnosed_numbers(const Diagnosed& diagnosed) {
 std::unique_ptr<Diagnosed> diagnose(const validation::Dataset& d, const std::vector<std::string>& model_names,
                                     double alpha, bool pairs, const std::string& dem_quality,
                                     std::optional<int> dem_threads, const std::string& dem_cache, bool no_dem_cache,
-                                    const py::object& self_check_arg, const py::object& seed_arg) {
+                                    const py::object& self_check_arg, const py::object& seed_arg,
+                                    const std::vector<std::string>& corrected) {
   api::DiagnoseOptions o;
+  o.inputs = corrected;
   o.self_check = static_cast<int>(whole_number(self_check_arg, options::rules::self_check));
   const double seed_checked = whole_number(seed_arg, options::rules::seed);
   o.seed = py::isinstance<py::float_>(seed_arg)
@@ -833,7 +836,7 @@ PYBIND11_MODULE(_chutelab, m) {
         py::arg("no_dem_cache"));
   m.def("diagnose", &diagnose, py::arg("dataset"), py::arg("models"), py::arg("alpha"), py::arg("pairs"),
         py::arg("dem_quality"), py::arg("dem_threads"), py::arg("dem_cache"), py::arg("no_dem_cache"),
-        py::arg("self_check"), py::arg("seed"));
+        py::arg("self_check"), py::arg("seed"), py::arg("inputs"));
   m.def("synthesize", &synthesize, py::arg("source"), py::arg("effects"), py::arg("seed"),
         py::arg("noise_scale"), py::arg("out"));
   m.def("import_logs", &import_logs, py::arg("dataset"), py::arg("out"));

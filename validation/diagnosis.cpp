@@ -16,6 +16,8 @@
 #include "core/campaign.h"
 #include "core/input_error.h"
 #include "effects/registry.h"
+#include "effects/at_condition.h"
+#include "validation/diagnosis_stage.h"
 #include "validation/misfit.h"
 #include "validation/noise_model.h"
 #include "validation/strength_fit.h"
@@ -26,7 +28,7 @@ std::string EffectFit::label() const { return fmt::format("{}", fmt::join(effect
 
 bool EffectFit::is_record() const {
   for (const auto& n : effects)
-    if (const auto* e = effects::find(n); !e || e->kind != effects::EffectInfo::Kind::record) return false;
+    if (const auto* e = effects::find_candidate(n); !e || e->kind != effects::EffectInfo::Kind::record) return false;
   return !effects.empty();
 }
 
@@ -64,15 +66,15 @@ void check(const DiagnoseOptions& o) {
        fmt::format("must be 0 or lie in [3, 12], got {}", o.profile_runs));
 }
 
-namespace {
-
-using Fx = std::vector<const effects::EffectInfo*>;
+namespace detail {
 
 Fx infos_of(const EffectFit& f) {
   Fx v;
-  for (const auto& n : f.effects) v.push_back(effects::find(n));
+  for (const auto& n : f.effects) v.push_back(effects::find_candidate(n));
   return v;
 }
+
+namespace {
 
 // How far a recorded input is plausibly off, in its candidate's unit: the dataset's stated
 // uncertainty of that input (the median over the conditions that state it), else the input's
@@ -99,38 +101,28 @@ std::pair<double, bool> record_width(const Dataset& d, const effects::EffectInfo
   return {w[w.size() / 2], true};
 }
 
-// A step of the diagnosis under one noise model: the cost fits minimise and the tests' yardsticks.
-struct Stage {
-  const Misfit& m;
-  const DiagnoseOptions& opt;
-  NoiseModel nm;
-  Cost cost;
-  double chi2_0 = 0.0;  // the models as they are
-  double n = 0.0;       // points that count
-  std::size_t candidates = 0;
+}  // namespace
 
-  std::map<std::string, std::pair<double, bool>> prior;  // recorded input -> (width, stated)
-  // A single's estimate and the weighted residuals there, where its fit kept them (many conditions):
-  // the pair screen reads them instead of evaluating every single again.
-  mutable std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> at_estimate;
+Stage::Stage(const Misfit& misfit, const DiagnoseOptions& o, NoiseModel noise)
+    : m(misfit), opt(o), nm(std::move(noise)), cost(misfit, nm.weights(misfit)) {
+  chi2_0 = cost.chi2({}, {});
+  n = static_cast<double>(cost.size());
+  candidates = effects::library().size();
+  for (const auto& e : effects::library())
+    if (e.kind == effects::EffectInfo::Kind::record) prior[e.name] = record_width(misfit.dataset(), e);
+}
 
-  Stage(const Misfit& misfit, const DiagnoseOptions& o, NoiseModel noise)
-      : m(misfit), opt(o), nm(std::move(noise)), cost(misfit, nm.weights(misfit)) {
-    chi2_0 = cost.chi2({}, {});
-    n = static_cast<double>(cost.size());
-    candidates = effects::library().size();
-    for (const auto& e : effects::library())
-      if (e.kind == effects::EffectInfo::Kind::record) prior[e.name] = record_width(misfit.dataset(), e);
-  }
-  double dof(double k) const { return std::max(1.0, n - k); }
-  // The chance of a fall of chi^2 this large from k more strengths: a likelihood ratio against the
-  // stated uncertainties, or an F test against the scatter itself once they were widened.
-  double p_improvement(double drop, double k, double after) const {
-    drop = std::max(0.0, drop);
-    if (nm.scale > 1.0) return gsl_cdf_fdist_Q((drop / k) / std::max(after / dof(k), 1e-300), k, dof(k));
-    return gsl_cdf_chisq_Q(drop, k);
-  }
-};
+double Stage::p_improvement(double drop, double k, double after) const {
+  drop = std::max(0.0, drop);
+  if (nm.scale > 1.0) return gsl_cdf_fdist_Q((drop / k) / std::max(after / dof(k), 1e-300), k, dof(k));
+  return gsl_cdf_chisq_Q(drop, k);
+}
+
+std::optional<std::pair<double, bool>> Stage::prior_of(const std::string& candidate) const {
+  const auto it = prior.find(effects::split_condition(candidate).first);
+  if (it == prior.end()) return std::nullopt;
+  return it->second;
+}
 
 void score(EffectFit& e, double chi2, const Stage& s) {
   const double k = static_cast<double>(e.effects.size());
@@ -140,8 +132,8 @@ void score(EffectFit& e, double chi2, const Stage& s) {
   e.prior_stated.assign(e.effects.size(), false);
   e.prior_penalty = 0.0;
   for (std::size_t i = 0; i < e.effects.size(); ++i)
-    if (auto it = s.prior.find(e.effects[i]); it != s.prior.end()) {
-      const auto [w, stated] = it->second;
+    if (const auto prior = s.prior_of(e.effects[i])) {
+      const auto [w, stated] = *prior;
       e.prior_width[i] = w;
       e.prior_stated[i] = stated;
       e.prior_penalty += 2.0 * std::log1p(std::pow(e.estimate[i] / w, 2));
@@ -167,7 +159,6 @@ EffectFit make_fit(const Fx& fx, const StrengthFit& f, const Stage& s) {
   return e;
 }
 
-// A fit's chi^2 replaced by the one real runs at its strengths give, and what follows from it.
 void rescore(EffectFit& e, double chi2, const Stage& s) {
   if (!e.chi2_from_signatures) e.chi2_from_signatures = e.chi2_after;
   score(e, chi2, s);
@@ -182,21 +173,19 @@ std::string signature_words(PredictionSource::Signature s) {
   return "";
 }
 
-// Where a long run is and how long it has taken so far.
-struct Progress {
-  bool on = false;
-  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
-  // Which pass of the noise model's rounds (validation/diagnosis.cpp, settle) the fits belong to:
-  // each round that leaves out a reading or adds a discrepancy fits every candidate again.
-  int round = 1;
-  void operator()(const std::string& what, std::size_t k, std::size_t of) const {
-    if (!on) return;
-    const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - started;
-    std::cerr << fmt::format("diagnose: {}fitting {} ({}/{}, {:.0f} s so far)\n",
-                             round > 1 ? fmt::format("round {} of the noise model: ", round) : "", what, k, of,
-                             spent.count());
-  }
-};
+void Progress::operator()(const std::string& what, std::size_t k, std::size_t of) const {
+  if (!on) return;
+  const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - started;
+  std::cerr << fmt::format("diagnose: {}fitting {} ({}/{}, {:.0f} s so far)\n",
+                           round > 1 ? fmt::format("round {} of the noise model: ", round) : "", what, k, of,
+                           spent.count());
+}
+
+}  // namespace detail
+
+namespace {
+
+using namespace detail;
 
 // Every single candidate fitted inside its physical range, judged (Bonferroni over the candidates)
 // and ranked by chi^2.
@@ -263,7 +252,7 @@ void fit_outside(std::vector<EffectFit>& singles, const Stage& s) {
   const double limit = s.opt.alpha / static_cast<double>(singles.size());
   for (auto& f : singles) {
     if (f.at_bound.empty() || !f.at_bound[0]) continue;
-    const auto* e = effects::find(f.effects[0]);
+    const auto* e = effects::find_candidate(f.effects[0]);
     const double span = e->upper - e->lower;
     const bool low = f.estimate[0] <= e->lower + 1e-3 * span;
     const double past = low ? e->lower - 0.05 * span : e->upper + 0.05 * span;
@@ -301,6 +290,10 @@ void veto_by_outside(std::vector<EffectFit>& fits, const EffectFit* outside, con
   }
 }
 
+}  // namespace
+
+namespace detail {
+
 // Is what an explanation leaves noise? Per quantity (outside discrepancies): its excess scatter, its
 // bias and its trend with an operating variable, Bonferroni over quantities and tests; and, while
 // the uncertainties stand as stated, the whole chi^2.
@@ -337,122 +330,19 @@ std::vector<Leftover> leftovers_of(const Stage& s, const std::vector<double>& r,
   return out;
 }
 
-// Pairs, sought when the best single leaves a misfit that is not noise. A pair must beat that
-// single: its extra parameter is tested against it (likelihood ratio, one degree of freedom),
-// Bonferroni over all pairs, and by a clear BIC margin.
-// `jobs` 0: no expensive confirmation (while the noise model settles).
-// The pairs worth a real fit. Each single's fitted change of the weighted residuals is a direction
-// the data can move along; the least-squares combination of two such directions is the pair's fit
-// to first order (it equals either single's chi^2 at (1, 0) and (0, 1), so it is never worse than
-// the better single). The pairs whose combination leaves the least chi^2 are fitted for real; the
-// multiple-testing correction still counts every pair, as all were looked at.
-std::vector<std::pair<std::size_t, std::size_t>> screen_pairs(const Stage& s, const std::vector<EffectFit>& singles) {
-  const auto& lib = effects::library();
-  std::vector<std::pair<std::size_t, std::size_t>> all;
-  for (std::size_t i = 0; i < lib.size(); ++i)
-    for (std::size_t j = i + 1; j < lib.size(); ++j) all.emplace_back(i, j);
-  const auto keep = static_cast<std::size_t>(s.opt.screened_pairs);
-  if (keep == 0 || all.size() <= keep) return all;
-  const auto r0 = s.cost.weighted(s.m.residuals({}, {}));
-  std::vector<std::vector<double>> d(lib.size());
-  for (const auto& f : singles) {
-    const auto at = std::find_if(lib.begin(), lib.end(), [&](const auto& e) { return e.name == f.effects[0]; });
-    if (at == lib.end()) continue;
-    const auto kept = s.at_estimate.find(f.effects[0]);
-    auto r = kept != s.at_estimate.end() && kept->second.first == f.estimate
-                 ? kept->second.second
-                 : s.cost.weighted(s.m.residuals(infos_of(f), f.estimate));
-    for (std::size_t k = 0; k < r.size(); ++k) r[k] -= r0[k];
-    d[static_cast<std::size_t>(at - lib.begin())] = std::move(r);
-  }
-  const auto dot = [](const std::vector<double>& a, const std::vector<double>& b) {
-    double t = 0.0;
-    for (std::size_t k = 0; k < a.size(); ++k) t += a[k] * b[k];
-    return t;
-  };
-  const double c00 = dot(r0, r0);
-  std::vector<std::pair<double, std::pair<std::size_t, std::size_t>>> scored;
-  for (const auto& [i, j] : all) {
-    double chi2 = c00;
-    if (!d[i].empty() && !d[j].empty()) {
-      // min over (a, b) of |r0 + a d_i + b d_j|^2: the normal equations of two unknowns, or the
-      // better single where the two directions are parallel.
-      const double aa = dot(d[i], d[i]), bb = dot(d[j], d[j]), ab = dot(d[i], d[j]);
-      const double ra = dot(r0, d[i]), rb = dot(r0, d[j]);
-      const double det = aa * bb - ab * ab;
-      if (det > 1e-12 * aa * bb) {
-        const double a = (-ra * bb + rb * ab) / det, b = (-rb * aa + ra * ab) / det;
-        chi2 = c00 + a * a * aa + b * b * bb + 2.0 * a * b * ab + 2.0 * a * ra + 2.0 * b * rb;
-      } else {
-        if (aa > 0.0) chi2 = std::min(chi2, c00 - ra * ra / aa);
-        if (bb > 0.0) chi2 = std::min(chi2, c00 - rb * rb / bb);
-      }
-    }
-    scored.push_back({chi2, {i, j}});
-  }
-  std::stable_sort(scored.begin(), scored.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<std::pair<std::size_t, std::size_t>> out;
-  for (std::size_t k = 0; k < keep; ++k) out.push_back(scored[k].second);
-  // Fitted in the library's order, as before the screen, so that ties resolve the same way.
-  std::sort(out.begin(), out.end());
-  return out;
-}
+}  // namespace detail
 
-std::vector<EffectFit> fit_pairs(const Stage& s, const std::vector<EffectFit>& singles, const Progress& progress,
-                                 int jobs) {
-  const auto& lib = effects::library();
-  const EffectFit& top = singles.front();
-  std::map<std::string, double> single_estimate;
-  for (const auto& f : singles) single_estimate[f.effects[0]] = f.estimate[0];
-  const double npairs = static_cast<double>(lib.size() * (lib.size() - 1) / 2);
-  auto test_pair = [&](EffectFit& f) {
-    f.p_value = s.p_improvement(top.ranked_chi2() - f.ranked_chi2(), 1.0, f.chi2_after);
-    f.p_adjusted = std::min(1.0, f.p_value * npairs);
-    f.significant = f.p_adjusted < s.opt.alpha && f.delta_bic < top.delta_bic - s.opt.pair_margin_bic;
-  };
-  std::vector<EffectFit> out;
-  const auto chosen = screen_pairs(s, singles);
-  std::size_t tried = 0;
-  for (const auto& [i, j] : chosen) {
-    progress(fmt::format("the pair {} + {}", lib[i].name, lib[j].name), ++tried, chosen.size());
-    const Fx fx = {&lib[i], &lib[j]};
-    const std::vector<std::vector<double>> starts = {{single_estimate[lib[i].name], lib[j].neutral},
-                                                     {lib[i].neutral, single_estimate[lib[j].name]},
-                                                     {single_estimate[lib[i].name], single_estimate[lib[j].name]}};
-    EffectFit f = make_fit(fx, fit_strengths(s.cost, fx, {StrengthRange::physical, starts}), s);
-    if (s.m.source().has_expensive())
-      f.signature = signature_words(s.m.source().signature(lib[i])) + " + " +
-                    signature_words(s.m.source().signature(lib[j]));
-    test_pair(f);
-    if (f.significant) out.push_back(f);
-  }
-  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.ranked_chi2() < b.ranked_chi2(); });
-  if (jobs > 0 && s.m.source().reruns_expensive() && !out.empty()) {
-    // Only a pair whose real runs still beat the best single by the same tests is kept.
-    EffectFit f = out.front();
-    const Fx fx = infos_of(f);
-    for (std::size_t i = 0; i < f.estimate.size(); ++i) f.estimate[i] = on_grid(f.estimate[i], f.uncertainty[i]);
-    s.m.source().prepare_exact(fx, f.estimate, jobs, "the best pair, run for real before it is kept");
-    rescore(f, s.cost.chi2_of(s.m.residuals_exact(fx, f.estimate)), s);
-    test_pair(f);
-    out.clear();
-    if (f.significant) out.push_back(f);
-  }
-  return out;
-}
+namespace {
+
+}  // namespace
+
+namespace detail {
 
 // Where each effect of an explanation finds its evidence: the fall of chi^2 from the explanation
 // with that effect switched off to the explanation. When nine tenths of it come from one quantity
 // and the effect makes another quantity significantly worse (at the family's alpha), it fixes one
 // quantity at the expense of the rest: it stands in for an error in how the models predict that
 // quantity. (An effect whose evidence lies in one quantity but fits the rest is not suspect.)
-struct Evidence {
-  std::size_t effect = 0;      // index into the explanation's effects
-  std::size_t group = 0;
-  double share = 0.0;
-  std::vector<double> before;  // residuals (unweighted) with the effect switched off
-};
-
 std::optional<Evidence> concentrated(const Stage& s, const Fx& fx, const std::vector<double>& v) {
   const auto r1 = s.cost.weighted(s.m.residuals(fx, v));
   for (std::size_t j = 0; j < fx.size(); ++j) {
@@ -475,19 +365,29 @@ std::optional<Evidence> concentrated(const Stage& s, const Fx& fx, const std::ve
   return std::nullopt;
 }
 
+}  // namespace detail
+
+namespace {
+
 // The explanations under one noise model: every single inside its range, those at an edge also
-// outside it, and pairs when the best single leaves a misfit that is not noise.
+// outside it, and every further cause the data support (validation/diagnosis_causes.cpp).
 struct Explanations {
-  std::vector<EffectFit> singles, pairs;
+  std::vector<EffectFit> singles, pairs;  // pairs: explanations by more causes than the best single, largest first
   const EffectFit* outside = nullptr;  // in singles: the best fit outside a range that the data want
   // The leading explanation (lowest BIC among the significant ones, a fit outside a range included).
   Fx fx;
   std::vector<double> strengths;
   double chi2 = 0.0;
   bool any = false;
+  // The leading explanation with the best further cause, significant or not: the noise model is
+  // judged on what it leaves, so that it takes only scatter that no candidate explains.
+  Fx full_fx;
+  std::vector<double> full_strengths;
+  std::optional<EffectFit> next;  // that further cause's explanation
+  std::vector<EffectFit> alternatives;  // about as good in the last cause's place (Causes::alternatives)
 };
 
-Explanations explain(const Stage& s, const Drivers& drivers, const Progress& progress, int jobs, bool confirm) {
+Explanations explain(const Stage& s, const Progress& progress, int jobs, bool confirm) {
   Explanations x;
   x.singles = fit_singles(s, progress);
   judge_singles(x.singles, s);
@@ -502,22 +402,26 @@ Explanations explain(const Stage& s, const Drivers& drivers, const Progress& pro
     bic = chi2 + static_cast<double>(fx.size()) * ln_n;
     x.fx = fx, x.strengths = v, x.chi2 = chi2, x.any = true;
   };
-  if (const EffectFit* top = leader(x.singles); top && top->beaten_outside_range_by.empty())
-    consider(infos_of(*top), top->estimate, top->chi2_after);
+  const EffectFit* top = leader(x.singles);
+  if (top && !top->beaten_outside_range_by.empty()) top = nullptr;
+  if (top) consider(infos_of(*top), top->estimate, top->chi2_after);
   if (x.outside) consider(infos_of(*x.outside), {x.outside->unbounded->estimate}, x.outside->unbounded->chi2);
-  if (x.any && s.opt.pairs && x.singles.front().significant) {
-    // A second effect is sought where the rest lies in several quantities. Where it lies in one
-    // alone, a model-form error of that quantity is the simpler reading: the noise model gives it a
-    // discrepancy first, so that an effect fitted to one quantity's error is not named.
-    const auto r = s.m.residuals(x.fx, x.strengths);
-    const auto left = leftovers_of(s, r, static_cast<double>(x.fx.size()), x.chi2, drivers);
-    const bool one_quantity = left.size() == 1 && left.front().quantity != "all";
-    if (!left.empty() && !one_quantity) {
-      x.pairs = fit_pairs(s, x.singles, progress, confirm ? jobs : 0);
-      veto_by_outside(x.pairs, x.outside, s);
-      std::erase_if(x.pairs, [](const EffectFit& f) { return !f.beaten_outside_range_by.empty(); });
-      if (!x.pairs.empty()) consider(infos_of(x.pairs.front()), x.pairs.front().estimate, x.pairs.front().chi2_after);
-    }
+  std::optional<EffectFit> next;
+  if (s.opt.pairs && (top || !x.outside)) {
+    Causes c = more_causes(s, x.singles, top, progress, confirm ? jobs : 0);
+    x.pairs = std::move(c.chosen);
+    next = std::move(c.next);
+    x.alternatives = std::move(c.alternatives);
+    veto_by_outside(x.pairs, x.outside, s);
+    std::erase_if(x.pairs, [](const EffectFit& f) { return !f.beaten_outside_range_by.empty(); });
+    if (!x.pairs.empty()) consider(infos_of(x.pairs.front()), x.pairs.front().estimate, x.pairs.front().chi2_after);
+  }
+  x.full_fx = x.fx, x.full_strengths = x.strengths;
+  const std::size_t chosen = x.pairs.empty() ? (top ? 1 : 0) : x.pairs.front().effects.size();
+  if (next && x.any && next->effects.size() == chosen + 1 && std::equal(x.fx.begin(), x.fx.end(), infos_of(*next).begin())) {
+    x.full_fx = infos_of(*next);
+    x.full_strengths = next->estimate;
+    x.next = std::move(next);
   }
   return x;
 }
@@ -533,35 +437,50 @@ struct Settled {
   std::optional<Explanations> last;
 };
 
-Settled settle(const Misfit& m, const DiagnoseOptions& opt, const Drivers& drivers, const Progress& progress) {
+Settled settle(const Misfit& m, const DiagnoseOptions& opt, const Progress& progress) {
   Settled out;
   out.nm = NoiseModel::stated(m);
   std::set<std::string> measured;
   for (const auto& g : m.groups()) measured.insert(g.quantity);
   const std::size_t quantities = measured.size();
-  const int max_rounds = 4 + static_cast<int>(opt.max_outlier_share * static_cast<double>(m.size()));
+  const int max_rounds = 4 + 2 * static_cast<int>(opt.max_outlier_share * static_cast<double>(m.size()));
+  std::set<std::size_t> readmitted;
   for (out.rounds = 1; out.rounds <= max_rounds; ++out.rounds) {
     const Stage s(m, opt, out.nm);
     Progress shown = progress;
     shown.round = out.rounds;
-    Explanations x = explain(s, drivers, shown, 0, false);
+    Explanations x = explain(s, shown, 0, false);
     const auto r = x.any ? m.residuals(x.fx, x.strengths) : m.residuals({}, {});
     if (const auto o = find_outlier(m, out.nm, r, opt.alpha, opt.max_outlier_share)) {
       out.nm.excluded[*o] = 1;
       continue;
     }
+    if (const auto back = find_readmitted(m, out.nm, r, opt.alpha); back && !readmitted.count(*back)) {
+      out.nm.excluded[*back] = 0;
+      readmitted.insert(*back);  // once: a reading may not go in and out for ever
+      continue;
+    }
     // An effect that fixes one quantity at the expense of the others (where others are measured):
     // an error in how the models predict that quantity is the simpler reading, so it gets a
     // discrepancy and the fits are repeated.
-    if (x.any && quantities >= 2)
-      if (const auto e = concentrated(s, x.fx, x.strengths); e && out.nm.discrepancy[e->group] == 0.0) {
-        const double tau = discrepancy_for(m, m.groups()[e->group], e->before, out.nm.excluded, out.nm.scale);
-        if (tau > 0.0) {
-          out.nm.discrepancy[e->group] = tau;
-          continue;
-        }
+    // The leading single is asked first: further causes can hide its cost in the other quantities
+    // (a plate friction that fixes R_s, with a plate angle to undo what it does to V_a).
+    const EffectFit* top = leader(x.singles);
+    std::optional<Evidence> e;
+    if (x.any && quantities >= 2 && top && top->beaten_outside_range_by.empty())
+      e = concentrated(s, infos_of(*top), top->estimate);
+    if (x.any && quantities >= 2 && !(e && out.nm.discrepancy[e->group] == 0.0)) e = concentrated(s, x.fx, x.strengths);
+    if (e && out.nm.discrepancy[e->group] == 0.0) {
+      const double tau = discrepancy_for(m, m.groups()[e->group], e->before, out.nm.excluded, out.nm.scale);
+      if (tau > 0.0) {
+        out.nm.discrepancy[e->group] = tau;
+        continue;
       }
-    NoiseModel next = assess_noise(m, out.nm, r, static_cast<int>(x.fx.size()), opt.alpha, &out.scale);
+    }
+    // The noise model is judged on what the explanation and the best further cause leave: scatter
+    // that a candidate's signature takes up is structure, not noise, whether it was named or not.
+    const auto full = x.full_fx.size() > x.fx.size() ? m.residuals(x.full_fx, x.full_strengths) : r;
+    NoiseModel next = assess_noise(m, out.nm, full, static_cast<int>(x.full_fx.size()), opt.alpha, &out.scale);
     if (next.settled_with(out.nm)) {
       out.settled = true;
       out.last = std::move(x);
@@ -571,29 +490,6 @@ Settled settle(const Misfit& m, const DiagnoseOptions& opt, const Drivers& drive
   }
   out.rounds = max_rounds;
   return out;
-}
-
-// A recorded input's error at one condition only: the candidate's station change applied where the
-// station is that condition (analytical/effect.h adjust_station), nothing elsewhere.
-class AtCondition final : public analytical::Effect {
- public:
-  AtCondition(std::shared_ptr<const analytical::Effect> inner, std::string condition)
-      : inner_(std::move(inner)), condition_(std::move(condition)) {}
-  std::string name() const override { return inner_->name() + "@" + condition_; }
-  void adjust_station(Station& s) const override {
-    if (s.condition == condition_) inner_->adjust_station(s);
-  }
-
- private:
-  std::shared_ptr<const analytical::Effect> inner_;
-  std::string condition_;
-};
-
-effects::EffectInfo at_condition(const effects::EffectInfo& e, const std::string& condition) {
-  effects::EffectInfo c = e;
-  c.name = e.name + "@" + condition;
-  c.make = [make = e.make, condition](double v) { return std::make_shared<AtCondition>(make(v), condition); };
-  return c;
 }
 
 struct ConditionFit {
@@ -608,7 +504,7 @@ ConditionFit fit_per_condition(const Stage& s, const effects::EffectInfo& e) {
   ConditionFit out;
   const auto& stations = s.m.dataset().stations;
   for (std::size_t ci = 0; ci < stations.size(); ++ci) {
-    const effects::EffectInfo c = at_condition(e, stations[ci].condition);
+    const effects::EffectInfo c = effects::at_condition(e, stations[ci].condition);
     const Fx fx = {&c};
     const Cost part = s.cost.only({ci});
     const StrengthFit f = fit_strengths(part, fx);
@@ -619,72 +515,34 @@ ConditionFit fit_per_condition(const Stage& s, const effects::EffectInfo& e) {
   return out;
 }
 
-// For the recommended record (per_condition inputs): one error for the rig, or one per condition?
-// With nothing named: is the misfit one condition's record? Analytical models only: with a DEM each
-// condition's candidate would need probe runs of its own.
-std::optional<RecordScope> record_scope_of(const Stage& s, const EffectFit* best, double alpha) {
-  if (s.m.source().has_expensive()) return std::nullopt;
+// For the recommended record: one error for the rig, or one per condition? Analytical models only:
+// with a DEM each condition's candidate would need probe runs of its own.
+std::optional<RecordScope> record_scope_of(const Stage& s, const EffectFit* best) {
+  if (s.m.source().has_expensive() || !best || best->effects.size() != 1 || !best->is_record()) return std::nullopt;
   const auto& stations = s.m.dataset().stations;
   const double n = static_cast<double>(stations.size());
-  if (n < 2) return std::nullopt;
-  auto fill = [&](RecordScope& r, const effects::EffectInfo& e, const ConditionFit& f) {
-    r.input = e.name;
-    r.unit = e.unit;
-    for (std::size_t c = 0; c < stations.size(); ++c) r.conditions.push_back(stations[c].condition);
-    r.estimate = f.estimate;
-    r.uncertainty = f.uncertainty;
-  };
-  if (best && best->effects.size() == 1 && best->is_record()) {
-    const auto* e = effects::find(best->effects[0]);
-    if (!e->per_condition) return std::nullopt;
-    const ConditionFit f = fit_per_condition(s, *e);
-    RecordScope r;
-    fill(r, *e, f);
-    double drop = 0.0;
-    for (double d : f.drop) drop += d;
-    r.rig_wide_chi2 = best->chi2_after;
-    r.per_condition_chi2 = std::max(0.0, s.chi2_0 - drop);
-    r.p = s.p_improvement(r.rig_wide_chi2 - r.per_condition_chi2, n - 1.0, r.per_condition_chi2);
-    r.differs = r.p < alpha;
-    return r;
-  }
-  if (best) return std::nullopt;
-  // Nothing named: the single condition and input that explain most, Bonferroni over all the pairs.
-  std::optional<RecordScope> top;
-  double tried = 0.0;
-  for (const auto& e : effects::library())
-    tried += e.kind == effects::EffectInfo::Kind::record && e.per_condition ? n : 0.0;
-  for (const auto& e : effects::library()) {
-    if (e.kind != effects::EffectInfo::Kind::record || !e.per_condition) continue;
-    const ConditionFit f = fit_per_condition(s, e);
-    for (std::size_t c = 0; c < stations.size(); ++c) {
-      const double chi2 = s.chi2_0 - f.drop[c];
-      const double penalty = 2.0 * std::log1p(std::pow(f.estimate[c] / s.prior.at(e.name).first, 2));
-      const double p = std::min(1.0, s.p_improvement(f.drop[c] - penalty, 1.0, chi2) * tried);
-      if (top && p >= top->p) continue;
-      RecordScope r;
-      r.input = e.name;
-      r.unit = e.unit;
-      r.conditions = {stations[c].condition};
-      r.estimate = {f.estimate[c]};
-      r.uncertainty = {f.uncertainty[c]};
-      r.per_condition_chi2 = chi2;
-      r.p = p;
-      r.one_condition = true;
-      const double floor = std::min(chi2, s.dof(1.0));
-      r.explained_fraction = s.chi2_0 - floor > 0.0 ? std::clamp(f.drop[c] / (s.chi2_0 - floor), 0.0, 1.0) : 0.0;
-      top = r;
-    }
-  }
-  // Named only where it is significant and removes most of the misfit beyond noise.
-  if (top) top->differs = top->p < alpha && top->explained_fraction >= 0.7;
-  return top && top->differs ? top : std::nullopt;
+  const auto* e = effects::find(best->effects[0]);
+  if (n < 2 || !e) return std::nullopt;  // a record at one condition is already said to be one
+  const ConditionFit f = fit_per_condition(s, *e);
+  RecordScope r;
+  r.input = e->name;
+  r.unit = e->unit;
+  for (std::size_t c = 0; c < stations.size(); ++c) r.conditions.push_back(stations[c].condition);
+  r.estimate = f.estimate;
+  r.uncertainty = f.uncertainty;
+  double drop = 0.0;
+  for (double d : f.drop) drop += d;
+  r.rig_wide_chi2 = best->chi2_after;
+  r.per_condition_chi2 = std::max(0.0, s.chi2_0 - drop);
+  r.p = s.p_improvement(r.rig_wide_chi2 - r.per_condition_chi2, n - 1.0, r.per_condition_chi2);
+  r.differs = r.p < s.opt.alpha;
+  return r;
 }
 
 // The expensive model's own chi^2 at a few strengths around a single's estimate: the estimate and sd
 // from its curvature, not from the linear signature.
 void profile_best(EffectFit& f, const Stage& s, int jobs) {
-  const auto* e = effects::find(f.effects[0]);
+  const auto* e = effects::find_candidate(f.effects[0]);
   if (s.m.source().signature(*e) == PredictionSource::Signature::none) return;  // applied exactly already
   const Fx fx = {e};
   auto chi2_at = [&](double v) {
@@ -850,7 +708,7 @@ std::vector<Influence> influential(const Stage& s, const EffectFit& best) {
 // Each quantity's mean error before and after the recommended explanation, in its own units.
 // `exact`: the explanation's residuals from real runs, where there are some (else its predictions).
 std::vector<QuantityShift> shifts_of(const Stage& s, const Fx& fx, const std::vector<double>& strengths,
-                                     const std::vector<double>& exact = {}) {
+                                     const std::vector<double>& exact = {}, const std::string& only = "") {
   const auto& m = s.m;
   const auto before = m.predicted({}, {});
   auto after = fx.empty() ? before : m.predicted(fx, strengths);
@@ -874,6 +732,7 @@ std::vector<QuantityShift> shifts_of(const Stage& s, const Fx& fx, const std::ve
     for (std::size_t i : g.points) {
       if (s.nm.excluded[i]) continue;
       const auto& p = m.points()[i];
+      if (!only.empty() && m.dataset().stations[p.condition].condition != only) continue;
       const double scale = to_boundary(p);
       q.before += (before[i].value_or(0.0) - p.measured) * scale;
       q.after += (after[i].value_or(0.0) - p.measured) * scale;
@@ -969,6 +828,10 @@ std::vector<ResidualPattern> residual_patterns(const Misfit& m, const std::vecto
   return out;
 }
 
+}  // namespace
+
+namespace detail {
+
 // The change a fitted candidate makes to every normalised residual.
 std::vector<double> fitted_change(const Misfit& m, const EffectFit& f, const std::vector<double>& r0) {
   auto r = m.residuals(infos_of(f), f.estimate);
@@ -976,11 +839,16 @@ std::vector<double> fitted_change(const Misfit& m, const EffectFit& f, const std
   return r;
 }
 
+
 double cosine(const std::vector<double>& a, const std::vector<double>& b) {
   double ab = 0, aa = 0, bb = 0;
   for (std::size_t i = 0; i < a.size(); ++i) ab += a[i] * b[i], aa += a[i] * a[i], bb += b[i] * b[i];
   return aa > 0 && bb > 0 ? ab / std::sqrt(aa * bb) : 0.0;
 }
+
+}  // namespace detail
+
+namespace {
 
 // Which measurement tells two fitted explanations apart: the quantity and condition where their
 // predictions differ most, in units of the uncertainty such a measurement has in this dataset
@@ -1018,26 +886,91 @@ std::vector<Discriminator> discriminators(const Misfit& m, const EffectFit& a, c
 }
 
 // Candidates about as good as the best, and those that move the data in proportion to it.
+// Candidates about as good as the best, and those that move the data in proportion to it. For an
+// explanation by several causes, each cause's twins: a belt speed record named beside a plate
+// distance is as much a belt slip as it is a belt speed, when these data cannot tell the two apart.
+// About as good means about the same chi^2: a record's implausibility orders the ranking, but it is
+// no evidence that the data tell a record from a physical effect that fits as well.
+// The records at the same condition that move its readings in proportion to a cause wrong at one
+// condition (a pulley diameter and a height datum there), with the other causes held.
+void condition_twins(DiagnosisResult& out, const Stage& s, const EffectFit& best, const std::vector<double>& r0) {
+  const auto& stations = s.m.dataset().stations;
+  for (std::size_t j = 0; j < best.effects.size(); ++j) {
+    const auto split = effects::split_condition(best.effects[j]);
+    const std::string& input = split.first;
+    const std::string& condition = split.second;
+    if (condition.empty()) continue;
+    const auto at = std::find_if(stations.begin(), stations.end(), [&](const Station& st) { return st.condition == condition; });
+    if (at == stations.end()) continue;
+    const Cost part = s.cost.only({static_cast<std::size_t>(at - stations.begin())});
+    Fx others;
+    std::vector<double> held;
+    const Fx all = infos_of(best);
+    for (std::size_t k = 0; k < all.size(); ++k)
+      if (k != j) others.push_back(all[k]), held.push_back(best.estimate[k]);
+    auto single = [&](const effects::EffectInfo* e, double v) {
+      EffectFit f;
+      f.effects = {e->name};
+      f.parameters = {e->parameter};
+      f.estimate = {v};
+      f.uncertainty = {0.0};
+      return f;
+    };
+    const EffectFit mine = single(all[j], best.estimate[j]);
+    const auto d_mine = fitted_change(s.m, mine, r0);
+    Fx with_mine = others;
+    with_mine.push_back(all[j]);
+    std::vector<double> at_mine = held;
+    at_mine.push_back(best.estimate[j]);
+    const double chi2_mine = part.chi2(with_mine, at_mine);
+    for (const auto& e : effects::library()) {
+      if (e.kind != effects::EffectInfo::Kind::record || e.name == input) continue;
+      const auto* twin = effects::find_candidate(e.name + "@" + condition);
+      const Held h = fit_held(part, others, held, twin);
+      if (h.chi2 - chi2_mine > std::max(4.0, 0.05 * chi2_mine)) continue;
+      const EffectFit other = single(twin, h.estimate);
+      if (std::abs(cosine(d_mine, fitted_change(s.m, other, r0))) < s.opt.proportional_cosine) continue;
+      auto d = discriminators(s.m, mine, other, true);
+      if (d.empty()) d.push_back({mine.label(), other.label(), "", "", "", "", 0, 0, 0, false});
+      for (auto& x : d) {
+        x.model = "proportional";
+        out.ties.push_back(x);
+      }
+    }
+  }
+}
+
 void ties_of(DiagnosisResult& out, const Stage& s, const std::vector<double>& r0) {
-  const EffectFit& top = out.singles.front();
-  const auto d_top = fitted_change(s.m, top, r0);
-  for (std::size_t i = 1; i < out.singles.size(); ++i) {
-    const auto& f = out.singles[i];
-    if (!f.significant) continue;
-    const bool tie = f.delta_bic - top.delta_bic < s.opt.tie_margin_bic;
-    // Proportional: the data cannot tell them apart, whatever the ranking.
-    const bool proportional = std::abs(cosine(d_top, fitted_change(s.m, f, r0))) >= s.opt.proportional_cosine &&
-                              f.chi2_after - top.chi2_after <= std::max(4.0, 0.05 * top.chi2_after);
-    if (!tie && !proportional) continue;
-    auto d = discriminators(s.m, top, f, proportional);
-    if (d.empty()) d.push_back({top.label(), f.label(), "", "", "", "", 0, 0, 0, false});
-    d.front().measured_here = !proportional && d.front().measured_here;
-    if (proportional) d.front().model = "proportional";
-    if (tie) out.indistinguishable.push_back(f.label());
-    out.ties.push_back(d.front());
-    for (std::size_t j = 1; j < d.size() && proportional; ++j) {
-      d[j].model = "proportional";
-      out.ties.push_back(d[j]);
+  const EffectFit* best = out.best();
+  if (best) condition_twins(out, s, *best, r0);
+  std::vector<const EffectFit*> named;
+  if (best && best != &out.singles.front()) {
+    for (const auto& cause : best->effects)
+      for (const auto& f : out.singles)
+        if (f.effects[0] == cause) named.push_back(&f);
+  } else {
+    named.push_back(&out.singles.front());
+  }
+  for (const EffectFit* top : named) {
+    const auto d_top = fitted_change(s.m, *top, r0);
+    for (const auto& f : out.singles) {
+      if (&f == top || (best && std::count(best->effects.begin(), best->effects.end(), f.effects[0]))) continue;
+      if (!f.significant) continue;
+      const bool tie = named.size() == 1 && f.chi2_after - top->chi2_after < s.opt.tie_margin_bic;
+      // Proportional: the data cannot tell them apart, whatever the ranking.
+      const bool proportional = std::abs(cosine(d_top, fitted_change(s.m, f, r0))) >= s.opt.proportional_cosine &&
+                                f.chi2_after - top->chi2_after <= std::max(4.0, 0.05 * top->chi2_after);
+      if (!tie && !proportional) continue;
+      auto d = discriminators(s.m, *top, f, proportional);
+      if (d.empty()) d.push_back({top->label(), f.label(), "", "", "", "", 0, 0, 0, false});
+      d.front().measured_here = !proportional && d.front().measured_here;
+      if (proportional) d.front().model = "proportional";
+      if (tie) out.indistinguishable.push_back(f.label());
+      out.ties.push_back(d.front());
+      for (std::size_t j = 1; j < d.size() && proportional; ++j) {
+        d[j].model = "proportional";
+        out.ties.push_back(d[j]);
+      }
     }
   }
 }
@@ -1047,7 +980,7 @@ Verdict verdict_of(const DiagnosisResult& out, const EffectFit* best, const Effe
   if (best) {
     bool edge = false;
     for (bool b : best->at_bound) edge = edge || b;
-    return out.goodness_of_fit && !edge ? Verdict::missing_effect : Verdict::partial_explanation;
+    return out.goodness_of_fit && !edge && out.shape.empty() ? Verdict::missing_effect : Verdict::partial_explanation;
   }
   if (outside) return Verdict::out_of_range;
   // The scale, where applied, accounts for scatter without structure; outliers are left out.
@@ -1068,7 +1001,7 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
   const int jobs = jobs_of(opt);
   // Every MPI rank fits the same candidates (their results must agree on every rank), so the
   // threads of one rank are its share of the cores.
-  const Misfit m(std::make_shared<const PredictionSource>(d, models, analytical::EffectList{},
+  const Misfit m(std::make_shared<const PredictionSource>(d, models, opt.fixed,
                                                           std::max(1, jobs / campaign::ranks())));
   out.n_data = static_cast<int>(m.size());
   out.n_without_uncertainty = m.left_out();
@@ -1105,22 +1038,24 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
   }
   Progress progress{opt.progress && d.stations.size() >= 500};
   const Drivers drivers = drivers_of(m);
-  Settled settled = settle(m, opt, drivers, progress);
+  Settled settled = settle(m, opt, progress);
   const Stage s(m, opt, settled.nm);
   out.noise_rounds = settled.rounds;
   // Without an expensive model to re-run, the final fits are the settled round's: the same stage,
   // and nothing to confirm (a third of a diagnosis that settles in two rounds).
   Explanations x = settled.last && !m.source().reruns_expensive() ? std::move(*settled.last)
-                                                                   : explain(s, drivers, Progress{}, jobs, true);
+                                                                   : explain(s, Progress{}, jobs, true);
   out.singles = std::move(x.singles);
   out.pairs = std::move(x.pairs);
+  out.next_cause = std::move(x.next);
+  const std::vector<EffectFit> x_alternatives = std::move(x.alternatives);
   const EffectFit* outside = nullptr;
   for (const auto& f : out.singles)
     if (f.unbounded && f.unbounded->wants_outside) {
       out.wants_outside.push_back(f.effects[0]);
       if (!outside || f.unbounded->chi2 < outside->unbounded->chi2) outside = &f;
     }
-  out.any_significant = leader(out.singles) != nullptr;
+  out.any_significant = leader(out.singles) != nullptr || !out.pairs.empty();
   EffectFit* best = const_cast<EffectFit*>(out.best());
   if (best && best->effects.size() == 1 && m.source().reruns_expensive() && opt.profile_runs > 0) {
     profile_best(*best, s, jobs);
@@ -1157,17 +1092,50 @@ DiagnosisResult diagnose(const Dataset& d, const std::vector<ModelPtr>& models, 
   else if (best) out.shifts = shifts_of(s, infos_of(*best), best->estimate);
   else if (outside) out.shifts = shifts_of(s, infos_of(*outside), {outside->unbounded->estimate});
   else out.shifts = shifts_of(s, {}, {});
+  // A record wrong at one condition: its words speak of that condition's readings, which the mean
+  // over every condition would dilute eight-fold on the reference rig.
+  if (best) {
+    std::set<std::string> at;
+    for (const auto& e : best->effects) at.insert(effects::split_condition(e).second);
+    if (at.size() == 1 && !at.begin()->empty()) {
+      out.shifts_condition = *at.begin();
+      out.shifts_there = best->chi2_from_signatures && m.source().reruns_expensive()
+                             ? shifts_of(s, infos_of(*best), best->estimate, best_residuals(s, best), out.shifts_condition)
+                             : shifts_of(s, infos_of(*best), best->estimate, {}, out.shifts_condition);
+    }
+  }
   out.model_form = model_form_of(s, out.shifts);
   fill_leftovers(out.leftovers, out.shifts);
   out.outliers = name_outliers(s, best, out.singles);
+  out.alpha = opt.alpha;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (!s.nm.excluded[i]) out.chi2_kept += r0[i] * r0[i], ++out.n_kept;
+  out.kept_p_value = out.n_kept ? gsl_cdf_chisq_Q(out.chi2_kept, static_cast<double>(out.n_kept)) : 1.0;
   out.scale = {settled.scale.factor, settled.scale.dof, settled.scale.p_high, settled.scale.p_low,
                s.nm.scale > 1.0, settled.scale.p_low < opt.alpha};
-  if (out.any_significant && out.singles.front().beaten_outside_range_by.empty()) ties_of(out, s, r0);
+  if (out.best()) ties_of(out, s, r0);
+  // Another cause in the last place of an explanation by several that fits about as well.
+  if (const EffectFit* b = out.best(); b && !out.pairs.empty() && b == &out.pairs.front())
+    for (const auto& alt : x_alternatives) {
+      out.indistinguishable.push_back(alt.label());
+      auto d = discriminators(m, *b, alt, false);
+      if (d.empty()) d.push_back({b->label(), alt.label(), "", "", "", "", 0, 0, 0, false});
+      out.ties.push_back(d.front());
+    }
   out.thin_data = out.n_conditions < 3 || out.n_quantities < 2 || out.n_data < 10;
+  if (out.n_conditions >= 2) {
+    std::set<double> speeds, flows;
+    for (const auto& p : m.points()) {
+      speeds.insert(d.stations[p.condition].belt_speed);
+      flows.insert(d.stations[p.condition].mass_flow);
+    }
+    out.one_belt_speed = speeds.size() == 1;
+    out.one_mass_flow = flows.size() == 1;
+  }
+  if (best) out.shape = shape_of(s, *best);
   out.verdict_code = verdict_of(out, best, outside);
-  if (out.verdict_code == Verdict::missing_effect || out.verdict_code == Verdict::partial_explanation ||
-      out.verdict_code == Verdict::outside_library)
-    out.record_scope = record_scope_of(s, out.verdict_code == Verdict::outside_library ? nullptr : best, opt.alpha);
+  if (out.verdict_code == Verdict::missing_effect || out.verdict_code == Verdict::partial_explanation)
+    out.record_scope = record_scope_of(s, best);
   out.convincing = out.verdict_code == Verdict::missing_effect;
   describe(out, opt);
   return out;

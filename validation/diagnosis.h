@@ -181,21 +181,35 @@ struct Concentration {
   double share = 0.0;                     // of the effect's fall of chi^2
 };
 
-// Whether a recorded input is off by the same at every condition (the rig's drawing) or differs
-// between them (the rig changed between tests): each condition's error fitted on its own data.
+// Whether a named recorded input is off by the same at every condition (the rig's drawing) or
+// differs between them (the rig changed between tests): each condition's error fitted on its own data.
 struct RecordScope {
   std::string input;                       // effects/registry.h name
   std::string unit;
-  // The recommended record's error per condition (it is named), or the one condition where an
-  // input alone explains most of an otherwise unexplained misfit (nothing is named).
   std::vector<std::string> conditions;
   std::vector<double> estimate, uncertainty;
   double rig_wide_chi2 = 0.0, per_condition_chi2 = 0.0;
-  double p = 1.0;                          // per condition against one error for the rig (chi^2, n - 1 dof), or
-                                           // one condition's error against none (Bonferroni over inputs x conditions)
+  double p = 1.0;                          // per condition against one error for the rig (chi^2, n - 1 dof)
   bool differs = false;                    // significant at the family's alpha
-  bool one_condition = false;              // the second case above
-  double explained_fraction = 0.0;         // one_condition: share of the misfit beyond noise removed
+};
+
+// A named cause whose strength the data want to change with an operating variable: the library's
+// form of it holds the strength constant, so its fitted value is a compromise between conditions.
+struct ShapeFinding {
+  std::string effect;                      // the cause (a library name)
+  std::string parameter, unit;             // its strength
+  std::string driver;                      // "belt speed", "mass flow", "drop height"
+  std::string driver_unit;
+  // The strength the data want, fitted condition by condition with the other causes held: about
+  // proportional to driver^exponent (a line in log(driver) through the conditions' strengths).
+  double exponent = 0.0, exponent_uncertainty = 0.0;
+  double low_driver = 0.0, high_driver = 0.0;      // the driver's range over the conditions (boundary units)
+  double low_strength = 0.0, high_strength = 0.0;  // the line's strength at either end
+  double p = 1.0;                          // Bonferroni over the causes and drivers tested
+  // Where the effect declares how it grows (effects/registry.h, EffectInfo::growth): the power of
+  // the driver its physics has, and what grows ("drag").
+  std::string grows;
+  double power = 0.0;
 };
 
 struct DiagnosisResult {
@@ -206,9 +220,19 @@ struct DiagnosisResult {
   int n_conditions = 0, n_quantities = 0; // what the design spans
   double chi2_baseline = 0.0;             // as stated (before the noise model)
   double baseline_p_value = 1.0;          // chance of a chi^2 this large from noise alone
+  // The same without the readings left out as outliers: what "within the stated uncertainties" rests on.
+  double chi2_kept = 0.0;
+  int n_kept = 0;
+  double kept_p_value = 1.0;
+  double alpha = 0.01;                    // the family-wise false-alarm rate the verdict was judged at
   std::vector<ResidualPattern> patterns;
   std::vector<EffectFit> singles;         // ranked, best first
-  std::vector<EffectFit> pairs;           // only pairs that beat every single by a clear margin
+  // Explanations by more causes than the best single, each cause significant given the others (a
+  // forward search; validation/diagnosis_causes.cpp), largest first: best() is the first.
+  std::vector<EffectFit> pairs;
+  // The best explanation one cause larger than the one named, whose last cause was not significant:
+  // the nearest rival on the side of more causes (the self-check draws replicas from it).
+  std::optional<EffectFit> next_cause;
   bool any_significant = false;
 
   // The codes and numbers of the verdict.
@@ -221,15 +245,25 @@ struct DiagnosisResult {
   ScaleFinding scale;
   std::vector<Leftover> leftovers;        // where the rest is not noise
   std::vector<QuantityShift> shifts;      // the recommended explanation in units
+  // Where the explanation is a record wrong at one condition: that condition, and the shifts of its
+  // readings alone (the words say these).
+  std::string shifts_condition;
+  std::vector<QuantityShift> shifts_there;
   std::vector<std::string> wants_outside; // candidates whose data want a strength outside the range
   bool thin_data = false;                 // too few conditions or quantities to tell candidates apart
+  // Every condition at one belt speed (or one mass flow): effects that grow with it look alike.
+  bool one_belt_speed = false, one_mass_flow = false;
+  std::vector<ShapeFinding> shape;        // named causes the data want with another shape
   int noise_rounds = 0;                   // fits run before the noise model settled
   std::vector<Discriminator> ties;        // about as good as the best, and what would separate them
   std::optional<Concentration> concentrated;  // the recommended effect rests on one quantity
   std::optional<RecordScope> record_scope;  // analytical models only (a DEM would need runs per condition)
 
   // Sentences for an engineer, rendered from the above (validation/diagnosis_words.cpp).
-  std::string verdict;                    // the headline
+  std::string verdict;                    // the headline, in the quantities' units and %: no statistics
+  // How sure the verdict is, for whoever asks: chi^2 before and after, the share of the misfit beyond
+  // noise removed, delta BIC and the adjusted p (the report's "How sure is this?").
+  std::string evidence;
   std::vector<std::string> failure_summary;    // where the models as they are fail
   std::vector<std::string> findings;           // readings to check, quantities no model explains, the uncertainties
   std::vector<std::string> indistinguishable;  // effects about as good as the best
@@ -274,6 +308,9 @@ struct DiagnoseOptions {
   int profile_runs = 6;
   // One line per fit on stderr (which, of how many, time so far) for datasets of 500 conditions or more.
   bool progress = false;
+  // Applied to every model before any candidate: corrected records (`diagnose --input`). The
+  // candidates are then what the corrected rig still misses.
+  analytical::EffectList fixed = {};
 };
 
 // Throws InputError (field = the option's name) for an option out of its range, before any work.

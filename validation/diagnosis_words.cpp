@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <map>
 
+#include "effects/at_condition.h"
 #include "effects/registry.h"
 #include "validation/diagnosis.h"
 #include "validation/output_files.h"
@@ -32,55 +33,70 @@ std::string value_with_unit(double v, double sd, const std::string& unit) {
   return fmt::format("{:.4g} ± {:.2g}{}", v, sd, u);
 }
 
-// "air_drag, drag_coefficient = 0.752 ± 0.031"
-std::string fitted_words(const EffectFit& f) {
-  std::vector<std::string> parts;
-  for (std::size_t i = 0; i < f.effects.size(); ++i) {
-    const auto* e = effects::find(f.effects[i]);
-    parts.push_back(fmt::format("{} ({} = {})", f.effects[i], e ? e->parameter : f.parameters[i],
-                                value_with_unit(f.estimate[i], f.uncertainty[i], e ? e->unit : "")));
-  }
-  return fmt::format("{}", fmt::join(parts, " + "));
+bool is_record(const std::string& candidate) {
+  const auto* e = effects::find_candidate(candidate);
+  return e && e->kind == effects::EffectInfo::Kind::record;
+}
+
+// A physical effect with its strength: "air_drag (drag_coefficient = 0.752 ± 0.031)".
+std::string effect_words(const EffectFit& f, std::size_t i) {
+  const auto* e = effects::find_candidate(f.effects[i]);
+  return fmt::format("{} ({} = {})", f.effects[i], e ? e->parameter : f.parameters[i],
+                     value_with_unit(f.estimate[i], f.uncertainty[i], e ? e->unit : ""));
 }
 
 // A recorded input's fitted error in words: "the plate distance is 25 ± 2 mm more than recorded
 // (2.5 times its plausible error of 10 mm, the documented default for this input: more than a
-// tolerance)".
+// tolerance)"; a record wrong at one condition says where: "at V4-41 alone, the plate distance ...".
+std::string record_words(const EffectFit& f, std::size_t i) {
+  const auto* e = effects::find_candidate(f.effects[i]);
+  const auto [input, condition] = effects::split_condition(f.effects[i]);
+  // A fraction reads as %.
+  const double scale = e->unit.empty() ? 100.0 : 1.0;
+  const std::string unit = e->unit.empty() ? "%" : e->unit;
+  const double v = f.estimate[i] * scale, sd = f.uncertainty[i] * scale;
+  std::string name = input == "mass_flow_bias" ? "mass flow" : input;
+  std::replace(name.begin(), name.end(), '_', ' ');
+  const bool relative = unit == "%";
+  std::string s = fmt::format("{}the {} is {} {} than recorded", condition.empty() ? "" : "at " + condition + " alone, ",
+                              name,
+                              std::isfinite(sd) ? fmt::format("{:.3g} ± {:.2g} {}", std::abs(v), sd, unit)
+                                                : fmt::format("{:.3g} {} (unconstrained)", std::abs(v), unit),
+                              relative ? (v >= 0 ? "higher" : "lower") : (v >= 0 ? "more" : "less"));
+  if (i < f.prior_width.size() && f.prior_width[i] > 0.0) {
+    const double w = f.prior_width[i] * scale, ratio = std::abs(v) / w;
+    s += fmt::format(" ({:.1f} times its {} of {:.3g} {}: {})", ratio,
+                     f.prior_stated[i] ? "stated uncertainty" : "plausible error (the documented default)", w, unit,
+                     ratio >= 10.0  ? "a wrong entry or a changed rig rather than a tolerance"
+                     : ratio >= 3.0 ? "more than a tolerance"
+                     : ratio >= 1.0 ? "beyond its tolerance, though not far: a difference in the models of this "
+                                      "size could look the same"
+                                    : "within its tolerance, so the record may be right and this a difference in "
+                                      "the models");
+  }
+  return s;
+}
+
 std::string record_words(const EffectFit& f) {
   std::vector<std::string> parts;
-  for (std::size_t i = 0; i < f.effects.size(); ++i) {
-    const auto* e = effects::find(f.effects[i]);
-    // A fraction reads as %.
-    const double scale = e->unit.empty() ? 100.0 : 1.0;
-    const std::string unit = e->unit.empty() ? "%" : e->unit;
-    const double v = f.estimate[i] * scale, sd = f.uncertainty[i] * scale;
-    std::string name = f.effects[i] == "mass_flow_bias" ? "mass flow" : f.effects[i];
-    std::replace(name.begin(), name.end(), '_', ' ');
-    const bool relative = unit == "%";
-    std::string s = fmt::format("the {} is {} {} than recorded", name,
-                                std::isfinite(sd) ? fmt::format("{:.3g} ± {:.2g} {}", std::abs(v), sd, unit)
-                                                  : fmt::format("{:.3g} {} (unconstrained)", std::abs(v), unit),
-                                relative ? (v >= 0 ? "higher" : "lower") : (v >= 0 ? "more" : "less"));
-    if (i < f.prior_width.size() && f.prior_width[i] > 0.0) {
-      const double w = f.prior_width[i] * scale, ratio = std::abs(v) / w;
-      s += fmt::format(" ({:.1f} times its {} of {:.3g} {}: {})", ratio,
-                       f.prior_stated[i] ? "stated uncertainty" : "plausible error (the documented default)", w, unit,
-                       ratio >= 10.0  ? "a wrong entry or a changed rig rather than a tolerance"
-                       : ratio >= 3.0 ? "more than a tolerance"
-                       : ratio >= 1.0 ? "beyond its tolerance, though not far: a difference in the models of this "
-                                        "size could look the same"
-                                      : "within its tolerance, so the record may be right and this a difference in "
-                                        "the models");
-    }
-    parts.push_back(s);
-  }
+  for (std::size_t i = 0; i < f.effects.size(); ++i) parts.push_back(record_words(f, i));
   return fmt::format("{}", fmt::join(parts, ", and "));
+}
+
+// Every cause of an explanation, physics and records alike.
+std::string fitted_words(const EffectFit& f) {
+  if (f.effects.size() == 1) return is_record(f.effects[0]) ? "a wrong record (" + record_words(f, 0) + ")" : effect_words(f, 0);
+  std::vector<std::string> parts;
+  for (std::size_t i = 0; i < f.effects.size(); ++i)
+    parts.push_back(is_record(f.effects[i]) ? "a wrong record: " + record_words(f, i)
+                                            : "missing physics: " + effect_words(f, i));
+  return fmt::format("{}", fmt::join(parts, "; "));
 }
 
 std::string record_checks(const EffectFit& f) {
   std::vector<std::string> c;
   for (const auto& n : f.effects)
-    if (const auto* e = effects::find(n); e && !e->check.empty()) c.push_back(e->check);
+    if (const auto* e = effects::find_candidate(n); e && !e->check.empty()) c.push_back(e->check);
   return c.empty() ? "" : fmt::format(" Check it: {}.", fmt::join(c, "; "));
 }
 
@@ -95,7 +111,7 @@ std::string off_words(const QuantityShift& q, bool after) {
 // share of the misfit their mean error makes.
 std::vector<const QuantityShift*> largest_shifts(const DiagnosisResult& r) {
   std::vector<const QuantityShift*> v;
-  for (const auto& q : r.shifts) {
+  for (const auto& q : r.shifts_condition.empty() ? r.shifts : r.shifts_there) {
     bool discrepant = false;  // said apart, as a quantity no model explains
     for (const auto& d : r.model_form) discrepant = discrepant || d.quantity == q.quantity;
     if (!discrepant) v.push_back(&q);
@@ -114,12 +130,13 @@ std::string physics_words(const DiagnosisResult& r, const char* with_what) {
   if (top.empty()) return "";
   std::vector<std::string> before, after;
   for (const auto* q : top) before.push_back(off_words(*q, false)), after.push_back(off_words(*q, true));
-  return fmt::format(" The models as they are put {}; {} {}.", fmt::join(before, ", "), with_what,
+  return fmt::format(" {} models as they are put {}; {} {}.",
+                     r.shifts_condition.empty() ? "The" : "At " + r.shifts_condition + " the", fmt::join(before, ", "), with_what,
                      fmt::join(after, ", "));
 }
 
 std::string evidence_words(const EffectFit& f, int n) {
-  return fmt::format("Evidence: chi^2 {:.1f} -> {:.1f} for {} data ({:.0f} % of the misfit beyond noise removed), "
+  return fmt::format("chi^2 {:.1f} -> {:.1f} for {} data ({:.0f} % of the misfit beyond noise removed), "
                      "delta BIC {:.1f}, p (adjusted for the candidates tried) {:.2g}.",
                      f.chi2_before, f.chi2_after, n, 100 * f.explained_fraction, f.delta_bic, f.p_adjusted) +
          (f.prior_penalty > 0.0 ? fmt::format(" The record's implausibility is charged {:.1f} in chi^2 before the "
@@ -140,7 +157,7 @@ std::string leftover_words(const Leftover& l) {
 }
 
 std::string out_of_range_words(const EffectFit& f) {
-  const auto* e = effects::find(f.effects[0]);
+  const auto* e = effects::find_candidate(f.effects[0]);
   const auto& u = *f.unbounded;
   const bool below = u.estimate < e->lower;
   return fmt::format("{} would need {} = {}, {} its physical range [{:g}, {:g}]{}", f.effects[0], e->parameter,
@@ -162,6 +179,29 @@ std::string scale_words(const ScaleFinding& s) {
                        "large; they were not narrowed, so the ± and tests here are conservative.",
                        s.factor, s.p_low, 1.0 / std::max(s.factor, 1e-3));
   return "";
+}
+
+// A named cause whose strength the data want to change with an operating variable, in its terms.
+std::string shape_words(const ShapeFinding& f) {
+  const std::string unit = f.unit.empty() ? "" : " " + f.unit;
+  std::string s = fmt::format(
+      "The data want {}'s {} to change with {}: about {:.3g}{} at {:.3g} {} and {:.3g}{} at {:.3g} {} (as {}^{:.2f} ± "
+      "{:.2f}), where the library's form keeps it the same at every condition; the {} fitted is a compromise "
+      "between conditions",
+      f.effect, f.parameter, f.driver, f.low_strength, unit, f.low_driver, f.driver_unit, f.high_strength, unit,
+      f.high_driver, f.driver_unit, f.driver, f.exponent, f.exponent_uncertainty, f.parameter);
+  if (!f.grows.empty()) {
+    const double p = f.power + f.exponent;
+    auto power_words = [](double x) -> std::string {
+      if (std::abs(x - 1.0) < 0.25) return "about linearly with it";
+      if (std::abs(x - 2.0) < 0.25) return "about with its square";
+      if (std::abs(x) < 0.25) return "hardly at all with it";
+      return fmt::format("about as its power {:.1f}", x);
+    };
+    s += fmt::format(": {} the data want grows {} rather than {} (the library's form)", f.grows, power_words(p),
+                     f.power == 2.0 ? "with its square" : fmt::format("as its power {:g}", f.power));
+  }
+  return s;
 }
 
 void describe_failures(DiagnosisResult& r) {
@@ -215,7 +255,7 @@ void describe_findings(DiagnosisResult& r, const DiagnoseOptions& opt) {
         d.n, d.tau, parse_quantity(d.quantity) ? std::string(info(*parse_quantity(d.quantity)).unit) : "mm"));
   }
   if (const auto& c = r.concentrated) {
-    const auto* e = effects::find(c->effect);
+    const auto* e = effects::find_candidate(c->effect);
     r.findings.push_back(fmt::format(
         "{} rests on {} alone ({:.0f} % of its evidence): an error in how {} predicts that quantity would look the "
         "same. Confirm it independently{}.",
@@ -223,7 +263,6 @@ void describe_findings(DiagnosisResult& r, const DiagnoseOptions& opt) {
         e && !e->check.empty() ? fmt::format(" ({})", e->check) : ""));
   }
   if (const auto& rs = r.record_scope) {
-    const auto* e = effects::find(rs->input);
     const double scale = rs->unit.empty() ? 100.0 : 1.0;
     const std::string unit = rs->unit.empty() ? "%" : rs->unit;
     std::string name = rs->input;
@@ -232,16 +271,7 @@ void describe_findings(DiagnosisResult& r, const DiagnoseOptions& opt) {
     for (std::size_t c = 0; c < rs->conditions.size(); ++c)
       per.push_back(fmt::format("{} {:+.3g} ± {:.2g} {}", rs->conditions[c], rs->estimate[c] * scale,
                                 rs->uncertainty[c] * scale, unit));
-    if (rs->one_condition)
-      r.findings.push_back(fmt::format(
-          "Suspect the record at one condition: at {} alone the {} fits {} than recorded, which removes {:.0f} % of "
-          "the misfit beyond noise (p = {:.2g}, adjusted for every input and condition tried). Was the rig changed "
-          "for that test?{}",
-          rs->conditions[0], name,
-          fmt::format("{:.3g} ± {:.2g} {} {}", std::abs(rs->estimate[0] * scale), rs->uncertainty[0] * scale, unit,
-                      rs->estimate[0] >= 0 ? (unit == "%" ? "higher" : "more") : (unit == "%" ? "lower" : "less")),
-          100 * rs->explained_fraction, rs->p, e && !e->check.empty() ? " Check it: " + e->check + "." : ""));
-    else if (rs->differs)
+    if (rs->differs)
       r.findings.push_back(fmt::format(
           "The {} error differs between conditions (p = {:.2g} that one error for the rig fits as well; chi^2 {:.1f} "
           "-> {:.1f} with one per condition): {}. The rig changed between tests, not only its drawing.",
@@ -264,6 +294,13 @@ void describe_findings(DiagnosisResult& r, const DiagnoseOptions& opt) {
         "Thin data: {} condition{} and {} measured quantit{} ({} values). Effects that act alike cannot be told "
         "apart on so few; measure more belt speeds or flows before trusting which effect is named.",
         r.n_conditions, r.n_conditions == 1 ? "" : "s", r.n_quantities, r.n_quantities == 1 ? "y" : "ies", r.n_data));
+  if (r.one_belt_speed || r.one_mass_flow)
+    r.findings.push_back(fmt::format(
+        "Every condition ran at one {}: effects that grow with it (air drag and belt slip with speed; the flow's "
+        "own records with flow) look alike here, and a dependence on it cannot be seen. Measure at a second {} "
+        "before trusting which of them is named.",
+        r.one_belt_speed && r.one_mass_flow ? "belt speed and one mass flow" : r.one_belt_speed ? "belt speed" : "mass flow",
+        r.one_belt_speed ? "belt speed" : "flow"));
 }
 
 std::string discriminator_words(const Discriminator& d) {
@@ -293,7 +330,7 @@ void describe_ties(DiagnosisResult& r) {
         ways.push_back(fmt::format("{} (not measured here; {} predicts {:.3g} {}, {} {:.3g} {})", d->quantity, d->a,
                                    d->value_a, d->unit, d->b, d->value_b, d->unit));
     for (const auto& n : {pair.first, pair.second})
-      if (const auto* i = effects::find(n); i && !i->check.empty()) ways.push_back(fmt::format("for {}: {}", n, i->check));
+      if (const auto* i = effects::find_candidate(n); i && !i->check.empty()) ways.push_back(fmt::format("for {}: {}", n, i->check));
     r.proportional.push_back(fmt::format(
         "{} and {} move every measured quantity in proportion (these data cannot tell them apart); to separate them, "
         "measure {}",
@@ -308,17 +345,37 @@ std::string verdict_words(const DiagnosisResult& r) {
     case Verdict::no_data:
       return "No measurement has an uncertainty, so nothing can be judged: state uncertainties in measurements.csv.";
     case Verdict::consistent:
-      return fmt::format("No significant missing effect: the models explain the data within the {} uncertainties "
-                         "(chi^2 = {:.1f} for {} data, p = {:.2g}).",
-                         r.scale.applied ? "widened" : "stated", r.chi2_baseline, r.n_data, r.baseline_p_value);
+    {
+      // The words must agree with the numbers: "within the stated uncertainties" only where the
+      // readings kept are within them by the test the verdict rests on.
+      const std::size_t out = r.outliers.size();
+      const std::string kept =
+          out ? fmt::format(" once the {} reading{} named below {} left out", out, out == 1 ? "" : "s", out == 1 ? "is" : "are")
+              : "";
+      if (r.scale.applied)
+        return fmt::format("No significant missing effect: the models explain the data within uncertainties {:.1f} "
+                           "times the stated ones{} (the readings scatter more than stated, without a pattern any "
+                           "candidate has).",
+                           r.scale.factor, kept);
+      if (r.kept_p_value >= r.alpha)
+        return fmt::format("No significant missing effect: the models explain the data within the stated "
+                           "uncertainties{}.",
+                           kept);
+      return fmt::format("No significant missing effect: no candidate explains the misfit{}, and it is small: the "
+                         "readings scatter {:.2f} times their stated uncertainties, without a pattern in any quantity.",
+                         kept, std::sqrt(r.chi2_kept / std::max(1, r.n_kept)));
+    }
     case Verdict::missing_effect: {
+      const bool one_condition = b->effects.size() == 1 && !effects::split_condition(b->effects[0]).second.empty();
       std::string v =
-          b->is_record()
-              ? fmt::format("The record looks wrong, not the physics: {}.{}{} {}", record_words(*b),
-                            physics_words(r, "with the corrected record what is left is noise:"), record_checks(*b),
-                            evidence_words(*b, r.n_data))
-              : fmt::format("Missing effect: {}.{} {}", fitted_words(*b),
-                            physics_words(r, "with it what is left is noise:"), evidence_words(*b, r.n_data));
+          b->effects.size() > 1
+              ? fmt::format("{} causes together explain the data: {}.{}{}", b->effects.size() == 2 ? "Two" : "Three",
+                            fitted_words(*b), physics_words(r, "with them what is left is noise:"), record_checks(*b))
+          : b->is_record()
+              ? fmt::format("The record looks wrong{}, not the physics: {}.{}{}", one_condition ? " at one condition" : "",
+                            record_words(*b), physics_words(r, "with the corrected record what is left is noise:"),
+                            record_checks(*b))
+              : fmt::format("Missing effect: {}.{}", fitted_words(*b), physics_words(r, "with it what is left is noise:"));
       if (!r.indistinguishable.empty())
         v += fmt::format(" About as good: {}.", fmt::join(r.indistinguishable, ", "));
       for (const auto& p : r.proportional) v += " But " + p + ".";
@@ -327,15 +384,19 @@ std::string verdict_words(const DiagnosisResult& r) {
     case Verdict::partial_explanation: {
       std::vector<std::string> left;
       for (const auto& l : r.leftovers) left.push_back(leftover_words(l));
+      for (const auto& f : r.shape) left.push_back(shape_words(f));
       bool edge = false;
       for (bool e : b->at_bound) edge = edge || e;
-      std::string v = fmt::format("{} explains most of the misfit ({:.0f} % of it beyond noise), but {}.{} {}",
-                                  b->is_record() ? "A wrong record (" + record_words(*b) + ")" : fitted_words(*b),
-                                  100 * b->explained_fraction,
+      const std::string who = b->effects.size() == 1 && b->is_record() ? "A wrong record (" + record_words(*b) + ")"
+                                                                        : fitted_words(*b);
+      std::string v = fmt::format("{} {} most of the misfit ({:.0f} % of it beyond noise), but {}.{}",
+                                  b->effects.size() > 1 ? "Together, " + fitted_words(*b) + "," : who,
+                                  b->effects.size() > 1 ? "explain" : "explains", 100 * b->explained_fraction,
                                   left.empty() ? "needs a strength at the edge of its physical range: it is probably "
                                                  "standing in for something else"
-                                               : fmt::format("the rest is not noise: {}", fmt::join(left, "; ")),
-                                  physics_words(r, "with it"), evidence_words(*b, r.n_data));
+                                  : r.leftovers.empty() ? fmt::format("{}", fmt::join(left, "; "))
+                                                        : fmt::format("the rest is not noise: {}", fmt::join(left, "; ")),
+                                  physics_words(r, "with it"));
       return v;
     }
     case Verdict::out_of_range: {
@@ -351,13 +412,20 @@ std::string verdict_words(const DiagnosisResult& r) {
       for (const auto& l : r.leftovers) where.push_back(leftover_words(l));
       for (const auto& d : r.model_form) where.push_back(quantity_words(d.quantity) + " (no model explains it)");
       return fmt::format("The models miss the data and no effect in the library explains it: look outside the "
-                         "library (geometry, inputs, model form). Where: {}.{} (chi^2 = {:.1f} for {} data, p = "
-                         "{:.2g}.)",
-                         fmt::join(where, "; "), physics_words(r, "").empty() ? "" : physics_words(r, "nothing changes:"),
-                         r.chi2_baseline, r.n_data, r.baseline_p_value);
+                         "library (geometry, inputs, model form). Where: {}.{}",
+                         fmt::join(where, "; "), physics_words(r, "").empty() ? "" : physics_words(r, "nothing changes:"));
     }
   }
   return "";
+}
+
+// The statistics behind the verdict, apart from its words.
+std::string evidence_of(const DiagnosisResult& r) {
+  if (r.verdict_code == Verdict::no_data) return "";
+  if (const EffectFit* b = r.best()) return evidence_words(*b, r.n_data);
+  return fmt::format("chi^2 of the models as they are {:.1f} for {} data (p = {:.2g} that honest noise gives this "
+                     "much or more).",
+                     r.chi2_baseline, r.n_data, r.baseline_p_value);
 }
 
 void describe_caveats(DiagnosisResult& r, const DiagnoseOptions& opt) {
@@ -468,6 +536,7 @@ void describe(DiagnosisResult& r, const DiagnoseOptions& opt) {
                             r.indistinguishable.end());
   describe_ties(r);
   r.verdict = verdict_words(r);
+  r.evidence = evidence_of(r);
   describe_caveats(r, opt);
 }
 
@@ -497,6 +566,7 @@ std::string diagnosis_csv(const DiagnosisResult& r) {
 std::string diagnosis_markdown(const DiagnosisResult& r) {
   std::string o = fmt::format("# chutelab diagnosis: {}\n\n", r.dataset);
   o += fmt::format("**{}**\n\n", r.verdict);
+  if (!r.evidence.empty()) o += fmt::format("How sure is this? {}\n\n", r.evidence);
   if (!r.findings.empty()) {
     o += "## What the data say about themselves\n\n";
     for (const auto& s : r.findings) o += "- " + s + "\n";

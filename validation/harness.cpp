@@ -166,9 +166,11 @@ void apply_measurement_effects(const analytical::EffectList& effects, std::span<
     for (const auto& e : effects) e->adjust_measurement(v);
     recorded.push_back(v);
   }
-  for (std::size_t k = 0; k < same.size(); ++k)
+  for (std::size_t k = 0; k < same.size(); ++k) {
     for (Quantity q : kAllQuantities)
       if (same[k].prediction.values[q]) same[k].prediction.values[q] = recorded[k][q];
+    for (const auto& e : effects) e->adjust_trajectory(same[k].prediction.trajectory);
+  }
 }
 
 namespace {
@@ -237,7 +239,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
   for (std::size_t i = 0; i < d.stations.size(); ++i)
     for (const auto& m : models)
       if (m->expensive())
-        runs.push_back({m, d.stations[i], options.effects, d.station_lines[i].file, d.station_lines[i].line});
+        runs.push_back({m, d.stations[i], analytical::acting_at(options.effects, d.stations[i]), d.station_lines[i].file, d.station_lines[i].line});
   run_models(runs, {"validate", options.jobs, {}});
 
   // Every look-up below is by index or hash, once per row: validate stays linear in the dataset.
@@ -258,18 +260,19 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
     const auto pit = plate_of.find(st.condition);
     const auto& plate = pit == plate_of.end() ? no_plate : pit->second;
     const std::size_t first = r.predictions.size();
+    const analytical::EffectList effects = analytical::acting_at(options.effects, st);
     for (const auto& m : models) {
       ModelPrediction p;
       try {
         PredictRequest req{queries, true};
         req.plate = plate;
-        p = m->predict(st, options.effects, req);
+        p = m->predict(st, effects, req);
       } catch (const InputError& e) {
         throw e.located(d.station_lines[i].file, d.station_lines[i].line);
       }
       // u_input on the raw prediction: measurement-stage effects act on the record, not the inputs.
       if (i < d.input_uncertainty.size() && !d.input_uncertainty[i].empty()) {
-        auto ui = input_uncertainty(*m, st, d.input_uncertainty[i], options.effects, queries, p);
+        auto ui = input_uncertainty(*m, st, d.input_uncertainty[i], effects, queries, p);
         p.input_uncertainty = ui.u;
         p.trajectory_input_uncertainty = std::move(ui.trajectory);
         for (auto& n : ui.notes) p.notes.push_back(std::move(n));
@@ -277,8 +280,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       prediction_at[{st.condition, m->name()}] = r.predictions.size();
       r.predictions.push_back({st.condition, m->name(), std::move(p)});
     }
-    apply_measurement_effects(options.effects,
-                              std::span(r.predictions).subspan(first, models.size()));
+    apply_measurement_effects(effects, std::span(r.predictions).subspan(first, models.size()));
   }
 
   for (const auto& meas : d.measurements)

@@ -99,6 +99,20 @@ std::optional<std::size_t> find_outlier(const Misfit& m, const NoiseModel& nm, c
   return worst;
 }
 
+std::optional<std::size_t> find_readmitted(const Misfit& m, const NoiseModel& nm, const std::vector<double>& r,
+                                           double alpha) {
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (!nm.excluded[i]) continue;
+    NoiseModel with = nm;
+    with.excluded[i] = 0;
+    const auto w = with.weights(m);
+    const auto n = static_cast<int>(std::count_if(w.begin(), w.end(), [](double x) { return x > 0.0; }));
+    const double limit = gsl_cdf_ugaussian_Qinv(alpha / (2.0 * n));
+    if (std::abs(robust_deviation(m, with, r)[i]) <= limit) return i;
+  }
+  return std::nullopt;
+}
+
 // tau with sum over the group of r^2 / (s^2 + tau^2 / u^2) = n: the group then scatters as its
 // count says. The sum falls from its value at tau = 0 towards zero, so bisection finds it.
 double discrepancy_for(const Misfit& m, const MisfitGroup& g, const std::vector<double>& r,

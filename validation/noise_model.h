@@ -60,6 +60,11 @@ struct ScaleEstimate {
 // discrepancy, not a set of bad readings.
 std::optional<std::size_t> find_outlier(const Misfit& m, const NoiseModel& nm, const std::vector<double>& r,
                                         double alpha, double max_share);
+// A reading left out as an outlier that the explanation (its residuals `r`) now reaches: within
+// find_outlier's limit once it is counted again. A cause found after the reading was left out (a
+// record wrong at its condition) can explain it; then it is no outlier.
+std::optional<std::size_t> find_readmitted(const Misfit& m, const NoiseModel& nm, const std::vector<double>& r,
+                                           double alpha);
 // The robust deviation of every reading (as find_outlier measures it), for naming outliers.
 std::vector<double> robust_deviation(const Misfit& m, const NoiseModel& nm, const std::vector<double>& r);
 

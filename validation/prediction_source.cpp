@@ -121,6 +121,11 @@ void PredictionSource::predict_condition(std::size_t c, const analytical::Effect
                                          std::span<const double> strengths, Evaluation how, bool reuse_raw,
                                          std::vector<ModelPrediction>& out) const {
   const Station& st = d_->stations[c];
+  // An effect of one condition's record applies there alone.
+  if (!analytical::all_act_at(list, st)) {
+    predict_condition(c, analytical::acting_at(list, st), fx, strengths, how, reuse_raw, out);
+    return;
+  }
   std::vector<ConditionResult> same;
   if (reuse_raw) {
     if (!raw_fixed_[c]) raw_fixed_[c] = raw_condition(c, fixed_, {}, {}, how);

@@ -1,10 +1,13 @@
 #include "validation/self_check.h"
 
+#include <algorithm>
+#include <array>
 #include <fmt/format.h>
 #include <gsl/gsl_cdf.h>
 #include <functional>
 #include <thread>
 
+#include "effects/at_condition.h"
 #include "effects/registry.h"
 #include "validation/output_files.h"
 #include "validation/parallel_runs.h"
@@ -24,12 +27,53 @@ bool names_any(const DiagnosisResult& r) {
   return r.best() || r.verdict_code == Verdict::out_of_range;
 }
 
-// The fit of `truth` in a replica's ranking (single or pair, whether named or not).
+bool same_causes(std::vector<std::string> a, std::vector<std::string> b) {
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  return a == b;
+}
+
+// The fit of `truth` in a replica's ranking (single or several causes, whether named or not).
 const EffectFit* fit_of(const DiagnosisResult& r, const std::vector<std::string>& truth) {
   for (const auto* list : {&r.singles, &r.pairs})
     for (const auto& f : *list)
-      if (f.effects == truth) return &f;
+      if (same_causes(f.effects, truth)) return &f;
+  if (r.next_cause && same_causes(r.next_cause->effects, truth)) return &*r.next_cause;
   return nullptr;
+}
+
+// Every strength of the truth's fit within 2 printed sd of the truth.
+bool covers(const EffectFit* f, const std::vector<std::string>& names, const std::vector<double>& truth) {
+  if (!f) return false;
+  for (std::size_t k = 0; k < f->estimate.size(); ++k)
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (f->effects[k] == names[i] && !(std::abs(f->estimate[k] - truth[i]) <= 2.0 * f->uncertainty[k])) return false;
+  return true;
+}
+
+analytical::EffectList effects_of(const std::vector<std::string>& names, const std::vector<double>& strengths) {
+  analytical::EffectList out;
+  for (std::size_t i = 0; i < names.size(); ++i) out.push_back(effects::find_candidate(names[i])->make(strengths[i]));
+  return out;
+}
+
+// The rivals of the named explanation: the best one a cause larger (not significant), and the one a
+// cause smaller (several causes named) or else the runner-up single.
+std::vector<SelfCheckResult::Rival> rivals_of(const DiagnosisResult& r) {
+  std::vector<SelfCheckResult::Rival> out;
+  const EffectFit* b = r.best();
+  if (!b) return out;
+  auto add = [&](const EffectFit& f) {
+    if (same_causes(f.effects, b->effects)) return;
+    for (const auto& o : out)
+      if (same_causes(o.truth, f.effects)) return;
+    out.push_back({f.effects, f.estimate});
+  };
+  if (r.next_cause) add(*r.next_cause);
+  if (b->effects.size() > 1 && r.pairs.size() > 1) add(r.pairs[1]);
+  else if (b->effects.size() > 1 && !r.singles.empty()) add(r.singles.front());
+  else if (r.singles.size() > 1 && r.singles[1].significant) add(r.singles[1]);
+  return out;
 }
 
 }  // namespace
@@ -47,8 +91,9 @@ SelfCheckResult self_check(const Dataset& d, const DiagnosisResult& result, cons
   if (const EffectFit* b = result.best()) {
     out.truth = b->effects;
     out.truth_strength = b->estimate;
-    for (std::size_t i = 0; i < b->effects.size(); ++i) truth.push_back(effects::find(b->effects[i])->make(b->estimate[i]));
+    truth = effects_of(b->effects, b->estimate);
   }
+  out.rivals = rivals_of(result);
   DiagnoseOptions each = opt.diagnose;
   each.jobs = 1;  // the replicas go side by side instead
   each.progress = false;
@@ -59,25 +104,37 @@ SelfCheckResult self_check(const Dataset& d, const DiagnosisResult& result, cons
     work.push_back([&, i] {
       SynthesizeOptions so;
       so.seed = opt.seed + static_cast<std::uint64_t>(i);
+      so.effects = opt.diagnose.fixed;
       alarm[i] = names_any(diagnose(replica(d, models, so), models, each)) ? 1 : 0;
     });
     if (truth.empty()) continue;
     work.push_back([&, i] {
       SynthesizeOptions so;
       so.seed = opt.seed + static_cast<std::uint64_t>(n + i);
-      so.effects = truth;
+      so.effects = opt.diagnose.fixed;
+      so.effects.insert(so.effects.end(), truth.begin(), truth.end());
       const auto r = diagnose(replica(d, models, so), models, each);
       const EffectFit* b = r.best();
-      named[i] = b && b->effects == out.truth ? 1 : 0;
+      named[i] = b && same_causes(b->effects, out.truth) ? 1 : 0;
       other[i] = names_any(r) && !named[i] ? 1 : 0;
-      if (const EffectFit* f = fit_of(r, out.truth)) {
-        bool all = true;
-        for (std::size_t k = 0; k < f->estimate.size(); ++k)
-          all = all && std::abs(f->estimate[k] - out.truth_strength[k]) <= 2.0 * f->uncertainty[k];
-        covered[i] = all ? 1 : 0;
-      }
+      covered[i] = covers(fit_of(r, out.truth), out.truth, out.truth_strength) ? 1 : 0;
     });
   }
+  // Each rival as the truth: how often the diagnosis tells it from the explanation it named.
+  std::vector<std::vector<std::array<int, 3>>> rival(out.rivals.size(), std::vector<std::array<int, 3>>(n));
+  for (std::size_t k = 0; k < out.rivals.size(); ++k)
+    for (int i = 0; i < n; ++i)
+      work.push_back([&, k, i] {
+        SynthesizeOptions so;
+        so.seed = opt.seed + static_cast<std::uint64_t>((2 + k) * n + i);
+        so.effects = opt.diagnose.fixed;
+        for (auto& e : effects_of(out.rivals[k].truth, out.rivals[k].truth_strength)) so.effects.push_back(std::move(e));
+        const auto r = diagnose(replica(d, models, so), models, each);
+        const EffectFit* b = r.best();
+        rival[k][i] = {b && same_causes(b->effects, out.rivals[k].truth) ? 1 : 0,
+                       b && same_causes(b->effects, out.truth) ? 1 : 0,
+                       covers(fit_of(r, out.rivals[k].truth), out.rivals[k].truth, out.rivals[k].truth_strength) ? 1 : 0};
+      });
   const int jobs = opt.diagnose.jobs > 0 ? opt.diagnose.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   run_concurrently(work, jobs);
   out.null_replicas = n;
@@ -88,6 +145,12 @@ SelfCheckResult self_check(const Dataset& d, const DiagnosisResult& result, cons
     out.named += named[i], out.named_other += other[i], out.covered += covered[i];
   }
   out.false_alarm_upper = upper_bound(out.false_alarms, out.null_replicas, 0.95);
+  for (std::size_t k = 0; k < out.rivals.size(); ++k) {
+    auto& rv = out.rivals[k];
+    rv.replicas = n;
+    for (const auto& [named_it, named_chosen, covered_it] : rival[k])
+      rv.named += named_it, rv.named_chosen += named_chosen, rv.covered += covered_it;
+  }
   return out;
 }
 
@@ -113,6 +176,20 @@ std::string self_check_markdown(const SelfCheckResult& r, double alpha) {
   o += fmt::format("- **Coverage**: the printed ± 2 sd held the true strength in {} of {} ({:.0f} %; 95 % is what an "
                    "honest ± gives).\n",
                    r.covered, r.effect_replicas, 100 * r.coverage());
+  for (const auto& rv : r.rivals) {
+    std::vector<std::string> rt;
+    for (std::size_t i = 0; i < rv.truth.size(); ++i) rt.push_back(fmt::format("{} = {:.4g}", rv.truth[i], rv.truth_strength[i]));
+    o += fmt::format("- **If the truth were the rival {}**: the diagnosis named it in {} of {}, named {} (the "
+                     "explanation it chose here) in {}, and its ± 2 sd held the rival's strengths in {}.\n",
+                     fmt::join(rt, ", "), rv.named, rv.replicas, fmt::join(r.truth, " + "), rv.named_chosen, rv.covered);
+  }
+  if (!r.rivals.empty()) {
+    int named = r.named, of = r.effect_replicas, covered = r.covered;
+    for (const auto& rv : r.rivals) named += rv.named, of += rv.replicas, covered += rv.covered;
+    o += fmt::format("- **Over the choice**: with the named explanation or a rival as the truth, the diagnosis named "
+                     "the truth in {} of {} ({:.0f} %) and its ± 2 sd held the true strengths in {} ({:.0f} %).\n",
+                     named, of, 100.0 * named / of, covered, 100.0 * covered / of);
+  }
   return o;
 }
 
@@ -122,6 +199,9 @@ std::string self_check_csv(const SelfCheckResult& r) {
   if (!r.truth.empty())
     o += fmt::format("with_{},{},{},{},{},{}\n", fmt::join(r.truth, "+"), r.effect_replicas, r.named, r.named_other,
                      r.covered, csv_number(r.power()));
+  for (const auto& rv : r.rivals)
+    o += fmt::format("rival_{},{},{},{},{},{}\n", fmt::join(rv.truth, "+"), rv.replicas, rv.named, rv.named_chosen,
+                     rv.covered, csv_number(rv.replicas ? static_cast<double>(rv.named) / rv.replicas : 0.0));
   return o;
 }
 

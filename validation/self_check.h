@@ -36,6 +36,18 @@ struct SelfCheckResult {
   double power() const { return effect_replicas ? static_cast<double>(named) / effect_replicas : 0.0; }
   double coverage() const { return effect_replicas ? static_cast<double>(covered) / effect_replicas : 0.0; }
   double false_alarm_rate() const { return null_replicas ? static_cast<double>(false_alarms) / null_replicas : 0.0; }
+  // Replicas whose truth is a rival of the explanation named: the best explanation one cause larger
+  // (when it was not significant) and the one a cause smaller or the runner-up single. A choice
+  // between explanations is only as good as its rate of picking each when it is the truth.
+  struct Rival {
+    std::vector<std::string> truth;
+    std::vector<double> truth_strength;
+    int replicas = 0;
+    int named = 0;          // named exactly this rival
+    int named_chosen = 0;   // named the user's explanation instead
+    int covered = 0;        // the rival's fit held its true strengths within 2 printed sd
+  };
+  std::vector<Rival> rivals;
 };
 
 // `result` is the user's diagnosis of `d` (its recommended explanation is the replicas' truth).

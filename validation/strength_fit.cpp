@@ -342,7 +342,9 @@ StrengthFit fit_strengths(const Cost& cost, std::span<const effects::EffectInfo*
       }
     }
   Eigen::MatrixXd J;
-  if (const std::size_t g = opt.grid_conditions; g > 0 && cost.conditions().size() > 2 * g && cost.size() > k) {
+  if (!opt.grid) {
+    if (cost.size() > k) out.status = refine(cost, fx, b, best, best_chi2);
+  } else if (const std::size_t g = opt.grid_conditions; g > 0 && cost.conditions().size() > 2 * g && cost.size() > k) {
     out.status = fit_sampled(cost, fx, b, g, best, best_chi2, J, out.residuals);
   } else {
     grid_scan(cost, fx, b, best, best_chi2);

@@ -28,6 +28,10 @@ struct FitOptions {
   StrengthRange range = StrengthRange::physical;
   std::vector<std::vector<double>> starts = {};  // extra starting points, one vector per start
   std::size_t grid_conditions = kGridConditions;  // 0: the grid reads every condition
+  // Scan the range for the basin of the minimum before refining. Without it the refinement starts
+  // from the best of the neutral point and `starts`: for a cause added to an explanation already
+  // fitted, whose basin its own single fit found (a grid over three strengths costs 216 evaluations).
+  bool grid = true;
 };
 
 enum class FitStatus {

@@ -96,8 +96,9 @@ std::string slurp(const std::filesystem::path& p) {
 // Every model's prediction of one condition with the hidden effects, measurement effects applied:
 // each value comes from the first model (in the order given) that predicts it.
 std::vector<ConditionResult> truth_of(const Dataset& src, std::size_t i, const Station& st,
-                                      const std::vector<ModelPtr>& models, const analytical::EffectList& effects,
+                                      const std::vector<ModelPtr>& models, const analytical::EffectList& all,
                                       std::span<const TrajectoryQuery> queries) {
+  const analytical::EffectList effects = analytical::acting_at(all, st);
   std::vector<ConditionResult> same;
   try {
     for (const auto& m : models) same.push_back({st.condition, m->name(), m->predict(st, effects, {queries, false})});

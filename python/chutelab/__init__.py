@@ -131,9 +131,9 @@ def _path(field, value, optional=True) -> str:
     raise _refuse(field, f"must be a path (str or pathlib.Path), got {value!r}")
 
 
-def _effect_args(effects: EffectsArg) -> List[str]:
+def _effect_args(effects: EffectsArg, key: str = "effects") -> List[str]:
     """{"air_drag": 0.7, "belt_slip": "fit"}, ["air_drag=0.7"], "air_drag=fit" or None -> the
-    library's NAME=VALUE strings."""
+    library's NAME=VALUE strings; errors name `key`."""
     if effects is None:
         return []
     if isinstance(effects, str):
@@ -142,17 +142,17 @@ def _effect_args(effects: EffectsArg) -> List[str]:
         out = []
         for name, value in effects.items():
             if not isinstance(name, str):
-                raise _refuse("effects", f"names an effect by {name!r}; use its name as a text")
+                raise _refuse(key, f"names an effect by {name!r}; use its name as a text")
             if isinstance(value, str):
                 out.append(f"{name}={value}")
             else:
-                out.append(f"{name}={_real('effects', value)!r}")
+                out.append(f"{name}={_real(key, value)!r}")
         return out
     if isinstance(effects, Iterable):
         items = list(effects)
         if all(isinstance(e, str) for e in items):
             return items
-    raise _refuse("effects", f"must be {{name: value or \"fit\"}} or a list of \"name=value\", got {effects!r}")
+    raise _refuse(key, f"must be {{name: value or \"fit\"}} or a list of \"name=value\", got {effects!r}")
 
 
 def _model_list(models) -> List[str]:
@@ -443,9 +443,13 @@ class Diagnosis:
 def diagnose(dataset: Union[Dataset, PathLike], models: Union[str, Sequence[str]] = ("booth-cema", "korzen"), *,
              alpha: float = 0.01, pairs: bool = True, dem_quality: Optional[str] = None,
              dem_threads: Optional[int] = None, dem_cache: Optional[PathLike] = None, no_dem_cache: bool = False,
-             self_check: int = 0, seed: int = 1) -> Diagnosis:
+             self_check: int = 0, seed: int = 1, inputs: EffectsArg = None) -> Diagnosis:
     """Ranks the candidate physical effects (and recorded inputs) by how much of the models'
     misfit each explains, as `chutelab diagnose`.
+
+    inputs: recorded inputs corrected first, {"plate_distance": 25.0} (truth minus record, in the
+    input's unit) or {"plate_distance": "fit"}, as `diagnose --input`: the candidates are then what
+    the corrected rig still misses.
 
     dataset: a Dataset or a folder with measurements. alpha: the family-wise false-alarm rate;
     pairs: also fit pairs of effects. self_check=N also diagnoses N replicas of the dataset's
@@ -455,7 +459,8 @@ def diagnose(dataset: Union[Dataset, PathLike], models: Union[str, Sequence[str]
     core = _chutelab.diagnose(d, _model_list(models), _real("alpha", alpha), _flag("pairs", pairs),
                               _text("dem_quality", dem_quality), _whole("dem_threads", dem_threads, True),
                               _path("dem_cache", dem_cache), _flag("no_dem_cache", no_dem_cache),
-                              _seed_like("self_check", self_check), _seed_like("seed", seed))
+                              _seed_like("self_check", self_check), _seed_like("seed", seed),
+                              _effect_args(inputs, "inputs"))
     return Diagnosis._make(core.numbers(), core)
 
 

@@ -396,6 +396,21 @@ def test_diagnose_finds_the_hidden_effect_as_the_command_line_does(tmp_path):
     assert _files(tmp_path / "py") == _files(tmp_path / "d")
 
 
+def test_diagnose_takes_corrected_records_as_the_command_line_does(tmp_path):
+    # A plate corrected by 1 mm is within its plausible error: the drag is still what is missing, and
+    # the verdict is the command line's with --input.
+    d = chutelab.diagnose(HIDDEN, inputs={"plate_distance": 1.0})
+    r = cli("diagnose", "--dataset", HIDDEN, "--input", "plate_distance=1", "--out", str(tmp_path / "d"))
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert lines[0] == "corrected record: plate_distance=1"
+    assert d.verdict == lines[1]
+    assert d.best == "air_drag"
+    with pytest.raises(chutelab.InputError) as e:
+        chutelab.diagnose(HIDDEN, inputs={"air_drag": 0.5})
+    assert "input" in str(e.value) and "physical effect" in str(e.value)
+
+
 def test_diagnose_self_check_gives_rates_for_the_design():
     d = chutelab.diagnose(HIDDEN, self_check=4, seed=6400)
     sc = d.self_check
