@@ -105,6 +105,9 @@ std::optional<std::size_t> find_readmitted(const Misfit& m, const NoiseModel& nm
     if (!nm.excluded[i]) continue;
     NoiseModel with = nm;
     with.excluded[i] = 0;
+    // Judged without its quantity's model discrepancy: a variance widened for the whole quantity
+    // reaches any reading, and a reading comes back only when a cause, not the widening, explains it.
+    if (!with.discrepancy.empty()) with.discrepancy[m.points()[i].group] = 0.0;
     const auto w = with.weights(m);
     const auto n = static_cast<int>(std::count_if(w.begin(), w.end(), [](double x) { return x > 0.0; }));
     const double limit = gsl_cdf_ugaussian_Qinv(alpha / (2.0 * n));
