@@ -86,19 +86,14 @@ DiagnoseResult diagnose(validation::Dataset dataset, const DiagnoseOptions& o) {
   }
   res.diagnosis = validation::diagnose(d, models, opt);
   if (o.self_check > 0) {
-    // Up to two diagnoses a replica (effect-free, and with the explanation found), each about as
-    // long as this one or less (the replicas use the analytical models alone): said before a
-    // request of hours starts, not discovered after it.
     const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
-    if (opt.progress)
-      progress::line(fmt::format("diagnose: self-check of up to {} replica diagnoses; this diagnosis took {:.1f} s, so "
-                                 "the self-check may take up to about {:.0f} min",
-                                 2 * o.self_check, took.count(), 2.0 * o.self_check * took.count() / 60.0));
     validation::SelfCheckOptions so;
     so.replicas = o.self_check;
     so.seed = o.seed;
     so.diagnose = opt;
     so.diagnose.progress = false;
+    so.progress = opt.progress;
+    so.seconds_per_diagnosis = took.count();
     res.self_check = validation::self_check(d, res.diagnosis, so);
   }
   return res;

@@ -587,7 +587,7 @@ std::vector<PlatePoint> plate_map_from(const fs::path& path, const DatasetFile* 
   for (const auto& row : t.rows()) {
     PlatePoint p;
     p.where = {t.file(), row.line};
-    known_condition(t, row, c_id, &index);
+    const Station* st = known_condition(t, row, c_id, &index);
     p.condition = t.text(row, c_id);
     p.quantity = t.text(row, c_q);
     const auto& qs = plate_quantities();
@@ -612,6 +612,21 @@ std::vector<PlatePoint> plate_map_from(const fs::path& path, const DatasetFile* 
     if (std::abs(p.y) > kTrajectoryBounds.max_abs * units::mm || std::abs(p.z) > kTrajectoryBounds.max_abs * units::mm)
       throw InputError(t.file(), row.line, std::abs(p.y) > kTrajectoryBounds.max_abs * units::mm ? "y_mm" : "z_mm",
                        "the point is beyond a transfer station (|y|, |z| at most 100 m)");
+    // A point off the face carries no load in any model: comparing it would test nothing but the
+    // record of where the sensor sat. Half a millimetre of slack for coordinates read to the mm.
+    if (st && st->plate.height > 0.0 && st->plate.width > 0.0) {
+      constexpr double kSlack = 0.5 * units::mm;
+      const double top = st->plate_top, bottom = st->plate_top - st->plate.height * std::cos(st->plate.angle);
+      const double half = 0.5 * st->plate.width;
+      const bool off_y = p.y > top + kSlack || p.y < bottom - kSlack;
+      if (off_y || std::abs(p.z) > half + kSlack)
+        throw InputError(t.file(), row.line, off_y ? "y_mm" : "z_mm",
+                         fmt::format("the point (y = {:g} mm, z = {:g} mm) is off the plate of condition '{}' "
+                                     "(its face spans y from {:g} to {:g} mm and z from {:g} to {:g} mm): no "
+                                     "model loads it, so it cannot be compared",
+                                     p.y / units::mm, p.z / units::mm, p.condition, bottom / units::mm,
+                                     top / units::mm, -half / units::mm, half / units::mm));
+    }
     p.value = v / p.scale;
     p.uncertainty = uncertainty_cell(t, row, c_u, 1.0 / p.scale, b);
     if (auto [it, fresh] = seen.emplace(std::tuple{p.condition, p.quantity, p.y, p.z}, row.line); !fresh)

@@ -53,8 +53,8 @@ constexpr std::array<ColumnSpec, 5> kTrajectory = {{
 
 constexpr std::array<ColumnSpec, 6> kPlateMap = {{
     {"condition", true, "", "a condition of conditions.csv", "V2-26"},
-    {"y_mm", true, "mm", "height of the point on the plate face, above the pulley centre", "100.0"},
-    {"z_mm", true, "mm", "lateral position of the point (0: the belt's centre line)", "0.0"},
+    {"y_mm", true, "mm", "height of the point on the plate face, above the pulley centre (a point off the face is refused)", "100.0"},
+    {"z_mm", true, "mm", "lateral position of the point (0: the belt's centre line; within half the plate width)", "0.0"},
     {"quantity", true, "", "what was measured: one of the plate quantities below", "plate_pressure_Pa"},
     {"value", true, "the quantity's", "the measured value, in the unit the quantity's name ends with", "4200"},
     {"uncertainty", false, "the quantity's", "one standard deviation; empty, 0 or no column: unknown, with a warning",

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <gsl/gsl_cdf.h>
-#include <iostream>
 #include <map>
 #include <set>
 #include <thread>
@@ -15,6 +14,7 @@
 #include "analytical/transfer_station.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
+#include "core/progress.h"
 #include "effects/registry.h"
 #include "effects/at_condition.h"
 #include "validation/diagnosis_stage.h"
@@ -173,12 +173,16 @@ std::string signature_words(PredictionSource::Signature s) {
   return "";
 }
 
+// Through core/progress.h like every command's progress: --quiet silences it, a terminal sees one
+// line rewritten per fit, a log a line per pass over the candidates.
 void Progress::operator()(const std::string& what, std::size_t k, std::size_t of) const {
   if (!on) return;
   const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - started;
-  std::cerr << fmt::format("diagnose: {}fitting {} ({}/{}, {:.0f} s so far)\n",
-                           round > 1 ? fmt::format("round {} of the noise model: ", round) : "", what, k, of,
-                           spent.count());
+  const std::string pass = round > 1 ? fmt::format("round {} of the noise model: ", round) : "";
+  if (k == 1)
+    progress::line(fmt::format("diagnose: {}fitting {} candidates ({:.0f} s so far)", pass, of, spent.count()));
+  progress::status(fmt::format("diagnose: {}fitting {} ({}/{}, {:.0f} s so far)", pass, what, k, of, spent.count()));
+  if (k == of) progress::status("");
 }
 
 }  // namespace detail

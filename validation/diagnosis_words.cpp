@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <map>
 
+#include "core/markup.h"
 #include "effects/at_condition.h"
 #include "effects/registry.h"
 #include "validation/diagnosis.h"
@@ -564,7 +565,8 @@ std::string diagnosis_csv(const DiagnosisResult& r) {
 }
 
 std::string diagnosis_markdown(const DiagnosisResult& r) {
-  std::string o = fmt::format("# chutelab diagnosis: {}\n\n", r.dataset);
+  // The setup's name is the user's text: a Markdown viewer renders HTML in it, so it goes in escaped.
+  std::string o = fmt::format("# chutelab diagnosis: {}\n\n", markup_escape(r.dataset, Markup::html));
   o += fmt::format("**{}**\n\n", r.verdict);
   if (!r.evidence.empty()) o += fmt::format("How sure is this? {}\n\n", r.evidence);
   if (!r.findings.empty()) {

@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
 #include <fmt/format.h>
 #include <gsl/gsl_cdf.h>
 #include <functional>
+#include <memory>
 #include <thread>
 
+#include "core/progress.h"
 #include "effects/at_condition.h"
 #include "effects/registry.h"
 #include "validation/output_files.h"
@@ -136,6 +141,27 @@ SelfCheckResult self_check(const Dataset& d, const DiagnosisResult& result, cons
                        covers(fit_of(r, out.rivals[k].truth), out.rivals[k].truth, out.rivals[k].truth_strength) ? 1 : 0};
       });
   const int jobs = opt.diagnose.jobs > 0 ? opt.diagnose.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Said before a request of hours starts, not discovered after it; then each replica as it ends
+  // (a stop asked between replicas is seen by run_concurrently).
+  if (opt.progress && !work.empty()) {
+    progress::line(fmt::format("diagnose: self-check of up to {} replica diagnoses; this diagnosis took {:.1f} s, so "
+                               "the self-check may take up to about {:.0f} min on {} thread{}",
+                               work.size(), opt.seconds_per_diagnosis,
+                               std::ceil(static_cast<double>(work.size()) / jobs) * opt.seconds_per_diagnosis / 60.0,
+                               jobs, jobs == 1 ? "" : "s"));
+    const auto started = std::chrono::steady_clock::now();
+    auto done = std::make_shared<std::atomic<std::size_t>>(0);
+    const std::size_t total = work.size();
+    for (auto& w : work)
+      w = [inner = std::move(w), done, total, started] {
+        inner();
+        const std::size_t k = done->fetch_add(1) + 1;
+        const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - started;
+        progress::status_prefix(k == total ? "" : fmt::format("self-check: {}/{} replicas, {:.0f} s", k, total, spent.count()));
+        if (k * 4 / total != (k - 1) * 4 / total)
+          progress::line(fmt::format("diagnose: self-check {}/{} replicas done ({:.0f} s)", k, total, spent.count()));
+      };
+  }
   run_concurrently(work, jobs);
   out.null_replicas = n;
   for (int i = 0; i < n; ++i) {

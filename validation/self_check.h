@@ -18,6 +18,11 @@ struct SelfCheckOptions {
   int replicas = 20;           // of each kind: effect-free, and with the explanation when there is one
   std::uint64_t seed = 1;      // replica i uses seed + i
   DiagnoseOptions diagnose;    // as the user's run (its jobs run replicas side by side)
+  // Progress (core/progress.h): the cost said before the replicas start, from the time the user's
+  // own diagnosis took (a replica's is about as long or shorter: analytical models alone), then the
+  // replicas as they finish.
+  bool progress = false;
+  double seconds_per_diagnosis = 0.0;
 };
 
 struct SelfCheckResult {

@@ -535,8 +535,11 @@ BOOST_AUTO_TEST_CASE(class9_quiet_diagnosis_and_a_self_check_estimated) {
   // The self-check's cost, said before it starts (the rig's own 8 conditions: a second or two).
   Sandbox r("self-check");
   const auto checked = run_chutelab(r.args("diagnose") + " --no-pairs --self-check 2");
-  BOOST_TEST(checked.err.find("self-check of up to 4 replica diagnoses; this diagnosis took") != std::string::npos,
-             checked.err.substr(0, 2000));
+  // Two replicas of each kind (effect-free, the explanation, each rival): at least 2, as many as it runs.
+  BOOST_TEST(checked.err.find("self-check of up to ") != std::string::npos, checked.err.substr(0, 2000));
+  BOOST_TEST(checked.err.find(" replica diagnoses; this diagnosis took") != std::string::npos, checked.err.substr(0, 2000));
+  // ... and the replicas as they finish, the last one included.
+  BOOST_TEST(checked.err.find("replicas done") != std::string::npos, checked.err.substr(0, 2000));
   const auto silent = run_chutelab(r.args("diagnose") + " --no-pairs --self-check 2 --quiet");
   BOOST_TEST(silent.err.find("self-check") == std::string::npos, silent.err.substr(0, 2000));
 }
@@ -567,6 +570,17 @@ BOOST_AUTO_TEST_CASE(class13_bidi_overrides_are_escaped_on_the_console) {
   const auto r = accepted(s, s.args("diagnose"));
   BOOST_TEST(r.out.find("V2-26\\u202e") != std::string::npos, r.out.substr(0, 3000));
   BOOST_TEST(r.out.find("\xE2\x80\xAE") == std::string::npos);
+}
+
+// Class 13: the setup's name went into diagnosis.md's title as raw HTML, which a Markdown viewer
+// renders (a script, a link); it is now escaped like the report's text.
+BOOST_AUTO_TEST_CASE(class13_the_diagnosis_title_escapes_html) {
+  Sandbox s("title");
+  s.replace_in("setup.toml", "name = \"liggghts-rig\"", "name = \"rig <img src=x onerror=alert(1)> & co\"");
+  accepted(s, s.args("diagnose") + " --no-pairs --quiet");
+  const std::string md = read_file(s.out / "diagnosis.md");
+  BOOST_TEST(md.rfind("# chutelab diagnosis: rig &lt;img src=x onerror=alert(1)&gt; &amp; co\n", 0) == 0, md.substr(0, 200));
+  BOOST_TEST(md.find("<img") == std::string::npos);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -78,6 +78,13 @@ BOOST_AUTO_TEST_CASE(each_error_class_names_file_line_field_and_writes_nothing) 
       {"plate map: duplicate point", "plate_map.csv",
        "condition,y_mm,z_mm,quantity,value,uncertainty\nV2-26,50,0,plate_pressure_Pa,100,5\nV2-26,50,0,plate_pressure_Pa,90,5\n",
        "plate_map.csv:3: y_mm"},
+      // The plate of these rows spans y = -250 ... 250 mm (top 250 mm, 500 mm high) and z = -200 ... 200 mm.
+      {"plate map: point above the plate", "plate_map.csv",
+       "condition,y_mm,z_mm,quantity,value,uncertainty\nV2-26,250,0,plate_pressure_Pa,100,5\nV2-26,251,0,plate_pressure_Pa,0,5\n",
+       "plate_map.csv:3: y_mm"},
+      {"plate map: point beside the plate", "plate_map.csv",
+       "condition,y_mm,z_mm,quantity,value,uncertainty\nV2-26,50,-200,plate_pressure_Pa,100,5\nV2-26,50,201,plate_pressure_Pa,0,5\n",
+       "plate_map.csv:3: z_mm"},
       {"malformed TOML", "setup.toml", "name = \"x\"\n[belt\npulley_diameter_mm = 250\n", "setup.toml:2"},
       {"missing TOML key", "setup.toml",
        "name = \"x\"\n[belt]\npulley_diameter_mm = 250.0\n", "setup.toml: belt.belt_thickness_mm"},
