@@ -14,6 +14,7 @@
 #include <string>
 
 #include "cli_runner.h"
+#include "tree_snapshot.h"
 
 using namespace chutelab::test;
 namespace fs = std::filesystem;
@@ -21,27 +22,6 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path kRig = fs::path(CHUTELAB_SOURCE_DIR) / "datasets" / "liggghts-rig";
-
-// Every regular file under `root` (relative path -> bytes) and every folder (-> "<dir>").
-std::map<std::string, std::string> snapshot(const fs::path& root) {
-  std::map<std::string, std::string> s;
-  std::error_code ec;
-  if (!fs::exists(fs::symlink_status(root, ec))) return s;
-  for (auto it = fs::recursive_directory_iterator(root, fs::directory_options::none, ec);
-       it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    const auto rel = fs::relative(it->path(), root).string();
-    if (it->is_symlink()) s[rel] = "<link>" + fs::read_symlink(it->path()).string();
-    else if (it->is_directory()) s[rel] = "<dir>";
-    else s[rel] = read_file(it->path());
-  }
-  return s;
-}
-
-bool staging_left(const fs::path& parent) {
-  for (const auto& e : fs::recursive_directory_iterator(parent))
-    if (e.path().filename().string().find(".partial") != std::string::npos) return true;
-  return false;
-}
 
 // An earlier validate's --out (its files and the record that chutelab wrote them), made once.
 const fs::path& earlier_result() {

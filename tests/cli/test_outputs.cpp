@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "cli_runner.h"
+#include "tree_snapshot.h"
 
 using namespace chutelab::test;
 namespace fs = std::filesystem;
@@ -24,28 +25,6 @@ namespace {
 const fs::path kSrc = CHUTELAB_SOURCE_DIR;
 const fs::path kRig = kSrc / "datasets" / "liggghts-rig";
 const fs::path kDemCache = kSrc / "tests" / "peer" / "dem-cache";
-
-// Every entry under `root` (relative path -> bytes; folders "<dir>", links "<link>target").
-std::map<std::string, std::string> snapshot(const fs::path& root) {
-  std::map<std::string, std::string> s;
-  std::error_code ec;
-  if (!fs::exists(fs::symlink_status(root, ec))) return s;
-  for (auto it = fs::recursive_directory_iterator(root, fs::directory_options::none, ec);
-       it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    const auto rel = fs::relative(it->path(), root).string();
-    if (it->is_symlink()) s[rel] = "<link>" + fs::read_symlink(it->path()).string();
-    else if (it->is_directory()) s[rel] = "<dir>";
-    else s[rel] = read_file(it->path());
-  }
-  return s;
-}
-
-bool staging_left(const fs::path& root) {
-  std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-    if (it->path().filename().string().find(".partial") != std::string::npos) return true;
-  return false;
-}
 
 // A copy of the bundled LIGGGHTS rig and an --out beside it.
 struct Sandbox {

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "cli_runner.h"
+#include "tree_snapshot.h"
 #include "core/file_name.h"
 
 using namespace chutelab::test;
@@ -26,32 +27,6 @@ namespace {
 
 const fs::path kSrc = CHUTELAB_SOURCE_DIR;
 const fs::path kRig = kSrc / "datasets" / "liggghts-rig";
-
-// Every file under `root` (relative path -> bytes; folders "<dir>", links "<link>target"), the
-// subtree `skip` left out.
-std::map<std::string, std::string> snapshot(const fs::path& root, const fs::path& skip = {}) {
-  std::map<std::string, std::string> s;
-  std::error_code ec;
-  if (!fs::exists(fs::symlink_status(root, ec))) return s;
-  for (auto it = fs::recursive_directory_iterator(root, fs::directory_options::none, ec);
-       it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    if (!skip.empty() && it->path() == skip) {
-      it.disable_recursion_pending();
-      continue;
-    }
-    const auto rel = fs::relative(it->path(), root).string();
-    if (it->is_symlink()) s[rel] = "<link>" + fs::read_symlink(it->path()).string();
-    else if (it->is_directory()) s[rel] = "<dir>";
-    else s[rel] = read_file(it->path());
-  }
-  return s;
-}
-
-bool staging_left(const fs::path& root) {
-  for (const auto& e : fs::recursive_directory_iterator(root))
-    if (e.path().filename().string().find(".partial") != std::string::npos) return true;
-  return false;
-}
 
 std::string repeat(const std::string& s, int n) {
   std::string o;
