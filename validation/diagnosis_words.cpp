@@ -205,26 +205,36 @@ std::string shape_words(const ShapeFinding& f) {
   return s;
 }
 
+// In the quantity's own terms (its unit, and % for forces and speeds): the statistics behind it (mean
+// and RMS of E/u, the correlation) are in the table under these lines.
 void describe_failures(DiagnosisResult& r) {
   r.failure_summary.clear();
   for (std::size_t i = 0; i + 3 < r.patterns.size(); i += 4) {
     const auto& p = r.patterns[i];
     const bool bias = std::abs(p.mean_normalised) > 3.0 / std::sqrt(std::max(p.n, 1));
     if (p.rms_normalised <= 2.0 && !bias) continue;
+    // The shifts follow the misfit's groups (one per model and quantity), as the patterns do.
+    const QuantityShift* q = i / 4 < r.shifts.size() && r.shifts[i / 4].quantity == p.quantity ? &r.shifts[i / 4] : nullptr;
     std::string s = fmt::format("{}: {} ", quantity_words(p.quantity), p.model);
-    if (bias)
-      s += fmt::format("{} it by {:.1f} standard deviations on average",
-                       p.mean_normalised > 0 ? "over-predicts" : "under-predicts", std::abs(p.mean_normalised));
-    else
-      s += fmt::format("misses it by {:.1f} standard deviations (RMS) without a steady bias", p.rms_normalised);
+    if (bias) {
+      std::string by = "beyond its uncertainties";
+      if (q && q->relative)
+        by = fmt::format("by {:.1f} % ({:.3g} {})", std::abs(100.0 * q->before_relative), std::abs(q->before), q->unit);
+      else if (q)
+        by = fmt::format("by {:.1f} {}", std::abs(q->before), q->unit);
+      s += fmt::format("{} it {} on average", p.mean_normalised > 0 ? "over-predicts" : "under-predicts", by);
+    } else {
+      s += fmt::format("misses it without a steady bias, scattering {:.1f} times as far as the uncertainties allow",
+                       p.rms_normalised);
+    }
     const ResidualPattern* strongest = nullptr;
     for (std::size_t k = i; k < i + 4; ++k)
       if (!strongest || std::abs(r.patterns[k].correlation) > std::abs(strongest->correlation)) strongest = &r.patterns[k];
     if (p.n >= 3 && std::abs(strongest->correlation) >= 0.7) {
       // Residual = prediction - measurement: a positive trend means over-prediction grows.
       const bool grows = (strongest->correlation > 0) == (p.mean_normalised >= 0);
-      s += fmt::format("; the misfit {} with {} (r = {:+.2f})", grows ? "grows" : "shrinks", strongest->driver,
-                       strongest->correlation);
+      s += fmt::format("; the misfit {} {}with {}", grows ? "grows" : "shrinks",
+                       std::abs(strongest->correlation) >= 0.9 ? "steadily " : "", strongest->driver);
     }
     r.failure_summary.push_back(s + ".");
   }
