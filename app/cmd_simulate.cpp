@@ -116,9 +116,9 @@ int run_simulate(const SimulateCli& o) {
       area += c.area;
     }
     std::cout << fmt::format(
-        "plate map ({} triangles, {:.2f} s): peak pressure {:.0f} Pa at y = {:.1f} mm (profile across the plate), centre of "
-        "pressure y = {:.1f} mm, peak wear {:.3g} um/h, mean {:.3g} um/h, normal load of the map {:.3f} N\n",
-        m.cells.size(), m.duration, peak_p, st::peak_pressure_y(m) * 1e3, st::pressure_centre_y(m) * 1e3,
+        "plate map ({} triangles, {:.2f} s): peak pressure {:.3g} kPa at y = {:.1f} mm (profile across the plate), centre of "
+        "pressure y = {:.1f} mm, peak wear {:.3g} µm/h, mean {:.3g} µm/h, normal load of the map {:.3f} N\n",
+        m.cells.size(), m.duration, peak_p * 1e-3, st::peak_pressure_y(m) * 1e3, st::pressure_centre_y(m) * 1e3,
         peak_w * 3.6e9, area > 0.0 ? wear_sum / area * 3.6e9 : 0.0, normal);
   }
   for (const auto& n : r.notes) std::cout << "note: " << n << "\n";

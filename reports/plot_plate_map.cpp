@@ -18,6 +18,13 @@ using validation::PlateZone;
 using validation::SurfaceMap;
 
 constexpr double kUmPerHour = 1e6 * 3600.0;
+constexpr double kKpa = 1e-3;  // Pa -> kPa: a plate's pressures are kPa, which "4.26e+03 Pa" hides
+
+// A colour bar's label: three significant digits of the bar's top, fixed notation ("4.26", "0.0312").
+std::string bar_label(double v, double top) {
+  const int mag = top > 0.0 && std::isfinite(top) ? static_cast<int>(std::floor(std::log10(top))) : 0;
+  return fixed(v, std::clamp(2 - mag, 0, 8));
+}
 
 struct Panel {
   std::string condition, model;
@@ -95,8 +102,8 @@ std::string heat_map(const std::vector<Panel>& panels, bool wear, std::string_vi
       const PlateZone& z = *p.zone;
       svg.rect(X(-0.5 * z.width), Y(z.top_y), z.width * k, (z.top_y - z.bottom_y) * k,
                "fill=\"none\" stroke=\"#ffffff\" stroke-width=\"1.6\" stroke-dasharray=\"5 3\"",
-               fmt::format("{} impact zone: y = {:.0f} to {:.0f} mm, mean pressure {:.0f} Pa", p.zone_model,
-                           z.top_y * 1e3, z.bottom_y * 1e3, z.mean_pressure));
+               fmt::format("{} impact zone: y = {:.0f} to {:.0f} mm, mean pressure {} kPa", p.zone_model,
+                           z.top_y * 1e3, z.bottom_y * 1e3, bar_label(z.mean_pressure * kKpa, z.mean_pressure * kKpa)));
       svg.line(X(-0.5 * z.width), Y(z.centroid_y), X(0.5 * z.width), Y(z.centroid_y),
                "stroke=\"#ffffff\" stroke-width=\"0.8\" stroke-dasharray=\"2 2\"");
     }
@@ -111,15 +118,15 @@ std::string heat_map(const std::vector<Panel>& panels, bool wear, std::string_vi
   }
   // Colour bar: one scale for every panel, labelled at its ends and middle.
   const double by = rows * cell_h + gap, bw = 40.0;
-  const std::string what = wear ? "wear rate (um/h)" : "normal pressure (Pa)";
+  const std::string what = wear ? "wear rate (µm/h)" : "normal pressure (kPa)";
   svg.text(gap, by + 10, what, "start", "font-size=\"12\"");
   const double x = gap + text_width(what, 12) + 10;
   for (std::size_t b = 0; b < kRamp.size(); ++b)
     svg.raw(fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"10\" fill=\"{}\"/>\n", px(x + b * bw), px(by),
                         px(bw), kRamp[b]));
-  const double top = hi * (wear ? kUmPerHour : 1.0);
+  const double top = hi * (wear ? kUmPerHour : kKpa);
   for (int j = 0; j <= 2; ++j)
-    svg.text(x + j * 0.5 * kRamp.size() * bw, by + 24, fmt::format("{:.3g}", top * 0.5 * j), "middle", "font-size=\"10\"");
+    svg.text(x + j * 0.5 * kRamp.size() * bw, by + 24, bar_label(top * 0.5 * j, top), "middle", "font-size=\"10\"");
   if (!wear)
     svg.text(gap, by + 40,
              "dashed: analytical impact zone and centroid; red ticks: peak of the map's pressure profile; "
@@ -160,9 +167,9 @@ PlateSection plate_section(const Context& c, const validation::ValidationResult&
   t.caption = "Plate loading and wear per condition (steady-window means)";
   t.key_columns = 2;
   t.columns = {{"", "condition", "", true}, {"", "model", "", true},
-               {"map", "peak pressure (Pa)"}, {"map", "peak wear (um/h)"}, {"map", "mean wear (um/h)"},
+               {"map", "peak pressure (kPa)"}, {"map", "peak wear (µm/h)"}, {"map", "mean wear (µm/h)"},
                {"map", "peak-pressure y (mm)"}, {"map", "centre of pressure y (mm)"}, {"", "y_R (mm)"},
-               {"peak − y_R", "mm"}, {"analytical zone", "y (mm)"}, {"analytical zone", "mean pressure (Pa)"}};
+               {"peak − y_R", "mm"}, {"analytical zone", "y (mm)"}, {"analytical zone", "mean pressure (kPa)"}};
   for (const auto& p : panels) {
     double peak_p = 0.0, peak_w = 0.0, sum_w = 0.0, area = 0.0;
     for (std::size_t i = 0; i < p.map->cells.size(); ++i) {
@@ -176,14 +183,15 @@ PlateSection plate_section(const Context& c, const validation::ValidationResult&
     auto num = [](double v, int d) { return std::isfinite(v) ? Cell{fixed(v, d)} : Cell{std::string(kDash)}; };
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double yr = p.impact_point ? *p.impact_point : nan;
-    t.rows.push_back({Cell{p.condition, "", false, "", true}, Cell{p.model, "", false, "", true}, num(peak_p, 0),
+    t.rows.push_back({Cell{p.condition, "", false, "", true}, Cell{p.model, "", false, "", true}, num(peak_p * kKpa, decimals_for(peak_p * kKpa, 3)),
                       num(peak_w * kUmPerHour, decimals_for(peak_w * kUmPerHour, 3)),
                       num(area > 0.0 ? sum_w / area * kUmPerHour : nan, decimals_for(peak_w * kUmPerHour, 3)),
                       num(p.map->peak_pressure_y * 1e3, 1), num(p.map->pressure_centre_y * 1e3, 1), num(yr * 1e3, 1),
                       num((p.map->peak_pressure_y - yr) * 1e3, 1),
                       p.zone ? Cell{fmt::format("{:.0f} … {:.0f}", p.zone->top_y * 1e3, p.zone->bottom_y * 1e3)}
                              : Cell{std::string(kDash)},
-                      p.zone ? num(p.zone->mean_pressure, 0) : Cell{std::string(kDash)}});
+                      p.zone ? num(p.zone->mean_pressure * kKpa, decimals_for(p.zone->mean_pressure * kKpa, 3))
+                             : Cell{std::string(kDash)}});
   }
   t.notes.push_back("Peak and mean wear: Archard sliding + Finnie impact wear, depth per hour of operation, with the "
                     "wear inputs of the run (setup.toml [dem.wear]); mean over the whole plate face.");

@@ -443,8 +443,8 @@ Bounds bounds(Quantity q) {
 constexpr Bounds kTrajectoryBounds{1e5, 1e-4, "mm"};
 // Plate maps: pressures and shear stresses (a liner's limit is a few MPa), wear depths and rates.
 Bounds plate_bounds(const std::string& quantity) {
-  if (quantity == "wear_depth_um") return {1e6, 1e-6, "um"};
-  if (quantity == "wear_rate_um_per_h") return {1e6, 1e-9, "um/h"};
+  if (quantity == "wear_depth_um") return {1e6, 1e-6, "µm"};
+  if (quantity == "wear_rate_um_per_h") return {1e6, 1e-9, "µm/h"};
   return {1e9, 1e-6, "Pa"};
 }
 

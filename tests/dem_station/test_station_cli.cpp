@@ -75,6 +75,10 @@ BOOST_AUTO_TEST_CASE(simulate_writes_series_means_and_vtk) {
   BOOST_TEST(count_lines(read_file(out / "timeseries.csv")) > 100);
   // The plate map: one row per triangle, units in the column names, and its VTK.
   BOOST_TEST(r.out.find("plate map (") != std::string::npos);
+  // In the units a plate's loads are read in: kPa and µm/h.
+  BOOST_TEST(r.out.find(" kPa at y = ") != std::string::npos, r.out);
+  BOOST_TEST(r.out.find(" µm/h, mean ") != std::string::npos, r.out);
+  BOOST_TEST(r.out.find("um/h") == std::string::npos);
   BOOST_TEST(fs::exists(out / "plate_map.vtk"));
   const std::string map = read_file(out / "plate_map.csv");
   BOOST_TEST(map.rfind("condition,wall,triangle,x_mm,y_mm,z_mm,area_mm2,pressure_Pa,shear_stress_Pa,", 0) == 0);

@@ -541,3 +541,44 @@ BOOST_AUTO_TEST_CASE(exactly_the_values_beyond_two_u_val_are_highlighted) {
 }
 
 }  // namespace chutelab::test
+
+namespace chutelab::test {
+
+// The plate's maps in the units an engineer reads: pressures in kPa (a colour bar never says
+// "4.26e+03 Pa"), wear in µm/h (never "um/h"), numbers in fixed notation.
+BOOST_AUTO_TEST_CASE(plate_maps_speak_kpa_and_micrometres_per_hour) {
+  const Dataset d = small_dataset();
+  ValidationResult r = small_result(d, false);
+  validation::SurfaceMap m;
+  m.name = "plate";
+  // Two cells of a 0.4 m x 0.5 m face: 4260 Pa and 2130 Pa, wear 1e-9 and 5e-10 m/s (3.6, 1.8 µm/h).
+  m.cells = {{Eigen::Vector2d(-0.2, 0.0), Eigen::Vector2d(0.2, 0.0), Eigen::Vector2d(0.2, -0.5)},
+             {Eigen::Vector2d(-0.2, 0.0), Eigen::Vector2d(0.2, -0.5), Eigen::Vector2d(-0.2, -0.5)}};
+  m.pressure = {4260.0, 2130.0};
+  m.wear_rate = {1e-9, 5e-10};
+  m.peak_pressure_y = -0.1;
+  m.pressure_centre_y = -0.2;
+  for (auto& p : r.predictions)
+    if (p.model == "m1") p.prediction.maps.push_back(m);
+  reports::ReportInput in;
+  in.dataset = &d;
+  in.baseline = &r;
+  const std::string html = reports::report_html(in);
+  const std::string md = reports::report_markdown(in);
+  const auto plate = section(html, "<section id=\"plate\"", "</section>");
+  BOOST_TEST(plate.find(">normal pressure (kPa)</text>") != std::string::npos, plate.substr(0, 3000));
+  BOOST_TEST(plate.find(">4.26</text>") != std::string::npos);   // the bar's top
+  BOOST_TEST(plate.find(">2.13</text>") != std::string::npos);   // and its middle
+  BOOST_TEST(plate.find(">wear rate (µm/h)</text>") != std::string::npos);
+  BOOST_TEST(plate.find(">3.60</text>") != std::string::npos);
+  static const std::regex exponent(R"([0-9]e[-+][0-9])");
+  BOOST_TEST(!std::regex_search(plate, exponent));
+  for (const auto* text : {&html, &md}) {
+    BOOST_TEST(text->find("um/h") == std::string::npos);
+    BOOST_TEST(text->find("pressure (Pa)") == std::string::npos);
+  }
+  BOOST_TEST(md.find("peak pressure (kPa)") != std::string::npos);
+  BOOST_TEST(md.find("| 4.26 |") != std::string::npos, section(md, "## Plate loading", "\n## "));
+}
+
+}  // namespace chutelab::test
