@@ -1,10 +1,13 @@
 #pragma once
 // Reads a whole string as a number: the one rule for CSV cells, command-line lists and study files,
 // so "5.6mm" or "1,2" is never half-read. Infinity and NaN are numbers here; callers that need a
-// finite value say so in their own message.
+// finite value say so in their own message. And writes one for a message a person reads.
+#include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
+#include <fmt/format.h>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -30,6 +33,22 @@ inline std::optional<double> parse_number(std::string_view s) {
   if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
 #endif
   return v;
+}
+
+// A number in a message (a tolerance's verdict, the JUnit file): four significant digits, fixed
+// notation from 1e-4 to 1e6 (an exponent past them), no trailing zeros: "22.78", "0.08", "7", never
+// the "7.000000000000001" of 100 * 0.07. The CSVs carry every digit.
+inline std::string message_number(double v) {
+  if (!std::isfinite(v)) return fmt::format("{}", v);
+  if (v == 0.0) return "0";
+  const int mag = static_cast<int>(std::floor(std::log10(std::abs(v))));
+  if (mag < -4 || mag > 6) return fmt::format("{:.3e}", v);
+  std::string s = fmt::format("{:.{}f}", v, std::clamp(3 - mag, 0, 7));
+  if (s.find('.') != std::string::npos) {
+    s.erase(s.find_last_not_of('0') + 1);
+    if (s.back() == '.') s.pop_back();
+  }
+  return s == "-0" ? "0" : s;
 }
 
 }  // namespace chutelab

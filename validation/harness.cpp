@@ -12,6 +12,7 @@
 #include "core/input_error.h"
 #include "core/progress.h"
 #include "core/message.h"
+#include "core/number.h"
 #include "validation/input_uncertainty.h"
 #include "validation/campaign_runs.h"
 #include "validation/models/external_model.h"
@@ -175,8 +176,8 @@ void apply_measurement_effects(const analytical::EffectList& effects, std::span<
 
 namespace {
 
-// A number as an engineer reads it: 3 significant digits, no exponent in the usual range.
-std::string plain(double v) { return fmt::format("{:.3g}", v); }
+// A number as an engineer reads it: 4 significant digits, no exponent in the usual range.
+std::string plain(double v) { return message_number(v); }
 
 void check_tolerance(Comparison& c, const Tolerances& tol) {
   const Tolerance* t = tol.find(c.model, c.quantity);
@@ -202,7 +203,7 @@ void check_tolerance(Comparison& c, const Tolerances& tol) {
                              : "relative error not finite (measured value too close to 0; use an absolute limit)");
     else if (std::abs(*r) > *t->relative)
       fail("relative", std::abs(*r), *t->relative,
-           fmt::format("relative error {:.1f} % > {} %", 100.0 * std::abs(*r), plain(100.0 * *t->relative)));
+           fmt::format("relative error {} % > {} %", plain(100.0 * std::abs(*r)), plain(100.0 * *t->relative)));
   }
   if (t->normalised) {
     // Without a stated uncertainty a normalised limit cannot be met: that is a failure to show,

@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "core/markup.h"
+#include "core/number.h"
 #include "validation/output_files.h"
 
 namespace chutelab::validation {
@@ -21,21 +22,21 @@ std::string unit_of(const Comparison& c) {
 
 std::string describe(const Tolerance& t, const std::string& unit) {
   std::vector<std::string> parts;
-  if (t.relative) parts.push_back(fmt::format("|relative error| <= {} %", csv_number(100.0 * *t.relative)));
-  if (t.normalised) parts.push_back(fmt::format("|E|/u_val <= {}", csv_number(*t.normalised)));
-  if (t.absolute) parts.push_back(fmt::format("|error| <= {} {}", csv_number(*t.absolute), unit));
+  if (t.relative) parts.push_back(fmt::format("|relative error| <= {} %", message_number(100.0 * *t.relative)));
+  if (t.normalised) parts.push_back(fmt::format("|E|/u_val <= {}", message_number(*t.normalised)));
+  if (t.absolute) parts.push_back(fmt::format("|error| <= {} {}", message_number(*t.absolute), unit));
   return fmt::format("{}", fmt::join(parts, " and "));
 }
 
 std::string value(double si, double scale, const std::string& unit) {
-  return fmt::format("{} {}", csv_number(si * scale), unit);
+  return fmt::format("{} {}", message_number(si * scale), unit);
 }
 
 // One line per compared value: what the CI view shows under the test case.
 std::string detail(const Comparison& c) {
   const std::string u = unit_of(c);
   std::string o;
-  if (c.boundary) o += fmt::format("x = {} mm: ", csv_number(c.x * 1e3));
+  if (c.boundary) o += fmt::format("x = {} mm: ", message_number(c.x * 1e3));
   o += fmt::format("measured {}", value(c.measured, c.scale, u));
   if (c.uncertainty) o += fmt::format(" (u_D {})", value(*c.uncertainty, c.scale, u));
   o += fmt::format(", predicted {}", value(*c.predicted, c.scale, u));
@@ -105,7 +106,7 @@ std::string suite_xml(Suite& s, const ValidationResult& r, const Tolerances& tol
       msg = fmt::format("{}: measured {}, predicted {}, error {}; limit {}", k.quantity,
                         value(worst->measured, worst->scale, unit), value(*worst->predicted, worst->scale, unit),
                         value(worst->error(), worst->scale, unit), worst->verdict.limit);
-      if (worst->boundary) msg += fmt::format(" at x = {} mm", csv_number(worst->x * 1e3));
+      if (worst->boundary) msg += fmt::format(" at x = {} mm", message_number(worst->x * 1e3));
       if (failed.size() > 1) msg += fmt::format(" ({} of {} points outside)", failed.size(), predicted.size());
     }
     if (!judged) {
