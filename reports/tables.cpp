@@ -294,7 +294,9 @@ Table summary_table(const ValidationResult& r, std::string_view id) {
                                               : std::string(kDash)});
     row.push_back({s.rms_normalised_error ? fixed(*s.rms_normalised_error, decimals_for(*s.rms_normalised_error, 3))
                                           : std::string(kDash)});
-    row.push_back({s.max_abs_relative_error ? fixed(100.0 * *s.max_abs_relative_error, 1) : std::string(kDash)});
+    row.push_back({s.max_abs_relative_error && !validation::is_height(s.quantity)
+                       ? fixed(100.0 * *s.max_abs_relative_error, 1)
+                       : std::string(kDash)});
     Cell tol{s.within_tolerance ? (*s.within_tolerance ? "yes" : "no") : std::string(kDash)};
     if (s.within_tolerance && !*s.within_tolerance) {
       tol.fail = true;
@@ -305,6 +307,9 @@ Table summary_table(const ValidationResult& r, std::string_view id) {
   }
   t.notes.push_back("E = predicted − measured, u_val = the V&V 20 validation uncertainty (the measurement's, the "
                     "model's numerical and the inputs' combined); |E/u_val| > 2 is more than they explain.");
+  if (std::any_of(r.summary.begin(), r.summary.end(), [](const auto& s) { return validation::is_height(s.quantity); }))
+    t.notes.push_back("Heights (y_R, the stream boundaries) have no relative error: their zero is the pulley's "
+                      "centre, so a per cent of them means nothing; their error is in mm.");
   if (!r.acceptance_checked) t.notes.push_back("No tolerances were set, so no value was checked for acceptance.");
   return t;
 }

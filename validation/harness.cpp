@@ -38,6 +38,10 @@ namespace {
 std::optional<double> finite(double v) { return std::isfinite(v) ? std::optional(v) : std::nullopt; }
 }  // namespace
 
+bool is_height(std::string_view quantity) {
+  return parse_quantity(quantity) == Quantity::impact_point_y || quantity.starts_with("trajectory_");
+}
+
 std::optional<double> Comparison::relative_error() const {
   if (!predicted || measured == 0.0) return std::nullopt;
   return finite(error() / std::abs(measured));
@@ -390,7 +394,7 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
           ++ne;
         }
         if (auto z = c.normalised_error()) { sz += *z * *z; ++nz; }
-        if (auto rel = c.relative_error()) { worst = std::max(worst, std::abs(*rel)); ++nr; }
+        if (auto rel = c.relative_error(); rel && !is_height(qn)) { worst = std::max(worst, std::abs(*rel)); ++nr; }
         if (c.verdict.checked) { checked = true; ok = ok && c.verdict.passed; }
       }
       if (s.n == 0) continue;

@@ -10,6 +10,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analytical/effect.h"
@@ -18,6 +19,11 @@
 #include "validation/tolerances.h"
 
 namespace chutelab::validation {
+
+// A height (y_R, a stream boundary's y; by boundary name): its zero is the pulley's centre, so a per
+// cent of it means nothing and its error is read in mm. Summaries and messages give it no relative
+// error (errors.csv keeps E/|D| for every value, which a relative tolerance checks).
+bool is_height(std::string_view quantity);
 
 // One measured value against one model (quantities and trajectory points alike).
 struct Comparison {

@@ -42,7 +42,8 @@ std::string detail(const Comparison& c) {
   o += fmt::format(", predicted {}", value(*c.predicted, c.scale, u));
   if (c.prediction_uncertainty) o += fmt::format(" (u_num {})", value(*c.prediction_uncertainty, c.scale, u));
   o += fmt::format(", error {}", value(c.error(), c.scale, u));
-  if (auto rel = c.relative_error()) o += fmt::format(", relative error {:+.2f} %", 100.0 * *rel);
+  if (auto rel = c.relative_error(); rel && !is_height(c.quantity))
+    o += fmt::format(", relative error {:+.2f} %", 100.0 * *rel);
   if (auto z = c.normalised_error()) o += fmt::format(", E/u_val {:+.2f}", *z);
   if (c.verdict.checked) o += c.verdict.passed ? ": within tolerance" : fmt::format(": FAILED, {}", c.verdict.limit);
   return o;

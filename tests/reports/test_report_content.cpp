@@ -164,6 +164,16 @@ BOOST_FIXTURE_TEST_CASE(failing_cell_is_marked_in_markdown_and_html, Fixture) {
   BOOST_TEST(md.find("**no \u2717**") != std::string::npos);
 }
 
+// y_R is a height whose zero is the pulley's centre: the summary gives it no relative error in %.
+BOOST_FIXTURE_TEST_CASE(a_height_has_no_relative_error, Fixture) {
+  const auto md = reports::report_markdown(in());
+  const auto summary = section(md, "**Summary per model and quantity", "\n## ");
+  const auto yr = line_starting(summary, "| m2 | y\\_R");
+  BOOST_TEST(yr.find("| 5.60 mm | 40.0 | \u2014 |") != std::string::npos, yr);
+  BOOST_TEST(line_starting(summary, "| m1 | R plate").find("| 21.0 |") != std::string::npos, summary);
+  BOOST_TEST(summary.find("Heights (y\\_R, the stream boundaries) have no relative error") != std::string::npos, summary);
+}
+
 BOOST_FIXTURE_TEST_CASE(no_tolerance_means_no_marks, Fixture) {
   r = small_result(d, false);
   const auto html = reports::report_html(in());

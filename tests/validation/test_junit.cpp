@@ -168,6 +168,21 @@ BOOST_AUTO_TEST_CASE(numbers_carry_four_significant_digits) {
     BOOST_TEST(digits.size() <= 4u, (*it)[0].str());
   }
   BOOST_TEST(seen > 100);
+  // A height (y_R, a stream boundary) has no relative error: its zero is the pulley's centre.
+  const auto yr = x.find("name=\"V2-41 impact_point_y_mm\"");
+  BOOST_TEST_REQUIRE(yr != std::string::npos);
+  const std::string yr_case = x.substr(yr, x.find("</testcase>", yr) - yr);
+  BOOST_TEST(yr_case.find(", error 6.508 mm, E/u_val") != std::string::npos, yr_case);
+  BOOST_TEST(yr_case.find("relative error") == std::string::npos, yr_case);
+  const std::string summary = read_file(dir / "out" / "summary.csv");
+  BOOST_TEST(summary.find("\nbooth-cema,impact_point_y_mm,8,") != std::string::npos, summary);
+  for (const char* q : {"impact_point_y_mm", "trajectory_upper_y_mm"}) {
+    const auto at = summary.find(std::string("\nbooth-cema,") + q + ",");
+    BOOST_TEST_REQUIRE(at != std::string::npos, q);
+    const std::string row = summary.substr(at + 1, summary.find('\n', at + 1) - at - 1);
+    BOOST_TEST(row.find(",,") != std::string::npos, row);  // max_abs_relative_error left empty
+  }
+  BOOST_TEST(summary.find("\nkorzen,normal_force_N,8,") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(nothing_checked_is_an_error_not_a_pass) {
