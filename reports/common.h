@@ -160,8 +160,10 @@ Table model_notes_table(const Context& c, const validation::ValidationResult& r,
 Table vv20_table(const Context& c, const validation::ValidationResult& r, std::string_view id);
 std::vector<std::string> vv20_not_estimated(const validation::Dataset& d, const validation::ValidationResult& r);
 
-// findings.cpp
+// findings.cpp: the claims this dataset could test, one row each; the rest named in a note.
 Table findings_table(const std::vector<validation::ReferenceFinding>& findings);
+// Whether any claim could be tested: without one the section does not apply to the rig.
+bool any_testable(const std::vector<validation::ReferenceFinding>& findings);
 
 
 // plot_bars.cpp (`width`, `other`: as residual_chart's)

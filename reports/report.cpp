@@ -531,7 +531,7 @@ Doc assemble(const ReportInput& in) {
     }
   }
 
-  if (in.findings && !in.findings->empty()) {
+  if (in.findings && any_testable(*in.findings)) {
     d.h(2, "findings", "The reference study's findings");
     d.table(findings_table(*in.findings));
   }

@@ -397,7 +397,7 @@ const char* kSizeClaim = "the fluctuation of R grows with the particle diameter"
 validation::ReferenceFinding sensitivity_finding(const SensitivityStudy* s, std::string_view validated) {
   validation::ReferenceFinding f{6, kTable6};
   if (!s) {
-    const std::string why = "no sensitivity study given (chutelab sensitivity, then validate --studies DIR)";
+    const std::string why = "no sensitivity study given: validate --studies takes the folder of a sensitivity run";
     f.claims = {{kMeanClaim, false, false, why}, {kSizeClaim, false, false, why}};
   } else {
     const auto& v = s->verdict;

@@ -394,6 +394,36 @@ BOOST_FIXTURE_TEST_CASE(point_clouds_are_dots_with_a_colour_bar, Fixture) {
   BOOST_TEST(md.find("numbers two") != std::string::npos);
 }
 
+// What this dataset cannot test does not apply to the rig: no row, one note naming it; a dataset that
+// can test nothing of the reference study gets no section at all.
+BOOST_FIXTURE_TEST_CASE(untestable_findings_are_left_out, Fixture) {
+  std::vector<validation::ReferenceFinding> findings(2);
+  findings[0].number = 2;
+  findings[0].statement = "a finding";
+  findings[0].status = validation::FindingStatus::reproduced;
+  findings[0].claims = {{"claim tested", true, true, "numbers one"}, {"claim of the dem", false, false, "the dem model was not run"}};
+  findings[1].number = 3;
+  findings[1].statement = "a finding of the dem";
+  findings[1].status = validation::FindingStatus::not_testable;
+  findings[1].claims = {{"claim three", false, false, "the dem model was not run"},
+                        {"claim four", false, false, "no sensitivity study given"}};
+  auto i = in();
+  i.findings = &findings;
+  const std::string md = reports::report_markdown(i), html = reports::report_html(i);
+  const auto sec = section(md, "## The reference study's findings", "\n## ");
+  BOOST_TEST(sec.find("claim tested") != std::string::npos, sec);
+  for (const auto* text : {&md, &html}) {
+    for (const char* gone : {"claim of the dem", "claim three", "claim four", "untestable", "a finding of the dem"})
+      BOOST_TEST(text->find(gone) == std::string::npos, gone);
+  }
+  BOOST_TEST(sec.find("Not testable on this dataset, so left out: finding 3 and one claim of finding 2 (the dem model "
+                      "was not run; no sensitivity study given).") != std::string::npos, sec);
+  // Nothing testable: no section.
+  findings.erase(findings.begin());
+  BOOST_TEST(reports::report_markdown(i).find("The reference study's findings") == std::string::npos);
+  BOOST_TEST(reports::report_html(i).find("id=\"findings\"") == std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(nice_ticks_land_on_round_numbers) {
   const auto t = reports::nice_ticks(0.0, 63.3, 6);
   BOOST_TEST(t.step == 10.0);
