@@ -39,8 +39,11 @@ ImpactZone impact_zone(const TransferAnalysis& a) {
   const double w = a.station.belt.loaded_width > 0.0 ? a.station.belt.loaded_width : a.station.belt.belt_width;
   z.width = a.station.plate.width > 0.0 ? std::min(w, a.station.plate.width) : w;
   z.area = z.length() * z.width;
-  z.mean_pressure = a.korzen.normal_force / z.area;
-  z.mean_shear_stress = a.korzen.shear_force / z.area;
+  // Only what meets the plate loads it: a stream partly over the top edge leaves a shorter band and
+  // a smaller force, not the whole stream's force on the part of the band that is left.
+  z.caught = stream_catch(a);
+  z.mean_pressure = z.caught.normal_force / z.area;
+  z.mean_shear_stress = z.caught.shear_force / z.area;
   return z;
 }
 

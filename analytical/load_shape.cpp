@@ -1,5 +1,6 @@
 #include "analytical/load_shape.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -43,6 +44,17 @@ double solve_increasing(F f, double target, double lo, double hi) {
   return 0.5 * (lo + hi);
 }
 
+// The cap of a circle of radius r above a chord at depth s below its crest (0 <= s <= r): the
+// segment of rise s, r^2 acos((r - s)/r) - (r - s) sqrt(2 r s - s^2).
+double cap_area(double r, double s) {
+  if (s <= 0.0) return 0.0;
+  const double c = r - s;
+  return r * r * std::acos(std::clamp(c / r, -1.0, 1.0)) - c * std::sqrt(std::max(0.0, 2.0 * r * s - s * s));
+}
+
+// Radius of the circle through a chord of width `chord` with a rise `rise`.
+double radius_of(double chord, double rise) { return (0.25 * chord * chord + rise * rise) / (2.0 * rise); }
+
 }  // namespace
 
 LoadShape flat_segment(double chord, double height) {
@@ -76,6 +88,11 @@ LoadShape troughed_load(const Trough& t, double contact_width) {
   return {area, depth + s.rise, centroid, contact_width};
 }
 
+LoadShape largest_load(const Belt& belt) {
+  if (!belt.trough.troughed()) return flat_segment(belt.loaded_width, 0.5 * belt.loaded_width);
+  return troughed_load(belt.trough, belt.loaded_width);
+}
+
 LoadShape load_shape_for_thickness(const Belt& belt, double thickness) {
   if (!belt.trough.troughed()) return flat_segment(belt.loaded_width, thickness);
   const auto height_of = [&](double w) { return troughed_load(belt.trough, w).height; };
@@ -96,7 +113,7 @@ LoadShape load_shape_for_flow(const Belt& belt, double mass_flow, double bulk_de
   const double area = mass_flow / (bulk_density * belt_speed);
   if (!belt.trough.troughed()) {
     const double w = belt.loaded_width;
-    const double max_area = flat_segment(w, 0.5 * w).area;
+    const double max_area = largest_load(belt).area;
     if (area > max_area)
       throw InputError("", 0, "mass_flow_tph",
                        fmt::format("{:.1f} t/h at {:.2f} m/s needs a {:.0f} mm^2 cross-section; a flat "
@@ -107,13 +124,37 @@ LoadShape load_shape_for_flow(const Belt& belt, double mass_flow, double bulk_de
     return flat_segment(w, h);
   }
   const auto area_of = [&](double w) { return troughed_load(belt.trough, w).area; };
-  if (area > area_of(belt.loaded_width))
+  if (area > largest_load(belt).area)
     throw InputError("", 0, "mass_flow_tph",
                      fmt::format("{:.1f} t/h at {:.2f} m/s overfills the troughed belt "
                                  "({:.0f} mm^2 needed, {:.0f} mm^2 available)",
                                  mass_flow * 3.6, belt_speed, area * 1e6,
-                                 area_of(belt.loaded_width) * 1e6));
+                                 largest_load(belt).area * 1e6));
   return troughed_load(belt.trough, solve_increasing(area_of, area, 0.0, belt.loaded_width));
+}
+
+double load_area_below(const Belt& belt, const LoadShape& load, double e) {
+  e = std::clamp(e, 0.0, load.height);
+  // A segment on its chord (the flat belt, or a load on the centre roll alone): the whole less the
+  // cap above e. A troughed load: the trapezoid on the rolls, its wings rising at the idler angle
+  // (width l + 2 y / tan(lambda) at height y), then the surcharge segment on its top width.
+  auto segment_below = [](double chord, double rise, double area, double y) {
+    if (rise <= 0.0) return 0.0;
+    return area - cap_area(radius_of(chord, rise), rise - y);
+  };
+  const Trough& t = belt.trough;
+  if (!belt.trough.troughed() || load.contact_width <= t.centre_roll || t.idler_angle <= 0.0)
+    return segment_below(load.contact_width, load.height, load.area, e);
+  const double l = t.centre_roll;
+  const double wing = 0.5 * (load.contact_width - l);
+  const double depth = wing * std::sin(t.idler_angle);
+  const double top = l + 2.0 * wing * std::cos(t.idler_angle);
+  const double spread = 1.0 / std::tan(t.idler_angle);
+  const double y = std::min(e, depth);
+  const double trapezoid = l * y + spread * y * y;
+  if (e <= depth) return trapezoid;
+  const double segment = load.area - 0.5 * (l + top) * depth;
+  return trapezoid + segment_below(top, load.height - depth, segment, e - depth);
 }
 
 }  // namespace chutelab::analytical

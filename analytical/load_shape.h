@@ -32,4 +32,14 @@ LoadShape load_shape_for_thickness(const Belt& belt, double thickness);
 LoadShape load_shape_for_flow(const Belt& belt, double mass_flow, double bulk_density,
                               double belt_speed);
 
+// The fullest load the belt holds: the flat belt's half disc on its loaded width, the troughed
+// belt's load touching its whole loaded width. Its area is the bound load_shape_for_flow checks
+// (the belt's capacity is this area times rho_bl V_b), its height the bound of
+// load_shape_for_thickness.
+LoadShape largest_load(const Belt& belt);
+
+// The part of `load`'s cross-section below height e above the belt centre line (0 <= e <= h_b),
+// m^2: the whole area at e = h_b. `load` is a shape of `belt` (one of the functions above).
+double load_area_below(const Belt& belt, const LoadShape& load, double e);
+
 }  // namespace chutelab::analytical

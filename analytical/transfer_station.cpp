@@ -73,6 +73,10 @@ std::optional<double> farthest_plate_distance(const TransferAnalysis& a, double 
 
 }  // namespace
 
+std::optional<double> farthest_plate_distance(const TransferAnalysis& a) {
+  return farthest_plate_distance(a, a.station.plate_top);
+}
+
 TransferAnalysis analyse_transfer(const Station& recorded, const EffectList& effects, TransferMemo* memo) {
   const Station st = as_really_was(recorded, effects);
   check_station(st);

@@ -62,4 +62,9 @@ struct TransferMemo {
 TransferAnalysis analyse_transfer(const Station& station, const EffectList& effects = {},
                                   TransferMemo* memo = nullptr);
 
+// The largest plate distance at which both centre lines still meet the plate above its foot, with
+// the plate's top, angle and height of `a` kept (the bound whose breach analyse_transfer names);
+// nullopt when none does.
+std::optional<double> farthest_plate_distance(const TransferAnalysis& a);
+
 }  // namespace chutelab::analytical

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "analytical/impact_zone.h"
+#include "analytical/stream_catch.h"
 #include "analytical/streamline_path.h"
 #include "core/csv_field.h"
 #include "core/message.h"
@@ -47,6 +48,19 @@ std::string streamline_label(Streamline s) {
 
 }  // namespace
 
+std::string stream_miss_note(const analytical::StreamCatch& c) {
+  if (c.whole()) return "";
+  std::string where;
+  if (c.over_top > 0.0) where = fmt::format("{:.3g} % of the stream passes over the plate's top edge", 100.0 * c.over_top);
+  if (c.past_foot > 0.0)
+    where += fmt::format("{}{:.3g} % falls past its foot", where.empty() ? "" : ", ", 100.0 * c.past_foot);
+  // Korzen's forces are linear in the mass flow: the whole stream's are the caught part's over its share.
+  return fmt::format("{}: the plate takes R_n = {:.3g} N and R_s = {:.3g} N of the whole stream's {:.3g} N and "
+                     "{:.3g} N (Korzen, the caught part taken to strike at the centroid's speed and angle); the "
+                     "mean pressure is of that part",
+                     where, c.normal_force, c.shear_force, c.normal_force / c.caught, c.shear_force / c.caught);
+}
+
 std::vector<std::pair<std::string, double>> estimate_scalars(const analytical::TransferAnalysis& a) {
   const auto& k = a.korzen;
   const auto& kc = *a.line(Streamline::korzen_centroid).hit;
@@ -78,6 +92,11 @@ std::vector<std::pair<std::string, double>> estimate_scalars(const analytical::T
   v.emplace_back("impact_zone_area_mm2", z.area * 1e6);
   v.emplace_back("mean_pressure_Pa", z.mean_pressure);
   v.emplace_back("mean_shear_stress_Pa", z.mean_shear_stress);
+  // The part of the stream the plate takes (analytical/stream_catch.h); the mean stresses are of it.
+  v.emplace_back("over_top_fraction", z.caught.over_top);
+  v.emplace_back("past_foot_fraction", z.caught.past_foot);
+  v.emplace_back("caught_normal_force_N", z.caught.normal_force);
+  v.emplace_back("caught_shear_force_N", z.caught.shear_force);
   for (Streamline s : analytical::kAllStreamlines) {
     const auto& l = a.line(s);
     if (!l.hit) continue;
@@ -146,12 +165,12 @@ std::string estimate_table(const analytical::TransferAnalysis& a, const ModelVal
   o += fmt::format("  R_n = {:.2f} N (Eq 5), R_s = {:.2f} N ({}), R = {:.2f} N\n", k.normal_force,
                    k.shear_force, name(k.shear_equation), k.resultant_force);
   const auto z = analytical::impact_zone(a);
-  o += fmt::format("  impact zone: y = {:.1f} to {:.1f} mm on the face ({:.0f} mm x {:.0f} mm{}{}), "
-                   "mean pressure {:.0f} Pa, mean shear {:.0f} Pa\n\n",
-                   z.top_y * 1e3, z.bottom_y * 1e3, z.length() * 1e3, z.width * 1e3,
-                   z.top_clipped ? "; part of the stream passes above the top edge" : "",
-                   z.bottom_clipped ? "; part of the stream falls past the foot" : "", z.mean_pressure,
+  o += fmt::format("  impact zone: y = {:.1f} to {:.1f} mm on the face ({:.0f} mm x {:.0f} mm), "
+                   "mean pressure {:.0f} Pa, mean shear {:.0f} Pa\n",
+                   z.top_y * 1e3, z.bottom_y * 1e3, z.length() * 1e3, z.width * 1e3, z.mean_pressure,
                    z.mean_shear_stress);
+  if (const std::string miss = stream_miss_note(z.caught); !miss.empty()) o += "  " + miss + "\n";
+  o += "\n";
   o += fmt::format("  {:<12}", "model");
   for (Quantity q : kAllQuantities) o += fmt::format(" {:>20}", name(q));
   o += "\n";
@@ -231,11 +250,25 @@ std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValu
       "  \"impact_zone\": {{\"impact_zone_top_mm\": {}, \"impact_zone_bottom_mm\": {}, "
       "\"impact_zone_centroid_mm\": {}, \"impact_zone_width_mm\": {}, \"impact_zone_area_mm2\": {}, "
       "\"mean_pressure_Pa\": {}, \"mean_shear_stress_Pa\": {}, \"top_clipped\": {}, "
-      "\"bottom_clipped\": {}}},\n",
+      "\"bottom_clipped\": {}, \"over_top_fraction\": {}, \"past_foot_fraction\": {}, "
+      "\"caught_normal_force_N\": {}, \"caught_shear_force_N\": {}, \"note\": {}}},\n",
       json_number(z.top_y * 1e3), json_number(z.bottom_y * 1e3), json_number(z.centroid_y * 1e3),
       json_number(z.width * 1e3), json_number(z.area * 1e6), json_number(z.mean_pressure),
       json_number(z.mean_shear_stress), z.top_clipped ? "true" : "false",
-      z.bottom_clipped ? "true" : "false");
+      z.bottom_clipped ? "true" : "false", json_number(z.caught.over_top), json_number(z.caught.past_foot),
+      json_number(z.caught.normal_force), json_number(z.caught.shear_force),
+      json_string(stream_miss_note(z.caught)));
+  {
+    // The design's own bounds, those analyse_transfer checks: the belt's capacity at this belt
+    // speed and the deepest load it holds (analytical/load_shape.h), and how far the plate may stand
+    // with its top and height kept before the stream's centre misses it.
+    const auto full = analytical::largest_load(st.belt);
+    const auto reach = analytical::farthest_plate_distance(a);
+    o += fmt::format("  \"limits\": {{\"mass_flow_tph_max\": {}, \"stream_thickness_mm_max\": {}, "
+                     "\"plate_distance_mm_max\": {}}},\n",
+                     json_number(full.area * st.material.bulk_density * st.belt_speed / units::tph),
+                     json_number(full.height * 1e3), reach ? json_number(*reach * 1e3) : "null");
+  }
   o += "  \"streamlines\": {";
   first = true;
   for (Streamline s : analytical::kAllStreamlines) {

@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "analytical/stream_catch.h"
 #include "analytical/transfer_station.h"
 #include "core/quantity.h"
 #include "effects/registry.h"
@@ -19,6 +20,9 @@ std::string json_number(double v);
 // One flat list of named values in boundary units (names with units): the CSV view and the sweep
 // table share it.
 std::vector<std::pair<std::string, double>> estimate_scalars(const analytical::TransferAnalysis& a);
+// "" when the whole stream meets the plate; else how much passes over the top edge or falls past
+// the foot and the forces of the part the plate takes (estimate's table and JSON, sweeps' notes).
+std::string stream_miss_note(const analytical::StreamCatch& c);
 
 std::string estimate_table(const analytical::TransferAnalysis& a, const ModelValues& models,
                            const std::vector<effects::EffectSetting>& fx);

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <optional>
 
+#include "analytical/impact_zone.h"
 #include "analytical/transfer_station.h"
 #include "app/commands.h"
 #include "api/estimate.h"
@@ -99,6 +100,8 @@ int run_sweep(const EstimateCli& o, const analytical::EffectList& fixed,
       row.point = api::estimate_point(st, fx);
       if (!row.point->analysis.line(analytical::Streamline::korzen_centroid).hit->on_plate)
         row.note = "the centroid meets the plate line off the plate";
+      else  // a stream partly over the top edge (or past the foot) loads the plate with less
+        row.note = api::stream_miss_note(analytical::impact_zone(row.point->analysis).caught);
     } catch (const InputError& e) {
       row.note = problem_said(e);
       row.why = e.field();

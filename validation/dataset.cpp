@@ -1,5 +1,6 @@
 #include "validation/dataset.h"
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <fmt/format.h>
@@ -245,24 +246,42 @@ Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
   return setup_from(path.string(), nullptr, uncertainty);
 }
 
+namespace {
+// The fastest belts run ~15 m/s, the largest carry ~40 000 t/h.
+constexpr std::array<OperatingLimit, 5> kOperatingLimits = {{
+    {"belt_speed_mps", 0.0, true, 50.0},
+    {"mass_flow_tph", 0.0, true, 1e5},
+    {"plate_distance_mm", 0.0, true, 1e5},
+    {"plate_top_mm", -1e5, false, 1e5},
+    {"stream_thickness_mm", 0.0, true, 1e4},
+}};
+}  // namespace
+
+std::span<const OperatingLimit> operating_limits() { return kOperatingLimits; }
+
 void check_operating_input(std::string_view column, double v, const std::string& field) {
-  // The fastest belts run ~15 m/s, the largest carry ~40 000 t/h.
   auto fail = [&](const std::string& why) { throw InputError("", 0, field, why); };
   if (std::isnan(v)) fail("must be a number, got nan");
+  const auto* lim = std::find_if(kOperatingLimits.begin(), kOperatingLimits.end(),
+                                 [&](const OperatingLimit& l) { return l.column == column; });
+  if (lim == kOperatingLimits.end()) return;
+  const bool low = lim->min_open ? !(v > lim->min) : !(v >= lim->min);
+  const bool high = !(v <= lim->max);
   if (column == "belt_speed_mps") {
-    if (!(v > 0.0)) fail(fmt::format("belt speed must be positive, got {}", v));
-    if (v > 50.0) fail(fmt::format("belt speed {:g} m/s is beyond any conveyor (at most 50 m/s)", v));
+    if (low) fail(fmt::format("belt speed must be positive, got {}", v));
+    if (high) fail(fmt::format("belt speed {:g} m/s is beyond any conveyor (at most {:g} m/s)", v, lim->max));
   } else if (column == "mass_flow_tph") {
-    if (!(v > 0.0)) fail(fmt::format("mass flow must be positive, got {}", v));
-    if (v > 1e5) fail(fmt::format("mass flow {:g} t/h is beyond any conveyor (at most 100000 t/h)", v));
+    if (low) fail(fmt::format("mass flow must be positive, got {}", v));
+    if (high) fail(fmt::format("mass flow {:g} t/h is beyond any conveyor (at most {:.0f} t/h)", v, lim->max));
   } else if (column == "plate_distance_mm") {
-    if (v > 1e5) fail(fmt::format("plate distance {:g} mm is beyond a transfer station (at most 100 m)", v));
-    if (!(v > 0.0)) fail(fmt::format("the plate must be downstream of the pulley centre (x > 0), got {}", v));
+    if (high) fail(fmt::format("plate distance {:g} mm is beyond a transfer station (at most {:g} m)", v, lim->max / 1e3));
+    if (low) fail(fmt::format("the plate must be downstream of the pulley centre (x > 0), got {}", v));
   } else if (column == "plate_top_mm") {
-    if (!(std::abs(v) <= 1e5)) fail(fmt::format("plate top {:g} mm is beyond a transfer station (|y| at most 100 m)", v));
+    if (low || high)
+      fail(fmt::format("plate top {:g} mm is beyond a transfer station (|y| at most {:g} m)", v, lim->max / 1e3));
   } else if (column == "stream_thickness_mm") {
-    if (!(v > 0.0)) fail(fmt::format("stream thickness must be positive, got {}", v));
-    if (v > 1e4) fail(fmt::format("stream thickness {:g} mm is beyond any belt load (at most 10 m)", v));
+    if (low) fail(fmt::format("stream thickness must be positive, got {}", v));
+    if (high) fail(fmt::format("stream thickness {:g} mm is beyond any belt load (at most {:g} m)", v, lim->max / 1e3));
   }
 }
 

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <unordered_map>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -140,6 +141,14 @@ std::vector<TrajectoryPoint> read_trajectory(const std::filesystem::path& file, 
 // bounds no conveyor reaches: beyond them the number is a unit slip and the models would print inf
 // rather than say so. Throws InputError naming `field` (no file: the caller locates it).
 void check_operating_input(std::string_view column, double value, const std::string& field);
+// Those bounds, one row an input (in its column's unit): the designer's page sets its sliders by them.
+struct OperatingLimit {
+  std::string_view column;
+  double min;          // exclusive when min_open
+  bool min_open;
+  double max;          // inclusive
+};
+std::span<const OperatingLimit> operating_limits();
 
 // Station from a setup and explicit operating values (all SI).
 Station make_station(const Setup& setup, std::string condition, double belt_speed,
