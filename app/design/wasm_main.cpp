@@ -29,6 +29,10 @@ using namespace chutelab;
 struct RunResult {
   int code = 0;
   std::string out, err;
+  // Bad input as the library said it: the neutral key of the field (core/input_error.h), the file
+  // it was found in, and the problem with each mentioned input between \x01 and \x02, so that the
+  // page can name both in its own words.
+  std::string field, file, problem;
 };
 
 // One `chutelab estimate ...` run, as main() does it: same parser, same messages, same exit codes.
@@ -58,6 +62,9 @@ RunResult run(const std::vector<std::string>& args) {
     } catch (const InputError& e) {
       err << "chutelab: " << app::said(e) << "\n";
       r.code = kExitBadInput;
+      r.field = e.field();
+      r.file = e.file();
+      r.problem = e.problem_said([](std::string_view key) { return "\x01" + std::string(key) + "\x02"; });
     }
   } catch (const std::exception& e) {
     err << "chutelab: " << e.what() << "\n";
@@ -82,6 +89,16 @@ std::string rig_fields_json() {
                      api::json_string(std::string(f.column)), api::json_number(f.min), api::json_number(f.max),
                      f.required ? "true" : "false", number_or_null(f.fallback));
   return o + "]";
+}
+
+// The bounds every operating input is checked against (validation::check_operating_input).
+std::string operating_limits_json() {
+  std::string o = "{";
+  for (const auto& l : validation::operating_limits())
+    o += fmt::format("{}{}: {{\"min\": {}, \"min_open\": {}, \"max\": {}}}", o.size() > 1 ? ", " : "",
+                     api::json_string(std::string(l.column)), api::json_number(l.min), l.min_open ? "true" : "false",
+                     api::json_number(l.max));
+  return o + "}";
 }
 
 std::string effects_json() {
@@ -129,10 +146,14 @@ EMSCRIPTEN_BINDINGS(chutelab_design) {
   emscripten::value_object<RunResult>("RunResult")
       .field("code", &RunResult::code)
       .field("out", &RunResult::out)
-      .field("err", &RunResult::err);
+      .field("err", &RunResult::err)
+      .field("field", &RunResult::field)
+      .field("file", &RunResult::file)
+      .field("problem", &RunResult::problem);
   emscripten::function("run", &run);
   emscripten::function("rigFields", &rig_fields_json);
   emscripten::function("effects", &effects_json);
+  emscripten::function("operatingLimits", &operating_limits_json);
   emscripten::function("setup", &setup_json);
   // The page's conditions.csv export goes through the one CSV writer (core/csv_field.h): quoting
   // and the spreadsheet-formula policy are the command line's.

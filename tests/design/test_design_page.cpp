@@ -23,6 +23,8 @@
 namespace chutelab::test {
 namespace {
 namespace fs = std::filesystem;
+// A relative tolerance for BOOST_TEST.
+inline auto tt_tolerance(double t) { return boost::test_tools::tolerance(t); }
 
 const fs::path kChromium = "/usr/bin/chromium";
 
@@ -52,6 +54,8 @@ struct PageView {
   std::map<std::string, std::string> values;  // output id -> data-value
   std::map<std::string, std::string> shown;   // output id -> text shown
   std::string conditions_csv, setup_toml, error;
+  std::map<std::string, std::string> marks;  // input id -> the page's words under that field
+  std::string stream_note, chart_note;
 };
 
 PageView open_page(const fs::path& dir, const fs::path& page, const std::string& hash) {
@@ -78,6 +82,11 @@ PageView open_page(const fs::path& dir, const fs::path& page, const std::string&
   v.conditions_csv = textarea("export-conditions");
   v.setup_toml = textarea("export-setup");
   if (std::regex_search(v.dom, m, std::regex("<div id=\"error\"[^>]*>([^<]*)</div>"))) v.error = html_unescape(m[1]);
+  const std::regex mark("<div id=\"([^\"]+)-error\" class=\"field-error\"[^>]*>([^<]*)</div>");
+  for (auto it = std::sregex_iterator(v.dom.begin(), v.dom.end(), mark); it != std::sregex_iterator(); ++it)
+    v.marks[(*it)[1]] = html_unescape((*it)[2]);
+  if (std::regex_search(v.dom, m, std::regex("<div id=\"stream-note\"[^>]*>([^<]*)</div>"))) v.stream_note = html_unescape(m[1]);
+  if (std::regex_search(v.dom, m, std::regex("<p class=\"note\" id=\"chart-note\">([^<]*)</p>"))) v.chart_note = html_unescape(m[1]);
   return v;
 }
 
@@ -126,6 +135,8 @@ PageView check_design(const std::string& name, const std::string& hash, const st
       {"out-stream_thickness_mm", "condition", "stream_thickness_mm", 1},
       {"out-impact_zone_top_mm", "impact_zone", "impact_zone_top_mm", 1},
       {"out-impact_zone_bottom_mm", "impact_zone", "impact_zone_bottom_mm", 1},
+      {"out-caught_normal_force_N", "impact_zone", "caught_normal_force_N", 2},
+      {"out-caught_shear_force_N", "impact_zone", "caught_shear_force_N", 2},
       {"out-mean_pressure_Pa", "impact_zone", "mean_pressure_Pa", 0}};
   int compared = 0;
   for (const auto& [id, scope, key, decimals] : checks) {
@@ -231,11 +242,155 @@ BOOST_AUTO_TEST_CASE(labels_effects_link_and_unknown_address_keys) {
     BOOST_TEST(w.values.at(id) == v.values.at(id), id);
 }
 
-BOOST_AUTO_TEST_CASE(bad_input_shows_chutelabs_message_not_numbers) {
+// The readout's numbers against `estimate --format json` for the design given as flags.
+void expect_readout_of(const PageView& v, const std::string& flags) {
+  const auto cli = run_chutelab("estimate " + flags + " --format json");
+  BOOST_TEST_REQUIRE(cli.exit_code == 0, cli.err);
+  for (const auto& [id, scope, key] : {std::tuple{"out-normal_force_N", "korzen", "normal_force_N"},
+                                       {"out-impact_point_y_mm", "korzen", "impact_point_y_mm"},
+                                       {"out-stream_thickness_mm", "condition", "stream_thickness_mm"},
+                                       {"out-mean_pressure_Pa", "impact_zone", "mean_pressure_Pa"}}) {
+    BOOST_TEST_REQUIRE(v.values.count(id), "no output " << id);
+    BOOST_TEST_REQUIRE(!v.values.at(id).empty(), id << " is empty");
+    const double expected = *json_number(cli.out, scope, key);
+    BOOST_TEST(std::abs(std::stod(v.values.at(id)) - expected) <= 2e-9 * std::max(1.0, std::abs(expected)),
+               id << ": page " << v.values.at(id) << ", estimate " << flags << ": " << expected);
+  }
+}
+
+// The drawing, the chart and the exports are all there (of the design shown).
+void expect_whole_page(const PageView& v) {
+  BOOST_TEST(v.dom.find("class=\"design-picture\"") != std::string::npos);
+  BOOST_TEST(v.dom.find("class=\"plot sweep-chart\"") != std::string::npos);
+  BOOST_TEST(v.conditions_csv.find("condition,belt_speed_mps") == 0u, v.conditions_csv);
+  BOOST_TEST(v.setup_toml.find("[belt]") != std::string::npos);
+  BOOST_TEST(v.dom.find("id=\"download-dxf\" download=") != std::string::npos);
+  BOOST_TEST(v.dom.find("href=\"blob:") != std::string::npos);
+}
+
+// A bad entry in the address does not blank the page: the refused input is marked with chutelab's
+// reason in the page's words (the field's label, not a flag), and the drawing, readout and exports
+// are those of the design with the page's starting value for that input.
+BOOST_AUTO_TEST_CASE(bad_input_keeps_a_drawing_and_marks_the_field) {
   const fs::path dir = build_page("bad");
-  const PageView v = open_page(dir, dir / "page" / "design.html", "belt_speed=-1&mass_flow=35&plate_distance=450");
-  BOOST_TEST(v.state == "error");
-  BOOST_TEST(v.error.find("--belt-speed: belt speed must be positive, got -1") != std::string::npos, v.error);
+  const fs::path page = dir / "page" / "design.html";
+  const PageView neg = open_page(dir, page, "belt_speed=-1&mass_flow=35&plate_distance=450");
+  BOOST_TEST(neg.state == "invalid", neg.state << ": " << neg.error);
+  BOOST_TEST(neg.error.find("belt speed V_b (m/s): belt speed must be positive, got -1") != std::string::npos, neg.error);
+  BOOST_TEST(neg.error.find("--belt-speed") == std::string::npos, neg.error);
+  BOOST_TEST_REQUIRE(neg.marks.count("in-belt_speed"));
+  BOOST_TEST(neg.marks.at("in-belt_speed") == "belt speed must be positive, got -1");
+  expect_whole_page(neg);
+  expect_readout_of(neg, "--belt-speed 4 --mass-flow 35 --plate-distance 450");
+  BOOST_TEST(neg.conditions_csv.find("\ndesign-1,4,35,450,250,") != std::string::npos, neg.conditions_csv);
+
+  // Text that is no number, as a hand-edited link carries it.
+  const PageView abc = open_page(dir, page, "belt_speed=abc&mass_flow=30&plate_distance=450");
+  BOOST_TEST(abc.state == "invalid", abc.state << ": " << abc.error);
+  BOOST_TEST_REQUIRE(abc.marks.count("in-belt_speed"), abc.error);
+  BOOST_TEST(abc.marks.at("in-belt_speed") == "\"abc\" is not a number");
+  expect_whole_page(abc);
+  expect_readout_of(abc, "--belt-speed 4 --mass-flow 30 --plate-distance 450");
+
+  // An overfilled belt: the capacity is refused with the belt's own bound.
+  const PageView full = open_page(dir, page, "belt_speed=4&mass_flow=5000&plate_distance=450");
+  BOOST_TEST(full.state == "invalid", full.state << ": " << full.error);
+  BOOST_TEST_REQUIRE(full.marks.count("in-mass_flow"), full.error);
+  BOOST_TEST(full.marks.at("in-mass_flow").find("5000.0 t/h at 4.00 m/s needs") == 0u, full.marks.at("in-mass_flow"));
+  BOOST_TEST(full.error.find("capacity m_s (t/h): 5000.0 t/h") == 0u, full.error);
+  expect_whole_page(full);
+  expect_readout_of(full, "--belt-speed 4 --mass-flow 35 --plate-distance 450");
+}
+
+// A page driven as a user would: `script` runs in the page once it shows its first design (a copy of
+// the page with the script at its end), and the page is read when the script says it is done.
+PageView drive_page(const std::string& name, const std::string& hash, const std::string& script) {
+  const fs::path dir = build_page(name);
+  std::string html = read_file(dir / "page" / "design.html");
+  const auto end = html.rfind("</body>");
+  BOOST_TEST_REQUIRE(end != std::string::npos);
+  html.insert(end, "<script>(function () {\n"
+                   "  function when(test, then) { (function poll() { if (test()) then(); else setTimeout(poll, 20); })(); }\n"
+                   "  function state() { return document.body.getAttribute('data-state'); }\n"
+                   "  function type(id, text) { var i = document.getElementById(id); i.value = text;\n"
+                   "    i.dispatchEvent(new Event('input')); }\n" +
+                       script + "\n})();</script>\n");
+  write_file(dir / "driven.html", html);
+  return open_page(dir, dir / "driven.html", hash);
+}
+
+// A change chutelab refuses after a valid design keeps that design: a slower belt overfills it, so
+// the capacity is marked with the belt's bound and the belt speed the user moved with "not taken";
+// the drawing, readout and exports stay those of the design before the change.
+BOOST_AUTO_TEST_CASE(an_edit_chutelab_refuses_keeps_the_last_valid_design) {
+  const PageView v = drive_page("edit", "belt_speed=4&mass_flow=35&plate_distance=450&name=E1",
+                                "when(function () { return state() === 'ready'; }, function () {\n"
+                                "  type('in-belt_speed', '0.3');\n"
+                                "  when(function () { return state() !== 'ready'; }, function () {});\n"
+                                "});");
+  BOOST_TEST_REQUIRE(v.state == "invalid", v.state << ": " << v.error);
+  BOOST_TEST_REQUIRE(v.marks.count("in-mass_flow"), v.error);
+  BOOST_TEST(v.marks.at("in-mass_flow").find("35.0 t/h at 0.30 m/s") == 0u, v.marks.at("in-mass_flow"));
+  BOOST_TEST_REQUIRE(v.marks.count("in-belt_speed"), v.error);
+  BOOST_TEST(v.marks.at("in-belt_speed").find("not taken: capacity m_s (t/h): 35.0 t/h at 0.30 m/s") == 0u,
+             v.marks.at("in-belt_speed"));
+  BOOST_TEST(v.error.find("with belt speed V_b (m/s) = 0.3, capacity m_s (t/h): ") == 0u, v.error);
+  BOOST_TEST(v.error.find("the last design chutelab could compute") != std::string::npos, v.error);
+  expect_whole_page(v);
+  expect_readout_of(v, "--belt-speed 4 --mass-flow 35 --plate-distance 450");
+  BOOST_TEST(v.conditions_csv.find("\nE1,4,35,450,250,") != std::string::npos, v.conditions_csv);
+  BOOST_TEST(v.dom.find("id=\"share-link\" href=\"#belt_speed=4&amp;") != std::string::npos);
+}
+
+// The sliders span the design's own bounds: the capacity slider ends at what the belt carries at
+// this belt speed (estimate's limits, the bound continuity checks), not at a number in the page.
+BOOST_AUTO_TEST_CASE(sliders_span_the_designs_limits) {
+  const fs::path dir = build_page("sliders");
+  const PageView v = open_page(dir, dir / "page" / "design.html", "belt_speed=4&mass_flow=35&plate_distance=450");
+  BOOST_TEST_REQUIRE(v.state == "ready", v.error);
+  const auto cli = run_chutelab("estimate --belt-speed 4 --mass-flow 35 --plate-distance 450 --format json");
+  BOOST_TEST_REQUIRE(cli.exit_code == 0);
+  auto slider_top = [&](const std::string& id) {
+    std::smatch m;
+    BOOST_TEST_REQUIRE(std::regex_search(v.dom, m, std::regex("id=\"" + id + "-slider\"[^>]*data-hi=\"([^\"]+)\"")), id);
+    return std::stod(m[1]);
+  };
+  const double capacity = *json_number(cli.out, "limits", "mass_flow_tph_max");
+  const double reach = *json_number(cli.out, "limits", "plate_distance_mm_max");
+  // The browser's libm may round a sine one ulp from glibc's (see check_design); the reach is a
+  // bisection to 0.1 mm that such an ulp cannot move unless it sits on a step.
+  BOOST_TEST(slider_top("in-mass_flow") == capacity, tt_tolerance(1e-9));
+  BOOST_TEST(slider_top("in-plate_distance") == reach, tt_tolerance(1e-9));
+  BOOST_TEST(slider_top("in-belt_speed") == 50.0);  // validation's bound on any conveyor
+  BOOST_TEST(capacity < 300.0);                     // this belt carries less than the page's old fixed end
+  // The range follows the design: at 2.5 times the belt speed the belt carries 2.5 times as much.
+  const fs::path fast = build_page("sliders-fast");
+  const PageView w = open_page(fast, fast / "page" / "design.html", "belt_speed=10&mass_flow=35&plate_distance=450");
+  BOOST_TEST_REQUIRE(w.state == "ready", w.error);
+  std::smatch m;
+  BOOST_TEST_REQUIRE(std::regex_search(w.dom, m, std::regex("id=\"in-mass_flow-slider\"[^>]*data-hi=\"([^\"]+)\"")));
+  BOOST_TEST(std::stod(m[1]) == 2.5 * capacity, tt_tolerance(1e-9));
+}
+
+// A stream partly over the plate's top edge: the page says how much passes over and what the plate
+// takes (the numbers of estimate's JSON), and the chart bands the points where it happens.
+BOOST_AUTO_TEST_CASE(a_partial_overshoot_shows_its_note_and_band) {
+  const PageView v = check_design("O1", "belt_speed=4.85&mass_flow=35&plate_distance=450&plate_top=108&sweep=belt_speed&name=O1", "");
+  BOOST_TEST(v.stream_note.find("Partial overshoot: ") == 0u, v.stream_note);
+  BOOST_TEST(v.stream_note.find("% of the stream passes over the plate's top edge: the plate takes R_n = ") != std::string::npos,
+             v.stream_note);
+  const double over = std::stod(v.values.at("out-over_top_percent"));
+  BOOST_TEST(over > 0.5);
+  BOOST_TEST(over < 50.0);
+  BOOST_TEST(std::stod(v.values.at("out-caught_normal_force_N")) < std::stod(v.values.at("out-normal_force_N")));
+  BOOST_TEST(v.dom.find("class=\"overshoot-band\"") != std::string::npos);
+  BOOST_TEST(v.chart_note.find("Banded in yellow: part of the stream passes over the plate's top edge") == 0u, v.chart_note);
+  // The same page with the plate's top well above the stream: no note, no band.
+  const PageView whole = check_design("O2", "belt_speed=4.85&mass_flow=35&plate_distance=450&plate_top=250&sweep=belt_speed&name=O2", "");
+  BOOST_TEST(whole.stream_note.empty(), whole.stream_note);
+  BOOST_TEST(std::stod(whole.values.at("out-over_top_percent")) == 0.0);
+  BOOST_TEST(whole.dom.find("class=\"overshoot-band\"") == std::string::npos);
+  BOOST_TEST(whole.chart_note.empty(), whole.chart_note);
 }
 
 // The export goes through chutelab's one CSV writer (a name with a comma is quoted, one a
