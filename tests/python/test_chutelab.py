@@ -117,7 +117,7 @@ def test_estimate_numbers_are_the_command_lines_doubles_bit_for_bit():
     for name in ("belt_speed_mps", "mass_flow_tph", "plate_distance_mm", "stream_thickness_mm"):
         assert e.values[name] == j["condition"][name], name
     for name, value in j["impact_zone"].items():
-        if not isinstance(value, bool):
+        if not isinstance(value, (bool, str)):  # flags and the note on a stream that misses the plate
             assert e.values[name] == value, name
     assert e.values["impact_angle_deg"] == j["impact_angle_deg"]
     assert e.effects == {"air_drag": 0.61}
