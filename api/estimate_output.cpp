@@ -13,7 +13,6 @@
 namespace chutelab::api {
 namespace {
 using analytical::Streamline;
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
 }  // namespace
 
 std::string json_string(const std::string& s) {
@@ -69,13 +68,13 @@ std::vector<std::pair<std::string, double>> estimate_scalars(const analytical::T
       {"mass_flow_tph", a.station.mass_flow / units::tph},
       {"plate_distance_mm", a.station.plate_distance * 1e3},
       {"plate_top_mm", a.station.plate_top * 1e3},
-      {"plate_angle_deg", a.station.plate.angle * kDeg},
+      {"plate_angle_deg", a.station.plate.angle * units::deg_per_rad},
       {"stream_thickness_mm", a.load.height * 1e3},
       {"cema_centroid_mm", a.load.centroid_height * 1e3},
       {"load_area_mm2", a.load.area * 1e6},
       {"discharge_ratio_K", a.line(Streamline::cema_centroid).release.ratio},
-      {"release_angle_deg", a.line(Streamline::cema_centroid).release.theta * kDeg},
-      {"impact_angle_deg", kc.alpha * kDeg},
+      {"release_angle_deg", a.line(Streamline::cema_centroid).release.theta * units::deg_per_rad},
+      {"impact_angle_deg", kc.alpha * units::deg_per_rad},
       {"impact_velocity_mps", kc.speed},
       {"normal_impact_velocity_mps", k.normal_speed},
       {"tangential_impact_velocity_mps", k.tangential_speed},
@@ -103,7 +102,7 @@ std::vector<std::pair<std::string, double>> estimate_scalars(const analytical::T
     const std::string n(name(s));
     v.emplace_back(n + "_impact_y_mm", l.hit->point.position.y() * 1e3);
     v.emplace_back(n + "_impact_velocity_mps", l.hit->speed);
-    v.emplace_back(n + "_impact_angle_deg", l.hit->alpha * kDeg);
+    v.emplace_back(n + "_impact_angle_deg", l.hit->alpha * units::deg_per_rad);
     v.emplace_back(n + "_flight_time_s", l.hit->point.t);
   }
   return v;
@@ -127,7 +126,7 @@ std::string estimate_table(const analytical::TransferAnalysis& a, const ModelVal
   o += fmt::format("  belt speed {:.2f} m/s, mass flow {:.1f} t/h, plate face x = {:.0f} mm, top y = "
                    "{:.0f} mm, plate angle {:.1f} deg, belt incline {:.1f} deg\n",
                    st.belt_speed, st.mass_flow / units::tph, st.plate_distance * 1e3,
-                   st.plate_top * 1e3, st.plate.angle * kDeg, st.belt.incline * kDeg);
+                   st.plate_top * 1e3, st.plate.angle * units::deg_per_rad, st.belt.incline * units::deg_per_rad);
   for (const auto& s : fx)
     if (s.value) o += fmt::format("  effect {} = {} {}\n", s.info->name, *s.value, s.info->unit);
   o += fmt::format("  load: h_b = {:.1f} mm ({}), CEMA centroid a1 = {:.1f} mm, area {:.0f} mm^2, {} belt\n",
@@ -138,7 +137,7 @@ std::string estimate_table(const analytical::TransferAnalysis& a, const ModelVal
   o += fmt::format("  discharge: {} (K = V^2/(g R) = {:.2f} on the CEMA centroid), release {:.1f} deg "
                    "from the upward vertical\n\n",
                    rel.high_speed ? "high-speed, at the tangent point" : "low-speed (Booth), on the pulley",
-                   rel.ratio, rel.theta * kDeg);
+                   rel.ratio, rel.theta * units::deg_per_rad);
   o += fmt::format("  {:<28} {:>9} {:>10} {:>10} {:>11} {:>8} {:>9} {:>8}\n", "streamline", "e_mm",
                    "release_x", "release_y", "impact_y_mm", "V_p_mps", "alpha_deg", "flight_s");
   for (Streamline s : analytical::kAllStreamlines) {
@@ -148,15 +147,15 @@ std::string estimate_table(const analytical::TransferAnalysis& a, const ModelVal
                      l.release.position.y() * 1e3);
     if (l.hit)
       o += fmt::format("{:>11.1f} {:>8.3f} {:>9.2f} {:>8.4f}{}\n", l.hit->point.position.y() * 1e3,
-                       l.hit->speed, l.hit->alpha * kDeg, l.hit->point.t,
+                       l.hit->speed, l.hit->alpha * units::deg_per_rad, l.hit->point.t,
                        l.hit->on_plate ? "" : "  (off the plate)");
     else
       o += "  never reaches the plate line\n";
   }
   const double incidence = a.line(Streamline::korzen_centroid).hit->alpha + st.plate.angle;
   o += fmt::format("\n  Korzen: alpha_p + beta = {:.2f} deg {} atan(mu_pw) = {:.2f} deg: {}\n",
-                   incidence * kDeg, k.stationary_flow ? ">" : "<=",
-                   std::atan(a.plate_interaction.friction) * kDeg,
+                   incidence * units::deg_per_rad, k.stationary_flow ? ">" : "<=",
+                   std::atan(a.plate_interaction.friction) * units::deg_per_rad,
                    k.stationary_flow ? "stationary (build-up) flow (Eq 3)" : "no stationary flow (Eq 3)");
   o += fmt::format("  V_pn = {:.3f} m/s, V_pt = {:.3f} m/s, V_a = {}\n", k.normal_speed,
                    k.tangential_speed,
@@ -228,7 +227,7 @@ std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValu
       "\"stream_thickness_mm\": {}, \"stream_thickness_from_continuity\": {}}},\n",
       json_string(st.condition), json_number(st.belt_speed), json_number(st.mass_flow / units::tph),
       json_number(st.plate_distance * 1e3), json_number(st.plate_top * 1e3),
-      json_number(st.plate.angle * kDeg), json_number(a.load.height * 1e3),
+      json_number(st.plate.angle * units::deg_per_rad), json_number(a.load.height * 1e3),
       a.thickness_from_continuity ? "true" : "false");
   o += "  \"effects\": {";
   bool first = true;
@@ -240,10 +239,10 @@ std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValu
   o += "},\n";
   o += fmt::format("  \"discharge\": {{\"type\": {}, \"ratio_K\": {}, \"release_angle_deg\": {}}},\n",
                    json_string(rel.high_speed ? "high-speed" : "low-speed"), json_number(rel.ratio),
-                   json_number(rel.theta * kDeg));
+                   json_number(rel.theta * units::deg_per_rad));
   o += fmt::format("  \"stationary_flow\": {},\n", k.stationary_flow ? "true" : "false");
   o += fmt::format("  \"impact_angle_deg\": {},\n",
-                   json_number(a.line(Streamline::korzen_centroid).hit->alpha * kDeg));
+                   json_number(a.line(Streamline::korzen_centroid).hit->alpha * units::deg_per_rad));
   o += fmt::format("  \"shear_equation\": {},\n", json_string(std::string(name(k.shear_equation))));
   const auto z = analytical::impact_zone(a);
   o += fmt::format(
@@ -281,7 +280,7 @@ std::string estimate_json(const analytical::TransferAnalysis& a, const ModelValu
       o += fmt::format(", \"impact_y_mm\": {}, \"impact_velocity_mps\": {}, \"impact_angle_deg\": {}, "
                        "\"flight_time_s\": {}, \"on_plate\": {}",
                        json_number(l.hit->point.position.y() * 1e3), json_number(l.hit->speed),
-                       json_number(l.hit->alpha * kDeg), json_number(l.hit->point.t),
+                       json_number(l.hit->alpha * units::deg_per_rad), json_number(l.hit->point.t),
                        l.hit->on_plate ? "true" : "false");
     // The path as drawn and exported (DXF, CSV): mm, [x, y] from the top of the pulley to the plate.
     o += ", \"points_mm\": [";

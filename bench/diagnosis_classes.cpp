@@ -14,6 +14,7 @@
 #include <thread>
 #include <tuple>
 
+#include "core/units.h"
 #include "effects/at_condition.h"
 #include "effects/registry.h"
 #include "validation/diagnosis.h"
@@ -204,7 +205,6 @@ int main(int argc, char** argv) {
       for (auto& st : s) f(st);
     };
   };
-  constexpr double kDeg = 3.14159265358979323846 / 180.0;
   auto thin = [](Dataset& d) {
     std::set<std::string> keep = {d.stations[0].condition, d.stations[1].condition};
     std::erase_if(d.measurements, [&](const auto& m) { return !keep.count(m.condition); });
@@ -223,7 +223,7 @@ int main(int argc, char** argv) {
       {"drag -0.3 (wrong sign)", rig, {{"air_drag", -0.3}}, 1.0, 0, {}, {}, {}, 10000},
       {"slip -0.03 (wrong sign)", rig, {{"belt_slip", -0.03}}, 1.0, 0, {}, {}, {}, 10020},
       {"plate 25 mm further than recorded", rig, {}, 1.0, 0, plate_further(0.025), {}, {"plate_distance"}, 10040, {{"plate_distance", 25.0}}},
-      {"plate leaning 4 deg more than recorded", rig, {}, 1.0, 0, alter([](Station& s) { s.plate.angle += 4.0 * kDeg; }), {}, {"plate_angle"}, 11000, {{"plate_angle", 4.0}}},
+      {"plate leaning 4 deg more than recorded", rig, {}, 1.0, 0, alter([](Station& s) { s.plate.angle += 4.0 * units::deg; }), {}, {"plate_angle"}, 11000, {{"plate_angle", 4.0}}},
       {"plate top 25 mm higher than recorded", rig, {}, 1.0, 0, alter([](Station& s) { s.plate_top += 0.025; }), {}, {"plate_top"}, 11020, {{"plate_top", 25.0}}},
       {"belt 5 % faster than recorded", rig, {}, 1.0, 0, alter([](Station& s) { s.belt_speed *= 1.05; }), {}, {"belt_speed"}, 11040, {{"belt_speed", 5.0}}},
       {"bulk density 10 % above the record", rig, {}, 1.0, 0, alter([](Station& s) { s.material.bulk_density *= 1.1; }), {}, {"bulk_density"}, 11060, {{"bulk_density", 10.0}}},
@@ -232,7 +232,7 @@ int main(int argc, char** argv) {
       {"one condition's plate 40 mm further than recorded", rig, {}, 1.0, 0,
        [](std::vector<Station>& s) { s[3].plate_distance += 0.040; }, {}, {"plate_distance@V3-41"}, 11140,
        {{"plate_distance@V3-41", 40.0}}},
-      {"belt incline 3 deg off (no candidate)", rig, {}, 1.0, 0, alter([](Station& s) { s.belt.incline += 3.0 * kDeg; }), {}, {}, 11120},
+      {"belt incline 3 deg off (no candidate)", rig, {}, 1.0, 0, alter([](Station& s) { s.belt.incline += 3.0 * units::deg; }), {}, {}, 11120},
       {"flow bias 0.1 + one gross outlier (peer design)", peer, {{"mass_flow_bias", 0.1}}, 1.0, 1, {}, {}, {"mass_flow_bias"}, 10060},
       {"drag 0.6 + one gross outlier", rig, {{"air_drag", 0.6}}, 1.0, 1, {}, {}, {"air_drag"}, 10080},
       {"drag 0.6 + Korzen R_s 30 % off", rig, {{"air_drag", 0.6}}, 1.0, 0, {}, scale_rs(1.3), {"air_drag"}, 10100},

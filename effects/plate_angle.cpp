@@ -5,6 +5,7 @@
 // a square). The angle sets the split of the impact momentum into normal and shear (R_n, R_s) and
 // the exit velocity along the face.
 // DEM: honoured.
+#include "core/units.h"
 #include "effects/recorded_input.h"
 #include "effects/registry.h"
 
@@ -18,12 +19,12 @@ EffectInfo info() {
                0.0, -15.0, 15.0, 4.0,
                {},
                "an inclinometer on the plate face"};
-  set_record(e, [](Station& s, double x) { s.plate.angle += x * kDeg; },
+  set_record(e, [](Station& s, double x) { s.plate.angle += x * units::deg; },
              rig_field_limits("angle_deg", "plate angle", "deg", [](const Station& s) { return s.plate.angle; }));
   e.per_condition = true;
   e.prior_width = 1.0;
   e.input = "plate.angle_deg";
-  e.width_in_unit = offset_width(kDeg);
+  e.width_in_unit = offset_width(units::deg);
   return e;
 }
 

@@ -41,7 +41,6 @@ class RecordedInput final : public analytical::Effect {
 
 // Strengths of offsets in mm or degrees, and of relative errors in %, against SI records.
 inline constexpr double kMm = 1e-3;
-inline constexpr double kDeg = 3.14159265358979323846 / 180.0;
 inline constexpr double kPercent = 1e-2;
 
 // A record effect's station change and its limits, declared once: `make` builds the change at a
@@ -64,7 +63,7 @@ inline RecordLimits rig_field_limits(std::string_view key, std::string what, std
   throw std::logic_error("no rig field " + std::string(key));
 }
 
-// EffectInfo::width_in_unit of an offset whose unit is `unit` in SI (kMm, kDeg): a stated
+// EffectInfo::width_in_unit of an offset whose unit is `unit` in SI (kMm, units::deg): a stated
 // uncertainty does not depend on the station.
 inline std::function<double(const Station&, double)> offset_width(double unit) {
   return [unit](const Station&, double u) { return u / unit; };

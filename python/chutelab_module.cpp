@@ -49,8 +49,6 @@ using namespace chutelab;
 
 namespace {
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
-
 // The library names an input by a neutral key ("dem.threads", core/input_error.h); here it is the
 // keyword of the package's function (dem_threads). Keys that are no keyword here (a column, a TOML
 // key, an option the package does not have) are shown as they are.
@@ -170,7 +168,7 @@ py::dict conditions_table(const validation::Dataset& d) {
     speed.push_back(as_written(s.belt_speed)), flow.push_back(as_written(s.mass_flow / units::tph));
     distance.push_back(as_written(s.plate_distance / units::mm)), top.push_back(as_written(s.plate_top / units::mm));
     thickness.push_back(written_or_nan(s.stream_thickness, 1.0 / units::mm));
-    angle.push_back(as_written(s.plate.angle * kDeg)), incline.push_back(as_written(s.belt.incline * kDeg));
+    angle.push_back(as_written(s.plate.angle * units::deg_per_rad)), incline.push_back(as_written(s.belt.incline * units::deg_per_rad));
   }
   Table t;
   t.text("condition", condition), t.real("belt_speed_mps", speed), t.real("mass_flow_tph", flow);

@@ -8,13 +8,13 @@
 
 #include "analytical/impact_zone.h"
 #include "analytical/streamline_path.h"
+#include "core/units.h"
 #include "reports/design.h"
 #include "reports/svg.h"
 
 namespace chutelab::reports {
 namespace {
 using analytical::Streamline;
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
 
 struct LineStyle {
   std::string_view cls, label, colour, dash;
@@ -129,7 +129,7 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
                       "stroke-linecap=\"butt\"><title>plate: face at x = {} mm, top y = {} mm, {} mm high, {} deg from vertical</title></line>\n",
                       px(X(plate_top.x()) + 3), px(Y(plate_top.y())), px(X(plate_bottom.x()) + 3), px(Y(plate_bottom.y())),
                       num(plate_top.x(), 0), num(plate_top.y(), 0), num(st.plate.height * 1e3, 0),
-                      num(st.plate.angle * kDeg, 1)));
+                      num(st.plate.angle * units::deg_per_rad, 1)));
 
   // The analytical impact zone (analytical/impact_zone.h): the band of the face between the hits of
   // Booth's outer streamlines, with Korzen's R_n spread over it; drawn on the face, in front of the
@@ -219,8 +219,8 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
     const Pt q0 = plate_top + off, q1 = plate_bottom + off;
     dimension(X(q0.x()) + 3, Y(q0.y()), X(q1.x()) + 3, Y(q1.y()), num(st.plate.height * 1e3, 0) + " mm",
               0.5 * (X(q0.x()) + X(q1.x())) + 14, 0.5 * (Y(q0.y()) + Y(q1.y())), "middle",
-              fmt::format("plate height along its face; {} deg from vertical", num(st.plate.angle * kDeg, 1)),
-              -90.0 + st.plate.angle * kDeg);
+              fmt::format("plate height along its face; {} deg from vertical", num(st.plate.angle * units::deg_per_rad, 1)),
+              -90.0 + st.plate.angle * units::deg_per_rad);
     const double xd = std::min(f.right() - 14.0, std::max(X(plate_top.x()), X(plate_bottom.x())) + 40.0);
     svg.line(X(plate_top.x()) + 6, Y(plate_top.y()), xd + 4, Y(plate_top.y()), "stroke=\"#999\" stroke-dasharray=\"2 2\"");
     svg.line(X(0) + rb * s + 4, Y(0), xd + 4, Y(0), "stroke=\"#999\" stroke-dasharray=\"2 2\"");
@@ -278,11 +278,11 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
                   num(a.load.height * 1e3, 1), a.thickness_from_continuity ? "continuity" : "given"), "hb");
   row(esc(fmt::format("discharge: {}, K = {}", rel.high_speed ? "high-speed" : "low-speed", num(rel.ratio, 2))), "discharge");
   row(symbol_svg("V_p") + " = " + esc(val(Quantity::impact_velocity, 2)), "vp");
-  row(fmt::format("α{} = {}°", "<tspan baseline-shift=\"sub\" font-size=\"75%\">p</tspan>", num(kc.alpha * kDeg, 1)), "alpha");
+  row(fmt::format("α{} = {}°", "<tspan baseline-shift=\"sub\" font-size=\"75%\">p</tspan>", num(kc.alpha * units::deg_per_rad, 1)), "alpha");
   row(k.stationary_flow ? "stationary flow: yes (Eq 3)" : "stationary flow: no (Eq 3)",
       k.stationary_flow ? "verdict stationary" : "verdict none");
-  row(esc(fmt::format("  α_p+β = {}° {} atan μ_pw = {}°", num(incidence * kDeg, 1), k.stationary_flow ? ">" : "≤",
-                      num(std::atan(a.plate_interaction.friction) * kDeg, 1))),
+  row(esc(fmt::format("  α_p+β = {}° {} atan μ_pw = {}°", num(incidence * units::deg_per_rad, 1), k.stationary_flow ? ">" : "≤",
+                      num(std::atan(a.plate_interaction.friction) * units::deg_per_rad, 1))),
       "criterion");
   row(symbol_svg("V_a") + " = " + esc(korzen[Quantity::exit_velocity] ? val(Quantity::exit_velocity, 2) : "none (Eq 4)"), "va");
   row(symbol_svg("R_n") + " = " + esc(val(Quantity::normal_force, 2)), "rn");
@@ -305,7 +305,7 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
     auto IY = [&](double v) { return iy + ih - 8 - v * k; };
     svg.raw("<g class=\"trough-section\"><title>cross-section of the troughed belt and its load (CEMA shape): "
             + esc(fmt::format("idler angle {} deg, centre roll {} mm, surcharge angle {} deg, h_b = {} mm, contact "
-                              "width {} mm", num(lam * kDeg, 0), num(c * 1e3, 0), num(tr.surcharge_angle * kDeg, 0),
+                              "width {} mm", num(lam * units::deg_per_rad, 0), num(c * 1e3, 0), num(tr.surcharge_angle * units::deg_per_rad, 0),
                               num(hb * 1e3, 1), num(cw * 1e3, 0)))
             + "</title>\n");
     svg.rect(ix, iy, iw, ih, "fill=\"#ffffff\" stroke=\"#bbb\"");
@@ -326,7 +326,7 @@ std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValu
     svg.raw(fmt::format("<polyline class=\"belt-section\" points=\"{},{} {},{} {},{} {},{}\" fill=\"none\" stroke=\"#333\" "
                         "stroke-width=\"2.5\"/>\n",
                         px(IX(-tx)), px(IY(ty)), px(IX(-0.5 * c)), px(IY(0)), px(IX(0.5 * c)), px(IY(0)), px(IX(tx)), px(IY(ty))));
-    svg.text(ix + 4, iy + 11, fmt::format("trough {}°, section", num(lam * kDeg, 0)), "start", "font-size=\"10\" fill=\"#444\"");
+    svg.text(ix + 4, iy + 11, fmt::format("trough {}°, section", num(lam * units::deg_per_rad, 0)), "start", "font-size=\"10\" fill=\"#444\"");
     svg.raw("</g>\n");
   }
 

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "analytical/transfer_station.h"
+#include "core/units.h"
 #include "effects/registry.h"
 #include "validation/diagnosis.h"
 #include "validation/misfit.h"
@@ -21,7 +22,6 @@ using namespace chutelab::validation;
 namespace {
 
 const std::string kRig = CHUTELAB_SOURCE_DIR "/datasets/hidden-effect";
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 std::vector<ModelPtr> cheap() {
   std::vector<ModelPtr> v;
@@ -64,7 +64,7 @@ BOOST_AUTO_TEST_CASE(a_record_candidate_is_the_rig_as_really_built) {
     std::function<void(Station&)> same;
   };
   for (const Case& c : {Case{"plate_distance", 25.0, [](Station& s) { s.plate_distance += 0.025; }},
-                        Case{"plate_angle", 4.0, [](Station& s) { s.plate.angle += 4.0 * kDeg; }},
+                        Case{"plate_angle", 4.0, [](Station& s) { s.plate.angle += 4.0 * units::deg; }},
                         Case{"belt_speed", 5.0, [](Station& s) { s.belt_speed *= 1.05; }},
                         Case{"pulley_diameter", 20.0, [](Station& s) { s.belt.pulley_diameter += 0.020; }},
                         Case{"bulk_density", -10.0, [](Station& s) { s.material.bulk_density *= 0.9; }}}) {
@@ -90,7 +90,7 @@ BOOST_AUTO_TEST_CASE(a_record_candidate_is_the_rig_as_really_built) {
 BOOST_AUTO_TEST_CASE(each_wrong_record_is_named_and_its_error_recovered) {
   const std::vector<WrongRecord> cases = {
       {"plate_distance", 25.0, [](Station& s) { s.plate_distance += 0.025; }},
-      {"plate_angle", 4.0, [](Station& s) { s.plate.angle += 4.0 * kDeg; }},
+      {"plate_angle", 4.0, [](Station& s) { s.plate.angle += 4.0 * units::deg; }},
       {"pulley_diameter", 25.0, [](Station& s) { s.belt.pulley_diameter += 0.025; }},
       {"belt_speed", 5.0, [](Station& s) { s.belt_speed *= 1.05; }},
       {"bulk_density", 10.0, [](Station& s) { s.material.bulk_density *= 1.10; }},
