@@ -29,7 +29,7 @@ void check(const DemOptions& o) {
 }
 
 // Independent runs side by side scale better than one run's OpenMP threads (no barriers, no shared
-// sums: bench/STATION.md), so the idle cores go to jobs first; a run alone still gets them all.
+// sums: bench/log/STATION.md), so the idle cores go to jobs first; a run alone still gets them all.
 int resolve_jobs(int jobs) { return jobs > 0 ? jobs : dem::station::effective_threads(0); }
 
 validation::ModelSettings model_settings(const DemOptions& o, const std::filesystem::path& dataset_dir,

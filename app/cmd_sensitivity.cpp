@@ -87,7 +87,7 @@ int run_sensitivity(const SensitivityCli& o) {
   ov.quality = st::parse_quality(o.quality);
   if (!ov.quality) throw InputError("", 0, "--quality", "must be quick, standard or paper");
   // One thread per run unless asked: on the shared 2-core machine a second OpenMP thread made runs
-  // slower, not faster (bench/STATION.md), and results do not depend on it.
+  // slower, not faster (bench/log/STATION.md), and results do not depend on it.
   ov.threads = o.threads.value_or(1);
   campaign::set_threads(resolve_jobs(o.jobs));
   ov.seed = o.seed;

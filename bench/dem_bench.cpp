@@ -7,7 +7,7 @@
 //           state (the data file is what LIGGGHTS reads: same numbers, no contact history); prints psps
 //   chute-init --out FILE.data              the starting lattice of the LAMMPS chute anchor
 //           (bench/lammps_chute): a rough frozen base and 31 200 free spheres, LAMMPS data format
-//   chute   --data FILE.data --steps N --threads T   chutelab's equivalent of LAMMPS bench/in.chute on
+//   chute   --data FILE.data --steps N --threads T   chutelab's equivalent of LAMMPS's own in.chute on
 //           the state LAMMPS wrote (see make_chute_world); prints psps like run
 #include <chrono>
 #include <cmath>
@@ -152,7 +152,7 @@ void read_liggghts_data(const std::string& path, World& w) {
 
 
 // --- LAMMPS chute anchor (bench/lammps_chute) ------------------------------------------------------
-// LAMMPS bench/in.chute in reduced units read as SI: d = 1 m, density 1 kg/m^3, g = 1 m/s^2 tilted
+// LAMMPS's in.chute in reduced units read as SI: d = 1 m, density 1 kg/m^3, g = 1 m/s^2 tilted
 // 26 degrees down the chute (+x), dt = 1e-4 s, skin 0.1 m; gran/hooke/history with k_n = 2e5 N/m,
 // k_t = 2/7 k_n, gamma_n = 50 1/s, mu = 0.5, no tangential damping; base atoms (type 2) frozen.
 // chutelab's equivalent, and where it differs:

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Timings of the DEM transfer station (bench/STATION.md). From the repository root, after building
+# Timings of the DEM transfer station (bench/log/STATION.md). From the repository root, after building
 # (scripts/setup.sh && cmake --build build). Uses a fresh DEM cache so every run is really run.
 #   bench/station.sh            quick: one condition, validate x8, validate x8 again (from the cache)
 #   bench/station.sh standard   also the standard (9 mm) validate of the LIGGGHTS rig (~30-60 min)

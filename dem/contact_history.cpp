@@ -40,7 +40,7 @@ void compact_touching(const std::vector<std::int32_t>& begin, const std::vector<
   // copies' loads are scattered over the whole list, and without a mispredicted branch between them
   // they overlap instead of waiting one after the other. In a station run's profile the copy fell
   // from 5 % to under 2 %, though the run gained only 1-2 %: the next pass over the same lines then
-  // waits for them (bench/RESULTS.md, 2026-12-05).
+  // waits for them (bench/log/RESULTS.md, 2026-12-05).
   on_team(nt, [&] {
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const auto team = static_cast<std::size_t>(omp_get_num_threads());

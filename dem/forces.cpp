@@ -55,7 +55,7 @@ void World::compute_forces_impl(const BlockCallback& after_block) {
   // of its particles, its pair blocks, their finishing, and the integrator's passes. So it works on
   // the particles whose state it wrote: with dynamic schedules the wall entries and pair blocks
   // change hands every step and their particles' state crosses between the cores (bench bed,
-  // 2 threads: 1.30 s dynamic, 0.84-0.89 s static; bench/RESULTS.md), and a serial sum of the wall
+  // 2 threads: 1.30 s dynamic, 0.84-0.89 s static; bench/log/RESULTS.md), and a serial sum of the wall
   // loads or wall contacts split by count would make a thread read what the other has just written.
   using Clock = std::chrono::steady_clock;
   ThreadCut& cut = blocks_.cut();

@@ -87,7 +87,7 @@ CHUTELAB_INLINE void scatter(const Chunk& h, std::size_t c, Vec3* __restrict f, 
 // default x86-64 build: SSE2) indexed loads in that loop would stop the vectoriser, so the state is
 // first copied into the chunk's structure-of-arrays scratch by a scalar loop. Which is faster
 // depends on the CPU's gathers, not only on whether it has them: on an Intel Xeon the gathers won
-// (1.10x), on an AMD EPYC (Zen 4) the copy wins by about as much (bench/RESULTS.md), so AVX2 builds
+// (1.10x), on an AMD EPYC (Zen 4) the copy wins by about as much (bench/log/RESULTS.md), so AVX2 builds
 // carry both and choose at run time (gather_in_law()).
 #if defined(__AVX2__)
 #define CHUTELAB_DEM_GATHER_IN_LAW 1

@@ -76,7 +76,7 @@ struct Particles {
   // Each array is gathered into a spare one of its type, which then takes its place; the old one is
   // the spare for the next. Kept between rebuilds: a fresh array each time is first zero-filled by
   // one thread, and the reordering does not scale (bench bed, 2 threads: 17-19 ms with fresh arrays,
-  // 8.4 ms with the spares; bench/RESULTS.md).
+  // 8.4 ms with the spares; bench/log/RESULTS.md).
   std::vector<Vec3> spare_vec3_;
   std::vector<double> spare_double_;
   std::vector<std::int32_t> spare_int_;

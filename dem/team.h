@@ -10,7 +10,7 @@ namespace chutelab::dem {
 // Whether a pass asked for nt threads runs on the calling thread, outside any OpenMP region.
 // libgomp ends every region, and every barrier in it, with a futex wake even in a team of one,
 // where no thread can be waiting: a system call, about six per step, which on this project's VM took
-// 5-7 % of a one-thread station run (bench/RESULTS.md). Outside a region omp_get_thread_num() is 0,
+// 5-7 % of a one-thread station run (bench/log/RESULTS.md). Outside a region omp_get_thread_num() is 0,
 // omp_get_num_threads() 1 and an orphaned barrier returns at once, so the body does exactly what it
 // did in a team of one. Inside someone else's region (level > 0) an orphaned barrier would bind to
 // their team, so there the pass keeps its own region.

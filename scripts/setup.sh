@@ -26,7 +26,7 @@ fi
 
 # chutelab is built where it runs, so the build is for this CPU (-march=native): the DEM's contact
 # law then runs 4-8 contacts per vector instruction instead of 2 (1.35-1.4x on the bench bed,
-# bench/RESULTS.md). With -ffp-contract=off the numbers are those of the portable build.
+# bench/log/RESULTS.md). With -ffp-contract=off the numbers are those of the portable build.
 # CHUTELAB_PORTABLE=1 builds for any x86-64 instead (a binary to copy to other machines).
 native=ON
 [[ -n ${CHUTELAB_PORTABLE:-} ]] && native=OFF

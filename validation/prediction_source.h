@@ -61,7 +61,7 @@ class PredictionSource {
   // Each condition's predictions (those of `only`, or of every condition), as predict() makes them,
   // handed to `use` by the thread that made them and dropped there. A fit reads a few numbers of each
   // and keeps none: ten thousand conditions' predictions, made on the workers and freed on the
-  // caller's thread, cost a quarter of a large diagnosis in the allocator (bench/SCALE.md). `use`
+  // caller's thread, cost a quarter of a large diagnosis in the allocator (bench/log/SCALE.md). `use`
   // may run on several threads at once, for different conditions. Fails as predict() does.
   using ConditionUse = std::function<void(std::size_t condition, const std::vector<ModelPrediction>&)>;
   void visit(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths, Evaluation how,

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A large synthetic-looking dataset for the scale benchmark (bench/SCALE.md): N conditions of the
+"""A large synthetic-looking dataset for the scale benchmark (bench/log/SCALE.md): N conditions of the
 LIGGGHTS rig's geometry at speeds 2-5 m/s and flows 20-45 t/h, each with the six measured quantities
 and 8 stream points. Values are plausible, not physical truth: the benchmark measures time, not fit.
 Usage: make_dataset.py N OUT_DIR"""

@@ -131,13 +131,13 @@ struct RunSettings {
   bool steady_all_loads = false;
 
   // --- numerics ---
-  // Verlet skin as a fraction of the particle radius. Measured (bench/STATION.md): 1.0 halves the
+  // Verlet skin as a fraction of the particle radius. Measured (bench/log/STATION.md): 1.0 halves the
   // rebuilds of 0.5 at the same cost per step; 1.5 gains nothing more.
   double skin_fraction = 1.0;
   // OpenMP threads; results do not depend on it (dem/world.h). 0 = automatic: one per core that
   // other processes leave free now (core/free_cores.h; at least 1). On a shared 2-core machine two
   // threads that wait for each other in every step's parallel loops ran 2-10x slower than one
-  // (bench/STATION.md).
+  // (bench/log/STATION.md).
   int threads = 0;
   // Threads the run may add as they free up (campaign::JobContext::idle); read once per force
   // sample. Not part of the result (nor of the cache key), like `threads`.

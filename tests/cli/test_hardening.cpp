@@ -361,7 +361,7 @@ BOOST_AUTO_TEST_CASE(class6_messages_point_the_right_way) {
 }
 
 // Class 8: a big dataset is summarised in the report rather than drawn condition by condition (the
-// linear cost is measured in bench/SCALE.md, not timed here).
+// linear cost is measured in bench/log/SCALE.md, not timed here).
 BOOST_AUTO_TEST_CASE(class8_big_datasets_are_summarised) {
   Case c("big");
   std::string cond = "condition,belt_speed_mps,mass_flow_tph,plate_distance_mm,plate_top_mm\n";

@@ -292,7 +292,7 @@ BOOST_AUTO_TEST_CASE(class7_unbounded_work_is_refused_before_it_starts) {
   refused(s, s.args("calibrate") + " --rolling " + many, 2, "slump tests; at most 100 run in one command");
   refused(s, s.args("sensitivity") + " --sizes 4,5,6,7,8,9,10", 2, "--sizes: 7 values");
   // Big data is drawn summarised: 40 000 stream points make a report of the usual size, not one of
-  // a marker each (a million rows made 386 MB; bench/SCALE.md has the timings).
+  // a marker each (a million rows made 386 MB; bench/log/SCALE.md has the timings).
   std::string traj = "condition,boundary,x_mm,y_mm,uncertainty_mm\n";
   for (const char* cond : {"V2-26", "V3-41"})
     for (const char* b : {"upper", "lower"})

@@ -3,13 +3,18 @@
 
 1. Every relative link of every Markdown file ([text](path#anchor)) names a file that exists and,
    with an anchor, a heading of that file (GitHub's anchor rule).
-2. Every repository path named in a source comment (``validation/gci.h``, ``bench/STATION.md``,
+2. Every repository path named in a source comment (``validation/gci.h``, ``bench/log/STATION.md``,
    ``docs/DESIGN.md §2``) is a file or folder of the repository, found from the repository root or
    from the commenting file's folder. A bare "DESIGN.md" is a path too: the design document is
    docs/DESIGN.md.
 
+3. bench/README.md, the index of the measurements, links every page of bench/ and bench/log/.
+
+bench/'s pages and its sources are checked like the rest; the outputs its runs recorded in its
+sub-folders (bench/sensitivity/, bench/liggghts-engine/, ...) quote other trees and are not.
+
 Usage: check_links.py REPO_ROOT. Prints one line per problem and exits 1 when there is any.
-       check_links.py --self-test FIXTURE: exits 0 only when the checker finds exactly the three
+       check_links.py --self-test FIXTURE: exits 0 only when the checker finds exactly the four
        problems planted in the fixture (tests/docs/broken), so that the check is known to fail.
 """
 import os
@@ -133,22 +138,56 @@ def check_comments(rel, files, problems):
                 problems.append(f"{rel}:{line}: names {p}, which is not in the repository")
 
 
+BENCH_PAGE = re.compile(r"^bench/(log/)?[^/]+\.md$")
+
+
+def checked(f):
+    """Whether f is documentation or source to check: bench/'s pages and code are, the outputs its
+    runs recorded in its sub-folders are not."""
+    if not f.startswith("bench/"):
+        return not f.startswith(SKIP_PREFIXES)
+    rest = f[len("bench/"):]
+    if BENCH_PAGE.match(f):
+        return True
+    if "/" not in rest:
+        return True
+    return rest.endswith((".h", ".hpp", ".cpp", ".py", ".sh", ".js")) or os.path.basename(f) == "CMakeLists.txt"
+
+
+def check_bench_index(files, problems):
+    """bench/README.md links every page of bench/ and bench/log/: a page it does not name is lost."""
+    pages = [f for f in files if BENCH_PAGE.match(f) and f != "bench/README.md"]
+    if not pages:
+        return
+    if "bench/README.md" not in files:
+        problems.append("bench/README.md: missing; it is the index of bench/'s pages")
+        return
+    text = open(os.path.join(ROOT, "bench", "README.md"), encoding="utf-8").read()
+    linked = set()
+    for m in re.finditer(r"\[[^\]\n]*\]\(([^)\s#]+)(?:#[^)\s]*)?\)", text):
+        linked.add(os.path.normpath(os.path.join("bench", m.group(1))))
+    for p in pages:
+        if p not in linked:
+            problems.append(f"bench/README.md: does not link {p}")
+
+
 def main():
     files = repository_files()
     problems = []
     for f in files:
-        if f.startswith(SKIP_PREFIXES) and not f.startswith("bench/README"):
+        if not checked(f):
             continue
         if f.endswith(".md"):
             check_markdown(f, problems)
         elif f.endswith(SOURCE_EXT) or os.path.basename(f) == "CMakeLists.txt":
             check_comments(f, files, problems)
+    check_bench_index(files, problems)
     for p in problems:
         print(p)
     print(f"checked {len(files)} files: {len(problems)} problems")
     if SELF_TEST:
         planted = ["README.md:3: dead link guide.md#no-such-section", "README.md:4: dead link missing.md",
-                   "src/a.cpp:1: names src/missing.h"]
+                   "src/a.cpp:1: names src/missing.h", "bench/README.md: does not link bench/log/LOST.md"]
         ok = len(problems) == len(planted) and all(any(p.startswith(x) for p in problems) for x in planted)
         print("self-test:", "the planted problems were found" if ok else "FAILED: expected " + "; ".join(planted))
         return 0 if ok else 1

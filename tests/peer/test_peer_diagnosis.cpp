@@ -74,7 +74,7 @@ BOOST_AUTO_TEST_CASE(flow_bias_found_in_peer_data) {
   // Within three standard deviations of the truth (HOW-MADE.md: -0.12). This is one case, not a
   // rate: the printed ± 2 sd covers the truth in 18-20 of 20 replicas per class (bench/DIAGNOSIS.md),
   // so a single case held to 2 sd fails one honest run in twenty, to 3 sd one in 370. Here the five
-  // profile runs give -0.1236 ± 0.0017 (2.1 sd; bench/PEER_DIAGNOSIS.md): the stream's upper limit,
+  // profile runs give -0.1236 ± 0.0017 (2.1 sd; bench/log/PEER_DIAGNOSIS.md): the stream's upper limit,
   // which the two codes also put apart on the clean rig, pulls the strength below the forces' own
   // -0.1200 ± 0.0023.
   BOOST_TEST(std::abs(top.estimate - -0.12) <= 3.0 * top.uncertainty, top.estimate << " ± " << top.uncertainty);
