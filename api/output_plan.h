@@ -13,6 +13,7 @@ namespace chutelab::api {
 struct OutputPlan {
   std::vector<std::filesystem::path> inputs;  // every file and folder the run reads (none may be overwritten)
   std::vector<std::string> files;             // the result's files (ValidateResult::files(), ...)
+  std::vector<std::string> folders;           // folders of result files named by the results (report.md's figures/)
   bool model_folder = false;                  // expensive models would write per-condition files
 };
 

@@ -71,11 +71,13 @@ reports::ReportInput ValidateResult::report() const {
 std::vector<validation::OutputFile> ValidateResult::files() const {
   const auto& r = final_result();
   const reports::ReportInput in = report();
+  reports::ReportFiles report = reports::report_files(in);
   std::vector<validation::OutputFile> out = {{"predictions.csv", validation::predictions_csv(r)},
                                              {"errors.csv", validation::errors_csv(r)},
                                              {"summary.csv", validation::summary_csv(r)},
-                                             {"report.md", reports::report_markdown(in)},
-                                             {"report.html", reports::report_html(in)}};
+                                             {"report.md", std::move(report.markdown)},
+                                             {"report.html", std::move(report.html)}};
+  for (auto& f : report.figures) out.push_back(std::move(f));
   if (diagnosis) {
     out.emplace_back("diagnosis.csv", validation::diagnosis_csv(*diagnosis));
     out.emplace_back("diagnosis.md", validation::diagnosis_markdown(*diagnosis));
@@ -130,6 +132,7 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
   }
   for (auto& p : model_inputs(o.models)) plan.inputs.push_back(std::move(p));
   plan.files = {"predictions.csv", "errors.csv", "summary.csv", "report.md", "report.html"};
+  plan.folders = {"figures"};
   if (diagnosing) plan.files.insert(plan.files.end(), {"diagnosis.csv", "diagnosis.md"});
   plan.model_folder = std::any_of(models.begin(), models.end(), [](const auto& m) { return m->expensive(); });
   if (o.prepare_output)

@@ -88,8 +88,8 @@ struct ValidateResult {
   bool acceptance_failed() const { return accepted().acceptance_failed; }
   // The report's input: views into this result (valid while it lives, unmoved).
   reports::ReportInput report() const;
-  // predictions.csv, errors.csv, summary.csv, report.md, report.html and, with a diagnosis,
-  // diagnosis.csv and diagnosis.md.
+  // predictions.csv, errors.csv, summary.csv, report.md, report.html, the report's charts as
+  // figures/NN-ID.svg (report.md links them) and, with a diagnosis, diagnosis.csv and diagnosis.md.
   std::vector<validation::OutputFile> files() const;
 };
 

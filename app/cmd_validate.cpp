@@ -63,6 +63,7 @@ int run_validate(const ValidateCli& o) {
     check_junit_path(o, plan);
     out.emplace(o.out, plan.inputs, "validate");
     for (const auto& f : plan.files) out->check_entry(f, false);
+    for (const auto& f : plan.folders) out->check_entry(f, true);
     if (!plan.model_folder) return {};
     out->check_entry("dem", true);
     // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.

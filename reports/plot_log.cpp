@@ -50,7 +50,7 @@ std::string one_chart(const LogChart& c, const std::string& id) {
 
 std::string log_charts_html(const std::vector<LogChart>& charts, const std::string& id) {
   if (charts.empty()) return {};
-  std::string o = "<figure>\n<div class=\"traj-grid\">\n";
+  std::string o = fmt::format("<figure id=\"{}\">\n<div class=\"traj-grid\">\n", esc(id));
   for (std::size_t i = 0; i < charts.size(); ++i) o += one_chart(charts[i], fmt::format("{}-{}", id, i));
   o += "</div>\n<figcaption>The plate's load as logged, per condition: the steady window it was averaged over "
        "(shaded; orange where no steady state was found), the zero from the unloaded parts before and after "

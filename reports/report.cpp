@@ -6,10 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <cctype>
+#include <cstdlib>
+#include <map>
 #include <stdexcept>
 
 #include "effects/registry.h"
 #include "reports/common.h"
+#include "reports/design.h"
 #include "reports/plain_summary.h"
 #include "reports/studies.h"
 #include "validation/failed_values.h"
@@ -31,6 +35,7 @@ struct Block {
   Table table{};
   std::string svg_html{};           // figures: ready HTML (inline SVG)
   std::string caption{};            // figures: plain
+  std::string after_svg_html{};     // a figure of report.md's merged pair: the "after" column's chart
   // pair: the same blocks for the models as they are and with effects, which report.html shows
   // side by side; `merged` is what report.md shows instead (empty: the two one after the other).
   std::vector<Block> before{}, after{}, merged{};
@@ -64,6 +69,7 @@ std::vector<Block> merge_for_markdown(const std::vector<Block>& before, const st
         if (what.ends_with('.')) what.pop_back();
         out.push_back(b);
         out.back().caption = what + " — before and after";
+        out.back().after_svg_html = a.svg_html;
         break;
       }
       default:
@@ -691,6 +697,101 @@ std::string block_html(const Block& b, bool in_header) {
   return o;
 }
 
+// ---- The charts as files: report.html keeps them inline, report.md links figures/NN-ID.svg ----
+
+constexpr std::string_view kFigureStyle =
+    "<style>text { font-family: system-ui, -apple-system, \"Segoe UI\", Roboto, \"Helvetica Neue\", Arial, "
+    "sans-serif; fill: #1b1b1b; }</style>\n";
+
+// The top-level <svg>...</svg> elements of a figure's HTML, in order (a chart is one; a grid of
+// panels, as the trajectories', several).
+std::vector<std::string_view> svg_elements(std::string_view html) {
+  std::vector<std::string_view> out;
+  for (auto at = html.find("<svg "); at != std::string_view::npos; at = html.find("<svg ", at)) {
+    const auto end = html.find("</svg>", at);
+    if (end == std::string_view::npos) break;
+    out.push_back(html.substr(at, end + 6 - at));
+    at = end;
+  }
+  return out;
+}
+
+// A number attribute of an element's opening tag (` width="980.0"`); 0 when absent.
+double tag_number(std::string_view element, std::string_view name) {
+  const std::string_view tag = element.substr(0, element.find('>'));
+  const std::string key = " " + std::string(name) + "=\"";
+  const auto at = tag.find(key);
+  if (at == std::string_view::npos) return 0.0;
+  const auto from = at + key.size();
+  return std::strtod(std::string(tag.substr(from, tag.find('"', from) - from)).c_str(), nullptr);
+}
+
+// The figure's name: the id of its first element (the figure's, or its first chart's), letters,
+// digits, '-' and '_' kept.
+std::string figure_id(std::string_view html) {
+  const auto at = html.find("id=\"");
+  std::string id = at == std::string_view::npos ? std::string("figure")
+                                                : std::string(html.substr(at + 4, html.find('"', at + 4) - at - 4));
+  for (auto& ch : id)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '-';
+  return id;
+}
+
+// One SVG file a viewer or an editor opens on its own: the chart with its namespace, a title, the
+// page's text style and a white ground; several panels laid out in rows as report.html lays them
+// (wrapping at the widest panel, 14 px apart across and 10 px down).
+std::string figure_file(std::string_view html, std::string_view caption) {
+  const auto parts = svg_elements(html);
+  if (parts.empty()) return {};
+  const std::string head = fmt::format("<title>{}</title>\n{}", esc(caption), kFigureStyle);
+  if (parts.size() == 1) {
+    std::string svg(parts.front());
+    svg.insert(svg.find('>') + 1, "\n" + head + "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>");
+    return standalone_svg(svg) + "\n";
+  }
+  double width = 0.0;
+  for (const auto p : parts) width = std::max(width, tag_number(p, "width"));
+  std::string body;
+  double x = 0.0, y = 0.0, row = 0.0;
+  for (const auto p : parts) {
+    const double w = tag_number(p, "width"), h = tag_number(p, "height");
+    if (x > 0.0 && x + w > width + 0.05) x = 0.0, y += row + 10.0, row = 0.0;
+    body += fmt::format("<svg x=\"{}\" y=\"{}\" {}", px(x), px(y), p.substr(5));
+    if (!body.ends_with('\n')) body += '\n';
+    x += w + 14.0;
+    row = std::max(row, h);
+  }
+  const double height = y + row;
+  return standalone_svg(fmt::format(
+      "<svg viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" role=\"img\" aria-label=\"{2}\">\n{3}"
+      "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n{4}</svg>\n",
+      px(width), px(height), esc(caption), head, body));
+}
+
+// Every figure of the document as a file, numbered in the order report.html shows them; the name
+// report.md links for each chart.
+struct Figures {
+  std::vector<std::pair<std::string, std::string>> files;  // "figures/01-resid-base.svg", its SVG
+  std::map<std::string, std::string> name;                  // figure_id -> file name
+};
+
+void collect_figures(const std::vector<Block>& blocks, Figures& f) {
+  for (const auto& b : blocks) {
+    if (b.kind == Block::Kind::pair) {
+      collect_figures(b.before, f);
+      collect_figures(b.after, f);
+    }
+    if (b.kind != Block::Kind::figure) continue;
+    const std::string id = figure_id(b.svg_html);
+    if (f.name.count(id)) continue;
+    std::string svg = figure_file(b.svg_html, b.caption);
+    if (svg.empty()) continue;
+    const std::string file = fmt::format("figures/{:02d}-{}.svg", f.files.size() + 1, id);
+    f.name[id] = file;
+    f.files.emplace_back(file, std::move(svg));
+  }
+}
+
 std::string render_html(const Doc& d, const ReportInput& in) {
   std::string o = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                   "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
@@ -734,7 +835,7 @@ std::string render_html(const Doc& d, const ReportInput& in) {
   return o;
 }
 
-std::string blocks_markdown(const std::vector<Block>& blocks) {
+std::string blocks_markdown(const std::vector<Block>& blocks, const Figures& figures) {
   std::string o;
   for (const auto& b : blocks) {
     switch (b.kind) {
@@ -751,25 +852,43 @@ std::string blocks_markdown(const std::vector<Block>& blocks) {
       case Block::Kind::definition: o += fmt::format("**{}**: {}\n\n", md_esc(b.text), md_esc(b.detail)); break;
       case Block::Kind::table: o += table_markdown(b.table); break;
       case Block::Kind::figure: {
-        // The pictures live in report.html; say what is there so the Markdown reader knows.
+        // The chart as the file written beside report.md, its caption under it.
         const std::string what = b.caption.empty() ? "Chart" : b.caption;
-        o += fmt::format("*{} (see report.html)*\n\n", md_esc(what));
+        std::string links;
+        for (const auto* svg : {&b.svg_html, &b.after_svg_html}) {
+          if (svg->empty()) continue;
+          const auto it = figures.name.find(figure_id(*svg));
+          if (it == figures.name.end()) continue;
+          const std::string alt = b.after_svg_html.empty() ? shorten(what, 80) : svg == &b.svg_html ? "before" : "after";
+          links += fmt::format("{}![{}]({})", links.empty() ? "" : " ", md_esc(alt), it->second);
+        }
+        if (links.empty()) o += fmt::format("*{} (in report.html)*\n\n", md_esc(what));
+        else o += fmt::format("{}\n\n*{}*\n\n", links, md_esc(what));
         break;
       }
       case Block::Kind::pair:
-        if (!b.merged.empty()) o += blocks_markdown(b.merged);
-        else o += blocks_markdown(b.before) + blocks_markdown(b.after);
+        if (!b.merged.empty()) o += blocks_markdown(b.merged, figures);
+        else o += blocks_markdown(b.before, figures) + blocks_markdown(b.after, figures);
         break;
     }
   }
   return o;
 }
 
-std::string render_markdown(const Doc& d) { return blocks_markdown(d.blocks); }
-
 }  // namespace
 
-std::string report_markdown(const ReportInput& in) { return render_markdown(assemble(in)); }
+ReportFiles report_files(const ReportInput& in) {
+  const Doc d = assemble(in);
+  ReportFiles out;
+  Figures figures;
+  collect_figures(d.blocks, figures);
+  out.markdown = blocks_markdown(d.blocks, figures);
+  out.html = render_html(d, in);
+  out.figures = std::move(figures.files);
+  return out;
+}
+
+std::string report_markdown(const ReportInput& in) { return report_files(in).markdown; }
 
 std::string report_html(const ReportInput& in) { return render_html(assemble(in), in); }
 

@@ -3,6 +3,7 @@
 // The report knows no physics: it draws what the harness and the diagnosis give it.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "reports/log_chart.h"
@@ -45,7 +46,15 @@ struct ReportInput {
   }
 };
 
-std::string report_markdown(const ReportInput& in);
+// report.md links each chart as an SVG file beside it, "figures/NN-ID.svg" (NN: the chart's place in
+// the report, ID: its element's id); report.html draws them inline. report_files gives all three from
+// one assembly: the figures by name relative to the report's folder, in the order they appear.
+struct ReportFiles {
+  std::string markdown, html;
+  std::vector<std::pair<std::string, std::string>> figures;
+};
+ReportFiles report_files(const ReportInput& in);
+std::string report_markdown(const ReportInput& in);  // report_files(in).markdown
 std::string report_html(const ReportInput& in);
 
 }  // namespace chutelab::reports

@@ -526,8 +526,9 @@ class Validation:
         return self
 
     def write_report(self, out: PathLike) -> None:
-        """Writes predictions.csv, errors.csv, summary.csv, report.md and report.html (and, with a
-        diagnosis, diagnosis.csv and diagnosis.md) into the folder `out`: the files
+        """Writes predictions.csv, errors.csv, summary.csv, report.md, report.html and the report's
+        charts as figures/NN-ID.svg (and, with a diagnosis, diagnosis.csv and diagnosis.md) into the
+        folder `out`: the files
         `chutelab validate --out` writes for the same inputs, all or none, never onto an input.
         With the "dem" model the command line also keeps each condition's series under dem/;
         these are not written here (the DEM cache, dem_cache=, keeps the runs)."""

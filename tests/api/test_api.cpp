@@ -170,9 +170,16 @@ BOOST_AUTO_TEST_CASE(the_output_hook_is_told_the_plan_once_before_the_runs) {
   const api::ValidateResult r = api::validate(o);
   BOOST_TEST(calls == 1);
   BOOST_TEST(!seen.model_folder);
+  // Every file by name, and the report's charts in the folder the plan names for them.
   std::vector<std::string> names;
-  for (const auto& [n, text] : r.files()) names.push_back(n);
+  std::size_t charts = 0;
+  for (const auto& [n, text] : r.files()) {
+    if (n.starts_with("figures/")) ++charts;
+    else names.push_back(n);
+  }
   BOOST_TEST(names == seen.files, boost::test_tools::per_element());
+  BOOST_TEST(charts > 0u);
+  BOOST_TEST((seen.folders == std::vector<std::string>{"figures"}));
   const bool reads_measurements =
       std::find(seen.inputs.begin(), seen.inputs.end(), kHidden / "measurements.csv") != seen.inputs.end();
   BOOST_TEST(reads_measurements);
@@ -183,7 +190,7 @@ BOOST_AUTO_TEST_CASE(the_output_hook_is_told_the_plan_once_before_the_runs) {
 }
 
 BOOST_AUTO_TEST_CASE(the_command_line_writes_what_the_library_returns) {
-  // validate: the same five tables and pages, byte for byte (the fit and the diagnosis included).
+  // validate: the same tables, pages and charts, byte for byte (the fit and the diagnosis included).
   const fs::path out = test::fresh_dir("api_validate_cli");
   const auto cli = test::run_chutelab("validate --quiet --dataset " + kHidden.string() +
                                       " --effect air_drag=fit --out " + out.string());
@@ -192,7 +199,10 @@ BOOST_AUTO_TEST_CASE(the_command_line_writes_what_the_library_returns) {
   o.dataset = kHidden;
   o.effects = {"air_drag=fit"};
   const api::ValidateResult r = api::validate(o);
-  BOOST_TEST(r.files().size() == 7u);
+  std::size_t charts = 0;
+  for (const auto& [name, text] : r.files()) charts += name.starts_with("figures/") ? 1 : 0;
+  BOOST_TEST(charts >= 6u);  // the report's charts beside report.md
+  BOOST_TEST(r.files().size() == 7u + charts);
   for (const auto& [name, text] : r.files()) BOOST_TEST(test::read_file(out / name) == text, name);
 
   // diagnose: its two files.

@@ -282,6 +282,11 @@ def test_validate_gives_the_tables_validate_writes(tmp_path):
     # The report: the very files `validate --out` wrote.
     v.write_report(tmp_path / "py")
     assert _files(tmp_path / "py") == _files(out)
+    # report.md links each chart, written beside it as an SVG file.
+    charts = [f for f in _files(out) if f.startswith("figures" + os.sep)]
+    assert len(charts) >= 3 and all(f.endswith(".svg") for f in charts)
+    md = (out / "report.md").read_text()
+    assert all(f"]({f.replace(os.sep, '/')})" in md for f in charts)
     with pytest.raises(chutelab.InputError) as e:
         chutelab.write_report(v, RIG)  # onto the dataset it read
     assert e.value.field == "out" and "is the input folder" in str(e.value)
@@ -516,7 +521,11 @@ def test_the_guide_example_runs(tmp_path):
 def _files(folder):
     """Every file's bytes; the folder's record of what chutelab wrote as its lines without the times
     (two runs write the same bytes at different times)."""
-    files = {f: open(os.path.join(folder, f), "rb").read() for f in sorted(os.listdir(folder))}
+    files = {}
+    for root, _, names in sorted(os.walk(folder)):
+        for f in sorted(names):
+            path = os.path.join(root, f)
+            files[os.path.relpath(path, folder)] = open(path, "rb").read()
     if ".chutelab-manifest" in files:
         lines = files[".chutelab-manifest"].decode().splitlines()
         files[".chutelab-manifest"] = [l.split("\t")[:3] + l.split("\t")[4:] if l.startswith("file\t") else l

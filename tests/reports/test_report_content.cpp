@@ -4,7 +4,9 @@
 // and nothing that reaches outside the file.
 #include <boost/test/unit_test.hpp>
 #include <cmath>
+#include <algorithm>
 #include <regex>
+#include <set>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -289,6 +291,61 @@ BOOST_FIXTURE_TEST_CASE(before_after_and_diagnosis_sections, Fixture) {
   BOOST_TEST(md.find("## Plate forces") < md.find("## Appendix: validation uncertainty (V&V 20)"));
   BOOST_TEST(md.find("With effects: air\\_drag=0.5 (fitted)") != std::string::npos);
   BOOST_TEST(md.find("only the library's effects were tried") != std::string::npos);
+}
+
+// Every chart of report.html is also an SVG file that report.md links, "figures/NN-ID.svg": one file a
+// figure (a pair's two columns two files, linked side by side), each standalone (XML prolog, SVG
+// namespace, its caption as title), no "(see report.html)" left, the same bytes for the same inputs.
+BOOST_FIXTURE_TEST_CASE(every_chart_is_a_file_report_md_links, Fixture) {
+  ValidationResult after = small_result(d, false);
+  after.effects = {"air_drag=0.5 (fitted)"};
+  auto i = in();
+  i.with_effects = &after;
+  i.effects.push_back({"air_drag", "drag_coefficient", "", "drag", "Crowe", 0.5, 0.03, true});
+  const reports::ReportInput plain = in();
+  for (const reports::ReportInput* input : {static_cast<const reports::ReportInput*>(&i), &plain}) {
+    const bool pair = input == &i;
+    const reports::ReportInput& x = *input;
+    const reports::ReportFiles f = reports::report_files(x);
+    BOOST_TEST(f.markdown == reports::report_markdown(x));
+    BOOST_TEST(f.html == reports::report_html(x));
+    BOOST_TEST(f.markdown.find("see report.html") == std::string::npos);
+    BOOST_TEST(f.markdown.find("in report.html)") == std::string::npos);
+    // As many files as report.html has figures.
+    std::size_t figures = 0;
+    for (auto p = f.html.find("<figure"); p != std::string::npos; p = f.html.find("<figure", p + 1)) ++figures;
+    BOOST_TEST(f.figures.size() == figures);
+    BOOST_TEST(figures >= (pair ? 6u : 3u));
+    std::set<std::string> names, linked;
+    for (const auto& [name, svg] : f.figures) {
+      BOOST_TEST_CONTEXT(name) {
+        BOOST_TEST(std::regex_match(name, std::regex(R"(figures/[0-9]{2}-[A-Za-z0-9_-]+\.svg)")));
+        BOOST_TEST(names.insert(name).second);
+        BOOST_TEST(svg.starts_with("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "));
+        BOOST_TEST(svg.find("<title>") != std::string::npos);
+        BOOST_TEST(svg.ends_with("</svg>\n"));
+        std::size_t open = 0, close = 0;
+        for (auto p = svg.find("<svg "); p != std::string::npos; p = svg.find("<svg ", p + 1)) ++open;
+        for (auto p = svg.find("</svg>"); p != std::string::npos; p = svg.find("</svg>", p + 1)) ++close;
+        BOOST_TEST(open == close);
+      }
+    }
+    static const std::regex link(R"(!\[[^\]]*\]\((figures/[^)]+)\))");
+    for (std::sregex_iterator it(f.markdown.begin(), f.markdown.end(), link), end; it != end; ++it)
+      linked.insert((*it)[1].str());
+    BOOST_TEST((linked == names));
+    if (pair) {
+      BOOST_TEST(f.markdown.find("![before](figures/") != std::string::npos);
+      BOOST_TEST(f.markdown.find(".svg) ![after](figures/") != std::string::npos);
+    }
+    // The trajectories' legend and panels, laid out in one picture.
+    const auto traj = std::find_if(f.figures.begin(), f.figures.end(), [](const auto& p) {
+      return p.first.find("-traj-base.svg") != std::string::npos;
+    });
+    BOOST_TEST_REQUIRE((traj != f.figures.end()));
+    BOOST_TEST(traj->second.find("<svg x=\"0.0\" y=\"0.0\" class=\"plot traj-legend\"") != std::string::npos);
+    BOOST_TEST(reports::report_files(x).figures == f.figures);
+  }
 }
 
 // With effects, each section's before/after pair is one element of two columns, the models as they

@@ -1,7 +1,10 @@
 #include <boost/test/unit_test.hpp>
 #include <array>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <regex>
+#include <set>
 #include <sstream>
 
 #include "../cli/cli_runner.h"
@@ -25,6 +28,23 @@ BOOST_AUTO_TEST_CASE(validate_writes_the_five_files_deterministically) {
     BOOST_TEST_CONTEXT(f) {
       BOOST_TEST(fs::file_size(a / f) > 100u);
       BOOST_TEST(read_file(a / f) == read_file(b / f));  // same inputs, same bytes
+    }
+  }
+  // Every chart report.md links is a file beside it (figures/), the same bytes in both runs, and an
+  // SVG that XML reads; nothing else is in figures/.
+  const std::string md = read_file(a / "report.md");
+  BOOST_TEST(md.find("see report.html") == std::string::npos);
+  std::set<std::string> linked, written;
+  static const std::regex link(R"(!\[[^\]]*\]\((figures/[^)]+)\))");
+  for (std::sregex_iterator it(md.begin(), md.end(), link), end; it != end; ++it) linked.insert((*it)[1].str());
+  for (const auto& e : fs::directory_iterator(a / "figures")) written.insert("figures/" + e.path().filename().string());
+  BOOST_TEST(linked.size() >= 3u);  // where the models fail, the plate forces, the trajectories
+  BOOST_TEST((linked == written));
+  const bool xmllint = std::system("command -v xmllint >/dev/null 2>&1") == 0;
+  for (const auto& f : linked) {
+    BOOST_TEST_CONTEXT(f) {
+      BOOST_TEST(read_file(a / f) == read_file(b / f));
+      if (xmllint) BOOST_TEST(std::system(("xmllint --noout '" + (a / f).string() + "' 2>/dev/null").c_str()) == 0);
     }
   }
   const std::string errors = read_file(a / "errors.csv");
