@@ -13,9 +13,10 @@ void write_vtk_particles(const std::string& path, const Particles& p) {
   std::ofstream f(path);
   if (!f) throw InputError(path, 0, "", "cannot write VTK file");
   const std::size_t n = p.size();
-  f << "# vtk DataFile Version 3.0\nchutelab DEM particles\nASCII\nDATASET POLYDATA\n";
+  f << "# vtk DataFile Version 3.0\nchutelab DEM particles; lengths in mm, velocities in m/s, forces in N\n"
+       "ASCII\nDATASET POLYDATA\n";
   f << fmt::format("POINTS {} double\n", n);
-  for (const auto& x : p.x) f << fmt::format("{:.9g} {:.9g} {:.9g}\n", x.x(), x.y(), x.z());
+  for (const auto& x : p.x) f << fmt::format("{:.9g} {:.9g} {:.9g}\n", x.x() * 1e3, x.y() * 1e3, x.z() * 1e3);
   f << fmt::format("VERTICES {} {}\n", n, 2 * n);
   for (std::size_t i = 0; i < n; ++i) f << "1 " << i << '\n';
   f << fmt::format("POINT_DATA {}\n", n);
@@ -23,15 +24,15 @@ void write_vtk_particles(const std::string& path, const Particles& p) {
   for (auto id : p.id) f << id << '\n';
   f << "SCALARS clump double 1\nLOOKUP_TABLE default\n";  // body index of a clump's spheres, -1 for free spheres
   for (auto c : p.clump) f << c << '\n';
-  f << "SCALARS radius double 1\nLOOKUP_TABLE default\n";
-  for (double r : p.radius) f << fmt::format("{:.9g}\n", r);
+  f << "SCALARS radius_mm double 1\nLOOKUP_TABLE default\n";
+  for (double r : p.radius) f << fmt::format("{:.9g}\n", r * 1e3);
   auto vectors = [&](const char* name, const std::vector<Vec3>& a) {
     f << "VECTORS " << name << " double\n";
     for (const auto& v : a) f << fmt::format("{:.9g} {:.9g} {:.9g}\n", v.x(), v.y(), v.z());
   };
-  vectors("velocity", p.v);
-  vectors("angular_velocity", p.w);
-  vectors("force", p.f);
+  vectors("velocity_mps", p.v);
+  vectors("angular_velocity_radps", p.w);
+  vectors("force_N", p.f);
   if (!f) throw InputError(path, 0, "", "error while writing VTK file");
 }
 
@@ -85,9 +86,9 @@ void write_vtk_walls(const std::string& path, const std::vector<Wall>& walls) {
   }
   std::ofstream f(path);
   if (!f) throw InputError(path, 0, "", "cannot write VTK file");
-  f << "# vtk DataFile Version 3.0\nchutelab DEM walls\nASCII\nDATASET POLYDATA\n";
+  f << "# vtk DataFile Version 3.0\nchutelab DEM walls; lengths in mm, forces in N\nASCII\nDATASET POLYDATA\n";
   f << fmt::format("POINTS {} double\n", pts.size());
-  for (const auto& x : pts) f << fmt::format("{:.9g} {:.9g} {:.9g}\n", x.x(), x.y(), x.z());
+  for (const auto& x : pts) f << fmt::format("{:.9g} {:.9g} {:.9g}\n", x.x() * 1e3, x.y() * 1e3, x.z() * 1e3);
   std::size_t total = 0;
   for (const auto& p : polys) total += p.size() + 1;
   f << fmt::format("POLYGONS {} {}\n", polys.size(), total);
@@ -98,7 +99,7 @@ void write_vtk_walls(const std::string& path, const std::vector<Wall>& walls) {
   }
   f << fmt::format("CELL_DATA {}\nSCALARS wall int 1\nLOOKUP_TABLE default\n", polys.size());
   for (int w : wall_index) f << w << '\n';
-  f << "VECTORS force double\n";
+  f << "VECTORS force_N double\n";
   for (const auto& v : force) f << fmt::format("{:.9g} {:.9g} {:.9g}\n", v.x(), v.y(), v.z());
   if (!f) throw InputError(path, 0, "", "error while writing VTK file");
 }

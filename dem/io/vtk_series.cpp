@@ -66,13 +66,17 @@ void write_vtp_particles(const std::string& path, const Particles& p, const std:
   arrays.clear();
   array("Int64", "id", 1, data.add(p.id));
   array("Int64", "clump", 1, data.add(clump));
-  array("Float64", "radius_m", 1, data.add(p.radius));
+  std::vector<double> radius_mm(p.radius.begin(), p.radius.end());
+  for (auto& r : radius_mm) r *= 1e3;
+  array("Float64", "radius_mm", 1, data.add(radius_mm));
   array("Float64", "velocity_mps", 3, data.add(flat(p.v)));
   array("Float64", "speed_mps", 1, data.add(speed));
   array("Float64", "contact_force_N", 1, data.add(contact_force));
   point_data = arrays;
   arrays.clear();
-  array("Float64", "Points", 3, data.add(flat(p.x)));
+  std::vector<double> points_mm = flat(p.x);
+  for (auto& x : points_mm) x *= 1e3;
+  array("Float64", "Points", 3, data.add(points_mm));
   const std::string points = arrays;
   arrays.clear();
   array("Int64", "connectivity", 1, data.add(connectivity));
@@ -82,12 +86,13 @@ void write_vtp_particles(const std::string& path, const Particles& p, const std:
   std::ofstream f(path, std::ios::binary);
   if (!f) throw InputError(path, 0, "particle series", "cannot write this file");
   f << "<?xml version=\"1.0\"?>\n"
+       "<!-- chutelab DEM particles: Points and radius_mm in mm, velocities in m/s, forces in N -->\n"
        "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
        "  <PolyData>\n"
     << fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
                    "NumberOfPolys=\"0\">\n",
                    n, n)
-    << "      <PointData Scalars=\"radius_m\" Vectors=\"velocity_mps\">\n"
+    << "      <PointData Scalars=\"radius_mm\" Vectors=\"velocity_mps\">\n"
     << point_data << "      </PointData>\n      <Points>\n"
     << points << "      </Points>\n      <Verts>\n"
     << verts << "      </Verts>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _";
@@ -111,7 +116,7 @@ void VtkSeries::write(double t, const Particles& p, const std::vector<double>& c
   {
     std::ofstream f(tmp);
     if (!f) throw InputError(tmp.string(), 0, "particle series", "cannot write this file");
-    f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+    f << "<?xml version=\"1.0\"?>\n<!-- chutelab DEM particles: timestep in s; lengths in mm -->\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
          "  <Collection>\n";
     for (std::size_t k = 0; k < times_.size(); ++k)
       f << fmt::format("    <DataSet timestep=\"{:.9g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", times_[k], files_[k]);

@@ -1,7 +1,8 @@
 #pragma once
 // A particle time series ParaView opens as one: a .pvd collection (VTK XML) listing one VTK XML
-// PolyData file (.vtp) per frame with its simulated time. Each .vtp carries the particles as
-// vertices with their id, clump, radius, velocity, speed and contact-force magnitude; its arrays are
+// PolyData file (.vtp) per frame with its simulated time (s). Each .vtp carries the particles as
+// vertices in mm, as every other chutelab file (the engine is SI inside), with their id, clump,
+// radius_mm, velocity_mps, speed_mps and contact_force_N (a comment in each file says so); its arrays are
 // raw binary in an appended block (little-endian, UInt64 block headers), so a frame costs what its
 // numbers weigh and reads back exactly. The .pvd is rewritten after every frame, so a run stopped
 // early still leaves a series that opens.

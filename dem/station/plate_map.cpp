@@ -395,12 +395,12 @@ void write_plate_map_vtk(const std::string& path, const std::vector<PlateMap>& m
   if (!f) throw InputError(path, 0, "out", "cannot write this file");
   std::size_t n = 0;
   for (const auto& m : maps) n += m.cells.size();
-  f << "# vtk DataFile Version 3.0\nchutelab plate pressure and wear maps (steady window means)\nASCII\n"
-       "DATASET POLYDATA\n";
+  f << "# vtk DataFile Version 3.0\nchutelab plate pressure and wear maps (steady window means); lengths in mm\n"
+       "ASCII\nDATASET POLYDATA\n";
   f << fmt::format("POINTS {} double\n", 3 * n);
   for (const auto& m : maps)
     for (const auto& c : m.cells)
-      for (const auto& p : c.corners) f << fmt::format("{:.6g} {:.6g} {:.6g}\n", p.x(), p.y(), p.z());
+      for (const auto& p : c.corners) f << fmt::format("{:.6g} {:.6g} {:.6g}\n", p.x() * 1e3, p.y() * 1e3, p.z() * 1e3);
   f << fmt::format("POLYGONS {} {}\n", n, 4 * n);
   for (std::size_t k = 0; k < n; ++k) f << fmt::format("3 {} {} {}\n", 3 * k, 3 * k + 1, 3 * k + 2);
   f << fmt::format("CELL_DATA {}\n", n);

@@ -690,12 +690,13 @@ void write_result_files(const std::string& dir, const StationResult& r) {
 void write_side_view_vtk(const std::string& path, const std::vector<SidePoint>& pts) {
   std::ofstream f(path);
   if (!f) throw InputError(path, 0, "out", "cannot write this file");
-  f << "# vtk DataFile Version 3.0\nchutelab DEM transfer station, side view\nASCII\nDATASET POLYDATA\n";
+  f << "# vtk DataFile Version 3.0\nchutelab DEM transfer station, side view; lengths in mm, speed in m/s\nASCII\n"
+       "DATASET POLYDATA\n";
   f << fmt::format("POINTS {} float\n", pts.size());
-  for (const auto& p : pts) f << fmt::format("{} {} {}\n", p.x, p.y, p.z);
+  for (const auto& p : pts) f << fmt::format("{:.1f} {:.1f} {:.1f}\n", p.x * 1e3, p.y * 1e3, p.z * 1e3);
   f << fmt::format("VERTICES {} {}\n", pts.size(), 2 * pts.size());
   for (std::size_t i = 0; i < pts.size(); ++i) f << "1 " << i << "\n";
-  f << fmt::format("POINT_DATA {}\nSCALARS speed float 1\nLOOKUP_TABLE default\n", pts.size());
+  f << fmt::format("POINT_DATA {}\nSCALARS speed_mps float 1\nLOOKUP_TABLE default\n", pts.size());
   for (const auto& p : pts) f << p.speed << "\n";
 }
 

@@ -429,8 +429,17 @@ BOOST_AUTO_TEST_CASE(vtk_and_csv_output) {
   const std::string text = ss.str();
   BOOST_TEST(text.rfind("# vtk DataFile Version 3.0", 0) == 0u);
   BOOST_TEST(text.find("POINTS 50 double") != std::string::npos);
-  for (const char* key : {"SCALARS radius", "VECTORS velocity", "VECTORS force", "VECTORS angular_velocity", "SCALARS id"})
+  for (const char* key : {"SCALARS radius_mm", "VECTORS velocity_mps", "VECTORS force_N", "VECTORS angular_velocity_radps",
+                          "SCALARS id"})
     BOOST_TEST(text.find(key) != std::string::npos, key);
+  // Lengths in mm, as every chutelab file, and the title line says so: the first radius as written.
+  BOOST_TEST(text.find("\nchutelab DEM particles; lengths in mm, velocities in m/s, forces in N\n") != std::string::npos);
+  {
+    const auto at = text.find("SCALARS radius_mm double 1\nLOOKUP_TABLE default\n");
+    BOOST_TEST_REQUIRE(at != std::string::npos);
+    const double r = std::stod(text.substr(at + std::string("SCALARS radius_mm double 1\nLOOKUP_TABLE default\n").size()));
+    BOOST_TEST(r == w.particles().radius[0] * 1e3, boost::test_tools::tolerance(1e-8));
+  }
   std::ifstream fw(wv);
   std::string first;
   std::getline(fw, first);
