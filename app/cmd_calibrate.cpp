@@ -92,8 +92,8 @@ int run_calibrate(const CalibrateCli& o) {
     require_dem_keys(probe, (dir / "setup.toml").string(), "calibrate's DEM");
   }
   OutputFolder out(o.out, dataset_inputs(dir), "calibrate");  // checked before minutes of slump tests
-  check_entries(out, {"calibration.csv", "incline.csv", "calibration.md", "calibration.html", "material.toml",
-                      "calibration-timing.csv"});
+  check_entries(out, {"calibration.csv", "incline.csv", "calibration.md", "calibration.html", "calibration.svg",
+                      "material.toml", "calibration-timing.csv"});
 
   plan.sphere = Grain::sphere(o.sphere_diameter_mm * 1e-3);
   plan.clump = Grain::reference_clump(o.clump_diameter_mm * 1e-3);
@@ -141,6 +141,7 @@ int run_calibrate(const CalibrateCli& o) {
   out.write("incline.csv", incline_csv(study));
   out.write("calibration.md", calibration_md(ctx, study));
   out.write("calibration.html", calibration_html(ctx, study));
+  out.write("calibration.svg", reports::calibration_svg(study));
   out.write("material.toml", material_toml(ctx, study));
   out.write("calibration-timing.csv", calibration_timing_csv(study));
   out.commit();
@@ -163,7 +164,7 @@ void add_calibrate(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "calibrate",
       "Slump-test calibration (reference study §5, Table 3): rolling friction x solid density x shape over the swing-arm "
-      "slump tester; writes calibration.csv/.md/.html, incline.csv and material.toml to --out.");
+      "slump tester; writes calibration.csv/.md/.html/.svg, incline.csv and material.toml to --out.");
   cmd->add_option("--dataset", o->dataset, "dataset whose [material] to calibrate (default: bundled grima2010)");
   cmd->add_option("--quality", o->quality, "quick (~500 spheres, soft) or standard")
       ->check(CLI::IsMember({"quick", "standard"}))

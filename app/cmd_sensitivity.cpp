@@ -81,7 +81,7 @@ int run_sensitivity(const SensitivityCli& o) {
   const Setup setup = validation::read_setup(setup_file);
   const auto stations = validation::read_conditions(dir / "conditions.csv", setup);
   OutputFolder out(o.out, dataset_inputs(dir), "sensitivity");  // checked before minutes of DEM runs
-  check_entries(out, {"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity-timing.csv"});
+  check_entries(out, {"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity.svg", "sensitivity-timing.csv"});
   const Station* station = &validation::condition_row(stations, o.condition, dir / "conditions.csv", "--condition");
   st::SettingsOverrides ov;
   ov.quality = st::parse_quality(o.quality);
@@ -219,6 +219,7 @@ int run_sensitivity(const SensitivityCli& o) {
   out.write("sensitivity.csv", studies::sensitivity_csv(study));
   out.write("sensitivity.md", reports::sensitivity_md(study));
   out.write("sensitivity.html", reports::sensitivity_html(study));
+  out.write("sensitivity.svg", reports::sensitivity_svg(study));
   out.write("sensitivity-timing.csv", studies::sensitivity_timing_csv(study));
   out.commit();
   std::cout << study.verdict.text << "\n";
@@ -233,7 +234,7 @@ void add_sensitivity(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
       "sensitivity",
       "The reference study's Table 6 at one condition: the station DEM with LSD vs Hertz-Mindlin, sphere vs clump, dt/20, "
-      "G x10 and /10, particle sizes 5.6/9/13.6 mm; writes sensitivity.csv/.md/.html to --out and says whether the reference study's "
+      "G x10 and /10, particle sizes 5.6/9/13.6 mm; writes sensitivity.csv/.md/.html/.svg to --out and says whether the reference study's "
       "conclusion is reproduced.");
   cmd->add_option("--dataset", o->dataset, "dataset (default: bundled grima2010)");
   cmd->add_option("--condition", o->condition, "condition of the dataset (reference study Table 6: V_b = 3 m/s, 41 t/h)")

@@ -77,8 +77,35 @@ std::string table3_md(const CalibrationStudy& s) {
   return md;
 }
 
+namespace {
+
+constexpr std::string_view kChartTitle = "Pile height and bulk density against rolling friction";
+
+// The chart is the report's (reports/plot_calibration.cpp), drawn from the rows as calibration.csv has them.
+std::string sweep_chart(const CalibrationStudy& s) {
+  std::vector<CalibrationPoint> points;
+  for (std::size_t k = 0; k < s.rows.size(); ++k) {
+    const auto& r = s.rows[k];
+    CalibrationPoint p;
+    p.shape = std::string(name(r.shape));
+    p.grain = grain_label(s, r.shape);
+    p.rolling_friction = r.rolling_friction;
+    p.solid_density = r.solid_density;
+    p.bulk_density = r.slump.bulk_density;
+    p.pile_height = r.slump.pile_height;
+    p.closest = static_cast<int>(k) == s.closest;
+    points.push_back(p);
+  }
+  return calibration_chart(points, {s.plan.targets.bulk_density, s.plan.targets.pile_height}, "calibration-sweep");
+}
+
+}  // namespace
+
+std::string calibration_svg(const CalibrationStudy& s) { return svg_file(sweep_chart(s), kChartTitle); }
+
 std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& s) {
   std::string md = "# Slump-test calibration (reference study Table 3)\n\n";
+  md += fmt::format("![{}](calibration.svg)\n\n", kChartTitle);
   md += fmt::format("Dataset `{}` (`{}`), quality `{}`; {} slump tests (run times: calibration-timing.csv).\n\n",
                     reports::md_esc(c.setup.name), reports::md_esc(c.dataset), c.quality, s.rows.size());
   md += rig_text(s) + "\n\n";
@@ -135,22 +162,7 @@ std::string calibration_md(const CalibrationContext& c, const CalibrationStudy& 
 }
 
 std::string calibration_html(const CalibrationContext& c, const CalibrationStudy& s) {
-  // The chart is the report's (reports/plot_calibration.cpp), drawn from the rows as calibration.csv has them.
-  std::vector<CalibrationPoint> points;
-  for (std::size_t k = 0; k < s.rows.size(); ++k) {
-    const auto& r = s.rows[k];
-    CalibrationPoint p;
-    p.shape = std::string(name(r.shape));
-    p.grain = grain_label(s, r.shape);
-    p.rolling_friction = r.rolling_friction;
-    p.solid_density = r.solid_density;
-    p.bulk_density = r.slump.bulk_density;
-    p.pile_height = r.slump.pile_height;
-    p.closest = static_cast<int>(k) == s.closest;
-    points.push_back(p);
-  }
-  const std::string chart = calibration_chart(points, {s.plan.targets.bulk_density, s.plan.targets.pile_height},
-                                              "calibration-sweep");
+  const std::string chart = sweep_chart(s);
 
   // The Markdown tables, rendered simply: the page has no script and no external asset.
   const std::string md = calibration_md(c, s);
@@ -193,6 +205,7 @@ std::string calibration_html(const CalibrationContext& c, const CalibrationStudy
       body += "</table>\n";
       in_table = false;
     }
+    if (line.rfind("![", 0) == 0) continue;  // the chart's file: the page draws it inline
     line = md_unesc(line);
     if (line.rfind("# ", 0) == 0) body += "<h1>" + esc(line.substr(2)) + "</h1>\n" + chart + "\n";
     else if (line.rfind("## ", 0) == 0) body += "<h2>" + esc(line.substr(3)) + "</h2>\n";

@@ -12,5 +12,7 @@ namespace chutelab::reports {
 std::string table3_md(const dem::rigs::CalibrationStudy& s);
 std::string calibration_md(const studies::CalibrationContext& c, const dem::rigs::CalibrationStudy& s);
 std::string calibration_html(const studies::CalibrationContext& c, const dem::rigs::CalibrationStudy& s);
+// The page's chart as an SVG file of its own, calibration.svg, which calibration.md links.
+std::string calibration_svg(const dem::rigs::CalibrationStudy& s);
 
 }  // namespace chutelab::reports

@@ -7,13 +7,11 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <cctype>
-#include <cstdlib>
 #include <map>
 #include <stdexcept>
 
 #include "effects/registry.h"
 #include "reports/common.h"
-#include "reports/design.h"
 #include "reports/plain_summary.h"
 #include "reports/studies.h"
 #include "validation/failed_values.h"
@@ -699,33 +697,6 @@ std::string block_html(const Block& b, bool in_header) {
 
 // ---- The charts as files: report.html keeps them inline, report.md links figures/NN-ID.svg ----
 
-constexpr std::string_view kFigureStyle =
-    "<style>text { font-family: system-ui, -apple-system, \"Segoe UI\", Roboto, \"Helvetica Neue\", Arial, "
-    "sans-serif; fill: #1b1b1b; }</style>\n";
-
-// The top-level <svg>...</svg> elements of a figure's HTML, in order (a chart is one; a grid of
-// panels, as the trajectories', several).
-std::vector<std::string_view> svg_elements(std::string_view html) {
-  std::vector<std::string_view> out;
-  for (auto at = html.find("<svg "); at != std::string_view::npos; at = html.find("<svg ", at)) {
-    const auto end = html.find("</svg>", at);
-    if (end == std::string_view::npos) break;
-    out.push_back(html.substr(at, end + 6 - at));
-    at = end;
-  }
-  return out;
-}
-
-// A number attribute of an element's opening tag (` width="980.0"`); 0 when absent.
-double tag_number(std::string_view element, std::string_view name) {
-  const std::string_view tag = element.substr(0, element.find('>'));
-  const std::string key = " " + std::string(name) + "=\"";
-  const auto at = tag.find(key);
-  if (at == std::string_view::npos) return 0.0;
-  const auto from = at + key.size();
-  return std::strtod(std::string(tag.substr(from, tag.find('"', from) - from)).c_str(), nullptr);
-}
-
 // The figure's name: the id of its first element (the figure's, or its first chart's), letters,
 // digits, '-' and '_' kept.
 std::string figure_id(std::string_view html) {
@@ -735,37 +706,6 @@ std::string figure_id(std::string_view html) {
   for (auto& ch : id)
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '-';
   return id;
-}
-
-// One SVG file a viewer or an editor opens on its own: the chart with its namespace, a title, the
-// page's text style and a white ground; several panels laid out in rows as report.html lays them
-// (wrapping at the widest panel, 14 px apart across and 10 px down).
-std::string figure_file(std::string_view html, std::string_view caption) {
-  const auto parts = svg_elements(html);
-  if (parts.empty()) return {};
-  const std::string head = fmt::format("<title>{}</title>\n{}", esc(caption), kFigureStyle);
-  if (parts.size() == 1) {
-    std::string svg(parts.front());
-    svg.insert(svg.find('>') + 1, "\n" + head + "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>");
-    return standalone_svg(svg) + "\n";
-  }
-  double width = 0.0;
-  for (const auto p : parts) width = std::max(width, tag_number(p, "width"));
-  std::string body;
-  double x = 0.0, y = 0.0, row = 0.0;
-  for (const auto p : parts) {
-    const double w = tag_number(p, "width"), h = tag_number(p, "height");
-    if (x > 0.0 && x + w > width + 0.05) x = 0.0, y += row + 10.0, row = 0.0;
-    body += fmt::format("<svg x=\"{}\" y=\"{}\" {}", px(x), px(y), p.substr(5));
-    if (!body.ends_with('\n')) body += '\n';
-    x += w + 14.0;
-    row = std::max(row, h);
-  }
-  const double height = y + row;
-  return standalone_svg(fmt::format(
-      "<svg viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" role=\"img\" aria-label=\"{2}\">\n{3}"
-      "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n{4}</svg>\n",
-      px(width), px(height), esc(caption), head, body));
 }
 
 // Every figure of the document as a file, numbered in the order report.html shows them; the name
@@ -784,7 +724,7 @@ void collect_figures(const std::vector<Block>& blocks, Figures& f) {
     if (b.kind != Block::Kind::figure) continue;
     const std::string id = figure_id(b.svg_html);
     if (f.name.count(id)) continue;
-    std::string svg = figure_file(b.svg_html, b.caption);
+    std::string svg = svg_file(b.svg_html, b.caption);
     if (svg.empty()) continue;
     const std::string file = fmt::format("figures/{:02d}-{}.svg", f.files.size() + 1, id);
     f.name[id] = file;

@@ -20,8 +20,13 @@ std::string dataset_text(const SensitivityStudy& s, bool markdown) {
   return code(s.dataset_name) + (s.dataset.empty() ? std::string() : " (" + code(s.dataset) + ")");
 }
 
+namespace {
+constexpr std::string_view kChartTitle = "Mean resultant plate force and its fluctuation per variant";
+}  // namespace
+
 std::string sensitivity_md(const SensitivityStudy& s) {
   std::string md = "# Sensitivity of the plate force (the reference study's Table 6)\n\n";
+  md += fmt::format("![{}](sensitivity.svg)\n\n", kChartTitle);
   md += fmt::format("Dataset {}, condition `{}` (V_b = {:g} m/s, {:.1f} t/h), quality `{}`; {} DEM runs.\n\n",
                     dataset_text(s, true), md_esc(s.condition), s.belt_speed, s.mass_flow * 3.6,
                     s.quality, s.rows.size());
@@ -116,6 +121,10 @@ std::string sensitivity_chart(const SensitivityStudy& s, std::string_view id) {
   panel(70, rmax, "mean resultant R (N)", true);
   panel(560, fmax, "fluctuation: sd of R (N)", false);
   return svg.finish();
+}
+
+std::string sensitivity_svg(const SensitivityStudy& s) {
+  return svg_file(sensitivity_chart(s, "sensitivity-chart"), kChartTitle);
 }
 
 std::string sensitivity_html(const SensitivityStudy& s) {

@@ -14,5 +14,7 @@ std::string dataset_text(const studies::SensitivityStudy& s, bool markdown);
 std::string sensitivity_chart(const studies::SensitivityStudy& s, std::string_view id);
 std::string sensitivity_md(const studies::SensitivityStudy& s);
 std::string sensitivity_html(const studies::SensitivityStudy& s);
+// The chart as an SVG file of its own, sensitivity.svg, which sensitivity.md links.
+std::string sensitivity_svg(const studies::SensitivityStudy& s);
 
 }  // namespace chutelab::reports

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <fmt/format.h>
 
 #include "core/markup.h"
@@ -351,7 +352,65 @@ std::string shorten(std::string_view s, std::size_t n) {
 namespace {
 constexpr double kSwatch = 24.0, kGap = 5.0, kSpacing = 18.0, kRow = 18.0, kFont = 12.0;
 double entry_width(const LegendEntry& e) { return kSwatch + kGap + text_width(e.label, kFont) + kSpacing; }
+
+constexpr std::string_view kXmlProlog = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+constexpr std::string_view kFigureStyle =
+    "<style>text { font-family: system-ui, -apple-system, \"Segoe UI\", Roboto, \"Helvetica Neue\", Arial, "
+    "sans-serif; fill: #1b1b1b; }</style>\n";
+
+// The top-level <svg>...</svg> elements of a figure's HTML, in order (a chart is one; a grid of
+// panels, as the trajectories', several).
+std::vector<std::string_view> svg_elements(std::string_view html) {
+  std::vector<std::string_view> out;
+  for (auto at = html.find("<svg "); at != std::string_view::npos; at = html.find("<svg ", at)) {
+    const auto end = html.find("</svg>", at);
+    if (end == std::string_view::npos) break;
+    out.push_back(html.substr(at, end + 6 - at));
+    at = end;
+  }
+  return out;
+}
+
+// A number attribute of an element's opening tag (` width="980.0"`); 0 when absent.
+double tag_number(std::string_view element, std::string_view name) {
+  const std::string_view tag = element.substr(0, element.find('>'));
+  const std::string key = " " + std::string(name) + "=\"";
+  const auto at = tag.find(key);
+  if (at == std::string_view::npos) return 0.0;
+  const auto from = at + key.size();
+  return std::strtod(std::string(tag.substr(from, tag.find('"', from) - from)).c_str(), nullptr);
+}
+
 }  // namespace
+
+std::string svg_file(std::string_view html, std::string_view caption) {
+  const auto parts = svg_elements(html);
+  if (parts.empty()) return {};
+  const std::string head = fmt::format("<title>{}</title>\n{}", esc(caption), kFigureStyle);
+  if (parts.size() == 1) {
+    std::string svg(parts.front());
+    svg.insert(svg.find('>') + 1, "\n" + head + "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>");
+    svg.insert(5, "xmlns=\"http://www.w3.org/2000/svg\" ");
+    return std::string(kXmlProlog) + svg + "\n";
+  }
+  double width = 0.0;
+  for (const auto p : parts) width = std::max(width, tag_number(p, "width"));
+  std::string body;
+  double x = 0.0, y = 0.0, row = 0.0;
+  for (const auto p : parts) {
+    const double w = tag_number(p, "width"), h = tag_number(p, "height");
+    if (x > 0.0 && x + w > width + 0.05) x = 0.0, y += row + 10.0, row = 0.0;
+    body += fmt::format("<svg x=\"{}\" y=\"{}\" {}", px(x), px(y), p.substr(5));
+    if (!body.ends_with('\n')) body += '\n';
+    x += w + 14.0;
+    row = std::max(row, h);
+  }
+  const double height = y + row;
+  return std::string(kXmlProlog) + fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" role=\"img\" "
+      "aria-label=\"{2}\">\n{3}<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n{4}</svg>\n",
+      px(width), px(height), esc(caption), head, body);
+}
 
 double legend_height(double width, const std::vector<LegendEntry>& entries) {
   if (entries.empty()) return 0.0;

@@ -116,6 +116,11 @@ class Svg {
   std::string id_;
 };
 
+// One SVG file a viewer or an editor opens on its own, from a figure's inline SVG (one chart, or the
+// panels of a grid, laid out in rows as a page lays them: wrapping at the widest, 14 px apart across
+// and 10 px down): the SVG namespace, `title`, the page's text style and a white ground.
+std::string svg_file(std::string_view figure_html, std::string_view title);
+
 double legend_height(double width, const std::vector<LegendEntry>& entries);
 // Rough text width for layout (no font metrics in a report generator; 0.6 em per character
 // over-estimates slightly for the sans-serif fonts a browser picks, which is the safe side).

@@ -20,8 +20,13 @@ BOOST_AUTO_TEST_CASE(calibrate_writes_table3_and_a_usable_material_block) {
                                    out.string() + "'");
   BOOST_TEST_MESSAGE(r.out << r.err);
   BOOST_TEST(r.exit_code == 0);
-  for (const char* f : {"calibration.csv", "calibration.md", "calibration.html", "material.toml", "incline.csv"})
+  for (const char* f : {"calibration.csv", "calibration.md", "calibration.html", "calibration.svg", "material.toml",
+                        "incline.csv"})
     BOOST_TEST(fs::exists(out / f), f);
+  // The chart is a file of its own beside calibration.md, which links it.
+  BOOST_TEST(read_file(out / "calibration.svg").rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=", 0) == 0);
+  BOOST_TEST(read_file(out / "calibration.md").find("](calibration.svg)\n") != std::string::npos);
+  BOOST_TEST(read_file(out / "calibration.html").find("calibration.svg") == std::string::npos);
   const std::string csv = read_file(out / "calibration.csv");
   BOOST_TEST(count_lines(csv) == 2);
   BOOST_TEST(csv.find("sphere,sphere d=5.6mm,0.15,990,") != std::string::npos);

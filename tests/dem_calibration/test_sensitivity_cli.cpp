@@ -37,7 +37,8 @@ BOOST_AUTO_TEST_CASE(sensitivity_runs_a_subset_end_to_end) {
                                    "' --condition T3 --only G/10 --out '" + out.string() + "'");
   BOOST_TEST_MESSAGE(r.out << r.err);
   BOOST_REQUIRE(r.exit_code == 0);
-  for (const char* f : {"sensitivity.csv", "sensitivity.md", "sensitivity.html"}) BOOST_TEST(fs::exists(out / f), f);
+  for (const char* f : {"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity.svg"})
+    BOOST_TEST(fs::exists(out / f), f);
   const std::string csv = read_file(out / "sensitivity.csv");
   BOOST_TEST(count_lines(csv) == 3);
   BOOST_TEST(csv.find("\nbase,base,hertz-mindlin,sphere,13.6,") != std::string::npos);

@@ -132,6 +132,12 @@ BOOST_AUTO_TEST_CASE(verdict_follows_the_numbers) {
   BOOST_TEST(md.find("`grima2010`") != std::string::npos);
   BOOST_TEST(html.find("<svg") != std::string::npos);
   BOOST_TEST(html.find("REPRODUCED") != std::string::npos);
+  // The chart is also a file of its own, which the Markdown links (and the page does not show as text).
+  const std::string svg = chutelab::reports::sensitivity_svg(ok);
+  BOOST_TEST(svg.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" ", 0) == 0);
+  BOOST_TEST(svg.find("id=\"sensitivity-chart\"") != std::string::npos);
+  BOOST_TEST(md.find("](sensitivity.svg)\n") != std::string::npos);
+  BOOST_TEST(html.find("sensitivity.svg") == std::string::npos);
 }
 
 // A size of the reference study's Table 6 left out (5.6 mm at quick) is never silent: the verdict is
