@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "analytical/impact_zone.h"
 #include "core/csv_field.h"
 #include "core/input_error.h"
 #include "core/number.h"
@@ -303,6 +304,17 @@ std::string sweep_chart(const SweepSpec& s, const std::vector<SweepRow>& rows) {
                           : r.why == "plate_distance_mm" || r.why == "plate_top_mm"    ? "stream misses the plate"
                                                                                        : "no answer");
     c.gap_reason.push_back(r.point ? "" : r.note);
+    // A point with an answer and a note: the plate does not take the whole stream there.
+    std::string partial;
+    if (r.point && !r.note.empty()) {
+      const auto caught = analytical::impact_zone(r.point->analysis).caught;
+      partial = caught.over_top > 0.0 && caught.past_foot > 0.0 ? "part misses the plate"
+                : caught.over_top > 0.0                         ? "part over the top edge"
+                : caught.past_foot > 0.0                        ? "part past the foot"
+                                                                : "centroid off the plate";
+    }
+    c.partial_label.push_back(partial);
+    c.partial_reason.push_back(partial.empty() ? "" : fmt::format("{} = {:g}: {}", s.column, r.value, r.note));
     for (std::size_t i = 0; i < std::size(lines); ++i) {
       std::optional<double> y;
       if (r.point)

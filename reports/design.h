@@ -34,6 +34,10 @@ struct SweepChart {
   // Per x: why the design has no answer there ("" = it has one); runs of one reason are marked as
   // a band with a short label and the full reason as its tooltip.
   std::vector<std::string> gap_label, gap_reason;
+  // Per x: where part of the stream misses the plate (over its top edge or past its foot), a short
+  // label ("" = the plate takes the whole stream) and what the plate takes there as the tooltip;
+  // runs of one label are banded in both panels, since the forces drawn are the whole stream's.
+  std::vector<std::string> partial_label, partial_reason;
 };
 
 std::string sweep_svg(const SweepChart& c, std::string_view id = "sweep");

@@ -54,21 +54,30 @@ void panel(Svg& svg, const Frame& f, const SweepChart& c, const std::vector<Swee
                           clip, upper, lower));
     svg.text(f.right() - 6, f.top + 14, "shaded: the plate face", "end", "font-size=\"11\" fill=\"#555\"");
   }
-  // Runs of points without an answer, one band each, from half a step before to half a step after.
-  if (c.gap_label.size() == c.x.size())
+  // Runs of points without an answer, and of points where part of the stream misses the plate: one
+  // band each, from half a step before to half a step after.
+  auto bands = [&](const std::vector<std::string>& label, const std::vector<std::string>& reason,
+                   std::string_view cls, std::string_view fill, std::string_view opacity, std::string_view ink) {
+    if (label.size() != c.x.size()) return;
     for (std::size_t i = 0; i < c.x.size();) {
-      if (c.gap_label[i].empty()) { ++i; continue; }
+      if (label[i].empty()) { ++i; continue; }
       std::size_t j = i;
-      while (j + 1 < c.x.size() && c.gap_label[j + 1] == c.gap_label[i]) ++j;
+      while (j + 1 < c.x.size() && label[j + 1] == label[i]) ++j;
       const double half = c.x.size() > 1 ? 0.5 * std::abs(c.x[1] - c.x[0]) : 0.5;
       const double a = std::max(X(std::min(c.x[i], c.x[j]) - half), f.left);
       const double b = std::min(X(std::max(c.x[i], c.x[j]) + half), f.right());
-      svg.rect(a, f.top, b - a, f.height, "class=\"no-answer\" fill=\"#d62728\" fill-opacity=\"0.08\" stroke=\"none\"",
-               c.gap_reason[i]);
-      svg.text(0.5 * (a + b), f.top + (forces ? 30 : 30), c.gap_label[i], "middle",
-               "class=\"no-answer-label\" font-size=\"11\" fill=\"#a33\"");
+      // A run's tooltip: its first point's reason, and the last's when they differ.
+      std::string tip = reason.size() > i ? reason[i] : std::string();
+      if (j != i && reason.size() > j && reason[j] != reason[i]) tip += " ... " + reason[j];
+      svg.rect(a, f.top, b - a, f.height,
+               fmt::format("class=\"{}\" fill=\"{}\" fill-opacity=\"{}\" stroke=\"none\"", cls, fill, opacity), tip);
+      svg.text(0.5 * (a + b), f.top + 30, label[i], "middle",
+               fmt::format("class=\"{}-label\" font-size=\"11\" fill=\"{}\"", cls, ink));
       i = j + 1;
     }
+  };
+  bands(c.gap_label, c.gap_reason, "no-answer", "#d62728", "0.08", "#a33");
+  bands(c.partial_label, c.partial_reason, "overshoot-band", "#f2c230", "0.25", "#7a5c00");
   svg.raw(fmt::format("<g class=\"{}\">\n", cls));
   for (const auto& s : series) {
     // Gaps where a point has no answer: one polyline per run of answered points.
@@ -102,7 +111,8 @@ std::string sweep_svg(const SweepChart& c, std::string_view id) {
   const double lt = legend_height(width, top), lb = legend_height(width, bottom);
   const Frame f1{left, 34.0 + lt + 6.0, width, panel_h};
   const Frame f2{left, f1.bottom() + 24.0 + lb + 6.0, width, panel_h};
-  const double H = f2.bottom() + 48.0;
+  const bool partial = std::any_of(c.partial_label.begin(), c.partial_label.end(), [](const auto& l) { return !l.empty(); });
+  const double H = f2.bottom() + (partial ? 80.0 : 48.0);
   Svg svg(W, H, "plot sweep-chart", id, "impact point and plate forces against " + c.x_label);
   svg.title("Impact point and plate forces against " + c.x_label);
   if (c.x.empty()) return svg.finish();
@@ -110,6 +120,14 @@ std::string sweep_svg(const SweepChart& c, std::string_view id) {
   panel(svg, f1, c, c.impact_mm, "y on the plate (mm)", "impact-series", false, false);
   svg.legend(left, f1.bottom() + 24.0, width, bottom);
   panel(svg, f2, c, c.forces_N, "force on the plate (N)", "force-series", true, true);
+  if (partial) {
+    svg.text(left, f2.bottom() + 54.0,
+             "Banded in yellow: part of the stream passes over the plate's top edge or falls past its foot;", "start",
+             "class=\"overshoot-note\" font-size=\"11\" fill=\"#7a5c00\"");
+    svg.text(left, f2.bottom() + 68.0,
+             "the forces drawn are the whole stream's, the plate takes less there (the band's tooltip says how much).",
+             "start", "class=\"overshoot-note\" font-size=\"11\" fill=\"#7a5c00\"");
+  }
   return svg.finish();
 }
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <cmath>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -105,9 +106,29 @@ BOOST_AUTO_TEST_CASE(points_without_an_answer_are_rows_with_a_note) {
 // rows from there say how much passes over and what the plate takes (the share of Korzen's R_n), and
 // the mean pressure (of the caught part over the band left on the plate) moves without a jump.
 BOOST_AUTO_TEST_CASE(a_stream_partly_over_the_top_edge_is_noted_with_the_caught_force) {
+  const auto dir = fresh_dir("estimate-overshoot");
   const auto s = run_chutelab("estimate --mass-flow 35 --plate-distance 450 --plate-top 115 "
-                              "--sweep belt_speed=4.7:5.2:0.05 --format csv");
+                              "--sweep belt_speed=4.7:5.2:0.05 --format csv --svg '" + (dir / "sweep.svg").string() + "'");
   BOOST_TEST_REQUIRE(s.exit_code == 0, s.err);
+  // The chart bands those points in both panels, one run each (4.85 to 5.2 m/s, from half a step
+  // before the first), with what the plate takes there as the band's tooltip, and says what the band means.
+  const std::string chart = read_file(dir / "sweep.svg");
+  BOOST_TEST(count(chart, "class=\"overshoot-band\"") == 2, chart);
+  BOOST_TEST(count(chart, ">part over the top edge</text>") == 2);
+  BOOST_TEST(chart.find("<title>belt_speed_mps = 4.85: ") != std::string::npos);
+  BOOST_TEST(chart.find("Banded in yellow: part of the stream passes over the plate&#39;s top edge") != std::string::npos);
+  {
+    std::smatch scale, band;
+    BOOST_TEST_REQUIRE(std::regex_search(chart, scale, std::regex("class=\"x-scale\" data-d0=\"([^\"]+)\" data-d1=\"([^\"]+)\" "
+                                                                  "data-r0=\"([^\"]+)\" data-r1=\"([^\"]+)\"")));
+    BOOST_TEST_REQUIRE(std::regex_search(chart, band, std::regex("<rect x=\"([^\"]+)\" y=\"[^\"]+\" width=\"([^\"]+)\"[^>]*"
+                                                                 "class=\"overshoot-band\"")));
+    const double d0 = std::stod(scale[1]), d1 = std::stod(scale[2]), r0 = std::stod(scale[3]), r1 = std::stod(scale[4]);
+    auto at = [&](double v) { return r0 + (v - d0) / (d1 - d0) * (r1 - r0); };
+    // Drawn at 0.1 px: the band's left edge at 4.825 m/s and its right one at the frame's edge or 5.225 m/s.
+    BOOST_TEST(std::stod(band[1]) == at(4.825), boost::test_tools::tolerance(0.1 / at(4.825)));
+    BOOST_TEST(std::stod(band[1]) + std::stod(band[2]) == std::min(at(5.225), r1), boost::test_tools::tolerance(0.2 / r1));
+  }
   const auto lines = split(s.out, '\n');
   const auto header = split(lines[0], ',');
   auto col = [&](const std::string& n) {
@@ -186,6 +207,7 @@ BOOST_AUTO_TEST_CASE(svg_draws_the_design_and_the_sweep_chart) {
   const std::string chart = read_file(dir / "sweep.svg");
   BOOST_TEST(chart.find("class=\"plot sweep-chart\"") != std::string::npos);
   BOOST_TEST(count(chart, "class=\"series\"") == 7);  // four impact lines, three forces
+  BOOST_TEST(count(chart, "overshoot") == 0);          // the plate takes the whole stream throughout
   // An input is never overwritten, and a failed run leaves no file behind.
   const std::string setup = std::string(CHUTELAB_SOURCE_DIR) + "/datasets/grima2010/setup.toml";
   const auto over = run_chutelab("estimate --setup '" + setup + "' --belt-speed 4 --mass-flow 35 --plate-distance 450 --svg '" + setup + "'");
