@@ -154,6 +154,7 @@ Table rms_change_table(const Context& c, const validation::ValidationResult& bef
 Table effects_table(const std::vector<EffectDescription>& effects);
 // The physical effects (and pairs) or, with `records`, the recorded inputs tried as candidates.
 Table ranking_table(const validation::DiagnosisResult& d, bool records = false);
+Table statistics_table(const validation::DiagnosisResult& d);
 Table model_notes_table(const Context& c, const validation::ValidationResult& r, std::string_view id);
 
 // vv20_table.cpp: the parts of u_val per prediction, and which parts were not estimated.

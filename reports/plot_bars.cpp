@@ -202,55 +202,56 @@ std::string rms_bar_chart(const Context& c, const validation::ValidationResult& 
   return svg.finish();
 }
 
+// In engineering words: each candidate's bar is the share of the misfit beyond noise it explains
+// when fitted (0-100 %), in colour where it is beyond chance; the statistics behind it (chi-square,
+// BIC, p) are the report's "How sure is this?" table, not this chart's.
 std::string ranking_chart(const validation::DiagnosisResult& d, std::string_view id) {
   std::vector<const validation::EffectFit*> fits;
   for (const auto& f : d.singles) fits.push_back(&f);
   for (const auto& f : d.pairs) fits.push_back(&f);
   if (fits.empty()) return {};
   const auto* best = d.best();
-  double top = 0.0, label_w = 0.0;
-  for (const auto* f : fits) {
-    top = std::max(top, f->chi2_before - f->chi2_after);
-    label_w = std::max(label_w, text_width(f->label(), 12));
-  }
-  std::vector<LegendEntry> legend{{LegendEntry::Kind::box, "significant", "#0072B2"},
-                                  {LegendEntry::Kind::box, "not significant", "#c4c4c4"}};
+  double label_w = 0.0;
+  for (const auto* f : fits) label_w = std::max(label_w, text_width(f->label(), 12));
+  std::vector<LegendEntry> legend{{LegendEntry::Kind::box, "beyond chance", "#0072B2"},
+                                  {LegendEntry::Kind::box, "could be chance", "#c4c4c4"}};
   if (best) legend.push_back({LegendEntry::Kind::box, "recommended", "#D55E00"});
   const double W = 960.0, row = 24.0;
   const double lh = legend_height(W - 40, legend);
   const double left = std::min(340.0, label_w + 24.0);
-  const double value_room = 250.0;  // right of the longest bar: the value text
+  const double value_room = 190.0;  // right of the longest bar: the value text
   Frame f{left, 30.0 + lh + 10.0, W - left - value_room, row * static_cast<double>(fits.size())};
   const double H = f.bottom() + 44.0;
   Svg svg(W, H, "plot ranking-chart", id, "Ranking of candidate effects");
-  svg.title("How much of the misfit each candidate effect removes");
+  svg.title("How much of the misfit each candidate effect explains");
   svg.legend(f.left, 28.0, W - 40, legend);
-  const Ticks xt = nice_ticks(0.0, std::max(top, 1.0), 6);
-  const Scale x{0.0, xt.hi, f.left, f.right()};
-  for (double v : xt.values) {
+  const Scale x{0.0, 100.0, f.left, f.right()};
+  for (double v = 0.0; v <= 100.0; v += 20.0) {
     svg.line(x(v), f.top, x(v), f.bottom(), "stroke=\"#e2e2e2\"");
     svg.line(x(v), f.bottom(), x(v), f.bottom() + 4, "stroke=\"#444\"");
-    svg.text(x(v), f.bottom() + 16, xt.label(v), "middle", "font-size=\"11\" fill=\"#333\"");
+    svg.text(x(v), f.bottom() + 16, fmt::format("{:.0f}", v), "middle", "font-size=\"11\" fill=\"#333\"");
   }
   svg.line(f.left, f.top, f.left, f.bottom(), "stroke=\"#444\"");
   svg.line(f.left, f.bottom(), f.right(), f.bottom(), "stroke=\"#444\"");
   for (std::size_t i = 0; i < fits.size(); ++i) {
     const auto* fit = fits[i];
     const double yy = f.top + row * static_cast<double>(i);
-    const double v = std::max(0.0, fit->chi2_before - fit->chi2_after);
+    const double pct = 100.0 * std::clamp(fit->explained_fraction, 0.0, 1.0);
     const std::string colour = fit == best ? "#D55E00" : fit->significant ? "#0072B2" : "#c4c4c4";
-    const std::string tip = fmt::format("{}: Δχ² = {:.1f}, explained {:.0f} %, ΔBIC {:.1f}, p (adjusted) {:.2g}",
-                                        fit->label(), v, 100.0 * fit->explained_fraction, fit->delta_bic,
-                                        fit->p_adjusted);
+    const std::string verdict = fit == best ? "recommended" : fit->significant ? "beyond chance" : "could be chance";
+    std::vector<std::string> est;
+    for (std::size_t k = 0; k < fit->estimate.size() && k < fit->parameters.size(); ++k)
+      est.push_back(fmt::format("{} = {:.3g}", fit->parameters[k], fit->estimate[k]));
+    const std::string tip = fmt::format("{}: explains {:.0f} % of the misfit beyond noise ({}){}", fit->label(), pct,
+                                        verdict, est.empty() ? "" : fmt::format(", at {}", fmt::join(est, ", ")));
     svg.text(f.left - 8, yy + row / 2 + 4, shorten(fit->label(), 52), "end",
              fit->significant ? "font-size=\"12\" font-weight=\"600\"" : "font-size=\"12\" fill=\"#555\"");
-    svg.rect(f.left, yy + 4, x(v) - f.left, row - 8, fmt::format("fill=\"{}\" class=\"bar\"", colour), tip);
-    svg.text(x(v) + 6, yy + row / 2 + 4,
-             fmt::format("{:.1f} ({:.0f} % explained)", v, 100.0 * fit->explained_fraction), "start",
+    svg.rect(f.left, yy + 4, x(pct) - f.left, row - 8, fmt::format("fill=\"{}\" class=\"bar\"", colour), tip);
+    svg.text(x(pct) + 6, yy + row / 2 + 4, fmt::format("{:.0f} % explained", pct), "start",
              "font-size=\"11\" fill=\"#333\"");
   }
-  svg.text(f.left + f.width / 2, f.bottom() + 34, "Δχ², fall of chi-square with the effect fitted (–)", "middle",
-           "class=\"axis-label\" font-size=\"12\"");
+  svg.text(f.left + f.width / 2, f.bottom() + 34, "share of the misfit beyond noise explained with the effect fitted (%)",
+           "middle", "class=\"axis-label\" font-size=\"12\"");
   return svg.finish();
 }
 

@@ -234,10 +234,9 @@ void per_variant(Doc& d, const std::vector<Variant>& vs, const std::string& sect
 void what_is_missing(Doc& d, const Context& c) {
   const auto& g = *c.in.diagnosis;
   d.h(2, "missing", "What is missing: the candidate effects");
-  d.p(fmt::format("Models: {}; {} data with uncertainties ({} without, left out of χ²); χ² of the models as "
-                  "they are: {:.1f} (chance of this much from noise alone: p = {:.2g}).",
-                  fmt::join(g.models, ", "), g.n_data, g.n_without_uncertainty, g.chi2_baseline,
-                  g.baseline_p_value));
+  d.p(fmt::format("Models: {}; {} measured values with uncertainties ({} without, which the diagnosis cannot weigh "
+                  "and leaves out).",
+                  fmt::join(g.models, ", "), g.n_data, g.n_without_uncertainty));
   if (!g.findings.empty()) {
     d.h(3, "missing-data", "What the data say about themselves");
     d.list(g.findings);
@@ -245,8 +244,8 @@ void what_is_missing(Doc& d, const Context& c) {
   d.h(3, "missing-ranking", "Which effect explains the misfit");
   const std::string chart = ranking_chart(g, "ranking-chart");
   if (!chart.empty())
-    d.figure(chart, "Fall of χ² when each candidate effect is fitted; significant candidates in colour, the "
-                    "recommended one highlighted.");
+    d.figure(chart, "Share of the misfit beyond noise that each candidate effect explains when fitted; those "
+                    "beyond chance in colour, the recommended one highlighted.");
   d.table(ranking_table(g));
   if (std::any_of(g.singles.begin(), g.singles.end(), [](const auto& f) { return f.is_record(); })) {
     d.h(3, "missing-record", "Is the rig's record wrong?");
@@ -308,6 +307,17 @@ void what_is_missing(Doc& d, const Context& c) {
     d.h(3, "missing-caveats", "Caveats");
     d.list(g.caveats);
   }
+}
+
+// The statistics behind the diagnosis, closed until opened: the verdict and the ranking above speak
+// in the quantities' units and %; this is for whoever asks how sure they are.
+void how_sure(Doc& d, const validation::DiagnosisResult& g) {
+  d.folded_h2("how-sure", "How sure is this?");
+  if (!g.evidence.empty()) d.p(g.evidence);
+  d.p(fmt::format("χ² of the models as they are: {:.1f} for {} data (chance of this much from noise alone: "
+                  "p = {:.2g}).",
+                  g.chi2_baseline, g.n_data, g.baseline_p_value));
+  d.table(statistics_table(g));
 }
 
 // Every value outside its tolerance, with the limit in the quantity's unit.
@@ -448,6 +458,7 @@ Doc assemble(const ReportInput& in) {
   // ---- What an added effect changes, then the diagnosis's evidence ----
   before_after(d, c, in.diagnosis && in.diagnosis->best() ? in.diagnosis->best()->effects : std::vector<std::string>{});
   if (in.diagnosis) what_is_missing(d, c);
+  if (in.diagnosis) how_sure(d, *in.diagnosis);
 
   // ---- The detail ----
   d.h(2, "summary", "Summary per model and quantity");

@@ -367,14 +367,17 @@ Table effects_table(const std::vector<EffectDescription>& effects) {
   return t;
 }
 
+// The candidates in engineering words: what each one's fitted strength is, how much of the misfit it
+// explains and whether that is beyond chance; the statistics are statistics_table's.
 Table ranking_table(const validation::DiagnosisResult& d, bool records) {
   Table t;
   t.id = records ? "ranking-records" : "ranking";
   t.caption = records ? "Recorded inputs as candidates, ranked among all candidates" : "Candidate effects, ranked";
-  t.columns = {{"", "rank", "", false},        {"", records ? "recorded input" : "effect", "", true},
+  t.columns = {{"", "rank", "", false},
+               {"", records ? "recorded input" : "effect", "", true},
                {"", records ? "error (truth − record) ± sd" : "estimate ± sd", "", true},
-               {"", "χ² after", "", false},    {"", "Δχ²", "", false},    {"", "ΔBIC", "", false},
-               {"", "explained (%)", "", false}, {"", "p (adjusted)", "", false}, {"", "significant", "", false}};
+               {"", "misfit explained (%)", "", false},
+               {"", "beyond chance", "", false}};
   if (records) t.columns.insert(t.columns.begin() + 3, {"", "plausible errors off", "", false});
   auto add = [&](const validation::EffectFit& f, std::string rank) {
     std::vector<std::string> est, off;
@@ -390,11 +393,7 @@ Table ranking_table(const validation::DiagnosisResult& d, bool records) {
     std::vector<Cell> row = {{std::move(rank)},
                              {f.label(), "", false, "", true, f.significant},
                              {fmt::format("{}", fmt::join(est, "; ")), "", false, "", true},
-                             {fixed(f.chi2_after, 1)},
-                             {fixed(f.chi2_before - f.chi2_after, 1)},
-                             {fixed(f.delta_bic, 1)},
                              {fixed(100.0 * f.explained_fraction, 0)},
-                             {fmt::format("{:.2g}", f.p_adjusted)},
                              {f.significant ? "yes" : "no", "", false, "", false, f.significant}};
     if (records) row.insert(row.begin() + 3, Cell{fmt::format("{}", fmt::join(off, "; "))});
     t.rows.push_back(std::move(row));
@@ -403,12 +402,44 @@ Table ranking_table(const validation::DiagnosisResult& d, bool records) {
     if (f.is_record() == records) add(f, fmt::format("{}", f.rank));
   for (const auto& f : d.pairs)
     if (f.is_record() == records) add(f, "pair");
-  t.notes.push_back("Δχ² = χ² of the models as they are minus χ² with the effect fitted; ΔBIC < 0 favours "
-                    "the effect; significance after correcting for the number of candidates tried.");
+  t.notes.push_back("Misfit explained: the share of the models' misfit beyond what the stated uncertainties allow "
+                    "that the candidate removes when fitted. Beyond chance: more than noise would explain, allowing "
+                    "for the number of candidates tried (the statistics: \"How sure is this?\").");
   if (records)
+    t.notes.push_back("Plausible errors off: the fitted error over the input's plausible error, which is the dataset's "
+                      "stated uncertainty of that input or, where none is stated, the input's default.");
+  return t;
+}
+
+// The statistics behind the ranking, for whoever asks how sure it is: every candidate's chi-square
+// after the fit, its fall, delta BIC and the adjusted p.
+Table statistics_table(const validation::DiagnosisResult& d) {
+  Table t;
+  t.id = "ranking-statistics";
+  t.caption = "The ranking's statistics";
+  t.columns = {{"", "rank", "", false},     {"", "candidate", "", true}, {"", "χ² after", "", false},
+               {"", "Δχ²", "", false},      {"", "ΔBIC", "", false},     {"", "explained (%)", "", false},
+               {"", "p (adjusted)", "", false}, {"", "significant", "", false}};
+  bool any_record = false;
+  auto add = [&](const validation::EffectFit& f, std::string rank) {
+    any_record = any_record || f.is_record();
+    t.rows.push_back({{std::move(rank)},
+                      {f.label(), "", false, "", true, f.significant},
+                      {fixed(f.chi2_after, 1)},
+                      {fixed(f.chi2_before - f.chi2_after, 1)},
+                      {fixed(f.delta_bic, 1)},
+                      {fixed(100.0 * f.explained_fraction, 0)},
+                      {fmt::format("{:.2g}", f.p_adjusted)},
+                      {f.significant ? "yes" : "no", "", false, "", false, f.significant}});
+  };
+  for (const auto& f : d.singles) add(f, fmt::format("{}", f.rank));
+  for (const auto& f : d.pairs) add(f, "pair");
+  t.notes.push_back("Δχ² = χ² of the models as they are minus χ² with the candidate fitted; explained = Δχ² over the "
+                    "misfit beyond noise (χ² as they are minus the smaller of χ² after and its degrees of freedom); "
+                    "ΔBIC < 0 favours the candidate; significance after correcting for the number of candidates tried.");
+  if (any_record)
     t.notes.push_back("A recorded input's error is charged its implausibility, 2 ln(1 + (error / plausible error)²), "
-                      "in ΔBIC and in the test: the plausible error is the dataset's stated uncertainty of that input, "
-                      "or the input's documented default (effects/<input>.cpp).");
+                      "in ΔBIC and in the test.");
   return t;
 }
 

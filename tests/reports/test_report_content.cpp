@@ -293,6 +293,95 @@ BOOST_FIXTURE_TEST_CASE(before_after_and_diagnosis_sections, Fixture) {
   BOOST_TEST(md.find("only the library's effects were tried") != std::string::npos);
 }
 
+// Engineering words first: the ranking chart and table speak in % of the misfit explained and "beyond
+// chance"; chi-square, BIC and p are under "How sure is this?", a section report.html shows closed,
+// and never on the first screen (the header, the verdict and the first chart's section).
+BOOST_FIXTURE_TEST_CASE(statistics_only_under_how_sure_is_this, Fixture) {
+  ValidationResult after = small_result(d, false);
+  after.effects = {"air_drag=0.5 (fitted)"};
+  validation::DiagnosisResult g;
+  g.dataset = "hand-made";
+  g.models = {"m1", "m2"};
+  g.n_data = 20;
+  g.chi2_baseline = 100;
+  g.baseline_p_value = 3e-12;
+  g.verdict = "Missing effect: air_drag.";
+  g.evidence = "chi^2 100.0 -> 20.0 for 20 data, delta BIC -77.0, p (adjusted) 1e-15";
+  g.failure_summary = {"m1 over-predicts R_s by 7.2 % (2.45 N)"};
+  validation::EffectFit f;
+  f.effects = {"air_drag"};
+  f.parameters = {"drag_coefficient"};
+  f.estimate = {0.5};
+  f.uncertainty = {0.03};
+  f.chi2_before = 100;
+  f.chi2_after = 20;
+  f.delta_bic = -77;
+  f.explained_fraction = 0.875;
+  f.p_adjusted = 1e-15;
+  f.significant = true;
+  f.rank = 1;
+  g.singles.push_back(f);
+  validation::EffectFit weak = f;
+  weak.effects = {"belt_slip"};
+  weak.parameters = {"slip_fraction"};
+  weak.chi2_after = 96;
+  weak.delta_bic = 1;
+  weak.explained_fraction = 0.04;
+  weak.p_adjusted = 0.6;
+  weak.significant = false;
+  weak.rank = 2;
+  g.singles.push_back(weak);
+  g.any_significant = true;
+  auto i = in();
+  i.with_effects = &after;
+  i.diagnosis = &g;
+  i.effects.push_back({"air_drag", "drag_coefficient", "", "", "", 0.5, 0.03, true});
+  const auto html = reports::report_html(i);
+  const auto md = reports::report_markdown(i);
+  auto between = [](const std::string& s, const std::string& a, const std::string& b) {
+    const auto from = s.find(a);
+    BOOST_TEST_REQUIRE(from != std::string::npos, a);
+    const auto to = s.find(b, from);
+    BOOST_TEST_REQUIRE(to != std::string::npos, b);
+    return s.substr(from, to - from);
+  };
+  const std::vector<std::string> statistics = {"χ²", "chi^2", "BIC", " p = ", "p (adjusted", "Bonferroni"};
+  // The chart: bars in % (87.5 % of the misfit; 4 %), an axis in words, tooltips without statistics.
+  const std::string chart = between(html, "id=\"ranking-chart\"", "</svg>");
+  BOOST_TEST(chart.find(">share of the misfit beyond noise explained with the effect fitted (%)</text>") != std::string::npos);
+  BOOST_TEST(chart.find(">88 % explained</text>") != std::string::npos, chart);
+  BOOST_TEST(chart.find(">4 % explained</text>") != std::string::npos);
+  BOOST_TEST(chart.find(">100</text>") != std::string::npos);  // the axis ends at the whole misfit
+  BOOST_TEST(chart.find("could be chance") != std::string::npos);
+  // The bar's length is its share of the axis (0 to 100 %).
+  {
+    std::smatch m;
+    const std::regex bar("<rect x=\"([0-9.]+)\" y=\"[0-9.]+\" width=\"([0-9.]+)\"[^>]*class=\"bar\"");
+    BOOST_TEST_REQUIRE(std::regex_search(chart, m, bar));
+    const double w_best = std::stod(m[2]);
+    const std::string rest = m.suffix();
+    BOOST_TEST_REQUIRE(std::regex_search(rest, m, bar));
+    BOOST_TEST(std::stod(m[2]) / w_best == 0.04 / 0.875, boost::test_tools::tolerance(0.05));
+  }
+  // Neither the chart, nor the ranking section, nor the first screen carries a statistic.
+  const std::string section = between(md, "## What is missing", "## How sure is this?");
+  const std::string first_screen = md.substr(0, md.find("\n## ", md.find("## Where the models fail") + 1));
+  for (const auto& w : statistics) {
+    BOOST_TEST(chart.find(w) == std::string::npos, w);
+    BOOST_TEST(section.find(w) == std::string::npos, w << " in:\n" << section);
+    BOOST_TEST(first_screen.find(w) == std::string::npos, w << " in:\n" << first_screen);
+  }
+  BOOST_TEST(section.find("| misfit explained (%) | beyond chance |") != std::string::npos, section);
+  // Under "How sure is this?": the evidence, the baseline's chi-square and every candidate's statistics.
+  const std::string sure = md.substr(md.find("## How sure is this?"));
+  BOOST_TEST(sure.find(g.evidence) != std::string::npos);
+  BOOST_TEST(sure.find("χ² of the models as they are: 100.0 for 20 data") != std::string::npos, sure);
+  BOOST_TEST(sure.find("| χ² after | Δχ² | ΔBIC |") != std::string::npos, sure);
+  BOOST_TEST(sure.find("| 80.0 | -77.0 |") != std::string::npos, sure);
+  BOOST_TEST(html.find("<section id=\"how-sure\">\n<details class=\"fold\"><summary><h2>How sure is this?</h2>") !=
+             std::string::npos);
+}
+
 // Every chart of report.html is also an SVG file that report.md links, "figures/NN-ID.svg": one file a
 // figure (a pair's two columns two files, linked side by side), each standalone (XML prolog, SVG
 // namespace, its caption as title), no "(see report.html)" left, the same bytes for the same inputs.
