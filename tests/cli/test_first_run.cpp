@@ -2,7 +2,10 @@
 // (one effect the models lack, air drag; datasets/hidden-effect/HOW-MADE.md) shows the whole loop in
 // a few lines, in the quantities' units, and ends with the report's path. A wrongly chosen effect
 // gets a note that the data point elsewhere.
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
+#include <fmt/format.h>
+#include <set>
 #include <cstdlib>
 #include <filesystem>
 #include <sys/wait.h>
@@ -139,6 +142,28 @@ BOOST_AUTO_TEST_CASE(the_main_job_shows_the_loop_in_a_few_lines) {
   // A unit is never cut from its number at a line break.
   for (const auto& l : lines)
     for (const char* unit : {"% ", "mm ", "m/s", "t/h"}) BOOST_TEST(!l.starts_with(unit), l);
+  // Engineering words: no statistic on the console, nor on the report's first screen (its header,
+  // verdict and first chart's section); they are under "How sure is this?".
+  const std::string first_screen = md.substr(0, md.find("\n## ", md.find("## Where the models fail") + 1));
+  for (const char* w : {"chi^2", "χ²", "BIC", " p = ", "p (adjusted", "Bonferroni"}) {
+    BOOST_TEST(r.out.find(w) == std::string::npos, w);
+    BOOST_TEST(first_screen.find(w) == std::string::npos, w << " in:\n" << first_screen);
+  }
+  BOOST_TEST(md.find("## How sure is this?") != std::string::npos);
+}
+
+// diagnose's verdict, its first paragraph on the console, is in the quantities' words too; the
+// statistics follow under "How sure is this?" in diagnosis.md.
+BOOST_AUTO_TEST_CASE(the_diagnosis_verdict_carries_no_statistics) {
+  const fs::path out = fresh_dir("first-run-diagnose");
+  const auto r = run_chutelab("diagnose --dataset '" + kHidden + "' --quiet --out '" + out.string() + "'");
+  BOOST_REQUIRE(r.exit_code == 0);
+  const std::string verdict = r.out.substr(0, r.out.find("\n\n") == std::string::npos ? r.out.find("\n- ")
+                                                                                    : r.out.find("\n\n"));
+  BOOST_TEST(verdict.find("air_drag") != std::string::npos, verdict);
+  for (const char* w : {"chi^2", "χ²", "BIC", " p = ", "p (adjusted", "Bonferroni"})
+    BOOST_TEST(verdict.find(w) == std::string::npos, w << " in: " << verdict);
+  BOOST_TEST(read_file(out / "diagnosis.md").find("How sure is this? chi^2 ") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(an_effect_the_data_do_not_point_to_gets_a_note) {
@@ -157,33 +182,95 @@ BOOST_AUTO_TEST_CASE(an_effect_the_data_do_not_point_to_gets_a_note) {
   run_hints(r.out.substr(r.out.find("In short: ")), 1);
 }
 
-// Every command the console and the report print as a hint runs as printed: the estimate with the
-// effect added, the diagnosis of a plain validation, the fit of a candidate the report names.
-BOOST_AUTO_TEST_CASE(every_printed_hint_runs_as_printed) {
-  const fs::path root = fresh_dir("first-run-paste");
-  const auto added = run_chutelab("validate --dataset '" + kHidden + "' --add-missing --quiet --out '" +
-                                  (root / "a").string() + "'");
-  BOOST_REQUIRE(added.exit_code == 0);
-  run_hints(added.out.substr(added.out.find("In short: ")), 1);
-  const auto plain = run_chutelab("validate --dataset '" + kHidden + "' --quiet --out '" + (root / "p").string() + "'");
-  BOOST_REQUIRE(plain.exit_code == 0);
-  BOOST_TEST(flat(plain.out).find("To see which physical effect would explain it: chutelab validate") !=
-             std::string::npos, plain.out);
-  run_hints(plain.out.substr(plain.out.find("In short: ")), 1);
-  // The report's hint for a candidate not applied (validate --diagnose), read as report.md renders it.
-  const auto diagnosed = run_chutelab("validate --dataset '" + kHidden + "' --diagnose --quiet --out '" +
-                                      (root / "d").string() + "'");
-  BOOST_REQUIRE(diagnosed.exit_code == 0);
-  const std::string md = read_file(root / "d" / "report.md");
-  const auto at = md.find("To see the models with it: chutelab validate");
-  BOOST_REQUIRE_MESSAGE(at != std::string::npos, md.substr(0, 4000));
-  std::string rendered;
-  for (std::size_t k = at; k < md.size() && md[k] != '\n'; ++k) {
-    if (md[k] == '\\' && k + 1 < md.size()) ++k;  // a Markdown escape shows the character after it
-    rendered += md[k];
+// Every hint runs as printed, on every bundled dataset with measurements and on a rig that fails
+// its acceptance: from a plain validation (whose hint is the diagnosis, whose hints are the fits and
+// --add-missing, whose hint is the estimate), a diagnosis and the failing rig's runs, every
+// "chutelab COMMAND ..." printed on the console, in report.md or in diagnosis.md is pasted into a
+// shell as printed and followed in turn. Each exits 0 or 1 (a verdict), never 2 (a hint that is
+// wrong) nor anything else.
+BOOST_AUTO_TEST_CASE(every_hint_on_the_bundled_datasets_and_a_failing_rig_runs) {
+  const fs::path cwd = fresh_dir("hints-everywhere");
+  write_file(cwd / "acceptance.toml",
+             "[korzen]\nnormal_force_N = { relative = 0.04 }\n[booth-cema]\nimpact_velocity_mps = { relative = 0.04 }\n");
+  // The command names, as --help lists them: "chutelab's library" or "chutelab cannot" are prose.
+  std::set<std::string> commands;
+  {
+    const auto help = run_chutelab("--help");
+    const auto from = help.out.find("Subcommands:");
+    BOOST_REQUIRE(from != std::string::npos);
+    for (const auto& l : lines_of(help.out.substr(from)))
+      if (l.starts_with("  ") && l.size() > 2 && l[2] != ' ') commands.insert(l.substr(2, l.find(' ', 2) - 2));
+    BOOST_REQUIRE(commands.count("validate") && commands.count("estimate") && commands.count("diagnose"));
   }
-  BOOST_TEST(rendered.find("--effect air_drag=fit") != std::string::npos, rendered);
-  run_hints(rendered, 1);
+  // Markdown as it reads: escapes, code spans' backticks and emphasis marks gone.
+  auto rendered = [](const std::string& md) {
+    std::string o;
+    for (std::size_t k = 0; k < md.size(); ++k) {
+      if (md[k] == '\\' && k + 1 < md.size()) ++k;
+      else if (md[k] == '`' || md[k] == '*') continue;
+      o += md[k];
+    }
+    return o;
+  };
+  // The folder after --out (relative to cwd), where the run's report.md and diagnosis.md are.
+  auto out_of = [&](const std::string& cmd) {
+    std::istringstream in(cmd);
+    std::vector<std::string> w;
+    for (std::string x; in >> x;) w.push_back(x);
+    for (std::size_t i = 0; i + 1 < w.size(); ++i)
+      if (w[i] == "--out") {
+        std::string p = w[i + 1];
+        if (p.size() > 1 && p.front() == '\'' && p.back() == '\'') p = p.substr(1, p.size() - 2);
+        return fs::path(p).is_absolute() ? fs::path(p) : cwd / p;
+      }
+    return fs::path();
+  };
+  const std::string data = std::string(CHUTELAB_SOURCE_DIR) + "/datasets/";
+  std::vector<std::string> queue;
+  for (const char* d : {"hidden-effect", "hidden-effect-logs", "liggghts-rig", "liggghts-flowbias"})
+    queue.push_back(fmt::format("validate --dataset {0}{1} --out seed/{1}", data, d));
+  queue.push_back("diagnose --dataset " + data + "liggghts-rig --out seed/diagnose");
+  const std::string failing = "validate --dataset " + data + "hidden-effect --tolerances acceptance.toml";
+  queue.push_back(failing + " --junit seed/fail.xml --out seed/fail");
+  queue.push_back(failing + " --add-missing --junit seed/fail-add.xml --out seed/fail-add");
+  queue.push_back(failing + " --effect belt_slip=fit --junit seed/fail-slip.xml --out seed/fail-slip");
+  const std::size_t seeds = queue.size();
+  std::set<std::string> seen(queue.begin(), queue.end());
+  std::vector<std::string> hints;
+  for (std::size_t q = 0; q < queue.size() && q < 60; ++q) {
+    const std::string cmd = queue[q];
+    BOOST_TEST_CONTEXT((q < seeds ? "run: chutelab " : "hint: chutelab ") << cmd) {
+      // As a user pastes it: a shell in that folder, `chutelab` being the binary under test.
+      const std::string line = "cd '" + cwd.string() + "' && '" + std::string(CHUTELAB_BINARY) + "' " + cmd +
+                               " >out.txt 2>err.txt </dev/null";
+      const int status = std::system(line.c_str());
+      const std::string out = read_file(cwd / "out.txt"), err = read_file(cwd / "err.txt");
+      BOOST_TEST((WIFEXITED(status) && (WEXITSTATUS(status) == 0 || WEXITSTATUS(status) == 1)), err);
+      std::string text = out + "\n" + err;
+      const fs::path dir = out_of(cmd);
+      for (const char* f : {"report.md", "diagnosis.md"})
+        if (!dir.empty() && fs::exists(dir / f)) text += "\n" + rendered(read_file(dir / f));
+      for (const auto& h : printed_commands(text)) {
+        // A command name alone is a title ("chutelab estimate: condition V5-44 ..."), not a hint.
+        if (h.find(' ') == std::string::npos || !commands.count(h.substr(0, h.find(' ')))) continue;
+        if (seen.insert(h).second) {
+          queue.push_back(h);
+          hints.push_back(h);
+        }
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("hints run: " << hints.size() << "\n  " << fmt::format("{}", fmt::join(hints, "\n  ")));
+  // The chain reaches each kind of hint: the diagnosis, --add-missing, a candidate's fit, the estimate.
+  auto any = [&](const std::string& part) {
+    return std::any_of(hints.begin(), hints.end(), [&](const auto& h) { return h.find(part) != std::string::npos; });
+  };
+  BOOST_TEST(any(" --diagnose "));
+  BOOST_TEST(any(" --add-missing "));
+  BOOST_TEST(any("=fit "));
+  BOOST_TEST(any("estimate --dataset "));
+  BOOST_TEST(hints.size() >= 10u);
+  BOOST_TEST(queue.size() < 60u);  // the chain ends: no hint prints a new command forever
 }
 
 BOOST_AUTO_TEST_SUITE_END()
