@@ -336,6 +336,27 @@ def test_acceptance_judges_the_models_as_delivered(tmp_path):
     assert e.value.field == "accept_with_effects" and "air_drag=fit" in str(e.value)
 
 
+def test_python_says_keywords_not_the_command_lines_flags():
+    # Every text the package gives back (verdicts, notes, caveats, the brief, a refusal) names another
+    # input as it is typed here (effects=, dataset=), never as the command line's flag (--effect).
+    flag = re.compile(r"(?<![\w-])--[a-z]")
+    v = chutelab.validate(HIDDEN, effects={"air_drag": "fit"}, diagnose=True)
+    d = chutelab.diagnose(RIG, pairs=False)
+    texts = [repr(v), v.brief, *v.notes, *v.acceptance_problems]
+    for g in (v.diagnosis, d):
+        texts += [repr(g), g.verdict, *g.caveats, *g.failure_summary, *g.discriminators,
+                  *g.indistinguishable]
+    assert len(texts) > 10
+    for t in texts:
+        assert not flag.search(t), t
+    for call, said in ((lambda: chutelab.validate(HIDDEN, accept_with_effects=True), "effects="),
+                       (lambda: chutelab.estimate(condition="V3-41", setup=os.path.join(RIG, "setup.toml")),
+                        "dataset=")):
+        with pytest.raises(chutelab.InputError) as e:
+            call()
+        assert said in str(e.value) and not flag.search(str(e.value)), str(e.value)
+
+
 def test_the_dem_through_python_gives_the_command_lines_numbers(tmp_path):
     # One condition at quick quality (~4 s of CPU), in a cache of its own; the command line then
     # finds the run in that cache and must report the same predictions.
