@@ -11,7 +11,8 @@ are not rooms and are skipped.
 A room that includes a room its row does not list, or a row listing a room that is never included,
 is a problem: the table says what the code does, not what it once did. So is an arrow to a room
 listed below the including room's row: the table is in the order of the layers, and no arrow runs
-back up.
+back up. And so is a top folder of sources without a row (tests/, bench/, scripts/, datasets/ and
+docs/ are no rooms), whose arrows would otherwise go unseen.
 
 Usage: check_layers.py REPO_ROOT. Prints one line per problem and exits 1 when there is any.
        check_layers.py --self-test REPO_ROOT: plants an arrow missing from the table and one the
@@ -24,6 +25,8 @@ import sys
 
 EXTERNAL = {"fmt", "Eigen", "OpenMP", "GSL", "CLI11", "pybind11", "Boost", "MPI", "toml++", "TBB"}
 SOURCE_EXT = (".h", ".hpp", ".cpp", ".inc")
+# Top folders whose sources are no part of the library's layers: they may include any room.
+NOT_ROOMS = {"tests", "bench", "scripts", "datasets", "docs"}
 
 
 def section7(design):
@@ -95,6 +98,10 @@ def problems(root, section):
                 out.append(f"§7, row {name}: '{word}' is neither a room of the table nor a known outside library")
             else:
                 listed.add((name, word))
+    # A folder of sources without a row would go unchecked: every top folder of code is a room.
+    tops = {f.split("/", 1)[0] for f in repository_sources(root) if "/" in f}
+    for top in sorted(tops - NOT_ROOMS - {folder.split("/")[0] for folder in rooms.values()}):
+        out.append(f"{top}/ holds sources, but §7's table has no row for it")
     found = code_arrows(root, rooms)
     order = {name: i for i, (name, _, _, _) in enumerate(rows)}
     for (a, b), where in sorted(found.items()):
