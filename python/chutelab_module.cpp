@@ -54,7 +54,7 @@ namespace {
 // key, an option the package does not have) are shown as they are.
 std::string python_keyword(std::string_view key) {
   static const std::pair<std::string_view, std::string_view> renamed[] = {
-      {"effect", "effects"}, {"dem.quality", "dem_quality"}, {"dem.threads", "dem_threads"},
+      {"effect", "effects"}, {"input", "inputs"}, {"dem.quality", "dem_quality"}, {"dem.threads", "dem_threads"},
       {"dem.cache", "dem_cache"}, {"dem.no_cache", "no_dem_cache"}};
   for (const auto& [k, word] : renamed)
     if (k == key) return std::string(word);
@@ -67,7 +67,8 @@ std::string python_mention(std::string_view key) {
                                               "seed", "noise_scale", "out", "alpha", "dem.quality", "dem.threads",
                                               "dem.cache", "dem.no_cache", "self_check", "belt_speed", "mass_flow",
                                               "plate_distance", "plate_top", "stream_thickness", "pulley_diameter",
-                                              "belt_width", "bulk_density", "diagnose"};
+                                              "belt_width", "bulk_density", "diagnose", "input",
+                                              "accept_with_effects"};
   for (const auto k : keywords)
     if (k == key) return python_keyword(key) + "=";
   return std::string(key);

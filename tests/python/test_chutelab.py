@@ -435,6 +435,8 @@ def test_diagnose_takes_corrected_records_as_the_command_line_does(tmp_path):
     with pytest.raises(chutelab.InputError) as e:
         chutelab.diagnose(HIDDEN, inputs={"air_drag": 0.5})
     assert "input" in str(e.value) and "physical effect" in str(e.value)
+    # ... said in this package's words: the keyword inputs=, not the command line's --input.
+    assert e.value.field == "inputs" and "inputs= takes a recorded input" in str(e.value), str(e.value)
 
 
 def test_diagnose_self_check_gives_rates_for_the_design():
