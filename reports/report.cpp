@@ -228,6 +228,21 @@ void per_variant(Doc& d, const std::vector<Variant>& vs, const std::string& sect
   d.pair(section + "-pair", std::move(before), std::move(after), vs[1].title);
 }
 
+// A sentence of the diagnosis that speaks statistics (chi-square, BIC, a p-value, the test and its
+// correction): it belongs under "How sure is this?", not among the findings in the quantities' words.
+bool statistical(const std::string& sentence) {
+  for (const char* w : {"chi^2", "χ²", "BIC", " p = ", "p (adjusted", "Bonferroni", "likelihood-ratio"})
+    if (sentence.find(w) != std::string::npos) return true;
+  return false;
+}
+
+std::vector<std::string> in_words(const std::vector<std::string>& sentences, bool statistics) {
+  std::vector<std::string> out;
+  for (const auto& s : sentences)
+    if (statistical(s) == statistics) out.push_back(s);
+  return out;
+}
+
 // The diagnosis's evidence: which candidate explains the misfit, how well, and what else could.
 // Its verdict heads the report and its "where the models fail" sentences sit under the residual
 // chart; this section holds the rest of DiagnosisResult.
@@ -237,9 +252,9 @@ void what_is_missing(Doc& d, const Context& c) {
   d.p(fmt::format("Models: {}; {} measured values with uncertainties ({} without, which the diagnosis cannot weigh "
                   "and leaves out).",
                   fmt::join(g.models, ", "), g.n_data, g.n_without_uncertainty));
-  if (!g.findings.empty()) {
+  if (const auto findings = in_words(g.findings, false); !findings.empty()) {
     d.h(3, "missing-data", "What the data say about themselves");
-    d.list(g.findings);
+    d.list(findings);
   }
   d.h(3, "missing-ranking", "Which effect explains the misfit");
   const std::string chart = ranking_chart(g, "ranking-chart");
@@ -303,9 +318,9 @@ void what_is_missing(Doc& d, const Context& c) {
       d.p(fmt::format("About as good as the best: {}.", fmt::join(g.indistinguishable, ", ")));
     d.list(g.discriminators);
   }
-  if (!g.caveats.empty()) {
+  if (const auto caveats = in_words(g.caveats, false); !caveats.empty()) {
     d.h(3, "missing-caveats", "Caveats");
-    d.list(g.caveats);
+    d.list(caveats);
   }
 }
 
@@ -318,6 +333,10 @@ void how_sure(Doc& d, const validation::DiagnosisResult& g) {
                   "p = {:.2g}).",
                   g.chi2_baseline, g.n_data, g.baseline_p_value));
   d.table(statistics_table(g));
+  // The method and the data's scatter as the statistics see them.
+  std::vector<std::string> method = in_words(g.findings, true);
+  for (auto& c : in_words(g.caveats, true)) method.push_back(std::move(c));
+  d.list(method);
 }
 
 // Every value outside its tolerance, with the limit in the quantity's unit.

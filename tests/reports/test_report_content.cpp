@@ -308,6 +308,11 @@ BOOST_FIXTURE_TEST_CASE(statistics_only_under_how_sure_is_this, Fixture) {
   g.verdict = "Missing effect: air_drag.";
   g.evidence = "chi^2 100.0 -> 20.0 for 20 data, delta BIC -77.0, p (adjusted) 1e-15";
   g.failure_summary = {"m1 over-predicts R_s by 7.2 % (2.45 N)"};
+  // Findings and caveats in words stay with the ranking; those in statistics move under "How sure is this?".
+  g.findings = {"Check this reading: V2-26 R_s reads 2.335, 94 % above the best explanation.",
+                "The readings scatter 2.4 times more than stated (chi^2/dof over 46 degrees of freedom, p = 5e-34)."};
+  g.caveats = {"Only the effects in chutelab's library were tried.",
+               "Significance: likelihood-ratio test per candidate, Bonferroni-corrected over 19 candidates."};
   validation::EffectFit f;
   f.effects = {"air_drag"};
   f.parameters = {"drag_coefficient"};
@@ -378,6 +383,10 @@ BOOST_FIXTURE_TEST_CASE(statistics_only_under_how_sure_is_this, Fixture) {
   BOOST_TEST(sure.find("χ² of the models as they are: 100.0 for 20 data") != std::string::npos, sure);
   BOOST_TEST(sure.find("| χ² after | Δχ² | ΔBIC |") != std::string::npos, sure);
   BOOST_TEST(sure.find("| 80.0 | -77.0 |") != std::string::npos, sure);
+  BOOST_TEST(section.find("Check this reading: V2-26 R\\_s reads 2.335") != std::string::npos, section);
+  BOOST_TEST(section.find("Only the effects in chutelab's library were tried.") != std::string::npos, section);
+  BOOST_TEST(sure.find("The readings scatter 2.4 times more than stated") != std::string::npos, sure);
+  BOOST_TEST(sure.find("Significance: likelihood-ratio test per candidate") != std::string::npos, sure);
   BOOST_TEST(html.find("<section id=\"how-sure\">\n<details class=\"fold\"><summary><h2>How sure is this?</h2>") !=
              std::string::npos);
 }
