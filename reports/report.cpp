@@ -329,8 +329,10 @@ void what_is_missing(Doc& d, const Context& c) {
 void how_sure(Doc& d, const validation::DiagnosisResult& g) {
   d.folded_h2("how-sure", "How sure is this?");
   if (!g.evidence.empty()) d.p(g.evidence);
-  d.p(fmt::format("χ² of the models as they are: {:.1f} for {} data (chance of this much from noise alone: "
-                  "p = {:.2g}).",
+  d.p(fmt::format("With the uncertainties as stated, χ² of the models as they are is {:.1f} for {} data (chance of "
+                  "this much from noise alone: p = {:.2g}); the figures above and in the table are under the "
+                  "diagnosis's noise model (the uncertainties widened, and model discrepancies added, where the "
+                  "data ask for it).",
                   g.chi2_baseline, g.n_data, g.baseline_p_value));
   d.table(statistics_table(g));
   // The method and the data's scatter as the statistics see them.

@@ -380,7 +380,7 @@ BOOST_FIXTURE_TEST_CASE(statistics_only_under_how_sure_is_this, Fixture) {
   // Under "How sure is this?": the evidence, the baseline's chi-square and every candidate's statistics.
   const std::string sure = md.substr(md.find("## How sure is this?"));
   BOOST_TEST(sure.find(g.evidence) != std::string::npos);
-  BOOST_TEST(sure.find("χ² of the models as they are: 100.0 for 20 data") != std::string::npos, sure);
+  BOOST_TEST(sure.find("With the uncertainties as stated, χ² of the models as they are is 100.0 for 20 data") != std::string::npos, sure);
   BOOST_TEST(sure.find("| χ² after | Δχ² | ΔBIC |") != std::string::npos, sure);
   BOOST_TEST(sure.find("| 80.0 | -77.0 |") != std::string::npos, sure);
   BOOST_TEST(section.find("Check this reading: V2-26 R\\_s reads 2.335") != std::string::npos, section);
