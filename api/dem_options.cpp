@@ -6,22 +6,29 @@
 
 namespace chutelab::api {
 namespace {
-// As the [dem] table and dem/station/settings.cpp's check() allow them.
-constexpr options::NumberRule kPlateCells{"dem.plate_cells", 0.0, 400.0, false, false, true, ""};
+// The [dem] settings validate and diagnose set (dem/station/settings.h dem_fields()), by their options.
+constexpr std::string_view kQuality = "quality", kPlateCells = "plate_cells", kSteadyOn = "steady_on";
+
+// A value of one of them, checked by its field; refused as this command's option `key`.
+void check_setting(std::string_view option, const dem::station::DemValue& v, const char* key) {
+  if (const auto p = dem::station::dem_option(option)->problem(v)) throw InputError("", 0, key, *p);
+}
+dem::station::DemValue word(const std::string& w) {
+  dem::station::DemValue v;
+  v.word = w;
+  return v;
+}
 constexpr options::NumberRule kLiggghtsRanks{"dem.liggghts_ranks", 1.0, 1e6, false, false, true, ""};
 constexpr options::NumberRule kSimulatedTime{"dem.liggghts_time", 0.0, 100.0, false, false, false, "s"};
 }  // namespace
 
 void check(const DemOptions& o) {
   namespace st = dem::station;
-  if (!o.quality.empty() && !st::parse_quality(o.quality))
-    throw InputError("", 0, "dem.quality", "must be quick, standard or paper");
-  if (!o.signature_quality.empty() && !st::parse_quality(o.signature_quality))
-    throw InputError("", 0, "dem.signature_quality", "must be quick, standard or paper");
-  if (!o.steady_on.empty() && o.steady_on != "normal" && o.steady_on != "all")
-    throw InputError("", 0, "dem.steady_on", "must be normal (R_n, the LIGGGHTS rig's rule) or all (R_n, R_s and the moment)");
+  if (!o.quality.empty()) check_setting(kQuality, word(o.quality), "dem.quality");
+  if (!o.signature_quality.empty()) check_setting(kQuality, word(o.signature_quality), "dem.signature_quality");
+  if (!o.steady_on.empty()) check_setting(kSteadyOn, word(o.steady_on), "dem.steady_on");
   if (o.threads) options::rules::dem_threads.check(static_cast<double>(*o.threads));
-  if (o.plate_cells) kPlateCells.check(static_cast<double>(*o.plate_cells));
+  if (o.plate_cells) st::dem_option(kPlateCells)->rule("dem.plate_cells").check(static_cast<double>(*o.plate_cells));
   kLiggghtsRanks.check(static_cast<double>(o.liggghts_ranks));
   kSimulatedTime.check(o.liggghts_time);
   if (o.cache_only && o.no_cache)
@@ -39,10 +46,11 @@ validation::ModelSettings model_settings(const DemOptions& o, const std::filesys
   validation::DemModelConfig dc;
   dc.setup_file = setup ? setup->shown : (dataset_dir / "setup.toml").string();
   if (setup) dc.setup_text = setup->text;
-  if (!o.quality.empty()) dc.overrides.quality = dem::station::parse_quality(o.quality);
+  // validate's --dem-quality, --dem-plate-cells and --dem-steady-on set the [dem] settings of those options.
+  if (!o.quality.empty()) dc.overrides.set(kQuality, o.quality);
   dc.overrides.threads = o.threads;
-  dc.overrides.plate_cells = o.plate_cells;
-  if (!o.steady_on.empty()) dc.overrides.steady_all_loads = o.steady_on == "all";
+  if (o.plate_cells) dc.overrides.set_whole(kPlateCells, static_cast<std::uint64_t>(*o.plate_cells));
+  if (!o.steady_on.empty()) dc.overrides.set(kSteadyOn, o.steady_on);
   dc.use_cache = !o.no_cache;
   dc.cache_only = o.cache_only;
   dc.ladder = o.ladder;

@@ -6,6 +6,7 @@
 #include "api/record_check.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
+#include "core/option_check.h"
 #include "core/message.h"
 #include "core/rig_needs.h"
 #include "dem/station/cache.h"
@@ -20,37 +21,6 @@ namespace chutelab::api {
 namespace st = dem::station;
 namespace {
 
-st::SettingsOverrides overrides_of(const SimulateOptions& o) {
-  st::SettingsOverrides ov;
-  if (!o.quality.empty()) {
-    ov.quality = st::parse_quality(o.quality);
-    if (!ov.quality) throw InputError("", 0, "quality", "must be quick, standard or paper");
-  }
-  if (!o.contact.empty()) {
-    ov.contact = st::parse_contact(o.contact);
-    if (!ov.contact) throw InputError("", 0, "contact", "must be one of " + dem::NormalLaw::keys());
-  }
-  if (!o.shape.empty()) {
-    ov.shape = st::parse_shape(o.shape);
-    if (!ov.shape) throw InputError("", 0, "shape", "must be sphere or clump");
-  }
-  if (o.diameter_mm) ov.particle_diameter = *o.diameter_mm * 1e-3;
-  ov.shear_modulus_scale = o.shear_modulus_scale;
-  ov.dt_fraction = o.dt_fraction;
-  ov.threads = o.threads;
-  ov.seed = o.seed;
-  ov.max_time = o.max_time;
-  if (!o.steady_on.empty()) {
-    if (o.steady_on != "normal" && o.steady_on != "all")
-      throw InputError("", 0, "steady_on", "must be \"normal\" (R_n, the LIGGGHTS rig's rule) or \"all\" (R_n, R_s and the moment)");
-    ov.steady_all_loads = o.steady_on == "all";
-  }
-  ov.plate_cells = o.plate_cells;
-  if (o.map_cell_mm) ov.map_cell = *o.map_cell_mm * 1e-3;
-  for (const auto& [k, v] : o.wear) ov.wear.emplace_back(k, v);
-  return ov;
-}
-
 std::vector<effects::EffectSetting> effect_settings(const SimulateOptions& o) {
   std::vector<effects::EffectSetting> out;
   for (const auto& e : o.effects) out.push_back(effects::parse_setting(e, false));
@@ -61,7 +31,12 @@ std::vector<effects::EffectSetting> effect_settings(const SimulateOptions& o) {
 
 void check(const SimulateOptions& o) {
   if (o.condition.empty()) throw InputError("", 0, "condition", "is empty; give a row of conditions.csv");
-  overrides_of(o);
+  o.settings.check();
+  if (o.settings.threads) options::rules::threads.check(static_cast<double>(*o.settings.threads));
+  for (const auto& [k, v] : o.settings.wear) {
+    st::WearInputs probe;
+    st::set_wear(probe, k, v, "", 0, "wear." + k);
+  }
   effect_settings(o);
   if (o.vtk_every && !(*o.vtk_every > 0.0)) throw InputError("", 0, "vtk_every", "must be > 0 s");
   if (o.vtk_every && !o.prepare_output) throw InputError("", 0, "vtk_every", "needs " + mention("out") + " DIR");
@@ -85,7 +60,7 @@ SimulateResult simulate(const SimulateOptions& o) {
   check_records(o.effects, {}, {res.station});
 
   const st::DemTable table = st::read_dem_table(setup_file.string());
-  res.settings = st::resolve(table, overrides_of(o));
+  res.settings = st::resolve(table, o.settings);
   const auto fx = validation::dem_effect_inputs(res.station, effects::instantiate(effect_settings(o)));
   res.effect_notes = fx.notes;
 
@@ -118,7 +93,8 @@ SimulateResult simulate(const SimulateOptions& o) {
   } catch (const dem::SimulationError& e) {
     // Not the fault of one option the user may not have set: said as the run's, with the usual remedy.
     throw InputError("", 0, "simulate",
-                     fmt::format("the DEM run failed: {} (a smaller {} may help)", e.what(), mention("dt_fraction")));
+                     fmt::format("the DEM run failed: {} (a smaller {} may help)", e.what(),
+                                 mention(st::field_name(&st::RunSettings::dt_fraction))));
   }
   // Same key as the harness model: a later validate of "dem" with these settings is instant.
   if (o.store_in_cache)

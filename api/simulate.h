@@ -15,19 +15,15 @@
 
 namespace chutelab::api {
 
-// Errors name the keys "dataset", "condition", "quality", "contact", "shape", "diameter_mm",
-// "shear_modulus_scale", "dt_fraction", "threads", "seed", "max_time", "steady_on", "plate_cells",
-// "map_cell_mm", "wear.KEY", "effect", "vtk_every".
+// Errors name the keys "dataset", "condition", the options of the [dem] settings
+// (dem::station::dem_fields()), "threads", "wear.KEY", "effect", "vtk_every".
 struct SimulateOptions {
   std::filesystem::path dataset;           // "" = default_dataset
   std::filesystem::path default_dataset;
   std::string condition;                   // a row of conditions.csv
-  std::string quality, contact, shape;     // "" = the dataset's [dem] table, else the preset's
-  std::string steady_on;                   // "normal" | "all" ([dem] steady_on); "" = the dataset's
-  std::optional<double> diameter_mm, shear_modulus_scale, dt_fraction, max_time, map_cell_mm;
-  std::optional<int> threads, plate_cells;
-  std::optional<std::uint64_t> seed;
-  std::map<std::string, double> wear;      // dem::station::wear_fields() key -> value
+  // What beats the dataset's [dem] table (and the preset): settings by their options, threads, wear
+  // inputs (dem::station::wear_fields() keys).
+  dem::station::SettingsOverrides settings;
   std::vector<std::string> effects;        // NAME=VALUE (those with a DEM counterpart act)
   // Interval of the particle series (s) in the folder prepare_output returns (vtk/); unset: `every`
   // below when there is a folder.

@@ -84,13 +84,12 @@ int run_sensitivity(const SensitivityCli& o) {
   check_entries(out, {"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity.svg", "sensitivity-timing.csv"});
   const Station* station = &validation::condition_row(stations, o.condition, dir / "conditions.csv", "--condition");
   st::SettingsOverrides ov;
-  ov.quality = st::parse_quality(o.quality);
-  if (!ov.quality) throw InputError("", 0, "--quality", "must be quick, standard or paper");
+  ov.set("quality", o.quality).check();
   // One thread per run unless asked: on the shared 2-core machine a second OpenMP thread made runs
   // slower, not faster (bench/log/STATION.md), and results do not depend on it.
   ov.threads = o.threads.value_or(1);
   campaign::set_threads(resolve_jobs(o.jobs));
-  ov.seed = o.seed;
+  if (o.seed) ov.set_whole("seed", *o.seed);
   const st::DemTable table = st::read_dem_table(setup_file.string());
   const st::RunSettings base = st::resolve(table, ov);
   const double base_d = base.particle_diameter > 0.0 ? base.particle_diameter : station->material.particle_diameter;
@@ -104,7 +103,7 @@ int run_sensitivity(const SensitivityCli& o) {
   if (!o.sizes.empty()) {
     b.sizes.clear();
     for (double d : sizes) b.sizes.push_back(d * 1e-3);
-  } else if (*ov.quality == st::Quality::quick) {
+  } else if (base.quality == st::Quality::quick) {
     // Measured (bench/SENSITIVITY.md): one 5.6 mm run at quick settings costs 6.6 min of CPU, more
     // than the whole rest of the study, which must stay within ~10 min; left out by default.
     b.sizes = {9.0e-3, 13.6e-3};

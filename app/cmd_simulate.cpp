@@ -8,6 +8,7 @@
 #include "api/simulate.h"
 #include "app/commands.h"
 #include "app/dem_options.h"
+#include "app/flag_names.h"
 #include "app/option_checks.h"
 #include "core/input_error.h"
 #include "core/message.h"
@@ -25,14 +26,40 @@ constexpr double kSeriesEvery = 0.05;
 namespace st = dem::station;
 
 struct SimulateCli {
-  std::string dataset, condition, out, quality, contact, shape, steady_on;
-  std::optional<double> diameter_mm, shear_modulus_scale, dt_fraction, max_time, vtk_every, map_cell_mm;
-  std::optional<int> threads, plate_cells;
-  std::optional<std::uint64_t> seed;
-  std::map<std::string, double> wear;  // wear_fields() key -> value given on the command line
+  std::string dataset, condition, out;
+  std::optional<double> vtk_every;
+  st::SettingsOverrides settings;  // the [dem] settings' flags, --threads and the wear inputs' flags
   std::vector<std::string> effects;
   bool no_cache = false;
 };
+
+// The flag of one [dem] setting: its option's flag (flag_for), its help and unit from the table, its
+// range as the rule of the value typed; it sets the setting in `into`.
+void add_setting_flag(CLI::App& cmd, const st::DemField& f, st::SettingsOverrides& into) {
+  const std::string option(f.option);
+  std::string help = fmt::format("{}{}", f.help, f.unit.empty() ? "" : ", " + std::string(f.unit));
+  if (!f.zero_means.empty()) help += fmt::format(" (0: {})", f.zero_means);
+  if (f.kind == st::DemKind::word) help += ": " + f.range_text();
+  help += fmt::format("; [dem] {}", f.key);
+  if (f.kind == st::DemKind::word) {
+    cmd.add_option_function<std::string>(flag_for(option), [&into, option](const std::string& w) { into.set(option, w); }, help)
+        ->check(CLI::Validator(
+            [&f](std::string& w) -> std::string {
+              st::DemValue v;
+              v.word = w;
+              const auto p = f.problem(v);
+              return p ? *p : std::string();
+            },
+            "", "dem-setting"));
+  } else if (f.kind == st::DemKind::whole) {
+    with_rule(cmd.add_option_function<std::uint64_t>(flag_for(option),
+                                                      [&into, option](std::uint64_t v) { into.set_whole(option, v); }, help),
+              f.rule(""));
+  } else {
+    with_rule(cmd.add_option_function<double>(flag_for(option), [&into, option](double v) { into.set(option, v); }, help),
+              f.rule(""));
+  }
+}
 
 std::string row(const char* label, const st::Estimate& e, double scale, const char* unit, int digits) {
   if (!e.ok()) return fmt::format("  {:<34} {:>10}\n", label, "-");
@@ -46,19 +73,7 @@ int run_simulate(const SimulateCli& o) {
   opt.dataset = o.dataset;
   opt.default_dataset = default_dataset();
   opt.condition = o.condition;
-  opt.quality = o.quality;
-  opt.contact = o.contact;
-  opt.shape = o.shape;
-  opt.diameter_mm = o.diameter_mm;
-  opt.shear_modulus_scale = o.shear_modulus_scale;
-  opt.dt_fraction = o.dt_fraction;
-  opt.max_time = o.max_time;
-  opt.steady_on = o.steady_on;
-  opt.map_cell_mm = o.map_cell_mm;
-  opt.threads = o.threads;
-  opt.plate_cells = o.plate_cells;
-  opt.seed = o.seed;
-  opt.wear = o.wear;
+  opt.settings = o.settings;
   opt.effects = o.effects;
   opt.vtk_every = o.vtk_every;
   opt.default_vtk_every = kSeriesEvery;
@@ -138,27 +153,12 @@ void add_simulate(CLI::App& app, Action& action) {
   cmd->add_option("--dataset", o->dataset, "dataset folder (default: the bundled grima2010 rig)");
   cmd->add_option("--condition", o->condition, "condition (row of conditions.csv)")->required();
   add_quiet_option(*cmd);
-  cmd->add_option("--quality", o->quality, "quick (tests, first looks), standard (the dataset's particles), paper (5.6 mm)");
-  // The ranges of dem/station/settings.cpp's check(), so that a bad value is refused here, by the
-  // flag as typed, before the dataset is read.
-  with_rule(cmd->add_option("--diameter-mm", o->diameter_mm, "particle diameter (scale-up), mm"),
-            options::NumberRule{"", 0.0, 200.0, true, true, false, "mm"});
-  with_rule(cmd->add_option("--shear-modulus-scale", o->shear_modulus_scale, "factor on E and G of particles and walls"),
-            options::NumberRule{"", 0.0, 1000.0, true, false, false, ""});
-  with_rule(cmd->add_option("--dt-fraction", o->dt_fraction, "time step as a fraction of the Hertz collision time"),
-            options::NumberRule{"", 0.0, 0.5, true, false, false, ""});
-  cmd->add_option("--contact", o->contact, "contact law: one of " + dem::NormalLaw::keys());
-  cmd->add_option("--shape", o->shape, "sphere, or clump (the reference study's two-sphere pellet, Fig. 4c; --diameter-mm is its spheres')");
-  with_rule(cmd->add_option("--threads", o->threads, "OpenMP threads (results do not depend on it)"),
+  // One flag per [dem] setting with an option (dem/station/settings.h dem_fields()), checked here, by
+  // the flag as typed, before the dataset is read; it beats the dataset's [dem] table.
+  for (const auto& f : st::dem_fields())
+    if (!f.option.empty()) add_setting_flag(*cmd, f, o->settings);
+  with_rule(cmd->add_option("--threads", o->settings.threads, "OpenMP threads (results do not depend on it)"),
             options::rules::threads);
-  with_rule(cmd->add_option("--seed", o->seed, "seed of the particle feed"), options::rules::seed);
-  with_rule(cmd->add_option("--max-time", o->max_time, "simulated time limit, s (the run stops earlier when steady)"),
-            options::NumberRule{"", 0.0, 100.0, true, false, false, "s"});
-  cmd->add_option("--steady-on", o->steady_on,
-                  "the plate loads the steady window is judged on: normal (R_n, as the LIGGGHTS rig did; the "
-                  "default unless the dataset's [dem] steady_on says otherwise) or all (R_n, R_s and the moment: the "
-                  "build-up on the plate settles later, bench/WINDOW.md)")
-      ->check(CLI::IsMember({"normal", "all"}));
   cmd->add_option("--effect", o->effects, "physical effect NAME=VALUE (those with a DEM counterpart act)");
   cmd->add_option("--out", o->out, "output folder: CSV series, steady means, side view, VTK");
   with_rule(cmd->add_option("--vtk-every", o->vtk_every,
@@ -170,19 +170,11 @@ void add_simulate(CLI::App& app, Action& action) {
                                         kSeriesEvery)),
             options::NumberRule{"", 0.0, 100.0, true, false, false, "s"});
   cmd->add_flag("--no-cache", o->no_cache, "do not store the result in the DEM cache");
-  with_rule(cmd->add_option("--plate-cells", o->plate_cells,
-                            "rows of cells down the generated plate for the pressure and wear maps (0: two triangles)"),
-            options::NumberRule{"", 0.0, 400.0, false, false, true, ""});
-  with_rule(cmd->add_option("--map-cell-mm", o->map_cell_mm,
-                            "cell size of the plate's pressure and wear maps, mm (default 10; the contacts are binned "
-                            "on the face, the plate itself stays two triangles; 0: the coarse plate's own two "
-                            "triangles)"),
-            options::NumberRule{"", 0.0, 1000.0, false, false, false, "mm"});
   for (const auto& f : st::wear_fields()) {
     std::string flag = std::string("--") + f.key;
     for (auto& ch : flag) ch = ch == '_' ? '-' : ch;
     const std::string key = f.key;
-    cmd->add_option_function<double>(flag, [o, key](double v) { o->wear[key] = v; },
+    cmd->add_option_function<double>(flag, [o, key](double v) { o->settings.wear.emplace_back(key, v); },
                                      std::string(f.help) + " ([dem.wear] " + key + ")");
   }
   cmd->callback([o, &action] { action = [o] { return run_simulate(*o); }; });

@@ -28,8 +28,9 @@ int main(int argc, char** argv) {
       if (s.condition == argv[2]) station = &s;
     if (!station) throw InputError((dir / "conditions.csv").string(), 0, "CONDITION", "no such condition");
     st::SettingsOverrides ov;
-    ov.quality = st::parse_quality(argv[3]);
-    if (!ov.quality) throw InputError("", 0, "QUALITY", "must be quick, standard or paper");
+    const auto quality = st::parse_quality(argv[3]);
+    if (!quality) throw InputError("", 0, "QUALITY", "must be quick, standard or paper");
+    ov.set_quality(*quality);
     dem::liggghts::Options o;
     o.settings = st::resolve(st::read_dem_table((dir / "setup.toml").string()), ov);
     o.sim_time = std::stod(argv[4]);

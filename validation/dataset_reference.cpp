@@ -113,8 +113,20 @@ std::string dataset_reference_markdown() {
   o += "\n### [dem] and its tables\n\n";
   o += "Optional, read by the DEM only: quality, scaling, meshes, the feeder ([dem.md](dem.md)). "
        "`datasets/liggghts-rig` carries a `[dem.feed]` table describing *its* LIGGGHTS feeder: leave it out of "
-       "a copy for your own rig unless your rig is fed the same way. `[dem.wear]` holds the wear maps' "
-       "inputs:\n\n| key | meaning |\n|---|---|\n";
+       "a copy for your own rig unless your rig is fed the same way. A key left out keeps the value of the "
+       "quality's preset; `chutelab simulate`'s flag beats the table. `[dem.feed]`'s keys are shown as "
+       "`feed.KEY`:\n\n| key | unit | accepted | meaning | simulate's flag |\n|---|---|---|---|---|\n";
+  for (const auto& f : dem::station::dem_fields()) {
+    std::string flag;
+    if (!f.option.empty()) {
+      flag = "--" + std::string(f.option);
+      for (auto& ch : flag) ch = ch == '_' ? '-' : ch;
+    }
+    o += fmt::format("| `{}` | {} | {} | {} | {} |\n", f.key, f.unit.empty() ? "–" : std::string(f.unit),
+                     cell(f.range_text()), cell(f.help), code(flag));
+  }
+  o += "\n`[dem.stl]` replaces generated parts by meshes (`plate`, `belt`, `pulley`: a file name; `walls`: a list "
+       "of them). `[dem.wear]` holds the wear maps' inputs:\n\n| key | meaning |\n|---|---|\n";
   for (const auto& w : dem::station::wear_fields()) o += fmt::format("| `{}` | {} |\n", w.key, cell(w.help));
 
   // ---- conditions.csv ----

@@ -72,7 +72,7 @@ int probe(int argc, char** argv) {
   const chutelab::Station station = v::condition_row(stations, argv[2], dir / "conditions.csv", "condition");
   const st::DemTable table = st::read_dem_table((dir / "setup.toml").string());
   st::SettingsOverrides ov;
-  ov.quality = st::parse_quality(argv[3]);
+  if (const auto q = st::parse_quality(argv[3])) ov.set_quality(*q);
   ov.threads = std::stoi(argv[4]);
   const st::RunSettings settings = st::resolve(table, ov);
   // One state file per process: two probes side by side must not read each other's state.

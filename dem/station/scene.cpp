@@ -108,9 +108,9 @@ FeedBox lay_out_feed(const Station& st, const RunSettings& s, Scene& sc) {
   box.low = std::max(s.insert_low, 2.5 * d) + wing_rise;
   box.depth = std::max(s.insert_depth, 3.5 * d);
   if (s.insert_at_face && !(s.insert_speed_down > 0.0))
-    throw InputError("", 0, "dem.feed.insert_speed_down_mps", "insertion = \"face\" needs a downward insertion speed (> 0)");
+    throw InputError("", 0, field_name(&RunSettings::insert_speed_down), "insertion = \"face\" needs a downward insertion speed (> 0)");
   if (s.insert_at_face && s.particle_shape == ParticleShape::clump)
-    throw InputError("", 0, "dem.feed.insertion", "insertion = \"face\" feeds spheres only; use \"box\" for clumps");
+    throw InputError("", 0, field_name(&RunSettings::insert_at_face), "insertion = \"face\" feeds spheres only; use \"box\" for clumps");
   // Free fall of a particle inserted at the top of the box (or released at its face) onto the bare
   // belt: where the last inserted particles land, the relaxation must still act (feeder_relaxation.h).
   const double fall_h = s.insert_at_face ? box.low : box.low + box.depth, v0 = s.insert_speed_down;
@@ -124,7 +124,7 @@ FeedBox lay_out_feed(const Station& st, const RunSettings& s, Scene& sc) {
     sc.feed_s_end = sc.relax_s_end - s.relax_past - (s.relax_from_face ? 0.0 : vb * t_land);
   }
   if (sc.relax_s_end > 0.0)
-    throw InputError("", 0, "dem.feed.relax_past_mm", "the feeder relaxation would reach past the pulley");
+    throw InputError("", 0, field_name(&RunSettings::relax_past), "the feeder relaxation would reach past the pulley");
   sc.feed_s_begin = sc.feed_s_end - s.feed_length;
   sc.belt_start = sc.feed_s_begin - s.belt_upstream;
   if (std::isfinite(s.belt_start_x)) {

@@ -4,12 +4,14 @@
 // numerics. Precedence: preset(quality) < the dataset's optional [dem] table < command-line flags.
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/option_check.h"
 #include "dem/contact/normal_laws.h"
 #include "dem/wear/archard.h"
 #include "dem/wear/finnie.h"
@@ -172,34 +174,75 @@ RunSettings preset(Quality q);
 // The thread count a run uses: `threads` if > 0, else the automatic choice above.
 int effective_threads(int threads);
 
+// A value of one [dem] setting as given, in the setting's unit at the boundary: a number, a whole
+// number (exact: a seed has more digits than a double holds) or a word.
+struct DemValue {
+  double number = 0.0;
+  std::uint64_t whole = 0;
+  std::string word;
+};
+
+enum class DemKind { number, whole, word };
+
+// A word a [dem] setting accepts, and what it means (shown in its error message; "" = nothing to add).
+struct DemWord {
+  std::string word;
+  std::string meaning;
+};
+
+// One [dem] setting of setup.toml, declared once (dem_fields()): the reader of [dem], its
+// known-keys message, the overrides of the command line (simulate's flags) and of the library,
+// the range checks and the dataset reference page all come from this table.
+struct DemField {
+  std::string_view key;          // in [dem]; "feed.KEY" in [dem.feed]
+  std::string_view option;       // the override's neutral key (core/input_error.h; simulate's flag); "" = setup.toml only
+  DemKind kind;
+  std::string_view unit;         // at the boundary ("" = none)
+  double to_si;                  // boundary value * to_si = the RunSettings value (numbers)
+  double lo, hi;                 // range at the boundary (numbers, whole numbers)
+  bool lo_open, hi_open;
+  std::string_view zero_means;   // non-empty: 0 is accepted besides the range, and means this
+  std::string_view help;
+  std::function<std::vector<DemWord>()> words;           // DemKind::word: the accepted words
+  std::function<void(RunSettings&, const DemValue&)> set;  // numbers already in SI
+  double RunSettings::*member = nullptr;  // a plain number of RunSettings, which check() checks again
+  int RunSettings::*whole_member = nullptr;  // the same for a whole number
+  bool RunSettings::*flag_member = nullptr;  // the flag two words set
+  bool nan_unset = false;        // NaN in `member` means not given (nothing to check)
+  bool zero_in_settings = false; // 0 in `member` means the dataset's value (a preset's; no input)
+  std::string_view above = {};   // must lie above this key's value when both are given
+  std::string_view needs = {};   // is read only together with this key
+  bool selects_preset = false;   // the quality: picks the preset the rest goes on top of
+  bool kept = false;             // the user's choice at any quality (a cheaper signature run keeps it)
+  std::function<void(RunSettings&)> after_override = {};  // what an override also adjusts
+  // The range as an option's rule (core/option_check.h), naming the option `key`; with zero_means
+  // its lower end is 0 (problem() then refuses what lies between).
+  options::NumberRule rule(std::string_view key) const;
+  // Why `v` is refused, in words (no value: accepted).
+  std::optional<std::string> problem(const DemValue& v) const;
+  // The accepted values in words: "a finite number in (0, 0.5]", "\"quick\", \"standard\" or \"paper\"".
+  std::string range_text() const;
+};
+const std::vector<DemField>& dem_fields();
+// The field of [dem] key `key` (throws std::logic_error when there is none: a caller's mistake).
+const DemField& dem_field(std::string_view key);
+// How messages name the field of a plain number of RunSettings: its option, else "dem." + its key.
+std::string field_name(double RunSettings::*member);
+std::string field_name(bool RunSettings::*flag);
+// The field an override names by `option`; nullptr when none does.
+const DemField* dem_option(std::string_view option);
+
+// A [dem] setting as given: its field, its value and where it was given (0: not in a file).
+struct DemSetting {
+  const DemField* field = nullptr;
+  DemValue value;
+  long line = 0;
+};
+
 // Optional [dem] table of setup.toml (README "DEM"). Every key is optional.
 struct DemTable {
   std::string file;                          // setup.toml it came from ("" = none)
-  std::optional<Quality> quality;
-  std::optional<double> particle_diameter;   // m
-  std::optional<double> shear_modulus_scale;
-  std::optional<double> dt_fraction;
-  std::optional<ContactLaw> contact;
-  std::optional<ParticleShape> shape;
-  std::optional<std::uint64_t> seed;
-  std::optional<double> max_time;            // s
-  std::optional<double> min_window;          // s
-  std::optional<double> feed_length;         // m
-  std::optional<double> skin_fraction;       // Verlet skin / particle radius
-  std::optional<bool> rolling_lever_effective;  // rolling_lever = "effective" | "particle"
-  std::optional<bool> steady_all_loads;         // steady_on = "normal" | "all"
-  // [dem.feed]: the dataset's feeder (RunSettings' feed fields; README "DEM").
-  struct Feed {
-    std::optional<double> face_length, face_width, face_low, face_high, face_end, face_end_time;
-    std::optional<double> insert_speed_down, relax_rate, relax_past, belt_start_x;
-    std::optional<bool> relax_all, relax_from_face, insert_at_face;
-    bool any() const {
-      return face_length || face_width || face_low || face_high || face_end || face_end_time || insert_speed_down ||
-             relax_rate || relax_past || belt_start_x || relax_all || relax_from_face || insert_at_face;
-    }
-  } feed;
-  std::optional<int> plate_cells;
-  std::optional<double> map_cell;            // m
+  std::vector<DemSetting> settings;          // dem_fields() given, in the file's order
   std::vector<std::pair<std::string, double>> wear;  // [dem.wear] key -> value (checked)
   // STL meshes (mm, DESIGN.md frame) replacing generated parts; absolute paths after reading.
   std::optional<std::string> stl_plate, stl_belt, stl_pulley;
@@ -216,19 +259,23 @@ void apply(const DemTable& t, RunSettings& s);
 
 // What a command line (or a harness configuration) sets explicitly; wins over the [dem] table.
 struct SettingsOverrides {
-  std::optional<Quality> quality;
-  std::optional<double> particle_diameter;  // m
-  std::optional<double> shear_modulus_scale;
-  std::optional<double> dt_fraction;
-  std::optional<ContactLaw> contact;
-  std::optional<ParticleShape> shape;
-  std::optional<std::uint64_t> seed;
+  std::vector<DemSetting> settings;  // dem_fields() with an option, by it
   std::optional<int> threads;
-  std::optional<double> max_time;           // s
-  std::optional<bool> steady_all_loads;     // RunSettings::steady_all_loads
-  std::optional<int> plate_cells;
-  std::optional<double> map_cell;           // m
   std::vector<std::pair<std::string, double>> wear;  // wear_fields() key -> value
+  // Sets the setting whose option is `option` (a number in its unit at the boundary, a whole
+  // number, a word); a later value of the same option replaces an earlier one. An option no field
+  // has throws InputError naming it; the value is checked by check() (resolve calls it).
+  SettingsOverrides& set(std::string_view option, double number);
+  SettingsOverrides& set_whole(std::string_view option, std::uint64_t whole);
+  SettingsOverrides& set(std::string_view option, std::string word);
+  SettingsOverrides& set_quality(Quality q);
+  // The value set for `option`, if any.
+  const DemValue* find(std::string_view option) const;
+  // Throws InputError naming the option of the first value out of its field's range.
+  void check() const;
+  // The overrides of a run at quality `q` instead: the threads and the settings that are the
+  // user's at any quality (DemField::kept).
+  SettingsOverrides at_quality(Quality q) const;
 };
 
 // preset(quality) < [dem] table < overrides; the quality itself: overrides, then the table, then

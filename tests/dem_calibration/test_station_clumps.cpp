@@ -105,7 +105,7 @@ BOOST_AUTO_TEST_CASE(shape_is_in_the_cache_key_and_the_dem_table) {
   const RunSettings from_table = resolve(read_dem_table((d / "setup.toml").string()), {});
   BOOST_TEST((from_table.particle_shape == ParticleShape::clump));
   SettingsOverrides o;
-  o.shape = ParticleShape::sphere;
+  o.set("shape", "sphere");
   BOOST_TEST((resolve(read_dem_table((d / "setup.toml").string()), o).particle_shape == ParticleShape::sphere));
   std::ofstream(d / "bad.toml") << "name = \"x\"\n[dem]\nshape = \"cube\"\n";
   try {

@@ -281,7 +281,7 @@ BOOST_AUTO_TEST_CASE(cache_only_names_the_damaged_file) {
   const fs::path dir = fresh("model");
   const Station st = test::tiny_station();
   validation::DemModelConfig c;
-  c.overrides.quality = Quality::quick;
+  c.overrides.set_quality(Quality::quick);
   c.overrides.threads = 1;
   c.cache_dir = dir.string();
   c.cache_only = true;

@@ -36,9 +36,9 @@ std::vector<Station> four_stations() {
 
 DemModelConfig config(const std::string& cache, std::vector<Station> conditions, bool all) {
   DemModelConfig c;
-  c.overrides.quality = dem::station::Quality::quick;
+  c.overrides.set_quality(dem::station::Quality::quick);
   c.overrides.threads = 1;
-  c.overrides.max_time = 0.75;
+  c.overrides.set("max_time", 0.75);
   c.cache_dir = cache;
   c.ladder_conditions = std::move(conditions);
   c.ladder_all = all;

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
+
+#include <fmt/format.h>
 
 #include "core/input_error.h"
 #include "dem/contact/mixing.h"
@@ -199,7 +202,7 @@ BOOST_AUTO_TEST_CASE(steady_on_table_key) {
   BOOST_TEST(canonical(all).find("steady_on = all") != std::string::npos);
   BOOST_TEST(canonical(normal) == canonical(resolve(DemTable{}, SettingsOverrides{})));
   SettingsOverrides o;
-  o.steady_all_loads = false;
+  o.set("steady_on", "normal");
   BOOST_TEST(!resolve(read_dem_table((d / "all.toml").string()), o).steady_all_loads);
   check_table_refused(d / "bad.toml", "dem.steady_on", 3);
 }
@@ -256,14 +259,13 @@ BOOST_AUTO_TEST_CASE(dem_table_and_presets) {
   std::ofstream(d / "setup.toml") << "name = \"x\"\n[dem]\nquality = \"standard\"\ndt_fraction = 0.05\n"
                                      "particle_diameter_mm = 11.0\n";
   const DemTable t = read_dem_table((d / "setup.toml").string());
-  BOOST_TEST((t.quality == Quality::standard));
   SettingsOverrides o;
   RunSettings s = resolve(t, o);
   BOOST_TEST((s.quality == Quality::standard));
   BOOST_TEST(s.dt_fraction == 0.05);
   BOOST_TEST(s.particle_diameter == 0.011);
-  o.quality = Quality::quick;
-  o.particle_diameter = 0.02;
+  o.set_quality(Quality::quick);
+  o.set("diameter_mm", 20.0);
   s = resolve(t, o);
   BOOST_TEST((s.quality == Quality::quick));
   BOOST_TEST(s.particle_diameter == 0.02);
@@ -278,7 +280,7 @@ BOOST_AUTO_TEST_CASE(dem_table_and_presets) {
   std::ofstream(d / "bad3.toml") << "[dem.stl]\nplate = \"missing.stl\"\n";
   BOOST_CHECK_THROW(read_dem_table((d / "bad3.toml").string()), InputError);
   SettingsOverrides bad;
-  bad.dt_fraction = 2.0;
+  bad.set("dt_fraction", 2.0);
   BOOST_CHECK_THROW(resolve(DemTable{}, bad), InputError);
 }
 
@@ -541,4 +543,103 @@ BOOST_AUTO_TEST_CASE(troughed_belt_and_inclined_plate) {
   const StationResult r = run_station(st, o);
   BOOST_TEST(r.inserted > 0.1);
   BOOST_TEST(r.escaped == 0.0);
+}
+
+namespace {
+
+// A value each field accepts (its lowest, or within an open range), as TOML text and as given.
+std::pair<std::string, DemValue> accepted(const DemField& f) {
+  DemValue v;
+  if (f.kind == DemKind::word) {
+    v.word = f.words().back().word;
+    return {"\"" + v.word + "\"", v};
+  }
+  const double x = f.lo <= -1e300 ? 1.0 : !f.lo_open ? f.lo : f.hi < 1e300 ? 0.5 * (f.lo + f.hi) : f.lo + 0.25;
+  v.number = x;
+  v.whole = static_cast<std::uint64_t>(x);
+  return {f.kind == DemKind::whole ? std::to_string(v.whole) : fmt::format("{:.17g}", x), v};
+}
+
+// The TOML of one [dem] key (in its table) at line 3 of the file.
+std::string toml_of(const DemField& f, const std::string& value) {
+  const std::string key(f.key);
+  const auto dot = key.find('.');
+  if (dot == std::string::npos) return "name = \"x\"\n[dem]\n" + key + " = " + value + "\n";
+  return "name = \"x\"\n[dem." + key.substr(0, dot) + "]\n" + key.substr(dot + 1) + " = " + value + "\n";
+}
+
+}  // namespace
+
+// Each [dem] setting is declared once, in dem_fields(): every key there is read from setup.toml and
+// reaches RunSettings, an out-of-range value is refused naming the file, line and key, and every
+// option is accepted by the overrides; the known-keys message lists every key of its table.
+BOOST_AUTO_TEST_CASE(every_dem_field_is_read_checked_and_overridable) {
+  const fs::path d = temp_dir("fields");
+  std::set<std::string_view> options;
+  for (const DemField& f : dem_fields()) {
+    BOOST_TEST_CONTEXT(f.key) {
+      const auto [text, value] = accepted(f);
+      std::string toml = toml_of(f, text);
+      if (!f.needs.empty()) toml += std::string(dem_field(f.needs).key).substr(dem_field(f.needs).key.find('.') + 1) + " = 0\n";
+      std::ofstream(d / "ok.toml") << toml;
+      const DemTable t = read_dem_table((d / "ok.toml").string());
+      const auto at = std::find_if(t.settings.begin(), t.settings.end(), [&](const DemSetting& g) { return g.field == &f; });
+      BOOST_TEST_REQUIRE((at != t.settings.end()));
+      BOOST_TEST(at->line == 3);
+      RunSettings s = preset(Quality::standard);
+      apply(t, s);
+      if (f.member) BOOST_TEST((s.*f.member) == value.number * f.to_si);
+      if (f.whole_member) BOOST_TEST((s.*f.whole_member) == static_cast<int>(value.whole));
+      // Refused: a word not in the list, a number past an end of the range, a text for a number.
+      std::vector<std::string> bad = {f.kind == DemKind::word ? "\"no-such-word\"" : "\"text\""};
+      if (f.kind != DemKind::word && f.hi < 1e300) bad.push_back(fmt::format("{:.17g}", f.hi * 2 + 1));
+      if (f.kind == DemKind::number && f.lo > -1e300)
+        bad.push_back(fmt::format("{:.17g}", f.zero_means.empty() ? f.lo - 1 : 0.5 * f.lo));
+      for (const auto& b : bad) {
+        std::ofstream(d / "bad.toml") << toml_of(f, b);
+        check_table_refused(d / "bad.toml", "dem." + std::string(f.key), 3);
+      }
+      if (!f.option.empty()) {
+        BOOST_TEST(options.insert(f.option).second);  // one field an option
+        BOOST_TEST(dem_option(f.option) == &f);
+        SettingsOverrides o;
+        if (f.kind == DemKind::word) o.set(f.option, value.word);
+        else if (f.kind == DemKind::whole) o.set_whole(f.option, value.whole);
+        else o.set(f.option, value.number);
+        BOOST_CHECK_NO_THROW(o.check());
+        BOOST_TEST(o.find(f.option) != nullptr);
+      }
+    }
+  }
+  std::ofstream(d / "unknown.toml") << "[dem]\nno_such_key = 1\n";
+  try {
+    read_dem_table((d / "unknown.toml").string());
+    BOOST_FAIL("unknown key accepted");
+  } catch (const InputError& e) {
+    for (const DemField& f : dem_fields()) {
+      const std::string_view k = f.key.substr(0, f.key.find('.'));
+      BOOST_TEST(e.problem().find(k) != std::string::npos, k);
+    }
+  }
+}
+
+// The settings' share of the DEM cache key is the text it always was: cached runs keep their entries.
+BOOST_AUTO_TEST_CASE(canonical_text_of_the_default_settings_is_unchanged) {
+  const std::string standard =
+      "quality = standard\ncontact = hertz-mindlin\nseed = 1\nparticle_diameter = 0\nshear_modulus_scale = 1\n"
+      "dt_fraction = 0.10000000000000001\nrayleigh_fraction = 0.20000000000000001\nfeed_length = 0.40000000000000002\n"
+      "free_belt = 0.20000000000000001\nbelt_upstream = 0.025000000000000001\ninsert_low = 0.029999999999999999\n"
+      "insert_depth = 0.032000000000000001\ninsert_speed_down = 1\ninsert_interval = 0.0030000000000000001\n"
+      "relax_rate = 50\nrelax_past = 0.050000000000000003\nmin_time = 0.5\nmax_time = 1.3\nmin_window = 0.5\n"
+      "sample_interval = 0.0030000000000000001\nsnapshot_interval = 0.01\ndetect_block = 0.050000000000000003\n"
+      "mean_block = 0.10000000000000001\ndetect_tail = 0.40000000000000002\nskin_fraction = 1\n"
+      "momentum_plane_fraction = 0.5\n";
+  BOOST_TEST(canonical(resolve(DemTable{}, {}, Quality::standard)) == standard);
+  // An override of the time limit shortens the earliest stop and the window with it, as a [dem]
+  // max_time_s does not (both as they were).
+  SettingsOverrides o;
+  o.set("max_time", 0.3);
+  const RunSettings s = resolve(DemTable{}, o, Quality::standard);
+  BOOST_TEST(s.min_time == 0.3);
+  BOOST_TEST(s.min_window == 0.15);
 }

@@ -158,21 +158,15 @@ class DemModel final : public Model {
   // The settings a request runs at: the command line's, or for a signature at a cheaper quality
   // that quality's own preset (the dataset's table goes on top in resolve).
   st::SettingsOverrides overrides_for(const PredictRequest& request) const {
-    st::SettingsOverrides over = c_.overrides;
-    if (request.signature && c_.signature_quality) {
-      over = {};
-      over.quality = c_.signature_quality;
-      over.seed = c_.overrides.seed;
-      over.threads = c_.overrides.threads;
-      over.steady_all_loads = c_.overrides.steady_all_loads;  // the window's rule is the user's, at any quality
-    }
-    return over;
+    // The seed, the threads and the window's rule stay the user's at any quality (DemField::kept).
+    if (request.signature && c_.signature_quality) return c_.overrides.at_quality(*c_.signature_quality);
+    return c_.overrides;
   }
 
   ModelPrediction predict(const Station& station, const analytical::EffectList& effects,
                           const PredictRequest& request) const override {
     require_dem_keys(station, c_.setup_file.empty() ? std::string("setup.toml") : c_.setup_file);
-    const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file, c_.setup_text ? &*c_.setup_text : nullptr);
+    const st::DemTable& table = c_.dem_table();
     const st::RunSettings settings = st::resolve(table, overrides_for(request));
     const DemEffectInputs fx = dem_effect_inputs(station, effects);
     CacheOutcome how;
@@ -333,7 +327,7 @@ class DemModel final : public Model {
   std::vector<ModelJob> campaign_jobs(const Station& station, const analytical::EffectList& effects,
                                       const PredictRequest& request) const override {
     require_dem_keys(station, c_.setup_file.empty() ? std::string("setup.toml") : c_.setup_file);
-    const st::DemTable table = c_.setup_file.empty() ? st::DemTable{} : st::read_dem_table(c_.setup_file, c_.setup_text ? &*c_.setup_text : nullptr);
+    const st::DemTable& table = c_.dem_table();
     st::SettingsOverrides over = overrides_for(request);
     const st::RunSettings settings = st::resolve(table, over);
     const DemEffectInputs fx = dem_effect_inputs(station, effects);
@@ -708,6 +702,13 @@ ModelPrediction dem_station_prediction(const st::StationResult& r, const DemEffe
                                   "partly in the layer on the plate", r.impact_velocity_fast.value));
   for (const auto& n : fx.notes) p.notes.push_back(n);
   return p;
+}
+
+const st::DemTable& DemModelConfig::dem_table() const {
+  std::call_once(table_once->read, [this] {
+    if (!setup_file.empty()) table_once->table = st::read_dem_table(setup_file, setup_text ? &*setup_text : nullptr);
+  });
+  return table_once->table;
 }
 
 ModelPtr make_dem_model(const DemModelConfig& c) { return std::make_shared<DemModel>(c); }

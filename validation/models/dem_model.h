@@ -15,6 +15,8 @@
 // Effects are recognised by what they do, not by name: each is asked what it changes in a probe
 // of every analytical stage, so a new effect with a flight force, an operating-point change or a
 // holding stress at the belt is honoured by the DEM without code here.
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -26,10 +28,21 @@
 
 namespace chutelab::validation {
 
+// The dataset's [dem] table, read once, when a run first needs it.
+struct DemTableOnce {
+  std::once_flag read;
+  dem::station::DemTable table;
+};
+
 struct DemModelConfig {
   dem::station::SettingsOverrides overrides;  // e.g. --dem-quality; beats the dataset's [dem]
   std::string setup_file;    // the dataset's setup.toml, for its optional [dem] table
   std::optional<std::string> setup_text;  // its text as read with the dataset (else read from setup_file)
+  // Shared by the copies of this configuration (the "dem" and "liggghts" models of one dataset).
+  std::shared_ptr<DemTableOnce> table_once = std::make_shared<DemTableOnce>();
+  // The [dem] table of setup_file (empty without one), read at the first call; InputError as
+  // read_dem_table (a failed read is tried again by the next call).
+  const dem::station::DemTable& dem_table() const;
   bool use_cache = true;
   bool cache_only = false;   // a run missing from the cache is an error, not a run
   // Runs with effects continue the steady state of the same run without them (dem/station/run.h

@@ -33,7 +33,7 @@ class LiggghtsModel final : public Model {
     namespace fs = std::filesystem;
     const DemModelConfig& dc = c_.dem;
     require_dem_keys(station, dc.setup_file.empty() ? std::string("setup.toml") : dc.setup_file, "LIGGGHTS");
-    const st::DemTable table = dc.setup_file.empty() ? st::DemTable{} : st::read_dem_table(dc.setup_file, dc.setup_text ? &*dc.setup_text : nullptr);
+    const st::DemTable& table = dc.dem_table();
     lg::Options o;
     o.settings = st::resolve(table, dc.overrides);
     o.geometry = table;
