@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "../cli/cli_runner.h"
+#include "dem/station/settings.h"
 
 using namespace chutelab::test;
 namespace fs = std::filesystem;
@@ -42,6 +43,13 @@ BOOST_AUTO_TEST_CASE(simulate_help_lists_the_scaling_options) {
   for (const char* flag : {"--quality", "--diameter-mm", "--shear-modulus-scale", "--dt-fraction", "--contact",
                            "--threads", "--seed", "--out", "--vtk-every", "--dataset", "--condition"})
     BOOST_TEST(r.out.find(flag) != std::string::npos, flag);
+  // Every [dem] setting with an option is a flag, named by the option (dem/station/settings.h).
+  for (const auto& f : chutelab::dem::station::dem_fields()) {
+    if (f.option.empty()) continue;
+    std::string flag = "--" + std::string(f.option);
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    BOOST_TEST(r.out.find(flag + " ") != std::string::npos, flag);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_is_one_line_and_exit_2) {
