@@ -141,15 +141,18 @@ BOOST_AUTO_TEST_CASE(diagnose_synthesize_estimate_and_simulate_check_first) {
   api::SimulateOptions m;
   m.dataset = "/nonexistent";
   m.condition = "V3-41";
-  m.quality = "fast";
+  m.settings.set("quality", "fast");
   refused([&] { api::simulate(m); }, "quality");
-  m.quality.clear();
-  m.contact = "glue";
+  m.settings = {};
+  m.settings.set("contact", "glue");
   refused([&] { api::simulate(m); }, "contact");
-  m.contact.clear();
-  m.steady_on = "shear";
+  m.settings = {};
+  m.settings.set("steady_on", "shear");
   refused([&] { api::simulate(m); }, "steady_on");
-  m.steady_on.clear();
+  m.settings = {};
+  m.settings.set("map_cell_mm", 0.5);  // between 0 and the range: refused by the table, not the type
+  refused([&] { api::simulate(m); }, "map_cell_mm");
+  m.settings = {};
   m.vtk_every = 0.1;  // a particle series needs a folder to go to
   const InputError v = refused([&] { api::simulate(m); }, "vtk_every");
   BOOST_TEST(v.problem_said() == "needs out DIR");
