@@ -4,8 +4,6 @@
 #include <array>
 #include <utility>
 
-#include "dem/station/settings.h"
-
 
 namespace chutelab::app {
 namespace {
@@ -35,7 +33,8 @@ constexpr auto kPlain = std::to_array<std::string_view>({
     "mapping", "seed", "noise_scale", "noise_factor", "outliers", "alpha", "self_check", "jobs", "threads",
     "dem.threads", "dem.quality", "dem.cache", "diagnose", "add_missing", "accept_with_effects", "belt_speed", "mass_flow",
     "plate_distance", "plate_top", "stream_thickness", "pulley_diameter", "belt_width", "bulk_density", "sweep", "svg", "dxf", "points", "format", "quality",
-    "contact", "shape", "vtk_every", "no_cache", "rolling", "density", "target_bulk_density",
+    "contact", "shape", "diameter_mm", "shear_modulus_scale", "dt_fraction", "max_time", "steady_on", "vtk_every",
+    "plate_cells", "map_cell_mm", "no_cache", "rolling", "density", "target_bulk_density",
     "target_pile_height", "sizes", "only", "limit", "truth", "sensor", "dem_series"});
 
 // Options whose errors a model run places at the condition it was running (conditions.csv:2): their
@@ -55,8 +54,6 @@ std::string flag_for(std::string_view key) {
   for (const auto& [k, flag] : kRenamed)
     if (k == key) return std::string(flag);
   if (std::find(kPlain.begin(), kPlain.end(), key) != kPlain.end()) return plain_flag(key);
-  // simulate's [dem] settings: one flag per option of the table (dem/station/settings.h).
-  if (dem::station::dem_option(key)) return plain_flag(key);
   // simulate's wear inputs, "wear.KEY": one flag per [dem.wear] key (dem/station/settings.h).
   if (key.rfind("wear.", 0) == 0 && key.size() > 5) return plain_flag(key.substr(5));
   return std::string(key);
