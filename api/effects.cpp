@@ -26,13 +26,14 @@ std::vector<std::string> effects_and_inputs(const std::vector<std::string>& effe
   std::vector<const effects::EffectInfo*> seen;
   for (const auto& a : inputs) {
     const std::string name = a.substr(0, a.find('='));
-    const auto* e = effects::find(name);
+    const auto* e = effects::find(effects::split_condition(name).first);
     if (!e || e->kind != effects::EffectInfo::Kind::record) {
       std::vector<std::string> names;
       for (const auto& i : effects::library())
         if (i.kind == effects::EffectInfo::Kind::record) names.push_back(fmt::format("{} ({})", i.name, i.unit.empty() ? "fraction" : i.unit));
       throw InputError("", 0, "input",
-                       fmt::format("'{}' is {}; {} takes a recorded input and its error, truth minus record: {}",
+                       fmt::format("'{}' is {}; {} takes a recorded input and its error, truth minus record "
+                                   "(NAME@CONDITION: at that condition alone): {}",
                                    name, e ? "a physical effect (give it with " + mention("effect") + ")" : "not a recorded input",
                                    mention("input"), fmt::join(names, ", ")));
     }

@@ -84,7 +84,7 @@ void add_diagnose(CLI::App& app, Action& action) {
   cmd->add_flag("--no-pairs", o->no_pairs, "name one cause at most (do not look for several at once)");
   cmd->add_option("--input", o->inputs,
                   "correct a recorded input before the diagnosis: NAME=ERROR (truth minus record, e.g. "
-                  "plate_distance=25 in mm) or NAME=fit; the candidates are then what the corrected rig still misses");
+                  "plate_distance=25 in mm; NAME@CONDITION=ERROR at one condition alone) or NAME=fit; the candidates are then what the corrected rig still misses");
   cmd->add_option("--jobs", o->jobs,
                   "expensive (DEM) runs side by side, and threads of the analytical fits (default: one per core "
                   "other processes leave free; results do not depend on it)")

@@ -54,7 +54,7 @@ void add_synthesize(CLI::App& app, Action& action) {
   cmd->add_option("--effect", o->effects, "hidden effect NAME=VALUE (repeatable)");
   cmd->add_option("--input", o->inputs,
                   "a wrong record: the recorded input NAME is off by VALUE (truth minus record, e.g. "
-                  "plate_distance=25 in mm); the measurements come from the truth (repeatable)");
+                  "plate_distance=25 in mm; NAME@CONDITION=VALUE at one condition alone); the measurements come from the truth (repeatable)");
   with_rule(cmd->add_option("--seed", o->seed, "random seed")->capture_default_str(), options::rules::seed);
   with_rule(cmd->add_option("--noise-scale", o->noise_scale, "multiplies every uncertainty")->capture_default_str(),
             options::rules::noise_scale);

@@ -117,8 +117,8 @@ void add_validate(CLI::App& app, Action& action) {
   cmd->add_option("--effect", o->effects,
                   "add a physical effect: NAME=VALUE or NAME=fit (calibrated on the dataset)");
   cmd->add_option("--input", o->inputs,
-                  "correct a recorded input: NAME=ERROR (truth minus record, e.g. plate_distance=25 in mm) or "
-                  "NAME=fit");
+                  "correct a recorded input: NAME=ERROR (truth minus record, e.g. plate_distance=25 in mm; "
+                  "NAME@CONDITION=ERROR at one condition alone) or NAME=fit");
   cmd->add_option("--tolerances", o->tolerances,
                   "acceptance tolerances (default: the dataset's tolerances.toml if present)");
   cmd->add_flag("--diagnose", o->diagnose,

@@ -7,6 +7,7 @@
 
 #include "core/input_error.h"
 #include "core/number.h"
+#include "effects/at_condition.h"
 
 namespace chutelab::effects {
 namespace {
@@ -43,7 +44,16 @@ bool in_physical_range(const EffectInfo& e, double strength) { return strength >
 EffectSetting parse_setting(const std::string& text, bool allow_fit, bool outside_range, const std::string& key) {
   const auto eq = text.find('=');
   const std::string name = text.substr(0, eq);
-  const EffectInfo* info = find(name);
+  // A recorded input may be given at one condition alone ("plate_distance@V4-41"), as the diagnosis
+  // names it; which conditions a dataset has is checked against its stations (api/record_check.h).
+  const auto [base, condition] = split_condition(name);
+  if (!condition.empty())
+    if (const EffectInfo* b = find(base); b && b->kind != EffectInfo::Kind::record)
+      throw InputError("", 0, key,
+                       fmt::format("'{}': {} is a physical effect; only a recorded input can be wrong at one condition "
+                                   "alone (NAME@CONDITION)",
+                                   text, base));
+  const EffectInfo* info = find_candidate(name);
   if (!info) {
     std::vector<std::string> names;
     for (const auto& e : library()) names.push_back(e.name);

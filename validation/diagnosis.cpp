@@ -391,6 +391,8 @@ struct Explanations {
   std::vector<EffectFit> alternatives;  // about as good in the last cause's place (Causes::alternatives)
 };
 
+double bic_of_fit(const EffectFit& f, double ln_n) { return f.ranked_chi2() + static_cast<double>(f.effects.size()) * ln_n; }
+
 Explanations explain(const Stage& s, const Progress& progress, int jobs, bool confirm) {
   Explanations x;
   x.singles = fit_singles(s, progress);
@@ -411,13 +413,23 @@ Explanations explain(const Stage& s, const Progress& progress, int jobs, bool co
   if (top) consider(infos_of(*top), top->estimate, top->chi2_after);
   if (x.outside) consider(infos_of(*x.outside), {x.outside->unbounded->estimate}, x.outside->unbounded->chi2);
   std::optional<EffectFit> next;
-  if (s.opt.pairs && (top || !x.outside)) {
+  // Also where only a fit outside a range leads: a record wrong at one condition can move the data
+  // far more than any rig-wide candidate, whose best fit then leaves its range to take what it can;
+  // the explanation with the lower BIC leads either way.
+  if (s.opt.pairs) {
     Causes c = more_causes(s, x.singles, top, progress, confirm ? jobs : 0);
     x.pairs = std::move(c.chosen);
     next = std::move(c.next);
     x.alternatives = std::move(c.alternatives);
     veto_by_outside(x.pairs, x.outside, s);
     std::erase_if(x.pairs, [](const EffectFit& f) { return !f.beaten_outside_range_by.empty(); });
+    // Found from nothing beside a fit outside a range, the causes must beat that fit as a further
+    // cause beats the explanation it adds to: they spend more strengths on what one out-of-range
+    // candidate may explain alone (a wrong-sign drag taken up by a belt speed record at its fastest
+    // condition and a rig-wide one).
+    if (!top && x.outside && !x.pairs.empty() &&
+        !(bic_of_fit(x.pairs.front(), ln_n) < x.outside->unbounded->chi2 + ln_n - s.opt.pair_margin_bic))
+      x.pairs.clear(), next.reset(), x.alternatives.clear();
     if (!x.pairs.empty()) consider(infos_of(x.pairs.front()), x.pairs.front().estimate, x.pairs.front().chi2_after);
   }
   x.full_fx = x.fx, x.full_strengths = x.strengths;
@@ -654,6 +666,7 @@ std::vector<Outlier> name_outliers(const Stage& s, const EffectFit* best, const 
     o.relative = pred[i] && *pred[i] != 0.0 ? (p.measured - *pred[i]) / std::abs(*pred[i]) : 0.0;
     o.closest = INFINITY;
     for (const auto& other : others) o.closest = std::min(o.closest, std::abs(other[i]) * w);
+    o.records = records_for_reading(s, best, i);
     out.push_back(o);
   }
   return out;

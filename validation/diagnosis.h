@@ -115,6 +115,9 @@ struct Outlier {
   double deviation = 0.0;                 // standardised: (measured - predicted) / (its scatter)
   double relative = 0.0;                  // (measured - predicted) / |predicted|
   double closest = 0.0;                   // smallest |deviation| under any candidate fitted
+  // Records wrong at this reading's condition alone that would explain it with the condition's other
+  // readings (the best first; analytical models only): the data cannot tell them from a wrong reading.
+  std::vector<EffectFit> records;
 };
 
 // A reading that alone moves a fitted strength by more than one sd (leave-one-out refit).

@@ -157,7 +157,8 @@ std::optional<EffectFit> rig_wide_addition(const Stage& s, const std::vector<Eff
 // reading's error (an outlier, named as such), not the record's: the fall without its largest
 // reading must be significant too. Analytical models only: an expensive baseline would need runs of
 // its own per condition and input.
-std::optional<EffectFit> at_condition_addition(const Stage& s, const EffectFit* base, const Progress& progress) {
+std::optional<EffectFit> at_condition_addition(const Stage& s, const EffectFit* base, const Progress& progress,
+                                               std::vector<EffectFit>* others = nullptr) {
   if (s.m.source().has_expensive()) return std::nullopt;
   const auto& stations = s.m.dataset().stations;
   std::vector<const effects::EffectInfo*> records;
@@ -199,6 +200,7 @@ std::optional<EffectFit> at_condition_addition(const Stage& s, const EffectFit* 
     double ranked = 0.0;  // chi^2 after, the record's implausibility charged
   };
   std::optional<Pick> pick;
+  std::vector<Pick> through;  // every record through the gate
   std::size_t tried = 0;
   for (const auto& [score_, which] : scored) {
     (void)score_;
@@ -225,17 +227,30 @@ std::optional<EffectFit> at_condition_addition(const Stage& s, const EffectFit* 
     // The gate is the fall without its largest reading; the pick, among those through it, the fit.
     const double p = std::min(1.0, s.p_improvement(drop - largest - penalty, 1.0, chi2_after) * family);
     if (p >= s.opt.alpha) continue;
-    if (!pick || chi2_after + penalty < pick->ranked) pick = Pick{e, h, p, chi2_after + penalty};
+    through.push_back(Pick{e, h, p, chi2_after + penalty});
+    if (!pick || chi2_after + penalty < pick->ranked) pick = through.back();
   }
   if (!pick || pick->p >= s.opt.alpha) return std::nullopt;
-  Fx fx = bfx;
-  fx.push_back(pick->e);
-  std::vector<double> start = bv;
-  start.push_back(pick->held.estimate);
-  FitOptions o{StrengthRange::physical, {start}};
-  o.grid = false;
-  EffectFit f = make_fit(fx, fit_strengths(s.cost, fx, o), s);
-  test_addition(f, base, s, family);
+  auto joint = [&](const Pick& k) {
+    Fx fx = bfx;
+    fx.push_back(k.e);
+    std::vector<double> start = bv;
+    start.push_back(k.held.estimate);
+    FitOptions o{StrengthRange::physical, {start}};
+    o.grid = false;
+    EffectFit f = make_fit(fx, fit_strengths(s.cost, fx, o), s);
+    test_addition(f, base, s, family);
+    return f;
+  };
+  EffectFit f = joint(*pick);
+  // Another record at one condition that moves that condition's few readings about as well (a plate
+  // angle and a load cell's gain there, a flow and a bulk density): the data cannot tell them apart,
+  // and the verdict says so beside the one it names.
+  if (others)
+    for (const auto& k : through)
+      if (k.e != pick->e && k.ranked - pick->ranked < s.opt.tie_margin_bic)
+        if (EffectFit g = joint(k); g.significant && g.ranked_chi2() - f.ranked_chi2() < s.opt.tie_margin_bic)
+          others->push_back(std::move(g));
   return f;
 }
 
@@ -343,9 +358,13 @@ Causes forward(const Stage& s, const std::vector<EffectFit>& singles, const Effe
     std::optional<EffectFit> next;
     std::vector<EffectFit> others;
     if (current) next = rig_wide_addition(s, singles, *current, progress, &others);
-    if (auto one = at_condition_addition(s, current ? &*current : nullptr, progress);
-        one && one->significant && (!next || !next->significant || one->p_adjusted < next->p_adjusted))
+    std::vector<EffectFit> at_others;
+    if (auto one = at_condition_addition(s, current ? &*current : nullptr, progress, &at_others);
+        one && one->significant && (!next || !next->significant || one->p_adjusted < next->p_adjusted)) {
+      if (next) others.push_back(std::move(*next));
       next = std::move(one);
+    }
+    for (auto& o : at_others) others.push_back(std::move(o));
     if (!next) break;
     if (!next->significant) {
       out.next = std::move(next);
@@ -375,6 +394,54 @@ double bic_of(const EffectFit& f, const Stage& s) {
 constexpr std::size_t kStarts = 3;
 
 }  // namespace
+
+std::vector<EffectFit> records_for_reading(const Stage& s, const EffectFit* best, std::size_t i) {
+  const Misfit& m = s.m;
+  if (m.source().has_expensive() || i >= m.size() || !s.nm.excluded[i]) return {};
+  const std::size_t c = m.points()[i].condition;
+  const std::string& condition = m.dataset().stations[c].condition;
+  NoiseModel back = s.nm;
+  back.excluded[i] = 0;
+  const auto w = back.weights(m);
+  const Cost part = Cost(m, w).only({c});
+  const auto n_all = static_cast<double>(std::count_if(w.begin(), w.end(), [](double x) { return x > 0.0; }));
+  // The limit the outlier test left the reading out by (validation/noise_model.cpp, find_outlier).
+  const double limit = gsl_cdf_ugaussian_Qinv(s.opt.alpha / (2.0 * n_all));
+  const Fx bfx = best ? infos_of(*best) : Fx{};
+  const std::vector<double> bv = best ? best->estimate : std::vector<double>{};
+  std::vector<EffectFit> out;
+  for (const auto& lib : effects::library()) {
+    if (lib.kind != effects::EffectInfo::Kind::record) continue;
+    const effects::EffectInfo* e = effects::find_candidate(lib.name + "@" + condition);
+    if (!e || (best && (has(*best, e->name) || has(*best, lib.name)))) continue;
+    const Held h = fit_held(part, bfx, bv, e);
+    // At an edge of its range the record does not reach the reading: it only leans towards it.
+    const double span = e->upper - e->lower;
+    if (!std::isfinite(h.uncertainty) || h.estimate <= e->lower + 1e-3 * span || h.estimate >= e->upper - 1e-3 * span)
+      continue;
+    Fx fx = bfx;
+    fx.push_back(e);
+    auto v = bv;
+    v.push_back(h.estimate);
+    const auto r = m.residuals(fx, v);
+    double chi2 = 0.0;
+    int n = 0;
+    for (std::size_t k = 0; k < m.size(); ++k)
+      if (m.points()[k].condition == c && w[k] > 0.0) chi2 += r[k] * r[k] * w[k] * w[k], ++n;
+    if (n < 2 || std::abs(r[i] * w[i]) > limit || gsl_cdf_chisq_Q(chi2, n - 1) < s.opt.alpha) continue;
+    EffectFit f;
+    f.effects = {e->name};
+    f.parameters = {e->parameter};
+    f.estimate = {h.estimate};
+    f.uncertainty = {h.uncertainty};
+    f.at_bound = {false};
+    score(f, chi2, s);  // chi2_after here: the condition's readings alone
+    out.push_back(std::move(f));
+  }
+  std::stable_sort(out.begin(), out.end(), [](const EffectFit& a, const EffectFit& b) { return a.ranked_chi2() < b.ranked_chi2(); });
+  std::erase_if(out, [&](const EffectFit& f) { return f.ranked_chi2() - out.front().ranked_chi2() >= s.opt.tie_margin_bic; });
+  return out;
+}
 
 Causes more_causes(const Stage& s, const std::vector<EffectFit>& singles, const EffectFit* top,
                    const Progress& progress, int jobs) {

@@ -112,4 +112,11 @@ struct Causes {
 Causes more_causes(const Stage& s, const std::vector<EffectFit>& singles, const EffectFit* top,
                    const Progress& progress, int jobs);
 
+// The records wrong at reading i's condition alone that would explain that reading, left out as an
+// outlier, with the condition's other readings (validation/diagnosis_causes.cpp): fitted there with
+// the reading back in and `best`'s causes held, each bringing the reading inside the outlier limit
+// and leaving the condition's readings as a whole within the noise. One reading cannot tell a wrong
+// record there from a wrong reading; the best first, then those within the tie margin of it.
+std::vector<EffectFit> records_for_reading(const Stage& s, const EffectFit* best, std::size_t i);
+
 }  // namespace chutelab::validation::detail

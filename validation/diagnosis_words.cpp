@@ -242,13 +242,24 @@ void describe_failures(DiagnosisResult& r) {
 
 void describe_findings(DiagnosisResult& r, const DiagnoseOptions& opt) {
   r.findings.clear();
-  for (const auto& o : r.outliers)
-    r.findings.push_back(fmt::format(
+  for (const auto& o : r.outliers) {
+    std::string text = fmt::format(
         "Check this reading: {} {} ({}:{}) reads {:.4g}, {:.0f} % {} what the best explanation predicts "
         "({:.4g}; {:.1f} scatter widths off, {:.1f} under the closest candidate). It was left out of every fit.",
         o.condition, symbol_of(o.quantity), o.where.file, o.where.line, o.measured,
         std::abs(100 * o.relative), o.relative >= 0 ? "above" : "below", o.predicted, std::abs(o.deviation),
-        o.closest));
+        o.closest);
+    // One reading cannot tell a wrong reading from a record wrong at its condition alone.
+    if (!o.records.empty()) {
+      std::vector<std::string> which;
+      for (const auto& f : o.records) which.push_back(record_words(f, 0));
+      text += fmt::format(" If the reading is right, the record is wrong there instead: {}; the condition's other "
+                          "readings agree with {}, so only a check tells.{}",
+                          fmt::join(which, ", or "), o.records.size() > 1 ? "each" : "either",
+                          record_checks(o.records.front()));
+    }
+    r.findings.push_back(std::move(text));
+  }
   for (const auto& i : r.influential)
     r.findings.push_back(fmt::format("One reading moves the fitted strength: without {} {} ({}:{}) {} moves by {:+.1f} "
                                      "sd. It is plausible, so it stays; check it.",

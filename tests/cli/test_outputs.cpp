@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
+#include <set>
+#include <sstream>
 #include <string>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -304,6 +306,25 @@ BOOST_AUTO_TEST_CASE(class12_messages_name_what_was_given) {
   refused(s.root, s.args("synthesize") + " --effect load_cell_gain=-0.91 --allow-out-of-range", "must lie in [-0.9, 0.9]");
   ok(s.args("synthesize") + " --effect load_cell_gain=-0.9 --allow-out-of-range");
   ok(s.args("synthesize") + " --effect load_cell_gain=0.9 --allow-out-of-range");
+}
+
+// A record wrong at one condition, as the diagnosis names it (plate_distance@V3-41), is an input of
+// its own: it corrects that condition's station and no other; an unknown condition or a physical
+// effect at one condition is refused.
+BOOST_AUTO_TEST_CASE(a_record_at_one_condition_is_an_input) {
+  Sandbox s("at-condition");
+  refused(s.root, s.args("validate") + " --input plate_distance@V9-99=10", "--input: 'plate_distance@V9-99=10': no condition is named V9-99");
+  refused(s.root, s.args("validate") + " --effect air_drag@V3-41=0.3", "only a recorded input can be wrong at one condition");
+  refused(s.root, s.args("validate") + " --input plate_distance@V3-41=-1e4", "--input: 'plate_distance@V3-41=-1e4'");
+  ok(s.args("synthesize", s.root / "plain") + " --seed 5");
+  ok(s.args("synthesize", s.root / "moved") + " --seed 5 --input plate_distance@V3-41=60");
+  const auto plain = read_file(s.root / "plain" / "measurements.csv"), moved = read_file(s.root / "moved" / "measurements.csv");
+  std::istringstream a(plain), b(moved);
+  std::set<std::string> differ;
+  for (std::string x, y; std::getline(a, x) && std::getline(b, y);)
+    if (x != y) differ.insert(x.substr(0, x.find(',')));
+  BOOST_TEST((differ == std::set<std::string>{"V3-41"}), plain << "\n---\n" << moved);
+  ok(s.args("validate", s.root / "v") + " --input plate_distance@V3-41=60");
 }
 
 BOOST_AUTO_TEST_SUITE_END()
