@@ -78,6 +78,24 @@ std::string record_words(const EffectFit& f, std::size_t i) {
   return s;
 }
 
+// An explanation's label in words, as the verdict names causes: "air_drag + plate_distance@V4-41" ->
+// "air drag and the plate distance record at V4-41 alone".
+std::string explanation_words(const std::string& label) {
+  std::vector<std::string> parts;
+  for (std::size_t from = 0; from <= label.size();) {
+    const auto to = std::min(label.find(" + ", from), label.size());
+    const auto [input, condition] = effects::split_condition(label.substr(from, to - from));
+    std::string name = input == "mass_flow_bias" ? "mass flow" : input;
+    std::replace(name.begin(), name.end(), '_', ' ');
+    const auto* e = effects::find(input);
+    parts.push_back(e && e->kind == effects::EffectInfo::Kind::record
+                        ? "the " + name + " record" + (condition.empty() ? "" : " at " + condition + " alone")
+                        : name);
+    from = to + 3;
+  }
+  return fmt::format("{}", fmt::join(parts, " and "));
+}
+
 std::string record_words(const EffectFit& f) {
   std::vector<std::string> parts;
   for (std::size_t i = 0; i < f.effects.size(); ++i) parts.push_back(record_words(f, i));
@@ -352,11 +370,12 @@ void describe_ties(DiagnosisResult& r) {
         ways.push_back(fmt::format("{} (not measured here; {} predicts {:.3g} {}, {} {:.3g} {})", d->quantity, d->a,
                                    d->value_a, d->unit, d->b, d->value_b, d->unit));
     for (const auto& n : {pair.first, pair.second})
-      if (const auto* i = effects::find_candidate(n); i && !i->check.empty()) ways.push_back(fmt::format("for {}: {}", n, i->check));
+      if (const auto* i = effects::find_candidate(n); i && !i->check.empty())
+        ways.push_back(fmt::format("for {}: {}", explanation_words(n), i->check));
     r.proportional.push_back(fmt::format(
         "{} and {} move every measured quantity in proportion (these data cannot tell them apart); to separate them, "
         "measure {}",
-        pair.first, pair.second,
+        explanation_words(pair.first), explanation_words(pair.second),
         ways.empty() ? "at other belt speeds or drop heights" : fmt::format("{}", fmt::join(ways, "; "))));
   }
 }
@@ -398,8 +417,11 @@ std::string verdict_words(const DiagnosisResult& r) {
                             record_words(*b), physics_words(r, "with the corrected record what is left is noise:"),
                             record_checks(*b))
               : fmt::format("Missing effect: {}.{}", fitted_words(*b), physics_words(r, "with it what is left is noise:"));
-      if (!r.indistinguishable.empty())
-        v += fmt::format(" About as good: {}.", fmt::join(r.indistinguishable, ", "));
+      if (!r.indistinguishable.empty()) {
+        std::vector<std::string> alike;
+        for (const auto& l : r.indistinguishable) alike.push_back(explanation_words(l));
+        v += fmt::format(" About as good: {}.", fmt::join(alike, "; "));
+      }
       for (const auto& p : r.proportional) v += " But " + p + ".";
       return v;
     }
