@@ -391,8 +391,6 @@ struct Explanations {
   std::vector<EffectFit> alternatives;  // about as good in the last cause's place (Causes::alternatives)
 };
 
-double bic_of_fit(const EffectFit& f, double ln_n) { return f.ranked_chi2() + static_cast<double>(f.effects.size()) * ln_n; }
-
 Explanations explain(const Stage& s, const Progress& progress, int jobs, bool confirm) {
   Explanations x;
   x.singles = fit_singles(s, progress);
@@ -428,7 +426,7 @@ Explanations explain(const Stage& s, const Progress& progress, int jobs, bool co
     // candidate may explain alone (a wrong-sign drag taken up by a belt speed record at its fastest
     // condition and a rig-wide one).
     if (!top && x.outside && !x.pairs.empty() &&
-        !(bic_of_fit(x.pairs.front(), ln_n) < x.outside->unbounded->chi2 + ln_n - s.opt.pair_margin_bic))
+        !(bic_of(x.pairs.front(), s) < x.outside->unbounded->chi2 + ln_n - s.opt.pair_margin_bic))
       x.pairs.clear(), next.reset(), x.alternatives.clear();
     if (!x.pairs.empty()) consider(infos_of(x.pairs.front()), x.pairs.front().estimate, x.pairs.front().chi2_after);
   }

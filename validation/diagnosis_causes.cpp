@@ -384,16 +384,16 @@ Causes forward(const Stage& s, const std::vector<EffectFit>& singles, const Effe
   return out;
 }
 
-double bic_of(const EffectFit& f, const Stage& s) {
-  return f.ranked_chi2() + static_cast<double>(f.effects.size()) * std::log(std::max(s.n, 2.0));
-}
-
 // The significant singles the search starts from: the leader, and the next few that may be named
 // (a greedy search from the leader alone misses a pair whose first cause ranks second as a single:
 // a belt speed record mimicking a drag that, with the plate's record, explains everything).
 constexpr std::size_t kStarts = 3;
 
 }  // namespace
+
+double bic_of(const EffectFit& f, const Stage& s) {
+  return f.ranked_chi2() + static_cast<double>(f.effects.size()) * std::log(std::max(s.n, 2.0));
+}
 
 std::vector<EffectFit> records_for_reading(const Stage& s, const EffectFit* best, std::size_t i) {
   const Misfit& m = s.m;
@@ -423,19 +423,17 @@ std::vector<EffectFit> records_for_reading(const Stage& s, const EffectFit* best
     fx.push_back(e);
     auto v = bv;
     v.push_back(h.estimate);
-    const auto r = m.residuals(fx, v);
-    double chi2 = 0.0;
-    int n = 0;
-    for (std::size_t k = 0; k < m.size(); ++k)
-      if (m.points()[k].condition == c && w[k] > 0.0) chi2 += r[k] * r[k] * w[k] * w[k], ++n;
-    if (n < 2 || std::abs(r[i] * w[i]) > limit || gsl_cdf_chisq_Q(chi2, n - 1) < s.opt.alpha) continue;
+    // h.chi2: the fit's chi^2 over the condition's readings (`part`), the reading back in.
+    const double n = static_cast<double>(part.size());
+    if (n < 2 || std::abs(m.residuals(fx, v)[i] * w[i]) > limit || gsl_cdf_chisq_Q(h.chi2, n - 1) < s.opt.alpha)
+      continue;
     EffectFit f;
     f.effects = {e->name};
     f.parameters = {e->parameter};
     f.estimate = {h.estimate};
     f.uncertainty = {h.uncertainty};
     f.at_bound = {false};
-    score(f, chi2, s);  // chi2_after here: the condition's readings alone
+    score(f, h.chi2, s);  // chi2_after here: the condition's readings alone
     out.push_back(std::move(f));
   }
   std::stable_sort(out.begin(), out.end(), [](const EffectFit& a, const EffectFit& b) { return a.ranked_chi2() < b.ranked_chi2(); });

@@ -112,6 +112,9 @@ struct Causes {
 Causes more_causes(const Stage& s, const std::vector<EffectFit>& singles, const EffectFit* top,
                    const Progress& progress, int jobs);
 
+// An explanation's BIC: chi^2 with the records' implausibility charged, plus ln n per strength.
+double bic_of(const EffectFit& f, const Stage& s);
+
 // The records wrong at reading i's condition alone that would explain that reading, left out as an
 // outlier, with the condition's other readings (validation/diagnosis_causes.cpp): fitted there with
 // the reading back in and `best`'s causes held, each bringing the reading inside the outlier limit
