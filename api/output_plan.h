@@ -6,9 +6,13 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace chutelab::api {
+
+// One file of a result: its name in the output folder and its content.
+using OutputFile = std::pair<std::string, std::string>;
 
 struct OutputPlan {
   std::vector<std::filesystem::path> inputs;  // every file and folder the run reads (none may be overwritten)

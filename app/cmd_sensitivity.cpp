@@ -3,40 +3,22 @@
 // dt = t_c/10 vs t_c/20, G x10 and /10, the reference study's particle sizes — and the table of R_n, R_s, R with
 // standard errors, their fluctuation, the change against the base and the run time is printed and
 // written (sensitivity.csv/.md/.html), with the verdict on the reference study's conclusion.
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <filesystem>
 #include <iostream>
 
 #include <fmt/format.h>
 
+#include "api/sensitivity.h"
 #include "app/commands.h"
 #include "app/dem_options.h"
 #include "app/option_checks.h"
-#include "core/campaign.h"
-#include "dem/station/cache.h"
-#include "reports/sensitivity_page.h"
-#include "studies/sensitivity.h"
 #include "core/input_error.h"
 #include "core/message.h"
 #include "core/option_check.h"
-#include "core/number.h"
-#include "dem/station/progress.h"
-#include "dem/station/run.h"
 #include "core/output_folder.h"
-#include "validation/dataset.h"
-#include "validation/output_files.h"
 
 namespace chutelab::app {
 namespace {
-
-namespace st = dem::station;
-using studies::SensitivityRow;
-using studies::SensitivityStudy;
-using studies::SensitivityVariant;
-using studies::Stat;
-using studies::VariantOutcome;
 
 struct SensitivityCli {
   std::string dataset, condition = "V3-41", quality = "quick", out, only, sizes;
@@ -46,181 +28,49 @@ struct SensitivityCli {
   int jobs = 0;  // 0: one per idle core (resolve_jobs)
 };
 
-// Standard deviation of the load-cell samples inside the steady window: the force fluctuation.
-void fluctuations(const st::StationResult& r, VariantOutcome& o) {
-  double sn = 0, sn2 = 0, ss = 0, ss2 = 0, sr = 0, sr2 = 0;
-  int n = 0;
-  for (const auto& f : r.forces) {
-    if (f.t <= r.window.start || f.t > r.window.end + 1e-12) continue;
-    const double R = std::hypot(f.normal, f.shear);
-    sn += f.normal, sn2 += f.normal * f.normal;
-    ss += f.shear, ss2 += f.shear * f.shear;
-    sr += R, sr2 += R * R;
-    ++n;
-  }
-  if (n < 2) return;
-  auto sd = [n](double s, double s2) { return std::sqrt(std::max(0.0, (s2 - s * s / n) / (n - 1))); };
-  o.fluct_normal = sd(sn, sn2);
-  o.fluct_shear = sd(ss, ss2);
-  o.fluct_resultant = sd(sr, sr2);
-}
-
-Stat stat(const st::Estimate& e) { return {e.ok() ? e.value : std::nan(""), std::isfinite(e.se) ? e.se : 0.0}; }
-
 int run_sensitivity(const SensitivityCli& o) {
   namespace fs = std::filesystem;
-  const auto t0 = std::chrono::steady_clock::now();
-  // The lists, checked before anything is read or run (core/option_check.h). Each size is one more
-  // station DEM run (a 5.6 mm one is 6.6 min of CPU at quick quality, bench/SENSITIVITY.md).
-  constexpr options::NumberRule kSize{"--sizes", 0.0, 100.0, true, false, false, "mm"};
-  const std::vector<double> sizes = o.sizes.empty() ? std::vector<double>{} : options::number_list(kSize, o.sizes);
-  options::at_most("--sizes", sizes.size(), 6, "station DEM runs");
-  const std::vector<std::string> only = o.only.empty() ? std::vector<std::string>{} : options::list("--only", o.only);
-  const fs::path dir = o.dataset.empty() ? default_dataset() : fs::path(o.dataset);
-  const fs::path setup_file = dir / "setup.toml";
-  const Setup setup = validation::read_setup(setup_file);
-  const auto stations = validation::read_conditions(dir / "conditions.csv", setup);
-  OutputFolder out(o.out, dataset_inputs(dir), "sensitivity");  // checked before minutes of DEM runs
-  check_entries(out, {"sensitivity.csv", "sensitivity.md", "sensitivity.html", "sensitivity.svg", "sensitivity-timing.csv"});
-  const Station* station = &validation::condition_row(stations, o.condition, dir / "conditions.csv", "--condition");
-  st::SettingsOverrides ov;
-  ov.set("quality", o.quality).check();
-  // One thread per run unless asked: on the shared 2-core machine a second OpenMP thread made runs
-  // slower, not faster (bench/log/STATION.md), and results do not depend on it.
-  ov.threads = o.threads.value_or(1);
-  campaign::set_threads(resolve_jobs(o.jobs));
-  if (o.seed) ov.set_whole("seed", *o.seed);
-  const st::DemTable table = st::read_dem_table(setup_file.string());
-  const st::RunSettings base = st::resolve(table, ov);
-  const double base_d = base.particle_diameter > 0.0 ? base.particle_diameter : station->material.particle_diameter;
-
-  SensitivityStudy study;
-  studies::Table6Base& b = study.base;
-  b.diameter = base_d;
-  b.modulus_scale = base.shear_modulus_scale;  // of the dataset's: the preset's and the [dem] table's
-  b.dt_fraction = base.dt_fraction;
-  b.rayleigh_fraction = base.rayleigh_fraction;
-  if (!o.sizes.empty()) {
-    b.sizes.clear();
-    for (double d : sizes) b.sizes.push_back(d * 1e-3);
-  } else if (base.quality == st::Quality::quick) {
-    // Measured (bench/SENSITIVITY.md): one 5.6 mm run at quick settings costs 6.6 min of CPU, more
-    // than the whole rest of the study, which must stay within ~10 min; left out by default.
-    b.sizes = {9.0e-3, 13.6e-3};
-  }
-  // Every size of the reference study's Table 6 that will not run is said (verdict "not fully
-  // tested"), whatever left it out.
-  for (double d : studies::Table6Base::reference_sizes()) {
-    bool runs = std::abs(d - base_d) < 0.05e-3;
-    for (double x : b.sizes) runs = runs || std::abs(d - x) < 0.05e-3;
-    if (!runs) study.sizes_left_out.push_back(d);
-  }
-
-  std::vector<SensitivityVariant> variants = studies::table6_variants(b);
-  if (!o.only.empty()) {  // a subset (always with the base), e.g. for a quick look
-    std::vector<SensitivityVariant> keep{variants[0]};
-    const auto& keys = only;
-    for (const auto& key : keys) {
-      bool found = false;
-      for (std::size_t k = 1; k < variants.size(); ++k)
-        if (variants[k].key == key) {
-          keep.push_back(variants[k]);
-          found = true;
-        }
-      if (!found) {
-        std::vector<std::string> names;
-        for (const auto& v : variants) names.push_back(v.key);
-        throw InputError("", 0, "--only", fmt::format("unknown variant '{}' (known: {})", key, fmt::join(names, ", ")));
-      }
-    }
-    for (std::size_t k = 1; k < variants.size(); ++k)
-      if (std::find(keys.begin(), keys.end(), variants[k].key) == keys.end())
-        study.variants_left_out.push_back(variants[k].key);
-    variants = keep;
-  }
-
-  study.dataset = dir.string();
-  study.dataset_name = setup.name;
-  study.condition = station->condition;
-  study.quality = o.quality;
-  study.belt_speed = station->belt_speed;
-  study.mass_flow = station->mass_flow;
-  study.limit_percent = o.limit;
-  std::cout << fmt::format("sensitivity: {} DEM runs of {} / {} ({} quality), base {}\n", variants.size(),
-                           one_line(setup.name, 80),
-                           one_line(station->condition, 80), o.quality, variants[0].label);
-  for (const auto& n : studies::run_notes(study)) std::cout << "note: " << n << "\n";
-  std::cout << std::flush;
-  // One campaign job per variant (core/campaign.h): in order in one process, side by side with
-  // --jobs, or spread over the ranks of mpirun; each result comes back as the run's full text.
-  std::vector<campaign::Job> jobs;
-  for (std::size_t k = 0; k < variants.size(); ++k) {
-    const SensitivityVariant& v = variants[k];
-    st::RunSettings s = base;
-    const auto law = st::parse_contact(v.contact);
-    if (!law)
-      throw InputError("", 0, "contact", fmt::format("unknown contact law '{}' (known: {})", v.contact, dem::NormalLaw::keys()));
-    s.contact = *law;
-    s.particle_diameter = v.diameter;
-    s.particle_shape = v.shape == "clump" ? st::ParticleShape::clump : st::ParticleShape::sphere;
-    s.dt_fraction = v.dt_fraction;
-    s.rayleigh_fraction = v.rayleigh_fraction;
-    s.shear_modulus_scale = b.modulus_scale * v.modulus_scale;
-    campaign::Job j;
-    j.key = v.key;
-    // Relative cost, to hand out the dear runs first: particles ~ d^-3 and steps ~ 1/dt ~ 1/d; a
-    // step of Hertz contacts ~ E^(2/5); a two-sphere clump ~ 2.7 spheres (bench/SENSITIVITY.md).
-    j.cost = std::pow(base_d / v.diameter, 4.0) * (b.dt_fraction / v.dt_fraction) * std::pow(v.modulus_scale, 0.4) *
-             (v.shape == "clump" ? 2.7 : 1.0);
-    const std::string label = fmt::format("[{}/{}] {}", k + 1, variants.size(), v.key);
-    j.run = [s, &table, station, label](const campaign::JobContext& ctx) {
-      st::RunOptions ro;
-      ro.settings = s;
-      ro.geometry = table;
-      if (ctx.progress) ro.progress = st::ProgressPrinter(label);
-      return st::to_text(st::run_station(*station, ro));
-    };
-    jobs.push_back(std::move(j));
-  }
-  campaign::Options co;
-  co.label = "sensitivity";
-  const std::vector<std::string> texts = campaign::run_campaign(jobs, co);
-  for (std::size_t k = 0; k < variants.size(); ++k) {
-    const SensitivityVariant& v = variants[k];
-    const std::optional<st::StationResult> parsed = st::from_text(texts[k]);
-    if (!parsed) throw std::logic_error("a DEM result text does not read back");
-    const st::StationResult& r = *parsed;
-    SensitivityRow row;
-    row.variant = v;
-    VariantOutcome& out = row.outcome;
-    out.normal = stat(r.normal_force);
-    out.shear = stat(r.shear_force);
-    out.resultant = stat(r.resultant_force);
-    fluctuations(r, out);
-    out.diameter = r.diameter;
-    out.dt = r.dt;
-    out.collision_time = r.collision_time;
-    out.simulated = r.simulated_time;
-    out.wall_seconds = r.wall_seconds;
-    out.steps = r.steps;
-    out.particles = r.peak_particles;
-    out.steady = r.window.found;
-    out.notes = r.notes;
-    study.rows.push_back(row);
+  // The lists as typed, read before anything else (core/option_check.h); the library checks the rest.
+  constexpr options::NumberRule kSize{"sizes", 0.0, 100.0, true, false, false, "mm"};
+  api::SensitivityOptions opt;
+  if (!o.sizes.empty()) opt.sizes_mm = options::number_list(kSize, o.sizes);
+  options::at_most("sizes", opt.sizes_mm.size(), 6, "station DEM runs");
+  if (!o.only.empty()) opt.only = options::list("only", o.only);
+  opt.dataset = o.dataset;
+  opt.default_dataset = default_dataset();
+  opt.condition = o.condition;
+  opt.quality = o.quality;
+  opt.threads = o.threads;
+  opt.seed = o.seed;
+  opt.limit = o.limit;
+  opt.jobs = o.jobs;
+  opt.progress = true;
+  std::optional<OutputFolder> out;
+  opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
+    out.emplace(o.out, plan.inputs, "sensitivity");  // checked before minutes of DEM runs
+    for (const auto& f : plan.files) out->check_entry(f, false);
+    return {};
+  };
+  opt.planned = [&](const studies::SensitivityStudy& study, const std::vector<studies::SensitivityVariant>& variants) {
+    std::cout << fmt::format("sensitivity: {} DEM runs of {} / {} ({} quality), base {}\n", variants.size(),
+                             one_line(study.dataset_name, 80), one_line(study.condition, 80), study.quality,
+                             variants[0].label);
+    for (const auto& n : studies::run_notes(study)) std::cout << "note: " << n << "\n";
+    std::cout << std::flush;
+  };
+  const api::SensitivityResult res = api::sensitivity(opt);
+  const studies::SensitivityStudy& study = res.study;
+  for (std::size_t k = 0; k < study.rows.size(); ++k) {
+    const auto& v = study.rows[k].variant;
+    const auto& r = study.rows[k].outcome;
     std::cout << fmt::format("[{}/{}] {:<9} R_n {:7.1f} ± {:4.1f} N, R_s {:6.1f} ± {:4.1f} N, R {:7.1f} ± {:4.1f} N, "
                              "sd(R) {:5.1f} N, dt {:.2f} us, {:.0f} s\n",
-                             k + 1, variants.size(), v.key, out.normal.value, out.normal.se, out.shear.value, out.shear.se,
-                             out.resultant.value, out.resultant.se, out.fluct_resultant, out.dt * 1e6, out.wall_seconds)
+                             k + 1, study.rows.size(), v.key, r.normal.value, r.normal.se, r.shear.value, r.shear.se,
+                             r.resultant.value, r.resultant.se, r.fluct_resultant, r.dt * 1e6, r.wall_seconds)
               << std::flush;
   }
-  studies::evaluate(study);
-  study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.write("sensitivity.csv", studies::sensitivity_csv(study));
-  out.write("sensitivity.md", reports::sensitivity_md(study));
-  out.write("sensitivity.html", reports::sensitivity_html(study));
-  out.write("sensitivity.svg", reports::sensitivity_svg(study));
-  out.write("sensitivity-timing.csv", studies::sensitivity_timing_csv(study));
-  out.commit();
+  for (const auto& [name, content] : res.files()) out->write(name, content);
+  out->commit();
   std::cout << study.verdict.text << "\n";
   std::cout << fmt::format("{:.0f} s; written: {}\n", study.wall_seconds, (fs::path(o.out) / "sensitivity.html").string());
   return kExitOk;

@@ -147,6 +147,7 @@ CalibrationStudy run_calibration(const chutelab::Material& m, const CalibrationP
                       }});
   campaign::Options co;
   co.label = "calibrate";
+  co.threads = plan.jobs;
   const std::vector<std::string> texts = campaign::run_campaign(jobs, co);
   for (std::size_t k = 0; k < st.rows.size(); ++k) {
     CalibrationRow& row = st.rows[k];

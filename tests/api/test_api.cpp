@@ -12,7 +12,9 @@
 #include <limits>
 
 #include "../cli/cli_runner.h"
+#include "api/calibrate.h"
 #include "api/diagnose.h"
+#include "api/sensitivity.h"
 #include "api/estimate.h"
 #include "api/simulate.h"
 #include "api/synthesize.h"
@@ -157,6 +159,83 @@ BOOST_AUTO_TEST_CASE(diagnose_synthesize_estimate_and_simulate_check_first) {
   const InputError v = refused([&] { api::simulate(m); }, "vtk_every");
   BOOST_TEST(v.problem_said() == "needs out DIR");
   BOOST_TEST(hook.calls == 0);
+}
+
+BOOST_AUTO_TEST_CASE(calibrate_and_sensitivity_check_first) {
+  Hook hook;
+  api::CalibrateOptions c;
+  c.dataset = "/nonexistent";
+  c.prepare_output = hook.fn();
+  c.rolling = {0.1, 2.0};
+  refused([&] { api::calibrate(c); }, "rolling");
+  c.rolling = {0.1};
+  c.density = {-5.0};
+  refused([&] { api::calibrate(c); }, "density");
+  c.density = {990.0};
+  c.shapes = {"cube"};
+  refused([&] { api::calibrate(c); }, "shape");
+  c.shapes = {"sphere", "clump"};
+  c.rolling = std::vector<double>(60, 0.1);  // 120 slump tests: hours
+  refused([&] { api::calibrate(c); }, "rolling");
+  c.rolling = {0.1};
+  c.quality = "paper";
+  refused([&] { api::calibrate(c); }, "quality");
+  c.quality = "quick";
+  c.target_bulk_density = 0.0;
+  refused([&] { api::calibrate(c); }, "target_bulk_density");
+  c.target_bulk_density.reset();
+  c.threads = 0;
+  refused([&] { api::calibrate(c); }, "threads");
+  c.threads = 1;
+  c.jobs = -1;
+  refused([&] { api::calibrate(c); }, "jobs");
+
+  api::SensitivityOptions s;
+  s.dataset = "/nonexistent";
+  s.prepare_output = hook.fn();
+  s.sizes_mm = {9.0, -5.0};
+  refused([&] { api::sensitivity(s); }, "sizes");
+  s.sizes_mm = {1, 2, 3, 4, 5, 6, 7};  // seven station DEM runs more
+  refused([&] { api::sensitivity(s); }, "sizes");
+  s.sizes_mm.clear();
+  s.only = {"LSD", ""};
+  refused([&] { api::sensitivity(s); }, "only");
+  s.only.clear();
+  s.limit = -1;
+  refused([&] { api::sensitivity(s); }, "limit");
+  s.limit = 10;
+  s.quality = "fast";
+  refused([&] { api::sensitivity(s); }, "quality");
+  s.quality = "quick";
+  s.threads = 1000;
+  refused([&] { api::sensitivity(s); }, "threads");
+  BOOST_TEST(hook.calls == 0);
+}
+
+// The study's campaign takes its runs side by side as an option, not from the process: one at a
+// time and two side by side give the same bytes (the determinism rule), and an unknown variant is
+// refused once the variants are known, before any run.
+BOOST_AUTO_TEST_CASE(sensitivity_is_the_same_at_any_number_of_jobs) {
+  api::SensitivityOptions s;
+  s.dataset = chutelab::test::tiny_station_dataset("api-sensitivity");
+  s.condition = "T3";
+  s.only = {"cube"};
+  int planned = 0;
+  s.planned = [&](const studies::SensitivityStudy&, const std::vector<studies::SensitivityVariant>&) { ++planned; };
+  refused([&] { api::sensitivity(s); }, "only");
+  BOOST_TEST(planned == 0);
+  s.only = {"G/10"};
+  s.jobs = 1;
+  const api::SensitivityResult one = api::sensitivity(s);
+  s.jobs = 2;
+  const api::SensitivityResult two = api::sensitivity(s);
+  BOOST_TEST(planned == 2);
+  BOOST_REQUIRE(one.study.rows.size() == 2u);
+  BOOST_TEST(one.study.rows[1].variant.key == "G/10");
+  const auto f1 = one.files(), f2 = two.files();
+  BOOST_REQUIRE(f1.size() == f2.size());
+  for (std::size_t k = 0; k < f1.size(); ++k)
+    if (f1[k].first != "sensitivity-timing.csv") BOOST_TEST(f1[k].second == f2[k].second, f1[k].first);
 }
 
 BOOST_AUTO_TEST_CASE(the_output_hook_is_told_the_plan_once_before_the_runs) {
