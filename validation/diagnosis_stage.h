@@ -1,8 +1,9 @@
 #pragma once
-// The working parts the diagnosis's stages share (validation/diagnosis.cpp: the single candidates,
-// the noise model's rounds and the verdict; diagnosis_causes.cpp: every cause the data support;
-// diagnosis_shape.cpp: whether a named cause has the shape the data want). Internal to the
-// diagnosis, not part of the library's interface.
+// The working parts the diagnosis's stages share (validation/diagnosis.cpp: the stages in order and
+// the verdict; diagnosis_explain.cpp: the single candidates and the noise model's rounds;
+// diagnosis_causes.cpp: every cause the data support; diagnosis_shape.cpp: whether a named cause has
+// the shape the data want; diagnosis_findings.cpp: what the named explanation leaves, its profile,
+// outliers and rivals). Internal to the diagnosis, not part of the library's interface.
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -60,7 +61,7 @@ std::string signature_words(PredictionSource::Signature s);
 struct Progress {
   bool on = false;
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
-  // Which pass of the noise model's rounds (validation/diagnosis.cpp, settle) the fits belong to:
+  // Which pass of the noise model's rounds (validation/diagnosis_explain.cpp, settle) the fits belong to:
   // each round that leaves out a reading or adds a discrepancy fits every candidate again.
   int round = 1;
   void operator()(const std::string& what, std::size_t k, std::size_t of) const;
@@ -72,7 +73,7 @@ std::vector<Leftover> leftovers_of(const Stage& s, const std::vector<double>& r,
                                    const Drivers& drivers);
 
 // Where each effect of an explanation finds its evidence, when nine tenths of it lie in one quantity
-// at the expense of another (validation/diagnosis.cpp).
+// at the expense of another (validation/diagnosis_findings.cpp).
 struct Evidence {
   std::size_t effect = 0;      // index into the explanation's effects
   std::size_t group = 0;
@@ -121,5 +122,66 @@ double bic_of(const EffectFit& f, const Stage& s);
 // and leaving the condition's readings as a whole within the noise. One reading cannot tell a wrong
 // record there from a wrong reading; the best first, then those within the tie margin of it.
 std::vector<EffectFit> records_for_reading(const Stage& s, const EffectFit* best, std::size_t i);
+
+// The explanations under one noise model (validation/diagnosis_explain.cpp): every single inside its range, those at an edge also
+// outside it, and every further cause the data support (validation/diagnosis_causes.cpp).
+struct Explanations {
+  std::vector<EffectFit> singles, pairs;  // pairs: explanations by more causes than the best single, largest first
+  const EffectFit* outside = nullptr;  // in singles: the best fit outside a range that the data want
+  // The leading explanation (lowest BIC among the significant ones, a fit outside a range included).
+  Fx fx;
+  std::vector<double> strengths;
+  double chi2 = 0.0;
+  bool any = false;
+  // The leading explanation with the best further cause, significant or not: the noise model is
+  // judged on what it leaves, so that it takes only scatter that no candidate explains.
+  Fx full_fx;
+  std::vector<double> full_strengths;
+  std::optional<EffectFit> next;  // that further cause's explanation
+  std::vector<EffectFit> alternatives;  // about as good in the last cause's place (Causes::alternatives)
+};
+// `confirm`: run an expensive model's leading candidates for real (`jobs` at a time).
+Explanations explain(const Stage& s, const Progress& progress, int jobs, bool confirm);
+
+// The explanations and the noise model that agree with each other: explain, take the leading
+// explanation's residuals, leave out one outlier or re-assess the noise, until nothing changes.
+struct Settled {
+  NoiseModel nm;
+  ScaleEstimate scale;
+  int rounds = 0;
+  bool settled = false;
+  // The explanations fitted under the settled noise model, in its last round.
+  std::optional<Explanations> last;
+};
+Settled settle(const Misfit& m, const DiagnoseOptions& opt, const Progress& progress);
+
+// The best single when it is significant, else null; an explanation's residuals (none: the models
+// as they are).
+const EffectFit* leader(const std::vector<EffectFit>& singles);
+std::vector<double> residuals_at(const Misfit& m, const EffectFit* f);
+
+// What the diagnosis says about its recommended explanation (validation/diagnosis_findings.cpp).
+// For a recommended record: one error for the rig, or one per condition (analytical models only).
+std::optional<RecordScope> record_scope_of(const Stage& s, const EffectFit* best);
+// The expensive model's own chi^2 at a few strengths around a single's estimate: the estimate and sd
+// from its curvature, not from the linear signature.
+void profile_best(EffectFit& f, const Stage& s, int jobs);
+// The recommended explanation's residuals: from real runs where it was run, else the signatures.
+std::vector<double> best_residuals(const Stage& s, const EffectFit* best);
+std::vector<Outlier> name_outliers(const Stage& s, const EffectFit* best, const std::vector<EffectFit>& singles);
+std::vector<Influence> influential(const Stage& s, const EffectFit& best);
+// Each quantity's mean error before and after an explanation, in its own units. `exact`: its
+// residuals from real runs, where there are some; `only`: one condition's readings.
+std::vector<QuantityShift> shifts_of(const Stage& s, const Fx& fx, const std::vector<double>& strengths,
+                                     const std::vector<double>& exact = {}, const std::string& only = "");
+std::vector<Discrepancy> model_form_of(const Stage& s, const std::vector<QuantityShift>& shifts);
+void fill_leftovers(std::vector<Leftover>& left, const std::vector<QuantityShift>& shifts);
+std::vector<ResidualPattern> residual_patterns(const Misfit& m, const std::vector<double>& r);
+// Which measurement tells two fitted explanations apart (with `unmeasured_only`, among the
+// quantities this dataset lacks).
+std::vector<Discriminator> discriminators(const Misfit& m, const EffectFit& a, const EffectFit& b, bool unmeasured_only);
+// The causes these data cannot tell from the named ones: about as good, or moving every reading in
+// proportion; and records at one condition beside a named one.
+void ties_of(DiagnosisResult& out, const Stage& s, const std::vector<double>& r0);
 
 }  // namespace chutelab::validation::detail

@@ -182,7 +182,7 @@ NoiseModel assess_noise(const Misfit& m, const NoiseModel& nm, const std::vector
                                    : gsl_cdf_chisq_Q(chi2[g], count[g]);
       if (p < worst_p) worst_p = p, worst = g;
     }
-    // Half the family's alpha: the other half judges what an explanation leaves (validation/diagnosis.cpp).
+    // Half the family's alpha: the other half judges what an explanation leaves (validation/diagnosis_findings.cpp, leftovers_of).
     if (!worst || worst_p >= 0.5 * alpha / eligible) break;
     flagged[*worst] = 1;
   }
