@@ -31,7 +31,6 @@ namespace chutelab::campaign {
 namespace {
 
 int g_rank = 0, g_ranks = 1;
-int g_threads = 1;
 int g_error_fd = 2;  // the rank's real stderr, kept when the rank is muted
 
 // A job's outcome travels as text: "ok\n" + result, or the error that every rank rethrows.
@@ -247,7 +246,7 @@ std::vector<std::string> run_campaign(std::span<const Job> jobs, const Options& 
 #ifdef CHUTELAB_HAVE_MPI
     wrapped = run_mpi(jobs, options);
 #endif
-  } else if (const int t = options.threads > 0 ? options.threads : g_threads; t > 1 && jobs.size() > 1) {
+  } else if (const int t = options.threads > 0 ? options.threads : 1; t > 1 && jobs.size() > 1) {
     Options o = options;
     o.threads = t;
     wrapped = run_threads(jobs, o);
@@ -272,9 +271,6 @@ std::vector<std::string> run_campaign(std::span<const Job> jobs, const Options& 
   for (auto& w : wrapped) out.push_back(unwrap(std::move(w)));
   return out;
 }
-
-void set_threads(int n) { g_threads = std::max(1, n); }
-int threads() { return g_threads; }
 
 int rank() { return g_rank; }
 int ranks() { return g_ranks; }

@@ -46,7 +46,9 @@ struct Job {
 };
 
 struct Options {
-  int threads = 0;        // concurrent jobs in one process (one rank only); 1 = in order; 0 = set_threads()
+  // Concurrent jobs in one process (one rank only); 0 or 1: in order. A caller's option, never the
+  // process's: the library's functions take it as their `jobs` (api/dem_options.h, resolve_jobs).
+  int threads = 0;
   std::string label;      // "sensitivity", "dem": prefix of the campaign's progress lines
   bool progress = true;   // a line per finished job that ran (core/progress.h), and a summary
 };
@@ -58,12 +60,6 @@ std::vector<std::string> run_campaign(std::span<const Job> jobs, const Options& 
 // (ties: lower rank), the jobs taken by decreasing cost, ties in job order. Exposed for tests and
 // for the bench's projection.
 std::vector<int> assign(std::span<const double> costs, int ranks);
-
-// The process's worker threads for campaigns (`--jobs N`); 1 runs jobs in order. The commands pass
-// one per idle core unless told (api/dem_options.h, resolve_jobs); the library's functions pass their
-// jobs to each campaign instead (Options::threads).
-void set_threads(int n);
-int threads();
 
 int rank();           // 0 without MPI
 int ranks();          // 1 without MPI

@@ -36,7 +36,7 @@ struct ModelRun {
 
 struct RunModelsOptions {
   std::string label = "runs";  // prefix of the campaign's progress lines
-  int jobs = 0;                // runs side by side in this process (campaign::Options::threads); 0: the process's
+  int jobs = 0;                // runs side by side in this process (campaign::Options::threads); 0 or 1: in order
   // What the runs are for, said once before they start ("": nothing said), so that a user who
   // waits for a diagnosis's fifth set of runs knows what each set is.
   std::string purpose;

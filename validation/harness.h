@@ -105,7 +105,7 @@ struct ValidateOptions {
   std::vector<std::string> effect_labels;
   const Tolerances* tolerances = nullptr;
   bool quiet = true;             // progress on stderr for slow models
-  // Expensive runs side by side in this process (core/campaign.h); 0: the process's default. The
+  // Expensive runs side by side in this process (core/campaign.h); 0 or 1: in order. The
   // numbers do not depend on it.
   int jobs = 0;
 };

@@ -44,7 +44,7 @@ struct CalibrationPlan {
   // Particle-wall rolling friction by the inclined-plane rig: onset angle for each `rolling` value
   // on the plate material (sphere).
   bool incline = true;
-  int jobs = 0;  // runs side by side in this process (campaign::Options::threads); 0: the process's
+  int jobs = 0;  // runs side by side in this process (campaign::Options::threads); 0 or 1: in order
 };
 
 struct InclineRow {

@@ -58,7 +58,7 @@ BOOST_AUTO_TEST_CASE(results_come_back_in_job_order) {
 }
 
 // Jobs side by side share the cores, so each is given one thread; a job run alone (in order, or a
-// campaign of one) keeps its own automatic choice (0), whatever the process's --jobs.
+// campaign of one) keeps its own automatic choice (0), whatever the command's --jobs.
 BOOST_AUTO_TEST_CASE(jobs_side_by_side_get_one_thread_each) {
   auto threads_of = [](std::size_t count, int workers) {
     std::vector<campaign::Job> jobs;
