@@ -5,9 +5,18 @@
 
 #include "core/input_error.h"
 #include "effects/at_condition.h"
+#include "effects/registry.h"
 #include "validation/strength_fit.h"
 
 namespace chutelab::api {
+
+std::vector<EffectEntry> effect_library() {
+  std::vector<EffectEntry> out;
+  for (const auto& e : effects::library())
+    out.push_back({e.name, e.parameter, e.unit, e.stage, e.kind == effects::EffectInfo::Kind::record, e.neutral,
+                   e.lower, e.upper, e.typical, e.physics, e.source});
+  return out;
+}
 
 std::vector<validation::ModelPtr> in_registry_order(const std::vector<validation::ModelPtr>& models) {
   const auto order = validation::model_names();

@@ -10,6 +10,8 @@
 #include "core/input_error.h"
 #include "core/rig.h"
 #include "core/units.h"
+#include "reports/design.h"
+#include "reports/dxf.h"
 #include "validation/dataset.h"
 #include "validation/harness.h"
 #include "validation/models/models.h"
@@ -145,6 +147,15 @@ EstimatePoint estimate_point(const Station& st, const analytical::EffectList& fx
   for (const auto& r : predicted) p.models.emplace_back(r.model, r.prediction.values);
   return p;
 }
+
+std::string EstimateResult::svg() const {
+  QuantityValues korzen;
+  for (const auto& [m, v] : models)
+    if (m == "korzen") korzen = v;
+  return reports::standalone_svg(reports::design_svg(analysis, korzen));
+}
+
+std::string EstimateResult::dxf() const { return reports::design_dxf(analysis); }
 
 EstimateResult estimate(const EstimateOptions& o) {
   check(o);

@@ -61,6 +61,11 @@ struct EstimateResult {
   std::string table() const { return estimate_table(analysis, models, settings); }
   std::string csv() const { return estimate_csv(analysis, models); }
   std::string json() const { return estimate_json(analysis, models, settings); }
+  // The design drawn (pulley, streamlines, plate, impact point, Korzen readout) as a standalone SVG
+  // file; as ASCII DXF R12 for CAD (mm, origin at the pulley centre); the streamlines' points as CSV.
+  std::string svg() const;
+  std::string dxf() const;
+  std::string points_csv() const { return streamline_points_csv(analysis); }
 };
 
 // check(o), then the estimate. Throws InputError for a missing or impossible input.

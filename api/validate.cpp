@@ -15,6 +15,7 @@
 #include "reports/report.h"
 #include "studies/sensitivity.h"
 #include "validation/dataset_output.h"
+#include "validation/junit.h"
 
 namespace chutelab::api {
 namespace {
@@ -187,6 +188,15 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
   }
   res.notes = applied.notes;
   return res;
+}
+
+std::string ValidateResult::junit(JunitCounts* counts) const {
+  validation::JunitSummary summary;
+  const std::string xml = validation::junit_xml(accepted(), tolerances ? &*tolerances : nullptr, &summary,
+                                                beside_acceptance(), accepted_with_effects ? "as-delivered" : "with-effects");
+  if (counts) *counts = {summary.tests, summary.failures, summary.errors, summary.skipped, summary.beside,
+                         summary.beside_outside};
+  return xml;
 }
 
 }  // namespace chutelab::api

@@ -91,6 +91,13 @@ struct ValidateResult {
   // predictions.csv, errors.csv, summary.csv, report.md, report.html, the report's charts as
   // figures/NN-ID.svg (report.md links them) and, with a diagnosis, diagnosis.csv and diagnosis.md.
   std::vector<validation::OutputFile> files() const;
+  // The acceptance as JUnit XML (one testcase per checked condition x model x quantity; the other
+  // result beside it, all skipped), and what it counted.
+  struct JunitCounts {
+    int tests = 0, failures = 0, errors = 0, skipped = 0;  // the judged result's
+    int beside = 0, beside_outside = 0;  // test cases beside (all skipped), those outside tolerance
+  };
+  std::string junit(JunitCounts* counts = nullptr) const;
 };
 
 // check(o), the dataset and every other input read, prepare_output told, then the runs.

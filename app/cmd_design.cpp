@@ -11,7 +11,7 @@
 #include "core/input_error.h"
 #include "core/units.h"
 #include "validation/dataset.h"
-#include "validation/output_files.h"
+#include "api/files.h"
 
 namespace chutelab::app {
 using api::json_number;
@@ -88,7 +88,7 @@ int run_design(const DesignOptions& o) {
   std::vector<fs::path> inputs = {setup};
   if (!o.dataset.empty())
     for (auto& p : dataset_inputs(o.dataset)) inputs.push_back(std::move(p));
-  validation::write_outputs(o.out, {{"design.html", html}}, inputs, "design");
+  api::write_files(o.out, {{"design.html", html}}, inputs, "design");
   std::cout << fmt::format("wrote {} ({:.1f} MB, self-contained: open it in a browser, no server needed)\n",
                            (fs::path(o.out) / "design.html").string(), html.size() / 1e6);
   return kExitOk;

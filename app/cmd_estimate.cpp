@@ -5,29 +5,19 @@
 #include <iostream>
 #include <optional>
 
-#include "analytical/impact_zone.h"
-#include "analytical/transfer_station.h"
 #include "app/commands.h"
 #include "api/estimate.h"
+#include "api/sweep.h"
 #include "app/flag_names.h"
-#include "app/sweep.h"
 #include "core/input_error.h"
 #include "core/output_folder.h"
-#include "core/units.h"
-#include "effects/registry.h"
-#include "reports/design.h"
-#include "reports/dxf.h"
-#include "validation/dataset.h"
-#include "validation/harness.h"
-#include "validation/models/models.h"
-#include "validation/output_files.h"
 
 namespace chutelab::app {
 namespace {
 
 // The estimate's options (api/estimate.h) and what only the command line adds.
-struct EstimateCli : api::EstimateOptions {
-  std::string format = "table", svg, sweep, dxf, points;
+struct EstimateCli : api::SweepOptions {
+  std::string format = "table", svg, dxf, points;
 };
 
 // --svg, --dxf, --points FILE: never over a file this run reads, never two flags on one file, and
@@ -45,98 +35,28 @@ OutputFolder export_files(const EstimateCli& o) {
   return OutputFolder(inputs);
 }
 
-QuantityValues korzen_reading(const ModelValues& models) {
-  for (const auto& [m, v] : models)
-    if (m == "korzen") return v;
-  return {};
-}
-
-int run_sweep(const EstimateCli& o, const analytical::EffectList& fixed,
-              const std::vector<effects::EffectSetting>& settings) {
+int run_sweep(const EstimateCli& o) {
   if (!o.dxf.empty() || !o.points.empty())
     throw InputError("", 0, o.dxf.empty() ? "--points" : "--dxf", "draws one design; leave it out with --sweep");
-  const SweepSpec spec = parse_sweep(o.sweep);
-  if (spec.kind == SweepSpec::Kind::condition) {
-    const bool given = (spec.flag == "--belt-speed" && o.belt_speed) || (spec.flag == "--mass-flow" && o.mass_flow) ||
-                       (spec.flag == "--plate-distance" && o.plate_distance) ||
-                       (spec.flag == "--plate-top" && o.plate_top) ||
-                       (spec.flag == "--stream-thickness" && o.stream_thickness);
-    if (given)
-      throw InputError("", 0, "--sweep", fmt::format("{} is swept; leave out {}", spec.column, spec.flag));
-  }
-  if (spec.kind == SweepSpec::Kind::rig)
-    for (const auto& [value, column, flag] :
-         {std::tuple{&o.pulley_diameter, "pulley_diameter_mm", "--pulley-diameter"},
-          std::tuple{&o.belt_width, "belt_width_mm", "--belt-width"},
-          std::tuple{&o.bulk_density, "bulk_density_kgm3", "--bulk-density"}})
-      if (*value && spec.column == column)
-        throw InputError("", 0, "--sweep", fmt::format("{} is swept; leave out {}", spec.column, flag));
-  if (spec.kind == SweepSpec::Kind::effect)
-    for (const auto& s : settings)
-      if (s.info == spec.effect)
-        throw InputError("", 0, "--sweep", fmt::format("{} is swept; leave out --effect {}=...", spec.effect->name,
-                                                       spec.effect->name));
-  std::vector<SweepRow> rows;
-  for (double v : spec.values()) {
-    EstimateCli at = o;
-    if (spec.kind == SweepSpec::Kind::condition) {
-      std::optional<double>* slot = spec.flag == "--belt-speed"       ? &at.belt_speed
-                                    : spec.flag == "--mass-flow"      ? &at.mass_flow
-                                    : spec.flag == "--plate-distance" ? &at.plate_distance
-                                    : spec.flag == "--plate-top"      ? &at.plate_top
-                                                                      : &at.stream_thickness;
-      *slot = v;
-    }
-    // Inputs that are wrong at every point (a missing flag, a bad file) stop the sweep: exit 2.
-    Station st = api::resolve_station(at);
-    apply_sweep_value(spec, v, st);
-    analytical::EffectList fx = fixed;
-    if (spec.kind == SweepSpec::Kind::effect) fx.push_back(spec.effect->make(v));
-    SweepRow row{v, std::nullopt, {}, {}, st.plate_top * 1e3,
-                 (st.plate_top - st.plate.height * std::cos(st.plate.angle)) * 1e3};
-    try {
-      // A design with no answer at this point (the stream misses the plate, the load no longer
-      // fits the belt) is a result of the sweep, not bad input: the row says why.
-      row.point = api::estimate_point(st, fx);
-      if (!row.point->analysis.line(analytical::Streamline::korzen_centroid).hit->on_plate)
-        row.note = "the centroid meets the plate line off the plate";
-      else  // a stream partly over the top edge (or past the foot) loads the plate with less
-        row.note = api::stream_miss_note(analytical::impact_zone(row.point->analysis).caught);
-    } catch (const InputError& e) {
-      row.note = problem_said(e);
-      row.why = e.field();
-    }
-    rows.push_back(std::move(row));
-  }
-  if (std::none_of(rows.begin(), rows.end(), [](const SweepRow& r) { return r.point.has_value(); }))
-    throw InputError("", 0, "--sweep", fmt::format("no point of the sweep has an answer: {}", rows.front().note));
+  const api::SweepResult r = api::sweep(o);
   if (!o.svg.empty()) {
     OutputFolder files = export_files(o);
-    files.write_file(o.svg, "--svg", reports::standalone_svg(sweep_chart(spec, rows)));
+    files.write_file(o.svg, "--svg", r.svg(flag_for));
     files.commit();
   }
-  if (o.format == "json")
-    std::cout << sweep_json(spec, rows, settings);
-  else if (o.format == "csv")
-    std::cout << sweep_csv(spec, rows);
-  else
-    std::cout << sweep_table(spec, rows);
+  std::cout << (o.format == "json" ? r.json(flag_for) : o.format == "csv" ? r.csv(flag_for) : r.table(flag_for));
   return kExitOk;
 }
 
 int run_estimate(EstimateCli o) {
   o.default_dataset = default_dataset();
-  if (!o.sweep.empty()) {
-    std::vector<effects::EffectSetting> settings;
-    for (const auto& e : o.effects) settings.push_back(effects::parse_setting(e, false));
-    return run_sweep(o, effects::instantiate(settings), settings);
-  }
+  if (!o.sweep.empty()) return run_sweep(o);
   const api::EstimateResult r = api::estimate(o);
   OutputFolder files = export_files(o);
   if (!o.svg.empty())
-    files.write_file(o.svg, "--svg", reports::standalone_svg(reports::design_svg(r.analysis, korzen_reading(r.models))));
-  if (!o.dxf.empty()) files.write_file(o.dxf, "--dxf", reports::design_dxf(r.analysis));
-  if (!o.points.empty()) files.write_file(o.points, "--points", api::streamline_points_csv(r.analysis));
+    files.write_file(o.svg, "--svg", r.svg());
+  if (!o.dxf.empty()) files.write_file(o.dxf, "--dxf", r.dxf());
+  if (!o.points.empty()) files.write_file(o.points, "--points", r.points_csv());
   files.commit();
   std::cout << (o.format == "json" ? r.json() : o.format == "csv" ? r.csv() : r.table());
   return kExitOk;

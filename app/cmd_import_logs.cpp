@@ -6,7 +6,7 @@
 #include "api/import_logs.h"
 #include "app/commands.h"
 #include "core/output_folder.h"
-#include "validation/dataset_output.h"
+#include "api/files.h"
 
 namespace chutelab::app {
 namespace {
@@ -23,7 +23,7 @@ int run_import_logs(const ImportLogsCli& o) {
     return {};
   };
   const api::ImportLogsResult r = api::import_logs(opt);
-  validation::write_dataset(o.out, r.files(), r.dataset.dir, "import-logs");
+  api::write_dataset(o.out, r.files(), r.dataset.dir, "import-logs");
   for (const auto& c : r.logs.conditions) {
     std::cout << fmt::format("{}: window {:.2f}-{:.2f} s{}", c.condition, c.segments.window.start,
                              c.segments.window.end, c.segments.steady ? "" : " (not steady)");

@@ -6,7 +6,7 @@
 #include "app/commands.h"
 #include "app/option_checks.h"
 #include "core/output_folder.h"
-#include "validation/dataset_output.h"
+#include "api/files.h"
 
 namespace chutelab::app {
 namespace {
@@ -38,7 +38,7 @@ int run_synthesize(const SynthesizeCli& o) {
     return {};
   };
   const api::SynthesizeResult r = api::synthesize(opt);
-  validation::write_dataset(o.out, r.files, r.source.dir, "synthesize");
+  api::write_dataset(o.out, r.files, r.source.dir, "synthesize");
   std::cout << fmt::format("synthetic dataset: {}\n", o.out);
   return 0;
 }

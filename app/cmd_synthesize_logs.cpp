@@ -8,7 +8,7 @@
 #include "app/option_checks.h"
 #include "core/option_check.h"
 #include "core/output_folder.h"
-#include "validation/dataset_output.h"
+#include "api/files.h"
 
 namespace chutelab::app {
 namespace {
@@ -30,7 +30,7 @@ int run_synthesize_logs(const SynthesizeLogsCli& o) {
     return {};
   };
   const api::SynthesizeLogsResult r = api::synthesize_logs(opt);
-  validation::write_dataset(o.out, r.files, r.source.dir, "synthesize-logs");
+  api::write_dataset(o.out, r.files, r.source.dir, "synthesize-logs");
   std::cout << fmt::format("dataset of logs: {} ({} conditions)\n", o.out, r.truth.size());
   return 0;
 }

@@ -10,8 +10,6 @@
 #include "core/input_error.h"
 #include "core/output_folder.h"
 #include "core/progress.h"
-#include "validation/junit.h"
-#include "validation/output_files.h"
 
 namespace chutelab::app {
 namespace {
@@ -73,14 +71,10 @@ int run_validate(const ValidateCli& o) {
   // The acceptance judges the models as delivered; the models with effects are reported beside it
   // (api/validate.h, docs/guide-ci.md).
   const auto& judged = r.accepted();
-  const auto* beside = r.beside_acceptance();
   for (const auto& [name, content] : r.files()) out->write(name, content);
-  validation::JunitSummary junit;
+  api::ValidateResult::JunitCounts junit;
   // Placed with --out by the one commit: a --junit that cannot be written leaves --out as it was.
-  if (!o.junit.empty())
-    out->write_file(o.junit, "--junit",
-                    validation::junit_xml(judged, r.tolerances ? &*r.tolerances : nullptr, &junit, beside,
-                                          r.accepted_with_effects ? "as-delivered" : "with-effects"));
+  if (!o.junit.empty()) out->write_file(o.junit, "--junit", r.junit(&junit));
   out->commit();
   progress::clear();
   for (const auto& p : judged.acceptance_problems) std::cerr << "chutelab: acceptance: " << p << "\n";
@@ -98,7 +92,7 @@ int run_validate(const ValidateCli& o) {
                                           : "");
     // The file says so too (an error test case), so a CI view never shows it green; the exit code
     // is the acceptance's own, as without --junit.
-    if (junit.nothing_checked())
+    if (junit.errors > 0)
       std::cerr << "chutelab: --junit: no tolerance applied to any predicted value: nothing was checked "
                    "(the JUnit file reports an error)\n";
   }

@@ -20,7 +20,7 @@
 #include "core/message.h"
 #include "core/output_folder.h"
 #include "core/progress.h"
-#include "validation/dataset_output.h"
+#include "api/files.h"
 
 namespace chutelab::app {
 std::vector<std::string> split_list(const std::string& s) {
@@ -103,7 +103,7 @@ std::optional<std::string> misspelt(CLI::App& app, int argc, char** argv) {
 }
 
 std::vector<std::filesystem::path> dataset_inputs(const std::filesystem::path& dir) {
-  return validation::dataset_files(dir);
+  return api::dataset_files(dir);
 }
 
 void check_entries(const OutputFolder& out, std::initializer_list<const char*> files) {

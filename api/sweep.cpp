@@ -1,7 +1,8 @@
-#include "app/sweep.h"
+#include "api/sweep.h"
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <fmt/format.h>
 
 #include "analytical/impact_zone.h"
@@ -11,7 +12,7 @@
 #include "reports/design.h"
 #include "validation/dataset.h"
 
-namespace chutelab::app {
+namespace chutelab::api {
 namespace {
 using analytical::Streamline;
 
@@ -19,15 +20,15 @@ using analytical::Streamline;
 constexpr std::size_t kMaxPoints = 2000;
 
 struct ConditionInput {
-  std::string_view name, column, flag, label;
+  std::string_view name, column, label;
   bool positive;
 };
 constexpr std::array<ConditionInput, 5> kConditionInputs = {{
-    {"belt_speed", "belt_speed_mps", "--belt-speed", "belt speed (m/s)", true},
-    {"mass_flow", "mass_flow_tph", "--mass-flow", "mass flow (t/h)", true},
-    {"plate_distance", "plate_distance_mm", "--plate-distance", "plate distance (mm)", true},
-    {"plate_top", "plate_top_mm", "--plate-top", "plate top (mm)", false},
-    {"stream_thickness", "stream_thickness_mm", "--stream-thickness", "stream thickness (mm)", true},
+    {"belt_speed", "belt_speed_mps", "belt speed (m/s)", true},
+    {"mass_flow", "mass_flow_tph", "mass flow (t/h)", true},
+    {"plate_distance", "plate_distance_mm", "plate distance (mm)", true},
+    {"plate_top", "plate_top_mm", "plate top (mm)", false},
+    {"stream_thickness", "stream_thickness_mm", "stream thickness (mm)", true},
 }};
 
 constexpr std::array<std::string_view, 5> kUnitSuffixes = {"_mm", "_deg", "_kgm3", "_Pa", "_mps2"};
@@ -44,7 +45,7 @@ std::string known_names() {
 double number(std::string_view text, std::string_view what, const std::string& spec) {
   const auto v = parse_number(text);
   if (!v || !std::isfinite(*v))
-    throw InputError("", 0, "--sweep",
+    throw InputError("", 0, "sweep",
                      fmt::format("{} '{}' in '{}' is not a finite number (expected NAME=FROM:TO:STEP)", what, text, spec));
   return *v;
 }
@@ -79,14 +80,14 @@ std::vector<double> SweepSpec::values() const {
 SweepSpec parse_sweep(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
-    throw InputError("", 0, "--sweep", fmt::format("'{}' is not NAME=FROM:TO:STEP", text));
+    throw InputError("", 0, "sweep", fmt::format("'{}' is not NAME=FROM:TO:STEP", text));
   std::string name = text.substr(0, eq);
   std::replace(name.begin(), name.end(), '-', '_');
   const std::string range = text.substr(eq + 1);
   const auto c1 = range.find(':');
   const auto c2 = c1 == std::string::npos ? std::string::npos : range.find(':', c1 + 1);
   if (c2 == std::string::npos || range.find(':', c2 + 1) != std::string::npos)
-    throw InputError("", 0, "--sweep", fmt::format("'{}' is not NAME=FROM:TO:STEP (three numbers after '=')", text));
+    throw InputError("", 0, "sweep", fmt::format("'{}' is not NAME=FROM:TO:STEP (three numbers after '=')", text));
 
   SweepSpec s;
   s.from = number(range.substr(0, c1), "FROM", text);
@@ -98,12 +99,12 @@ SweepSpec parse_sweep(const std::string& text) {
     if (name == c.name || name == c.column) {
       s.kind = SweepSpec::Kind::condition;
       s.column = c.column;
-      s.flag = c.flag;
+      s.option = c.name;
       s.label = c.label;
       found = true;
       if (c.positive && !(s.from > 0.0 && s.to > 0.0))
-        throw InputError("", 0, "--sweep", fmt::format("{} must stay positive, got {} to {}", c.name, s.from, s.to));
-      for (double v : {s.from, s.to}) validation::check_operating_input(c.column, v, "--sweep");
+        throw InputError("", 0, "sweep", fmt::format("{} must stay positive, got {} to {}", c.name, s.from, s.to));
+      for (double v : {s.from, s.to}) validation::check_operating_input(c.column, v, "sweep");
     }
   if (!found)
     for (const auto& f : rig_fields()) {
@@ -118,7 +119,7 @@ SweepSpec parse_sweep(const std::string& text) {
       found = true;
       for (double v : {s.from, s.to})
         if (v < f.min || v > f.max)
-          throw InputError("", 0, "--sweep", fmt::format("{} = {} is outside its physical range [{}, {}]", f.column, v, f.min, f.max));
+          throw InputError("", 0, "sweep", fmt::format("{} = {} is outside its physical range [{}, {}]", f.column, v, f.min, f.max));
     }
   if (!found)
     if (const auto* e = effects::find(name)) {
@@ -129,19 +130,19 @@ SweepSpec parse_sweep(const std::string& text) {
       found = true;
       for (double v : {s.from, s.to})
         if (v < e->lower || v > e->upper)
-          throw InputError("", 0, "--sweep", fmt::format("{} = {} is outside its range [{}, {}]", e->name, v, e->lower, e->upper));
+          throw InputError("", 0, "sweep", fmt::format("{} = {} is outside its range [{}, {}]", e->name, v, e->lower, e->upper));
     }
   if (!found)
-    throw InputError("", 0, "--sweep", fmt::format("unknown input '{}' (known: {})", name, known_names()));
+    throw InputError("", 0, "sweep", fmt::format("unknown input '{}' (known: {})", name, known_names()));
 
   if (s.from == s.to) {
     s.step = 0.0;
   } else {
     if (s.step == 0.0 || (s.to - s.from) * s.step < 0.0)
-      throw InputError("", 0, "--sweep",
+      throw InputError("", 0, "sweep",
                        fmt::format("STEP {} never gets from {} to {}", range.substr(c2 + 1), s.from, s.to));
     if ((s.to - s.from) / s.step + 1.0 > static_cast<double>(kMaxPoints))
-      throw InputError("", 0, "--sweep",
+      throw InputError("", 0, "sweep",
                        fmt::format("{:.3g} points from {} to {} in steps of {}: at most {} (a larger STEP?)",
                                    (s.to - s.from) / s.step + 1.0, s.from, s.to, s.step, kMaxPoints));
     // Every point a different number: a STEP below the resolution of a double near FROM would give
@@ -149,7 +150,7 @@ SweepSpec parse_sweep(const std::string& text) {
     const auto v = s.values();
     for (std::size_t i = 1; i < v.size(); ++i)
       if (v[i] == v[i - 1])
-        throw InputError("", 0, "--sweep",
+        throw InputError("", 0, "sweep",
                          fmt::format("STEP {} is below the resolution of a number near {} (points {} and {} are the "
                                      "same number)",
                                      s.step, v[i], i, i + 1));
@@ -171,7 +172,7 @@ void apply_sweep_value(const SweepSpec& s, double value, Station& st) {
   st.gravity = setup.gravity;
 }
 
-std::string sweep_csv(const SweepSpec& s, const std::vector<SweepRow>& rows) {
+std::string sweep_csv(const SweepSpec& s, const std::vector<SweepRow>& rows, const FieldNames& names) {
   // Columns: the swept value, every scalar any point has (first-seen order), the flags, each
   // model's quantities, and a note; a point without an answer leaves its cells empty.
   std::vector<std::string> scalar_cols;
@@ -194,7 +195,7 @@ std::string sweep_csv(const SweepSpec& s, const std::vector<SweepRow>& rows) {
   for (const auto& r : rows) {
     o += number_cell(r.value);
     if (!r.point) {
-      o += std::string(scalar_cols.size() + 3 + model_cols.size(), ',') + "," + csv_cell(r.note) + "\n";
+      o += std::string(scalar_cols.size() + 3 + model_cols.size(), ',') + "," + csv_cell(said_text(r.note, names)) + "\n";
       continue;
     }
     const auto& a = r.point->analysis;
@@ -211,13 +212,13 @@ std::string sweep_csv(const SweepSpec& s, const std::vector<SweepRow>& rows) {
         if (mm == m && vals[q]) cell = number_cell(*vals[q] * info(q).to_boundary);
       o += "," + cell;
     }
-    o += "," + csv_cell(r.note) + "\n";
+    o += "," + csv_cell(said_text(r.note, names)) + "\n";
   }
   return o;
 }
 
 std::string sweep_json(const SweepSpec& s, const std::vector<SweepRow>& rows,
-                       const std::vector<effects::EffectSetting>& settings) {
+                       const std::vector<effects::EffectSetting>& settings, const FieldNames& names) {
   std::string o = fmt::format(
       "{{\n  \"sweep\": {{\"name\": {}, \"from\": {}, \"to\": {}, \"step\": {}, \"points\": {}}},\n  \"rows\": [",
       json_string(s.column), json_number(s.from), json_number(s.to), json_number(s.step), rows.size());
@@ -225,7 +226,7 @@ std::string sweep_json(const SweepSpec& s, const std::vector<SweepRow>& rows,
     const auto& r = rows[i];
     o += fmt::format("{}\n    {{{}: {}, ", i ? "," : "", json_string(s.column), json_number(r.value));
     if (!r.point) {
-      o += fmt::format("\"error\": {}}}", json_string(r.note));
+      o += fmt::format("\"error\": {}}}", json_string(said_text(r.note, names)));
       continue;
     }
     auto fx = settings;
@@ -240,7 +241,7 @@ std::string sweep_json(const SweepSpec& s, const std::vector<SweepRow>& rows,
   return o;
 }
 
-std::string sweep_table(const SweepSpec& s, const std::vector<SweepRow>& rows) {
+std::string sweep_table(const SweepSpec& s, const std::vector<SweepRow>& rows, const FieldNames& names) {
   std::string o = fmt::format("chutelab estimate: sweep of {} from {} to {} ({} points; analytical models)\n\n",
                               s.column, s.from, s.to, rows.size());
   o += fmt::format("  {:>14} {:>8} {:>9} {:>10} {:>8} {:>9} {:>9} {:>9} {:>12} {:>12}\n", s.column, "V_p_mps",
@@ -256,7 +257,7 @@ std::string sweep_table(const SweepSpec& s, const std::vector<SweepRow>& rows) {
   for (const auto& r : rows) {
     o += fmt::format("  {:>14.{}g} ", r.value, digits);
     if (!r.point) {
-      o += r.note + "\n";
+      o += said_text(r.note, names) + "\n";
       continue;
     }
     const auto& a = r.point->analysis;
@@ -274,13 +275,13 @@ std::string sweep_table(const SweepSpec& s, const std::vector<SweepRow>& rows) {
                      cell(k[Quantity::shear_force], 1.0, 9, 2), cell(k[Quantity::resultant_force], 1.0, 9, 2),
                      cell(k[Quantity::impact_point_y], 1e3, 12, 1),
                      cell(cc ? std::optional<double>(cc->point.position.y()) : std::nullopt, 1e3, 12, 1));
-    if (!r.note.empty()) o += "  " + r.note;
+    if (!r.note.empty()) o += "  " + said_text(r.note, names);
     o += "\n";
   }
   return o;
 }
 
-std::string sweep_chart(const SweepSpec& s, const std::vector<SweepRow>& rows) {
+std::string sweep_chart(const SweepSpec& s, const std::vector<SweepRow>& rows, const FieldNames& names) {
   reports::SweepChart c;
   c.x_label = s.label;
   struct Line { Streamline which; const char* label; const char* colour; const char* dash; };
@@ -303,7 +304,7 @@ std::string sweep_chart(const SweepSpec& s, const std::vector<SweepRow>& rows) {
                           : r.why == "mass_flow_tph" || r.why == "stream_thickness_mm" ? "belt overfilled"
                           : r.why == "plate_distance_mm" || r.why == "plate_top_mm"    ? "stream misses the plate"
                                                                                        : "no answer");
-    c.gap_reason.push_back(r.point ? "" : r.note);
+    c.gap_reason.push_back(r.point ? "" : said_text(r.note, names));
     // A point with an answer and a note: the plate does not take the whole stream there.
     std::string partial;
     if (r.point && !r.note.empty()) {
@@ -314,7 +315,7 @@ std::string sweep_chart(const SweepSpec& s, const std::vector<SweepRow>& rows) {
                                                                 : "centroid off the plate";
     }
     c.partial_label.push_back(partial);
-    c.partial_reason.push_back(partial.empty() ? "" : fmt::format("{} = {:g}: {}", s.column, r.value, r.note));
+    c.partial_reason.push_back(partial.empty() ? "" : fmt::format("{} = {:g}: {}", s.column, r.value, said_text(r.note, names)));
     for (std::size_t i = 0; i < std::size(lines); ++i) {
       std::optional<double> y;
       if (r.point)
@@ -332,4 +333,74 @@ std::string sweep_chart(const SweepSpec& s, const std::vector<SweepRow>& rows) {
   return reports::sweep_svg(c);
 }
 
-}  // namespace chutelab::app
+std::string SweepResult::table(const FieldNames& names) const { return sweep_table(spec, rows, names); }
+std::string SweepResult::csv(const FieldNames& names) const { return sweep_csv(spec, rows, names); }
+std::string SweepResult::json(const FieldNames& names) const { return sweep_json(spec, rows, settings, names); }
+std::string SweepResult::svg(const FieldNames& names) const {
+  return reports::standalone_svg(sweep_chart(spec, rows, names));
+}
+
+SweepResult sweep(const SweepOptions& o) {
+  SweepResult res;
+  for (const auto& e : o.effects) res.settings.push_back(effects::parse_setting(e, false));
+  const analytical::EffectList fixed = effects::instantiate(res.settings);
+  const SweepSpec spec = parse_sweep(o.sweep);
+  res.spec = spec;
+  // The swept input given as well: which one holds is not clear.
+  if (spec.kind == SweepSpec::Kind::condition) {
+    const bool given = (spec.option == "belt_speed" && o.belt_speed) || (spec.option == "mass_flow" && o.mass_flow) ||
+                       (spec.option == "plate_distance" && o.plate_distance) ||
+                       (spec.option == "plate_top" && o.plate_top) ||
+                       (spec.option == "stream_thickness" && o.stream_thickness);
+    if (given)
+      throw InputError("", 0, "sweep", fmt::format("{} is swept; leave out {}", spec.column, mention(spec.option)));
+  }
+  if (spec.kind == SweepSpec::Kind::rig)
+    for (const auto& [value, column, option] :
+         {std::tuple{&o.pulley_diameter, "pulley_diameter_mm", "pulley_diameter"},
+          std::tuple{&o.belt_width, "belt_width_mm", "belt_width"},
+          std::tuple{&o.bulk_density, "bulk_density_kgm3", "bulk_density"}})
+      if (*value && spec.column == column)
+        throw InputError("", 0, "sweep", fmt::format("{} is swept; leave out {}", spec.column, mention(option)));
+  if (spec.kind == SweepSpec::Kind::effect)
+    for (const auto& s : res.settings)
+      if (s.info == spec.effect)
+        throw InputError("", 0, "sweep", fmt::format("{} is swept; leave out {} {}=...", spec.effect->name,
+                                                     mention("effect"), spec.effect->name));
+  for (double v : spec.values()) {
+    EstimateOptions at = o;
+    if (spec.kind == SweepSpec::Kind::condition) {
+      std::optional<double>* slot = spec.option == "belt_speed"       ? &at.belt_speed
+                                    : spec.option == "mass_flow"      ? &at.mass_flow
+                                    : spec.option == "plate_distance" ? &at.plate_distance
+                                    : spec.option == "plate_top"      ? &at.plate_top
+                                                                      : &at.stream_thickness;
+      *slot = v;
+    }
+    // Inputs that are wrong at every point (a missing option, a bad file) stop the sweep.
+    Station st = resolve_station(at);
+    apply_sweep_value(spec, v, st);
+    analytical::EffectList fx = fixed;
+    if (spec.kind == SweepSpec::Kind::effect) fx.push_back(spec.effect->make(v));
+    SweepRow row{v, std::nullopt, {}, {}, st.plate_top * 1e3,
+                 (st.plate_top - st.plate.height * std::cos(st.plate.angle)) * 1e3};
+    try {
+      // A design with no answer at this point (the stream misses the plate, the load no longer
+      // fits the belt) is a result of the sweep, not bad input: the row says why.
+      row.point = estimate_point(st, fx);
+      if (!row.point->analysis.line(Streamline::korzen_centroid).hit->on_plate)
+        row.note = "the centroid meets the plate line off the plate";
+      else  // a stream partly over the top edge (or past the foot) loads the plate with less
+        row.note = stream_miss_note(analytical::impact_zone(row.point->analysis).caught);
+    } catch (const InputError& e) {
+      row.note = e.problem();
+      row.why = e.field();
+    }
+    res.rows.push_back(std::move(row));
+  }
+  if (std::none_of(res.rows.begin(), res.rows.end(), [](const SweepRow& r) { return r.point.has_value(); }))
+    throw InputError("", 0, "sweep", fmt::format("no point of the sweep has an answer: {}", res.rows.front().note));
+  return res;
+}
+
+}  // namespace chutelab::api

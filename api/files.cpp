@@ -1,0 +1,37 @@
+#include "api/files.h"
+
+#include "logs/dataset_logs.h"
+#include "validation/dataset_output.h"
+#include "validation/output_files.h"
+
+namespace chutelab::api {
+namespace {
+validation::MeasurementsRequired need(bool required) {
+  return required ? validation::MeasurementsRequired::yes : validation::MeasurementsRequired::no;
+}
+}  // namespace
+
+validation::Dataset read_dataset(const std::filesystem::path& dir, bool measurements_required) {
+  return logs::read_dataset(dir, need(measurements_required));
+}
+
+validation::Dataset read_dataset(const validation::DatasetTexts& files, const std::filesystem::path& dir,
+                                 bool measurements_required) {
+  return validation::read_dataset(files, dir, need(measurements_required));
+}
+
+std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& dir) {
+  return validation::dataset_files(dir);
+}
+
+void write_files(const std::filesystem::path& out, const std::vector<OutputFile>& files,
+                 const std::vector<std::filesystem::path>& inputs, std::string_view command) {
+  validation::write_outputs(out, files, inputs, command);
+}
+
+void write_dataset(const std::filesystem::path& out, const std::vector<OutputFile>& files,
+                   const std::filesystem::path& source_dir, std::string_view command) {
+  validation::write_dataset(out, files, source_dir, command);
+}
+
+}  // namespace chutelab::api
