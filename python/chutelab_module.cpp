@@ -16,13 +16,16 @@
 #include <fmt/format.h>
 
 #include "analytical/streamline_path.h"
+#include "api/calibrate.h"
 #include "api/diagnose.h"
 #include "api/effects.h"
 #include "api/estimate.h"
+#include "api/files.h"
 #include "api/import_logs.h"
+#include "api/sensitivity.h"
+#include "api/sweep.h"
 #include "api/synthesize.h"
 #include "api/synthesize_logs.h"
-#include "logs/dataset_logs.h"
 #include "api/validate.h"
 #include "core/input_error.h"
 #include "core/interrupt.h"
@@ -31,15 +34,12 @@
 #include "core/output_folder.h"
 #include "core/progress.h"
 #include "core/units.h"
-#include "effects/registry.h"
 #include "core/csv_field.h"
 #include "validation/csv_table.h"
 #include "validation/dataset.h"
-#include "validation/dataset_output.h"
 #include "validation/diagnosis.h"
 #include "validation/harness.h"
 #include "validation/model.h"
-#include "validation/output_files.h"
 #include "validation/self_check.h"
 #include "validation/synthesize.h"
 #include "validation/tolerances.h"
@@ -55,7 +55,9 @@ namespace {
 std::string python_keyword(std::string_view key) {
   static const std::pair<std::string_view, std::string_view> renamed[] = {
       {"effect", "effects"}, {"input", "inputs"}, {"dem.quality", "dem_quality"}, {"dem.threads", "dem_threads"},
-      {"dem.cache", "dem_cache"}, {"dem.no_cache", "no_dem_cache"}};
+      {"dem.cache", "dem_cache"}, {"dem.no_cache", "no_dem_cache"}, {"shape", "shapes"}, {"sizes", "sizes_mm"},
+      {"sphere_diameter", "sphere_diameter_mm"}, {"clump_diameter", "clump_diameter_mm"},
+      {"target_pile_height", "target_pile_height_mm"}};
   for (const auto& [k, word] : renamed)
     if (k == key) return std::string(word);
   return std::string(key);
@@ -68,7 +70,9 @@ std::string python_mention(std::string_view key) {
                                               "dem.cache", "dem.no_cache", "self_check", "belt_speed", "mass_flow",
                                               "plate_distance", "plate_top", "stream_thickness", "pulley_diameter",
                                               "belt_width", "bulk_density", "diagnose", "input",
-                                              "accept_with_effects"};
+                                              "accept_with_effects", "sweep", "rolling", "density", "shape",
+                                              "quality", "only", "sizes", "limit", "threads", "jobs", "sphere_diameter",
+                                              "clump_diameter", "target_bulk_density", "target_pile_height"};
   for (const auto k : keywords)
     if (k == key) return python_keyword(key) + "=";
   return std::string(key);
@@ -87,6 +91,14 @@ double whole_number(const py::object& v, const options::NumberRule& rule) {
   const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
   if (!i) throw py::error_already_set();
   return rule.check(std::string(py::repr(i)));
+}
+
+// A seed from Python, checked as the command line's --seed; a huge int exactly, not wrapped.
+std::uint64_t seed_value(const py::object& seed_arg) {
+  const double checked = whole_number(seed_arg, options::rules::seed);
+  return py::isinstance<py::float_>(seed_arg)
+             ? static_cast<std::uint64_t>(checked)
+             : py::reinterpret_steal<py::int_>(PyNumber_Index(seed_arg.ptr())).cast<std::uint64_t>();
 }
 
 // Ctrl-C during a long call. The library asks this at its interruption points (core/interrupt.h),
@@ -137,6 +149,7 @@ api::DemOptions dem_options(const std::string& quality, std::optional<int> threa
 class Table {
  public:
   void text(const char* name, std::vector<std::string> v) { d_[name] = py::cast(std::move(v)); }
+  void real(const std::string& name, const std::vector<double>& v) { d_[py::str(name)] = py::array_t<double>(v.size(), v.data()); }
   void real(const char* name, const std::vector<double>& v) { d_[name] = py::array_t<double>(v.size(), v.data()); }
   void whole(const char* name, const std::vector<long long>& v) {
     d_[name] = py::array_t<long long>(v.size(), v.data());
@@ -306,8 +319,10 @@ py::dict strength(const std::string& effect, const std::string& parameter, doubl
   py::dict d;
   d["effect"] = effect, d["parameter"] = parameter, d["value"] = value;
   d["sd"] = sd ? py::object(py::float_(*sd)) : py::object(py::none());
-  const effects::EffectInfo* e = effects::find(effect);
-  d["unit"] = e ? e->unit : std::string();
+  std::string unit;
+  for (const auto& e : api::effect_library())
+    if (e.name == effect) unit = e.unit;
+  d["unit"] = unit;
   d["fitted"] = fitted;
   return d;
 }
@@ -546,11 +561,11 @@ std::unique_ptr<Diagnosed> diagnose(const validation::Dataset& d, const std::vec
 
 // Writes a result's files into `out` as the command line's --out does: all or nothing, never onto
 // a file the run read.
-void write_files(const std::vector<validation::OutputFile>& files, const std::vector<std::filesystem::path>& inputs,
+void write_files(const std::vector<api::OutputFile>& files, const std::vector<std::filesystem::path>& inputs,
                  const std::filesystem::path& out, const char* command) {
   if (out.empty()) throw InputError("", 0, "out", "is empty; give a folder");
   py::gil_scoped_release free;
-  validation::write_outputs(out, files, inputs, command);
+  api::write_files(out, files, inputs, command);
 }
 
 // estimate(): the library's result, kept for its views.
@@ -635,13 +650,13 @@ validation::Dataset synthesize(const validation::Dataset& source, const std::vec
   const api::SynthesizeResult r = interruptible([&] { return api::synthesize(source, o); });
   py::gil_scoped_release free;
   if (!out.empty()) {
-    validation::write_dataset(out, r.files, source.dir, "synthesize");
+    api::write_dataset(out, r.files, source.dir, "synthesize");
     return validation::read_dataset(out);
   }
   validation::DatasetTexts files;
   for (const auto& [name, text] : r.files)
     if (name.ends_with(".csv") || name.ends_with(".toml")) files[name] = {name, text};
-  return validation::read_dataset(files, {});
+  return api::read_dataset(files, {}, true);
 }
 
 // A dataset's files as Python keeps them: {name: (shown, text, unread)}.
@@ -659,8 +674,7 @@ validation::Dataset dataset_from_sources(const py::dict& files, const std::strin
     texts[name.cast<std::string>()] = {t[0].cast<std::string>(), t[1].cast<std::string>(), t[2].cast<bool>()};
   }
   py::gil_scoped_release free;
-  return validation::read_dataset(texts, dir, measurements_required ? validation::MeasurementsRequired::yes
-                                                                    : validation::MeasurementsRequired::no);
+  return api::read_dataset(texts, dir, measurements_required);
 }
 
 // A CSV text's header and rows of cells, as chutelab's reader splits them (quotes, the writer's
@@ -707,7 +721,7 @@ void import_logs(const std::filesystem::path& dataset, const std::filesystem::pa
   };
   py::gil_scoped_release free;
   const api::ImportLogsResult r = api::import_logs(o);
-  validation::write_dataset(out, r.files(), r.dataset.dir, "import-logs");
+  api::write_dataset(out, r.files(), r.dataset.dir, "import-logs");
 }
 
 void synthesize_logs(const std::filesystem::path& dataset, const std::filesystem::path& truth,
@@ -730,7 +744,144 @@ void synthesize_logs(const std::filesystem::path& dataset, const std::filesystem
   };
   py::gil_scoped_release free;
   const api::SynthesizeLogsResult r = api::synthesize_logs(o);
-  validation::write_dataset(out, r.files, r.source.dir, "synthesize-logs");
+  api::write_dataset(out, r.files, r.source.dir, "synthesize-logs");
+}
+
+// calibrate(): the library's result and what it read (the folder written to may not be among them).
+struct Calibrated {
+  api::CalibrateResult result;
+  std::vector<std::filesystem::path> inputs;
+};
+
+// Table 3 a row (calibration.csv's columns, the doubles themselves) and the incline's onsets.
+py::dict calibrated_numbers(const Calibrated& c) {
+  const dem::rigs::CalibrationStudy& s = c.result.study;
+  std::vector<std::string> shape, grain;
+  std::vector<double> rolling, density, bulk, pile, repose, distance, seconds;
+  std::vector<long long> particles;
+  std::vector<bool> settled, closest;
+  for (std::size_t k = 0; k < s.rows.size(); ++k) {
+    const auto& r = s.rows[k];
+    shape.emplace_back(dem::rigs::name(r.shape)), grain.push_back(studies::grain_label(s, r.shape));
+    rolling.push_back(r.rolling_friction), density.push_back(r.solid_density);
+    bulk.push_back(r.slump.bulk_density), pile.push_back(r.slump.pile_height * 1e3);
+    repose.push_back(r.slump.repose_angle_deg), distance.push_back(r.distance), seconds.push_back(r.slump.wall_seconds);
+    particles.push_back(static_cast<long long>(r.slump.particles)), settled.push_back(r.slump.settled);
+    closest.push_back(static_cast<int>(k) == s.closest);
+  }
+  Table rows;
+  rows.text("shape", shape), rows.text("grain", grain), rows.real("rolling_friction", rolling);
+  rows.real("solid_density_kgm3", density), rows.real("bulk_density_kgm3", bulk), rows.real("pile_height_mm", pile);
+  rows.real("repose_angle_deg", repose), rows.whole("particles", particles), rows.flag("settled", settled);
+  rows.real("run_seconds", seconds), rows.real("target_distance", distance), rows.flag("closest", closest);
+  std::vector<double> i_rolling, wall, onset, eq10;
+  std::vector<std::string> motion, eq10_motion;
+  for (const auto& r : s.incline) {
+    i_rolling.push_back(r.rolling_friction), wall.push_back(r.wall_friction);
+    onset.push_back(r.result.onset_deg), eq10.push_back(r.result.predicted.onset_deg);
+    motion.emplace_back(dem::rigs::name(r.result.motion)), eq10_motion.emplace_back(dem::rigs::name(r.result.predicted.motion));
+  }
+  Table incline;
+  incline.real("rolling_friction", i_rolling), incline.real("wall_friction", wall), incline.real("onset_deg", onset);
+  incline.text("motion", motion), incline.real("eq10_onset_deg", eq10), incline.text("eq10_motion", eq10_motion);
+  py::dict r;
+  r["rows"] = rows.dict();
+  r["incline"] = incline.dict();
+  r["closest"] = s.closest >= 0 ? py::cast(s.closest) : py::none();
+  r["findings"] = studies::calibration_findings(s);
+  r["table3"] = c.result.table3();
+  for (const auto& [name, text] : c.result.files())
+    if (name == "material.toml") r["material_toml"] = text;
+  return r;
+}
+
+// sensitivity(): the library's result and what it read.
+struct Sensitized {
+  api::SensitivityResult result;
+  std::vector<std::filesystem::path> inputs;
+};
+
+// Table 6 a row (sensitivity.csv's numbers, SI at the boundary: N, %, s, mm) and the verdict.
+py::dict sensitivity_numbers(const Sensitized& s) {
+  const studies::SensitivityStudy& st = s.result.study;
+  std::vector<std::string> key, label, group;
+  std::vector<double> d, rn, rn_se, rs, rs_se, r, r_se, sd_r, change, change_se, dt, seconds;
+  std::vector<long long> particles;
+  std::vector<bool> steady;
+  for (const auto& row : st.rows) {
+    const auto& o = row.outcome;
+    key.push_back(row.variant.key), label.push_back(row.variant.label), group.emplace_back(studies::name(row.variant.group));
+    d.push_back(o.diameter * 1e3), rn.push_back(o.normal.value), rn_se.push_back(o.normal.se);
+    rs.push_back(o.shear.value), rs_se.push_back(o.shear.se), r.push_back(o.resultant.value), r_se.push_back(o.resultant.se);
+    sd_r.push_back(o.fluct_resultant), change.push_back(row.change.value), change_se.push_back(row.change.se);
+    dt.push_back(o.dt), seconds.push_back(o.wall_seconds), particles.push_back(static_cast<long long>(o.particles));
+    steady.push_back(o.steady);
+  }
+  Table t;
+  t.text("variant", key), t.text("label", label), t.text("group", group), t.real("diameter_mm", d);
+  t.real("normal_force_N", rn), t.real("normal_force_se_N", rn_se), t.real("shear_force_N", rs);
+  t.real("shear_force_se_N", rs_se), t.real("resultant_force_N", r), t.real("resultant_force_se_N", r_se);
+  t.real("resultant_force_sd_N", sd_r), t.real("change_percent", change), t.real("change_se_percent", change_se);
+  t.real("dt_s", dt), t.whole("particles", particles), t.flag("steady", steady), t.real("run_seconds", seconds);
+  py::dict out;
+  out["rows"] = t.dict();
+  out["verdict"] = st.verdict.text;
+  out["reproduced"] = st.verdict.reproduced();
+  out["complete"] = st.verdict.complete();
+  out["notes"] = studies::run_notes(st);
+  return out;
+}
+
+// estimate's sweep: one row a value, the columns of its CSV as numbers (NaN where a point has no
+// answer), the note as text.
+struct Swept {
+  api::SweepResult result;
+};
+
+py::dict sweep_rows(const Swept& w) {
+  const api::SweepResult& res = w.result;
+  std::vector<std::string> scalar_cols;
+  std::vector<std::pair<std::string, Quantity>> model_cols;
+  for (const auto& r : res.rows) {
+    if (!r.point) continue;
+    for (const auto& [n, v] : api::estimate_scalars(r.point->analysis))
+      if (n != res.spec.column && std::find(scalar_cols.begin(), scalar_cols.end(), n) == scalar_cols.end())
+        scalar_cols.push_back(n);
+    for (const auto& [m, vals] : r.point->models)
+      for (Quantity q : kAllQuantities)
+        if (vals[q] && std::find(model_cols.begin(), model_cols.end(), std::pair{m, q}) == model_cols.end())
+          model_cols.emplace_back(m, q);
+  }
+  std::vector<double> value;
+  std::vector<std::vector<double>> scalars(scalar_cols.size()), models(model_cols.size());
+  std::vector<std::string> note;
+  for (const auto& r : res.rows) {
+    value.push_back(r.value);
+    note.push_back(said_text(r.note, python_mention));
+    const std::vector<std::pair<std::string, double>> sc =
+        r.point ? api::estimate_scalars(r.point->analysis) : std::vector<std::pair<std::string, double>>{};
+    for (std::size_t c = 0; c < scalar_cols.size(); ++c) {
+      double v = kNan;
+      for (const auto& [n, x] : sc)
+        if (n == scalar_cols[c]) v = x;
+      scalars[c].push_back(v);
+    }
+    for (std::size_t c = 0; c < model_cols.size(); ++c) {
+      double v = kNan;
+      if (r.point)
+        for (const auto& [m, vals] : r.point->models)
+          if (m == model_cols[c].first && vals[model_cols[c].second])
+            v = *vals[model_cols[c].second] * info(model_cols[c].second).to_boundary;
+      models[c].push_back(v);
+    }
+  }
+  Table t;
+  t.real(res.spec.column, value);
+  for (std::size_t c = 0; c < scalar_cols.size(); ++c) t.real(scalar_cols[c], scalars[c]);
+  for (std::size_t c = 0; c < model_cols.size(); ++c)
+    t.real(fmt::format("{}_{}", model_cols[c].first, name(model_cols[c].second)), models[c]);
+  t.text("note", note);
+  return t.dict();
 }
 
 }  // namespace
@@ -801,6 +952,44 @@ PYBIND11_MODULE(_chutelab, m) {
       py::arg("dataset"), py::arg("setup"), py::arg("condition"),
       py::arg("effects"), py::arg("default_dataset"), py::arg("dataset_read") = nullptr);
 
+  py::class_<Swept>(m, "Swept")
+      .def("rows", &sweep_rows)
+      .def("column", [](const Swept& w) { return w.result.spec.column; })
+      .def("table", [](const Swept& w) { return w.result.table(python_mention); })
+      .def("csv", [](const Swept& w) { return w.result.csv(python_mention); })
+      .def("json", [](const Swept& w) { return w.result.json(python_mention); })
+      .def("svg", [](const Swept& w) { return w.result.svg(python_mention); });
+  m.def(
+      "sweep",
+      [](const std::string& sweep, std::optional<double> belt_speed, std::optional<double> mass_flow,
+         std::optional<double> plate_distance, std::optional<double> plate_top, std::optional<double> stream_thickness,
+         std::optional<double> pulley_diameter, std::optional<double> belt_width, std::optional<double> bulk_density,
+         const std::string& dataset, const std::string& setup, const std::string& condition,
+         const std::vector<std::string>& effect_args, const std::string& default_dataset,
+         const validation::Dataset* dataset_read) {
+        api::SweepOptions in;
+        in.sweep = sweep;
+        in.dataset = dataset;
+        in.dataset_read = dataset_read;
+        in.setup = setup;
+        in.condition = condition;
+        in.default_dataset = default_dataset;
+        in.belt_speed = belt_speed;
+        in.mass_flow = mass_flow;
+        in.plate_distance = plate_distance;
+        in.plate_top = plate_top;
+        in.stream_thickness = stream_thickness;
+        in.pulley_diameter = pulley_diameter;
+        in.belt_width = belt_width;
+        in.bulk_density = bulk_density;
+        in.effects = effect_args;
+        return std::make_unique<Swept>(Swept{api::sweep(in)});
+      },
+      py::arg("sweep"), py::arg("belt_speed"), py::arg("mass_flow"), py::arg("plate_distance"), py::arg("plate_top"),
+      py::arg("stream_thickness"), py::arg("pulley_diameter"), py::arg("belt_width"), py::arg("bulk_density"),
+      py::arg("dataset"), py::arg("setup"), py::arg("condition"), py::arg("effects"), py::arg("default_dataset"),
+      py::arg("dataset_read") = nullptr);
+
   py::class_<validation::Dataset>(m, "Dataset")
       .def_property_readonly("dir", [](const validation::Dataset& d) { return d.dir.string(); })
       .def_property_readonly("name", [](const validation::Dataset& d) { return d.setup.name; })
@@ -814,8 +1003,7 @@ PYBIND11_MODULE(_chutelab, m) {
       "read_dataset",
       [](const std::filesystem::path& dir, bool measurements_required) {
         // A dataset of logs reads its logs into means (logs/dataset_logs.h).
-        return logs::read_dataset(dir, measurements_required ? validation::MeasurementsRequired::yes
-                                                             : validation::MeasurementsRequired::no);
+        return api::read_dataset(dir, measurements_required);
       },
       py::arg("dir"), py::arg("measurements_required"));
 
@@ -839,6 +1027,73 @@ PYBIND11_MODULE(_chutelab, m) {
   m.def("synthesize", &synthesize, py::arg("source"), py::arg("effects"), py::arg("seed"),
         py::arg("noise_scale"), py::arg("out"));
   m.def("import_logs", &import_logs, py::arg("dataset"), py::arg("out"));
+
+  py::class_<Calibrated>(m, "Calibrated")
+      .def("numbers", &calibrated_numbers)
+      .def("write", [](const Calibrated& c, const std::filesystem::path& out) {
+        write_files(c.result.files(), c.inputs, out, "calibrate");
+      });
+  m.def(
+      "calibrate",
+      [](const std::filesystem::path& dataset, const std::string& quality, const std::vector<double>& rolling,
+         const std::vector<double>& density, const std::vector<std::string>& shapes, double sphere_diameter_mm,
+         double clump_diameter_mm, bool target, std::optional<double> target_bulk_density,
+         std::optional<double> target_pile_height_mm, bool incline, int threads, const py::object& seed, int jobs) {
+        api::CalibrateOptions o;
+        o.dataset = dataset;
+        o.quality = quality;
+        o.rolling = rolling;
+        o.density = density;
+        o.shapes = shapes;
+        o.sphere_diameter_mm = sphere_diameter_mm;
+        o.clump_diameter_mm = clump_diameter_mm;
+        o.target = target;
+        o.target_bulk_density = target_bulk_density;
+        o.target_pile_height_mm = target_pile_height_mm;
+        o.incline = incline;
+        o.threads = threads;
+        o.seed = seed_value(seed);
+        o.jobs = jobs;
+        std::vector<std::filesystem::path> inputs;
+        o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
+          inputs = plan.inputs;
+          return {};
+        };
+        return interruptible([&] { return std::make_unique<Calibrated>(Calibrated{api::calibrate(o), std::move(inputs)}); });
+      },
+      py::arg("dataset"), py::arg("quality"), py::arg("rolling"), py::arg("density"), py::arg("shapes"),
+      py::arg("sphere_diameter_mm"), py::arg("clump_diameter_mm"), py::arg("target"), py::arg("target_bulk_density"),
+      py::arg("target_pile_height_mm"), py::arg("incline"), py::arg("threads"), py::arg("seed"), py::arg("jobs"));
+
+  py::class_<Sensitized>(m, "Sensitized")
+      .def("numbers", &sensitivity_numbers)
+      .def("write", [](const Sensitized& s, const std::filesystem::path& out) {
+        write_files(s.result.files(), s.inputs, out, "sensitivity");
+      });
+  m.def(
+      "sensitivity",
+      [](const std::filesystem::path& dataset, const std::string& condition, const std::string& quality,
+         const std::vector<std::string>& only, const std::vector<double>& sizes_mm, std::optional<int> threads,
+         const py::object& seed, double limit, int jobs) {
+        api::SensitivityOptions o;
+        o.dataset = dataset;
+        o.condition = condition;
+        o.quality = quality;
+        o.only = only;
+        o.sizes_mm = sizes_mm;
+        o.threads = threads;
+        if (!seed.is_none()) o.seed = seed_value(seed);
+        o.limit = limit;
+        o.jobs = jobs;
+        std::vector<std::filesystem::path> inputs;
+        o.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
+          inputs = plan.inputs;
+          return {};
+        };
+        return interruptible([&] { return std::make_unique<Sensitized>(Sensitized{api::sensitivity(o), std::move(inputs)}); });
+      },
+      py::arg("dataset"), py::arg("condition"), py::arg("quality"), py::arg("only"), py::arg("sizes_mm"),
+      py::arg("threads"), py::arg("seed"), py::arg("limit"), py::arg("jobs"));
   m.def("synthesize_logs", &synthesize_logs, py::arg("dataset"), py::arg("truth"), py::arg("sensor"),
         py::arg("dem_series"), py::arg("seed"), py::arg("out"));
   m.def("dataset_from_sources", &dataset_from_sources, py::arg("files"), py::arg("dir"),
@@ -864,13 +1119,13 @@ PYBIND11_MODULE(_chutelab, m) {
   m.def("model_names", &validation::model_names);
   m.def("effect_library", [] {
     py::list out;
-    for (const auto& e : effects::library()) {
+    for (const auto& e : api::effect_library()) {
       py::dict d;
       d["effect"] = e.name;
       d["parameter"] = e.parameter;
       d["unit"] = e.unit;
       d["stage"] = e.stage;
-      d["kind"] = e.kind == effects::EffectInfo::Kind::record ? "record" : "physics";
+      d["kind"] = e.record ? "record" : "physics";
       d["neutral"] = e.neutral;
       d["lower"] = e.lower;
       d["upper"] = e.upper;

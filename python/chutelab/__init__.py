@@ -40,9 +40,10 @@ InputError = _chutelab.InputError
 InputError.__doc__ = ("Bad input: a ValueError with .file and .line (\"\", 0 when an argument, not a file, "
                       "is wrong), .field (the keyword or the file's column) and .problem.")
 
-__all__ = ["estimate", "read_dataset", "validate", "diagnose", "synthesize", "import_logs", "synthesize_logs",
-           "write_report", "models", "effects", "quantities", "Estimate", "Dataset", "Validation", "Diagnosis", "Strength", "Quantity",
-           "InputError", "DATASETS", "DEFAULT_DATASET"]
+__all__ = ["estimate", "sweep", "read_dataset", "validate", "diagnose", "synthesize", "import_logs", "synthesize_logs",
+           "calibrate", "sensitivity", "write_report", "models", "effects", "quantities", "Estimate", "Sweep", "Dataset",
+           "Validation", "Diagnosis", "Calibration", "Sensitivity", "Strength", "Quantity", "InputError", "DATASETS",
+           "DEFAULT_DATASET"]
 
 PathLike = Union[str, _os.PathLike]
 # A table: a pandas DataFrame, or a NumPy record array (same columns) without pandas.
@@ -129,6 +130,27 @@ def _path(field, value, optional=True) -> str:
         if isinstance(p, str):
             return p
     raise _refuse(field, f"must be a path (str or pathlib.Path), got {value!r}")
+
+
+def _reals(field, values) -> List[float]:
+    """A list keyword of numbers takes one number or a sequence of them (not a text)."""
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        return [_real(field, values)]
+    return [_real(field, v) for v in values]
+
+
+def _texts(field, values) -> List[str]:
+    """A list keyword of names takes one str or a sequence of str."""
+    if isinstance(values, str):
+        return [values]
+    if not hasattr(values, "__iter__") or isinstance(values, bytes):
+        raise _refuse(field, f"must be a text or a list of texts, got {values!r}")
+    out = []
+    for v in values:
+        if not isinstance(v, str):
+            raise _refuse(field, f"must be a text or a list of texts, got {values!r}")
+        out.append(v)
+    return out
 
 
 def _effect_args(effects: EffectsArg, key: str = "effects") -> List[str]:
@@ -265,6 +287,72 @@ def estimate(belt_speed: Optional[float] = None, mass_flow: Optional[float] = No
                               _path("setup", setup), _text("condition", condition), _effect_args(effects),
                               DEFAULT_DATASET, read)
     return Estimate._make(core)
+
+
+class Sweep:
+    """One input stepped over a range, the rest of the design held, from sweep(): every point
+    through the same estimate as a single design (`chutelab estimate --sweep`).
+
+    column       the swept value's name with its unit ("belt_speed_mps")
+    rows         table, one row a value: the swept value, the estimate's values, each model's
+                 quantities as MODEL_QUANTITY ("korzen_normal_force_N"; NaN where a point has no
+                 answer) and a note (why there is no answer, or what is partial; "" when none)
+    csv(), json(), text()  the command line's --format csv, json and table, as text
+    svg()        the chart of impact points and plate forces (--svg), as text
+    """
+
+    column: str
+    rows: Any
+
+    @classmethod
+    def _make(cls, core) -> "Sweep":
+        self = _new(cls)
+        self._core = core
+        self.column = core.column()
+        self.rows = _table(core.rows())
+        return self
+
+    def csv(self) -> str:
+        return self._core.csv()
+
+    def json(self) -> str:
+        return self._core.json()
+
+    def text(self) -> str:
+        return self._core.table()
+
+    def svg(self) -> str:
+        return self._core.svg()
+
+    def __repr__(self) -> str:
+        return f"chutelab.Sweep({self.column!r}, {len(self.rows)} points)"
+
+
+def sweep(sweep: str, belt_speed: Optional[float] = None, mass_flow: Optional[float] = None,
+          plate_distance: Optional[float] = None, plate_top: Optional[float] = None,
+          stream_thickness: Optional[float] = None, *, dataset: Union["Dataset", PathLike, None] = None,
+          setup: Optional[PathLike] = None, condition: Optional[str] = None,
+          effects: EffectsArg = None, pulley_diameter: Optional[float] = None,
+          belt_width: Optional[float] = None, bulk_density: Optional[float] = None) -> Sweep:
+    """estimate() at every value of one input, as `chutelab estimate --sweep`.
+
+    sweep: "NAME=FROM:TO:STEP", NAME a condition input (belt_speed in m/s, mass_flow in t/h,
+    plate_distance, plate_top, stream_thickness in mm; leave that keyword out), a conditions.csv
+    override column (plate_angle_deg, pulley_diameter_mm, friction_plate, ...) or an effect's name
+    (its strength). The other keywords are estimate()'s. A point with no answer (the stream misses
+    the plate, the belt is overfilled) is a row with its note; InputError when no point has one.
+    Returns a Sweep (see help(chutelab.Sweep))."""
+    read = _dataset(dataset, measurements_required=False) if isinstance(dataset, Dataset) else None
+    core = _chutelab.sweep(_text("sweep", sweep), _real("belt_speed", belt_speed, True),
+                           _real("mass_flow", mass_flow, True),
+                           _real("plate_distance", plate_distance, True), _real("plate_top", plate_top, True),
+                           _real("stream_thickness", stream_thickness, True),
+                           _real("pulley_diameter", pulley_diameter, True), _real("belt_width", belt_width, True),
+                           _real("bulk_density", bulk_density, True),
+                           "" if read is not None else _path("dataset", dataset),
+                           _path("setup", setup), _text("condition", condition), _effect_args(effects),
+                           DEFAULT_DATASET, read)
+    return Sweep._make(core)
 
 
 # ---- datasets ------------------------------------------------------------------------------------
@@ -615,6 +703,137 @@ def synthesize_logs(dataset: PathLike, truth: PathLike, *, sensor: Optional[Path
                               _path("sensor", sensor) or "", _path("dem_series", dem_series) or "",
                               _seed_like("seed", seed), target)
     return read_dataset(target, True)
+
+
+# ---- the studies: calibration and sensitivity -----------------------------------------------------
+
+class Calibration:
+    """The slump-test calibration (the reference study's §5, Table 3), from calibrate().
+
+    rows          one slump test a row: shape, grain, rolling_friction, solid_density_kgm3,
+                  bulk_density_kgm3, pile_height_mm, repose_angle_deg, particles, settled (bool),
+                  run_seconds, target_distance (NaN without a target), closest (bool)
+    incline       the inclined-plane rig: rolling_friction, wall_friction, onset_deg, motion,
+                  eq10_onset_deg, eq10_motion
+    closest       the index in rows of the combination closest to the target, or None
+    material_toml the dataset's [material] with the chosen solid density and rolling friction
+    findings      the trends in words; table3: the reference study's layout (Markdown)
+    write_report(out) writes calibration.csv, incline.csv, calibration.md, .html, .svg,
+                  material.toml and calibration-timing.csv, as `chutelab calibrate --out`
+    """
+
+    rows: Any
+    incline: Any
+    closest: Optional[int]
+    material_toml: str
+
+    @classmethod
+    def _make(cls, core) -> "Calibration":
+        raw = core.numbers()
+        self = _new(cls)
+        self._core = core
+        self.rows = _table(raw["rows"])
+        self.incline = _table(raw["incline"])
+        self.closest = raw["closest"]
+        self.material_toml = raw["material_toml"]
+        self.findings = list(raw["findings"])
+        self.table3 = raw["table3"]
+        return self
+
+    def write_report(self, out: PathLike) -> None:
+        """Writes the calibration's files into the folder `out`, all or none, never onto the dataset."""
+        self._core.write(_path("out", out, optional=False))
+
+    def __repr__(self) -> str:
+        return f"chutelab.Calibration({len(self.rows)} slump tests, closest {self.closest!r})"
+
+
+def calibrate(dataset: Optional[PathLike] = None, *, quality: str = "quick",
+              rolling: Union[float, Sequence[float]] = (0.05, 0.1, 0.2),
+              density: Union[float, Sequence[float]] = (925.0, 1000.0),
+              shapes: Union[str, Sequence[str]] = ("sphere", "clump"), sphere_diameter_mm: float = 5.6,
+              clump_diameter_mm: float = 4.4, target: bool = True, target_bulk_density: Optional[float] = None,
+              target_pile_height_mm: Optional[float] = None, incline: bool = True, threads: int = 1,
+              seed: int = 1, jobs: int = 0) -> Calibration:
+    """Slump tests over rolling friction x solid density x shape on the swing-arm slump tester
+    (the DEM), as `chutelab calibrate`: the combination closest to the measured bulk density (and
+    pile height) is the calibrated material. Each quick test takes ~5-20 s of a core.
+
+    dataset: a folder whose [material] to calibrate (default: the bundled grima2010). quality:
+    "quick" or "standard". target_bulk_density (kg/m^3; default the dataset's bulk density),
+    target_pile_height_mm; target=False marks no combination. incline=False skips the inclined-plane
+    rig. threads: OpenMP threads per run; jobs: runs side by side (0: one per idle core); the numbers
+    do not depend on either. Returns a Calibration (see help(chutelab.Calibration))."""
+    core = _chutelab.calibrate(_path("dataset", dataset) or DEFAULT_DATASET, _text("quality", quality),
+                               _reals("rolling", rolling), _reals("density", density), _texts("shapes", shapes),
+                               _real("sphere_diameter_mm", sphere_diameter_mm),
+                               _real("clump_diameter_mm", clump_diameter_mm), _flag("target", target),
+                               _real("target_bulk_density", target_bulk_density, True),
+                               _real("target_pile_height_mm", target_pile_height_mm, True),
+                               _flag("incline", incline), _whole("threads", threads), _seed_like("seed", seed),
+                               _whole("jobs", jobs))
+    return Calibration._make(core)
+
+
+class Sensitivity:
+    """The reference study's Table 6 (§6.1) at one condition, from sensitivity().
+
+    rows        one station DEM run a variant, the base first: variant, label, group, diameter_mm,
+                normal_force_N, shear_force_N, resultant_force_N with their *_se_N (standard
+                errors), resultant_force_sd_N (the fluctuation), change_percent and
+                change_se_percent (of the mean R against the base), dt_s, particles, steady (bool),
+                run_seconds
+    verdict     the verdict on the reference study's conclusion, in words; reproduced, complete (bools)
+    notes       what ran that a label cannot say (a step set by the Rayleigh cap, sizes left out)
+    write_report(out) writes sensitivity.csv, .md, .html, .svg and sensitivity-timing.csv, as
+                `chutelab sensitivity --out`
+    """
+
+    rows: Any
+    verdict: str
+    reproduced: bool
+    complete: bool
+
+    @classmethod
+    def _make(cls, core) -> "Sensitivity":
+        raw = core.numbers()
+        self = _new(cls)
+        self._core = core
+        self.rows = _table(raw["rows"])
+        self.verdict = raw["verdict"]
+        self.reproduced = raw["reproduced"]
+        self.complete = raw["complete"]
+        self.notes = list(raw["notes"])
+        return self
+
+    def write_report(self, out: PathLike) -> None:
+        """Writes the study's files into the folder `out`, all or none, never onto the dataset."""
+        self._core.write(_path("out", out, optional=False))
+
+    def __repr__(self) -> str:
+        return f"chutelab.Sensitivity({len(self.rows)} runs, reproduced={self.reproduced})"
+
+
+def sensitivity(dataset: Optional[PathLike] = None, condition: str = "V3-41", *, quality: str = "quick",
+                only: Union[None, str, Sequence[str]] = None, sizes_mm: Union[None, float, Sequence[float]] = None,
+                threads: Optional[int] = None, seed: Optional[int] = None, limit: float = 10.0,
+                jobs: int = 0) -> Sensitivity:
+    """The station DEM once per variant of the reference study's Table 6 (contact law, clump,
+    dt/20, G x10 and /10, particle sizes) at one condition, as `chutelab sensitivity`: minutes at
+    quick quality.
+
+    dataset: a folder (default: the bundled grima2010); condition: a row of its conditions.csv.
+    quality: the base run's preset. only: the variants to run besides the base ("G/10", ...);
+    sizes_mm: the size variants' sphere diameters (default 5.6, 9, 13.6; 9 and 13.6 at quick
+    quality). limit: "changes little" means |change of mean R| <= limit %. threads: OpenMP threads
+    per run (default 1); jobs: runs side by side (0: one per idle core); the numbers do not depend
+    on either. Returns a Sensitivity (see help(chutelab.Sensitivity))."""
+    core = _chutelab.sensitivity(_path("dataset", dataset) or DEFAULT_DATASET, _text("condition", condition),
+                                 _text("quality", quality), [] if only is None else _texts("only", only),
+                                 [] if sizes_mm is None else _reals("sizes_mm", sizes_mm),
+                                 _whole("threads", threads, True), None if seed is None else _seed_like("seed", seed),
+                                 _real("limit", limit), _whole("jobs", jobs))
+    return Sensitivity._make(core)
 
 
 # ---- the registry --------------------------------------------------------------------------------
