@@ -308,6 +308,18 @@ BOOST_AUTO_TEST_CASE(class12_messages_name_what_was_given) {
   ok(s.args("synthesize") + " --effect load_cell_gain=0.9 --allow-out-of-range");
 }
 
+// A diagnosis (asked for by --effect, --input, --add-missing or --diagnose) needs an analytical model:
+// with the DEM alone, validate is refused before its baseline runs, not after (an empty cache with
+// --dem-cache-only makes a run an error of its own, so the refusal must name the models instead).
+BOOST_AUTO_TEST_CASE(a_diagnosis_without_an_analytical_model_is_refused_before_any_run) {
+  Sandbox s("dem-only");
+  const fs::path empty = s.root / "empty-cache";
+  fs::create_directories(empty);
+  const std::string dem = " --models dem --dem-quality standard --dem-cache-only --dem-cache " + Sandbox::q(empty);
+  for (const std::string asked : {" --effect air_drag=0.5", " --input belt_speed=fit", " --add-missing", " --diagnose"})
+    refused(s.root, s.args("validate") + dem + asked, "the diagnosis needs an analytical model in --models");
+}
+
 // A record wrong at one condition, as the diagnosis names it (plate_distance@V3-41), is an input of
 // its own: it corrects that condition's station and no other; an unknown condition or a physical
 // effect at one condition is refused.
