@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <fmt/format.h>
 
+#include "analytical/streamline_path.h"
 #include "api/effects.h"
 #include "api/record_check.h"
 #include "core/input_error.h"
@@ -153,6 +154,10 @@ std::string EstimateResult::svg() const {
   for (const auto& [m, v] : models)
     if (m == "korzen") korzen = v;
   return reports::standalone_svg(reports::design_svg(analysis, korzen));
+}
+
+std::vector<Eigen::Vector2d> EstimateResult::path(analytical::Streamline which) const {
+  return analytical::streamline_path(analysis, which);
 }
 
 std::string EstimateResult::dxf() const { return reports::design_dxf(analysis); }

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "analytical/transfer_station.h"
 #include "api/estimate_output.h"
 #include "effects/registry.h"
@@ -66,6 +68,8 @@ struct EstimateResult {
   std::string svg() const;
   std::string dxf() const;
   std::string points_csv() const { return streamline_points_csv(analysis); }
+  // One streamline as drawn (the points of points_csv(), the DXF and the JSON), m.
+  std::vector<Eigen::Vector2d> path(analytical::Streamline which) const;
 };
 
 // check(o), then the estimate. Throws InputError for a missing or impossible input.

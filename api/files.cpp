@@ -1,7 +1,9 @@
 #include "api/files.h"
 
 #include "logs/dataset_logs.h"
+#include "validation/dataset_fields.h"
 #include "validation/dataset_output.h"
+#include "validation/dataset_reference.h"
 #include "validation/output_files.h"
 
 namespace chutelab::api {
@@ -28,6 +30,13 @@ void write_files(const std::filesystem::path& out, const std::vector<OutputFile>
                  const std::vector<std::filesystem::path>& inputs, std::string_view command) {
   validation::write_outputs(out, files, inputs, command);
 }
+
+void write_dataset_skeleton(const std::filesystem::path& out, const std::filesystem::path& example) {
+  const Setup rig = validation::read_setup(example / "setup.toml");
+  validation::write_dataset(out, validation::dataset_skeleton(rig), example, "init");
+}
+
+std::string dataset_reference() { return validation::dataset_reference_markdown(); }
 
 void write_dataset(const std::filesystem::path& out, const std::vector<OutputFile>& files,
                    const std::filesystem::path& source_dir, std::string_view command) {

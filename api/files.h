@@ -4,6 +4,7 @@
 // placed all or none (core/output_folder.h), never onto an input, recorded as a command's in the
 // folder. The front ends call these rather than the readers and writers behind them.
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -27,6 +28,12 @@ std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& di
 // of `inputs`, recorded as `command`'s.
 void write_files(const std::filesystem::path& out, const std::vector<OutputFile>& files,
                  const std::vector<std::filesystem::path>& inputs, std::string_view command);
+// A new dataset to fill with a rig's numbers, as the folder `out`: setup.toml, five conditions,
+// placeholder measurements and README.md, every line commented, the rig of the dataset `example`.
+void write_dataset_skeleton(const std::filesystem::path& out, const std::filesystem::path& example);
+// The reference of every dataset file, column and key (Markdown), from the readers' own tables.
+std::string dataset_reference();
+
 // A dataset's files (SynthesizeResult::files, ...) as the dataset folder `out`, made from the one in
 // `source_dir` by `command`.
 void write_dataset(const std::filesystem::path& out, const std::vector<OutputFile>& files,

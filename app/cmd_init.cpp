@@ -1,15 +1,12 @@
 // `chutelab init`: a minimal dataset to fill with a rig's numbers, or the dataset reference, both
-// from the dataset readers' own tables (validation/dataset_fields.h).
+// from the dataset readers' own tables (api/files.h).
 #include <fmt/format.h>
 #include <iostream>
 
 #include "app/commands.h"
 #include "core/campaign.h"
 #include "core/input_error.h"
-#include "validation/dataset.h"
-#include "validation/dataset_fields.h"
-#include "validation/dataset_reference.h"
-#include "validation/dataset_output.h"
+#include "api/files.h"
 
 namespace chutelab::app {
 namespace {
@@ -23,16 +20,14 @@ int run_init(const InitCli& o) {
   if (o.reference) {
     if (!o.out.empty())
       throw InputError("", 0, "reference", "--reference prints the reference page; give it without --out");
-    std::cout << validation::dataset_reference_markdown();
+    std::cout << api::dataset_reference();
     return 0;
   }
   if (o.out.empty())
     throw InputError("", 0, "out", "give the folder to write the dataset in (--out DIR), or --reference");
   if (campaign::ranks() > 1)  // every rank would write the same new folder
     throw InputError("", 0, "mpirun", "init writes one dataset folder: run it as one process");
-  const auto example = default_dataset();
-  const Setup rig = validation::read_setup(example / "setup.toml");
-  validation::write_dataset(o.out, validation::dataset_skeleton(rig), example, "init");
+  api::write_dataset_skeleton(o.out, default_dataset());
   std::cout << fmt::format(
       "dataset: {} (setup.toml, conditions.csv, measurements.csv, README.md: the reference study's rig and five "
       "conditions, the measured values placeholders)\nnext: replace the numbers with your rig's, then\n"

@@ -15,7 +15,6 @@
 #include <optional>
 #include <fmt/format.h>
 
-#include "analytical/streamline_path.h"
 #include "api/calibrate.h"
 #include "api/diagnose.h"
 #include "api/effects.h"
@@ -597,7 +596,7 @@ py::dict estimate_models(const Estimated& e) {
 py::dict estimate_paths(const Estimated& e) {
   py::dict r;
   for (analytical::Streamline s : analytical::kAllStreamlines) {
-    const auto pts = analytical::streamline_path(e.result.analysis, s);
+    const auto pts = e.result.path(s);
     py::array_t<double> a({static_cast<py::ssize_t>(pts.size()), py::ssize_t{2}});
     auto m = a.mutable_unchecked<2>();
     for (std::size_t k = 0; k < pts.size(); ++k) {
