@@ -17,6 +17,7 @@
 
 #include "api/dem_options.h"
 #include "api/output_plan.h"
+#include "core/input_error.h"
 #include "logs/dataset_logs.h"
 #include "reports/report.h"
 #include "reports/studies.h"
@@ -99,6 +100,15 @@ struct ValidateResult {
   };
   std::string junit(JunitCounts* counts = nullptr) const;
 };
+
+// What `validate` prints: the result in a few lines a reader can act on. The counts and RMS E/u_val
+// first (one line, before and after an added effect), the quantities the models miss in per cent or
+// mm, the diagnosis's verdict, the values outside tolerance as a table, two or three sentences in
+// plain words, the acceptance and where the report is (`report_path`). `added_missing`: the effects
+// were chosen by add_missing (then "nothing added" is said when the diagnosis found nothing to add).
+// Other inputs it names are shown by `names` (a front end's words).
+std::string validate_summary(const reports::ReportInput& in, bool added_missing, const std::string& report_path,
+                             const FieldNames& names = {});
 
 // check(o), the dataset and every other input read, prepare_output told, then the runs.
 ValidateResult validate(const ValidateOptions& o);

@@ -6,6 +6,7 @@
 #include "api/validate.h"
 #include "app/commands.h"
 #include "app/dem_options.h"
+#include "app/flag_names.h"
 #include "app/validate_console.h"
 #include "core/input_error.h"
 #include "core/output_folder.h"
@@ -78,7 +79,8 @@ int run_validate(const ValidateCli& o) {
   out->commit();
   progress::clear();
   for (const auto& p : judged.acceptance_problems) std::cerr << "chutelab: acceptance: " << p << "\n";
-  std::cout << console_text(validate_console(r.report(), o.add_missing, (fs::path(o.out) / "report.html").string()));
+  std::cout << console_text(
+      api::validate_summary(r.report(), o.add_missing, (fs::path(o.out) / "report.html").string(), flag_for));
   if (!o.junit.empty()) {
     std::cout << fmt::format("junit: {} ({} test case{}, {} failed, {} skipped{}{})\n", o.junit, junit.tests,
                              junit.tests == 1 ? "" : "s", junit.failures, junit.skipped,
