@@ -14,7 +14,6 @@
 #include "core/message.h"
 #include "core/output_folder.h"
 #include "dem/station/run.h"
-#include "dem/world.h"
 
 namespace chutelab::app {
 namespace {
