@@ -197,6 +197,7 @@ std::optional<EffectFit> at_condition_addition(const Stage& s, const EffectFit* 
     const effects::EffectInfo* e = nullptr;
     Held held;
     double p = 1.0;
+    double chi2 = 0.0;    // chi^2 after
     double ranked = 0.0;  // chi^2 after, the record's implausibility charged
   };
   std::optional<Pick> pick;
@@ -227,7 +228,7 @@ std::optional<EffectFit> at_condition_addition(const Stage& s, const EffectFit* 
     // The gate is the fall without its largest reading; the pick, among those through it, the fit.
     const double p = std::min(1.0, s.p_improvement(drop - largest - penalty, 1.0, chi2_after) * family);
     if (p >= s.opt.alpha) continue;
-    through.push_back(Pick{e, h, p, chi2_after + penalty});
+    through.push_back(Pick{e, h, p, chi2_after, chi2_after + penalty});
     if (!pick || chi2_after + penalty < pick->ranked) pick = through.back();
   }
   if (!pick || pick->p >= s.opt.alpha) return std::nullopt;
@@ -245,11 +246,16 @@ std::optional<EffectFit> at_condition_addition(const Stage& s, const EffectFit* 
   EffectFit f = joint(*pick);
   // Another record at one condition that moves that condition's few readings about as well (a plate
   // angle and a load cell's gain there, a flow and a bulk density): the data cannot tell them apart,
-  // and the verdict says so beside the one it names.
+  // and the verdict says so beside the one it names. So too one that fits the readings as well or
+  // better and ranks lower only for the size of its error (a plate angle 12 widths off against a flow
+  // 1.3 widths off): the named record is the likelier error, not the one the readings prefer.
+  auto as_good = [&](double chi2, double ranked, double chi2_named, double ranked_named) {
+    return ranked - ranked_named < s.opt.tie_margin_bic || chi2 - chi2_named < s.opt.tie_margin_bic;
+  };
   if (others)
     for (const auto& k : through)
-      if (k.e != pick->e && k.ranked - pick->ranked < s.opt.tie_margin_bic)
-        if (EffectFit g = joint(k); g.significant && g.ranked_chi2() - f.ranked_chi2() < s.opt.tie_margin_bic)
+      if (k.e != pick->e && as_good(k.chi2, k.ranked, pick->chi2, pick->ranked))
+        if (EffectFit g = joint(k); g.significant && as_good(g.chi2_after, g.ranked_chi2(), f.chi2_after, f.ranked_chi2()))
           others->push_back(std::move(g));
   return f;
 }

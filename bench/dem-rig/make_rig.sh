@@ -4,8 +4,9 @@
 # standard quality with another feed seed and the effect on, its predictions written over the rig's
 # measured values (uncertainties kept). Then diagnose it as the peer rigs are diagnosed:
 #   chutelab diagnose --dataset OUT/rig --models dem --dem-quality standard --signature-quality quick \
-#     --dem-cache tests/peer/dem-cache-copy --out OUT/diagnosis
-# (a copy of tests/peer/dem-cache holds the baseline and the probes: only confirmations run).
+#     --dem-cache COPY --out OUT/diagnosis
+# (COPY: a copy of tests/peer/dem-cache, which holds the baseline and the probes: only
+# confirmations run).
 # Usage: bench/dem-rig/make_rig.sh OUT EFFECT=VALUE [SEED]   e.g. make_rig.sh out/drag air_drag=1.2 77
 set -euo pipefail
 cd "$(dirname "$0")/../.."
