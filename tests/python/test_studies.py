@@ -107,12 +107,14 @@ def test_a_bad_sweep_names_the_keyword():
 
 
 def test_calibrate_writes_what_the_command_line_writes(tmp_path):
-    c = chutelab.calibrate(shapes="sphere", rolling=0.15, density=990, incline=False, jobs=1)
+    # The same folder for both: calibration.md names it (an installed package has its own copy).
+    rig = os.path.join(SOURCE, "datasets", "grima2010")
+    c = chutelab.calibrate(rig, shapes="sphere", rolling=0.15, density=990, incline=False, jobs=1)
     assert len(c.rows) == 1 and c.closest == 0
     assert c.rows["grain"][0] == "sphere d=5.6mm"
     assert "rolling_friction_particle = 0.15" in c.material_toml
     c.write_report(tmp_path / "py")
-    r = cli("calibrate", "--shape", "sphere", "--rolling", "0.15", "--density", "990", "--no-incline",
+    r = cli("calibrate", "--dataset", rig, "--shape", "sphere", "--rolling", "0.15", "--density", "990", "--no-incline",
             "--out", str(tmp_path / "cli"))
     assert r.returncode == 0, r.stderr
     same_files(tmp_path / "py", tmp_path / "cli", ["calibration.csv", "incline.csv", "calibration.md",
