@@ -3,10 +3,12 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
 #include <limits>
 #include <map>
+#include <memory>
 
 namespace chutelab::validation {
 namespace {
@@ -40,15 +42,23 @@ struct GslContext {
   const Cost* cost;
   std::span<const effects::EffectInfo* const> fx;
   const Bounds* b;
+  std::exception_ptr failure = nullptr;
 };
 
+// GSL calls this from C: an exception (an interrupt, a model's refusal) may not unwind through its
+// frames, which would also leave its workspace allocated. It is kept and rethrown once GSL returns.
 int gsl_residuals(const gsl_vector* u, void* params, gsl_vector* f) {
-  const auto* ctx = static_cast<GslContext*>(params);
-  std::vector<double> p(ctx->fx.size());
-  for (std::size_t i = 0; i < p.size(); ++i) p[i] = to_p(gsl_vector_get(u, i), ctx->b->lo[i], ctx->b->hi[i]);
-  const auto r = ctx->cost->residuals(ctx->fx, p);
-  for (std::size_t i = 0; i < r.size(); ++i) gsl_vector_set(f, i, r[i]);
-  return GSL_SUCCESS;
+  auto* ctx = static_cast<GslContext*>(params);
+  try {
+    std::vector<double> p(ctx->fx.size());
+    for (std::size_t i = 0; i < p.size(); ++i) p[i] = to_p(gsl_vector_get(u, i), ctx->b->lo[i], ctx->b->hi[i]);
+    const auto r = ctx->cost->residuals(ctx->fx, p);
+    for (std::size_t i = 0; i < r.size(); ++i) gsl_vector_set(f, i, r[i]);
+    return GSL_SUCCESS;
+  } catch (...) {
+    ctx->failure = std::current_exception();
+    return GSL_EBADFUNC;
+  }
 }
 
 // The grid over the range, finer for one parameter than for two: each point with its index.
@@ -121,16 +131,17 @@ FitStatus refine(const Cost& cost, std::span<const effects::EffectInfo* const> f
   fdf.p = k;
   fdf.params = &ctx;
   gsl_multifit_nlinear_parameters par = gsl_multifit_nlinear_default_parameters();
-  gsl_multifit_nlinear_workspace* w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &par, cost.rows(), k);
-  gsl_vector* u = gsl_vector_alloc(k);
-  for (std::size_t i = 0; i < k; ++i) gsl_vector_set(u, i, to_u(best[i], b.lo[i], b.hi[i]));
+  const std::unique_ptr<gsl_multifit_nlinear_workspace, decltype(&gsl_multifit_nlinear_free)> w(
+      gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &par, cost.rows(), k), gsl_multifit_nlinear_free);
+  const std::unique_ptr<gsl_vector, decltype(&gsl_vector_free)> u(gsl_vector_alloc(k), gsl_vector_free);
+  for (std::size_t i = 0; i < k; ++i) gsl_vector_set(u.get(), i, to_u(best[i], b.lo[i], b.hi[i]));
   int info = 0;
-  gsl_multifit_nlinear_init(u, &fdf, w);
-  const int status = gsl_multifit_nlinear_driver(100, 1e-10, 1e-10, 1e-12, nullptr, nullptr, &info, w);
+  gsl_multifit_nlinear_init(u.get(), &fdf, w.get());
+  const int status = ctx.failure ? GSL_EBADFUNC
+                                 : gsl_multifit_nlinear_driver(100, 1e-10, 1e-10, 1e-12, nullptr, nullptr, &info, w.get());
+  if (ctx.failure) std::rethrow_exception(ctx.failure);
   std::vector<double> p(k);
   for (std::size_t i = 0; i < k; ++i) p[i] = to_p(gsl_vector_get(w->x, i), b.lo[i], b.hi[i]);
-  gsl_vector_free(u);
-  gsl_multifit_nlinear_free(w);
   const double c = cost.chi2(fx, p);
   if (c <= best_chi2) {
     best_chi2 = c;

@@ -109,7 +109,9 @@ BOOST_AUTO_TEST_CASE(validate_with_dem_is_cached) {
   BOOST_REQUIRE(second.exit_code == 0);
   const double s1 = std::chrono::duration<double>(t1 - t0).count(), s2 = std::chrono::duration<double>(t2 - t1).count();
   BOOST_TEST_MESSAGE("first validate " << s1 << " s, second " << s2 << " s");
-  BOOST_TEST(s2 < 2.0);
+  // The cache is read, not timed against a fixed limit (a sanitized build under load took 2.25 s):
+  // the second call says every run came from it, and takes a fraction of the first.
+  BOOST_TEST(second.err.find("all from the cache") != std::string::npos, second.err);
   BOOST_TEST(s2 < 0.5 * s1);
   // The plate map comes back from the cache too: both reports have the section.
   BOOST_TEST(read_file(a / "report.md").find("## Plate loading and wear") != std::string::npos);
