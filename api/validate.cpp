@@ -123,18 +123,9 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
   // The models as named (an unknown one is bad input here), then the caller's output folder, then
   // the models again with the folder their per-condition files go to.
   auto models = validation::make_models(o.models, model_settings(o.dem, dir, {}, o.progress, d.stations, d.source("setup.toml")));
-  // Fits and the diagnosis call the models hundreds of times: they use the cheap ones (an expensive
-  // baseline enters the diagnosis as in DESIGN.md §5, not by re-running it per trial strength).
-  // Without one, the request is refused here, before any output is prepared or a DEM baseline
-  // runs for hours in vain.
-  auto cheap_of = [](const std::vector<validation::ModelPtr>& all) {
-    std::vector<validation::ModelPtr> v;
-    for (const auto& m : all)
-      if (!m->expensive()) v.push_back(m);
-    return v;
-  };
-  std::vector<validation::ModelPtr> cheap = cheap_of(models);
-  if (diagnosing && cheap.empty())
+  // The diagnosis fits with the analytical models (below): without one, the request is refused here,
+  // before any output is prepared or a DEM baseline runs for hours in vain.
+  if (diagnosing && std::all_of(models.begin(), models.end(), [](const auto& m) { return m->expensive(); }))
     throw InputError("", 0, o.diagnose ? "diagnose" : o.add_missing ? "add_missing" : o.effects.empty() ? "input" : "effect",
                      "the diagnosis needs an analytical model in " + mention("models"));
 
@@ -152,10 +143,8 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
   if (diagnosing) plan.files.insert(plan.files.end(), {"diagnosis.csv", "diagnosis.md"});
   plan.model_folder = std::any_of(models.begin(), models.end(), [](const auto& m) { return m->expensive(); });
   if (o.prepare_output)
-    if (const fs::path out = o.prepare_output(plan); !out.empty()) {
+    if (const fs::path out = o.prepare_output(plan); !out.empty())
       models = validation::make_models(o.models, model_settings(o.dem, dir, out, o.progress, d.stations, d.source("setup.toml")));
-      cheap = cheap_of(models);
-    }
 
   validation::ValidateOptions base;
   base.tolerances = res.tolerances ? &*res.tolerances : nullptr;
@@ -165,6 +154,11 @@ ValidateResult validate(validation::Dataset dataset, const ValidateOptions& o) {
   res.findings = validation::check_reference_findings(d, res.baseline);
   res.findings.push_back(studies::sensitivity_finding(sensitivity ? &*sensitivity : nullptr, d.setup.name));
 
+  // Fits and the diagnosis call the models hundreds of times: they use the cheap ones (an expensive
+  // baseline enters the diagnosis as in DESIGN.md §5, not by re-running it per trial strength).
+  std::vector<validation::ModelPtr> cheap;
+  for (const auto& m : models)
+    if (!m->expensive()) cheap.push_back(m);
   // "What is missing" comes from the models as they are, so the reader sees why an effect was added.
   if (diagnosing) {
     validation::DiagnoseOptions dopt;
