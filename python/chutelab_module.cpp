@@ -568,6 +568,33 @@ void write_files(const std::vector<api::OutputFile>& files, const std::vector<st
 }
 
 // estimate(): the library's result, kept for its views.
+// estimate()'s keywords as the api takes them; sweep() takes the same (SweepOptions is an
+// EstimateOptions with the swept input).
+api::EstimateOptions estimate_options(std::optional<double> belt_speed, std::optional<double> mass_flow,
+                                      std::optional<double> plate_distance, std::optional<double> plate_top,
+                                      std::optional<double> stream_thickness, std::optional<double> pulley_diameter,
+                                      std::optional<double> belt_width, std::optional<double> bulk_density,
+                                      const std::string& dataset, const std::string& setup, const std::string& condition,
+                                      const std::vector<std::string>& effect_args, const std::string& default_dataset,
+                                      const validation::Dataset* dataset_read) {
+  api::EstimateOptions in;
+  in.dataset = dataset;
+  in.dataset_read = dataset_read;
+  in.setup = setup;
+  in.condition = condition;
+  in.default_dataset = default_dataset;
+  in.belt_speed = belt_speed;
+  in.mass_flow = mass_flow;
+  in.plate_distance = plate_distance;
+  in.plate_top = plate_top;
+  in.stream_thickness = stream_thickness;
+  in.pulley_diameter = pulley_diameter;
+  in.belt_width = belt_width;
+  in.bulk_density = bulk_density;
+  in.effects = effect_args;
+  return in;
+}
+
 struct Estimated {
   api::EstimateResult result;
 };
@@ -929,21 +956,9 @@ PYBIND11_MODULE(_chutelab, m) {
          std::optional<double> belt_width, std::optional<double> bulk_density, const std::string& dataset,
          const std::string& setup, const std::string& condition, const std::vector<std::string>& effect_args,
          const std::string& default_dataset, const validation::Dataset* dataset_read) {
-        api::EstimateOptions in;
-        in.dataset = dataset;
-        in.dataset_read = dataset_read;
-        in.setup = setup;
-        in.condition = condition;
-        in.default_dataset = default_dataset;
-        in.belt_speed = belt_speed;
-        in.mass_flow = mass_flow;
-        in.plate_distance = plate_distance;
-        in.plate_top = plate_top;
-        in.stream_thickness = stream_thickness;
-        in.pulley_diameter = pulley_diameter;
-        in.belt_width = belt_width;
-        in.bulk_density = bulk_density;
-        in.effects = effect_args;
+        const api::EstimateOptions in =
+            estimate_options(belt_speed, mass_flow, plate_distance, plate_top, stream_thickness, pulley_diameter,
+                             belt_width, bulk_density, dataset, setup, condition, effect_args, default_dataset, dataset_read);
         return std::make_unique<Estimated>(Estimated{api::estimate(in)});
       },
       py::arg("belt_speed"), py::arg("mass_flow"), py::arg("plate_distance"), py::arg("plate_top"),
@@ -967,21 +982,10 @@ PYBIND11_MODULE(_chutelab, m) {
          const std::vector<std::string>& effect_args, const std::string& default_dataset,
          const validation::Dataset* dataset_read) {
         api::SweepOptions in;
+        static_cast<api::EstimateOptions&>(in) =
+            estimate_options(belt_speed, mass_flow, plate_distance, plate_top, stream_thickness, pulley_diameter,
+                             belt_width, bulk_density, dataset, setup, condition, effect_args, default_dataset, dataset_read);
         in.sweep = sweep;
-        in.dataset = dataset;
-        in.dataset_read = dataset_read;
-        in.setup = setup;
-        in.condition = condition;
-        in.default_dataset = default_dataset;
-        in.belt_speed = belt_speed;
-        in.mass_flow = mass_flow;
-        in.plate_distance = plate_distance;
-        in.plate_top = plate_top;
-        in.stream_thickness = stream_thickness;
-        in.pulley_diameter = pulley_diameter;
-        in.belt_width = belt_width;
-        in.bulk_density = bulk_density;
-        in.effects = effect_args;
         return std::make_unique<Swept>(Swept{api::sweep(in)});
       },
       py::arg("sweep"), py::arg("belt_speed"), py::arg("mass_flow"), py::arg("plate_distance"), py::arg("plate_top"),

@@ -262,6 +262,21 @@ class Estimate(_Mapping):
                 f"plate_distance_mm={v['plate_distance_mm']!r}, normal_force_N={v['normal_force_N']!r})")
 
 
+def _estimate_args(belt_speed, mass_flow, plate_distance, plate_top, stream_thickness, pulley_diameter,
+                   belt_width, bulk_density, dataset, setup, condition, effects, head=tuple) -> tuple:
+    """estimate()'s keywords checked and in the module's order, after head(): sweep()'s own keyword,
+    checked once the dataset is read."""
+    read = _dataset(dataset, measurements_required=False) if isinstance(dataset, Dataset) else None
+    return (*head(), _real("belt_speed", belt_speed, True), _real("mass_flow", mass_flow, True),
+            _real("plate_distance", plate_distance, True), _real("plate_top", plate_top, True),
+            _real("stream_thickness", stream_thickness, True),
+            _real("pulley_diameter", pulley_diameter, True), _real("belt_width", belt_width, True),
+            _real("bulk_density", bulk_density, True),
+            "" if read is not None else _path("dataset", dataset),
+            _path("setup", setup), _text("condition", condition), _effect_args(effects),
+            DEFAULT_DATASET, read)
+
+
 def estimate(belt_speed: Optional[float] = None, mass_flow: Optional[float] = None,
              plate_distance: Optional[float] = None, plate_top: Optional[float] = None,
              stream_thickness: Optional[float] = None, *, dataset: Union["Dataset", PathLike, None] = None,
@@ -277,15 +292,9 @@ def estimate(belt_speed: Optional[float] = None, mass_flow: Optional[float] = No
     condition starts from a row of the dataset's conditions.csv, the numbers given replace its
     values; effects as {"air_drag": 0.5}. Returns an Estimate (see help(chutelab.Estimate)).
     Raises InputError naming the keyword for a missing, impossible or mistyped value."""
-    read = _dataset(dataset, measurements_required=False) if isinstance(dataset, Dataset) else None
-    core = _chutelab.estimate(_real("belt_speed", belt_speed, True), _real("mass_flow", mass_flow, True),
-                              _real("plate_distance", plate_distance, True), _real("plate_top", plate_top, True),
-                              _real("stream_thickness", stream_thickness, True),
-                              _real("pulley_diameter", pulley_diameter, True), _real("belt_width", belt_width, True),
-                              _real("bulk_density", bulk_density, True),
-                              "" if read is not None else _path("dataset", dataset),
-                              _path("setup", setup), _text("condition", condition), _effect_args(effects),
-                              DEFAULT_DATASET, read)
+    core = _chutelab.estimate(*_estimate_args(belt_speed, mass_flow, plate_distance, plate_top, stream_thickness,
+                                              pulley_diameter, belt_width, bulk_density, dataset, setup, condition,
+                                              effects))
     return Estimate._make(core)
 
 
@@ -342,16 +351,9 @@ def sweep(sweep: str, belt_speed: Optional[float] = None, mass_flow: Optional[fl
     (its strength). The other keywords are estimate()'s. A point with no answer (the stream misses
     the plate, the belt is overfilled) is a row with its note; InputError when no point has one.
     Returns a Sweep (see help(chutelab.Sweep))."""
-    read = _dataset(dataset, measurements_required=False) if isinstance(dataset, Dataset) else None
-    core = _chutelab.sweep(_text("sweep", sweep), _real("belt_speed", belt_speed, True),
-                           _real("mass_flow", mass_flow, True),
-                           _real("plate_distance", plate_distance, True), _real("plate_top", plate_top, True),
-                           _real("stream_thickness", stream_thickness, True),
-                           _real("pulley_diameter", pulley_diameter, True), _real("belt_width", belt_width, True),
-                           _real("bulk_density", bulk_density, True),
-                           "" if read is not None else _path("dataset", dataset),
-                           _path("setup", setup), _text("condition", condition), _effect_args(effects),
-                           DEFAULT_DATASET, read)
+    core = _chutelab.sweep(*_estimate_args(belt_speed, mass_flow, plate_distance, plate_top, stream_thickness,
+                                           pulley_diameter, belt_width, bulk_density, dataset, setup, condition,
+                                           effects, head=lambda: (_text("sweep", sweep),)))
     return Sweep._make(core)
 
 
