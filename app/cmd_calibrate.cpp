@@ -10,6 +10,7 @@
 
 #include "api/calibrate.h"
 #include "app/commands.h"
+#include "app/output_hook.h"
 #include "app/dem_options.h"
 #include "app/option_checks.h"
 #include "core/input_error.h"
@@ -59,11 +60,7 @@ int run_calibrate(const CalibrateCli& o) {
   opt.jobs = o.jobs;
   opt.progress = true;
   std::optional<OutputFolder> out;
-  opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
-    out.emplace(o.out, plan.inputs, "calibrate");  // checked before minutes of slump tests
-    for (const auto& f : plan.files) out->check_entry(f, false);
-    return {};
-  };
+  opt.prepare_output = place_output(out, o.out, "calibrate");  // --out checked before minutes of slump tests
   opt.planned = [&](const studies::CalibrationContext& ctx, int count) {
     std::cout << fmt::format("calibrate: {} slump tests ({} quality) on {} ({})\n", count, ctx.quality,
                              one_line(ctx.setup.name, 80), ctx.dataset)

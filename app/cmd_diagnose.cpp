@@ -7,6 +7,7 @@
 
 #include "api/diagnose.h"
 #include "app/commands.h"
+#include "app/output_hook.h"
 #include "app/dem_options.h"
 #include "app/option_checks.h"
 #include "app/validate_console.h"
@@ -41,11 +42,7 @@ int run_diagnose(const DiagnoseCli& o) {
   opt.dem = dem_options(o.dem);
   opt.progress = true;
   std::optional<OutputFolder> out;
-  opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
-    out.emplace(o.out, plan.inputs, "diagnose");
-    for (const auto& f : plan.files) out->check_entry(f, false);
-    return {};
-  };
+  opt.prepare_output = place_output(out, o.out, "diagnose");
   const api::DiagnoseResult res = api::diagnose(opt);
   for (const auto& [name, content] : res.files()) out->write(name, content);
   out->commit();

@@ -5,7 +5,7 @@
 
 #include "api/import_logs.h"
 #include "app/commands.h"
-#include "core/output_folder.h"
+#include "app/output_hook.h"
 #include "api/files.h"
 
 namespace chutelab::app {
@@ -18,10 +18,7 @@ struct ImportLogsCli {
 int run_import_logs(const ImportLogsCli& o) {
   api::ImportLogsOptions opt;
   opt.dataset = o.dataset;
-  opt.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
-    OutputFolder check(o.out, plan.inputs, "import-logs");
-    return {};
-  };
+  opt.prepare_output = check_output(o.out, "import-logs");
   const api::ImportLogsResult r = api::import_logs(opt);
   api::write_dataset(o.out, r.files(), r.dataset.dir, "import-logs");
   for (const auto& c : r.logs.conditions) {

@@ -10,6 +10,7 @@
 
 #include "api/sensitivity.h"
 #include "app/commands.h"
+#include "app/output_hook.h"
 #include "app/dem_options.h"
 #include "app/option_checks.h"
 #include "core/input_error.h"
@@ -46,11 +47,7 @@ int run_sensitivity(const SensitivityCli& o) {
   opt.jobs = o.jobs;
   opt.progress = true;
   std::optional<OutputFolder> out;
-  opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
-    out.emplace(o.out, plan.inputs, "sensitivity");  // checked before minutes of DEM runs
-    for (const auto& f : plan.files) out->check_entry(f, false);
-    return {};
-  };
+  opt.prepare_output = place_output(out, o.out, "sensitivity");  // --out checked before minutes of DEM runs
   opt.planned = [&](const studies::SensitivityStudy& study, const std::vector<studies::SensitivityVariant>& variants) {
     std::cout << fmt::format("sensitivity: {} DEM runs of {} / {} ({} quality), base {}\n", variants.size(),
                              one_line(study.dataset_name, 80), one_line(study.condition, 80), study.quality,

@@ -7,6 +7,7 @@
 
 #include "api/simulate.h"
 #include "app/commands.h"
+#include "app/output_hook.h"
 #include "app/dem_options.h"
 #include "app/flag_names.h"
 #include "app/option_checks.h"
@@ -81,12 +82,10 @@ int run_simulate(const SimulateCli& o) {
   // Series, side view and VTK are staged and placed in --out only when the run has finished.
   std::optional<OutputFolder> out;
   if (!o.out.empty())
-    opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
-      out.emplace(o.out, plan.inputs, "simulate");
-      for (const auto& f : plan.files) out->check_entry(f, false);
-      if (o.vtk_every) out->check_entry("vtk", true);
-      return out->staging();
-    };
+    opt.prepare_output = place_output(out, o.out, "simulate", [&](OutputFolder& f, const api::OutputPlan&) {
+      if (o.vtk_every) f.check_entry("vtk", true);
+      return f.staging();
+    });
   const api::SimulateResult res = api::simulate(opt);
   if (out) {
     res.write_files(out->staging());

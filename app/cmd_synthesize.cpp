@@ -4,8 +4,8 @@
 
 #include "api/synthesize.h"
 #include "app/commands.h"
+#include "app/output_hook.h"
 #include "app/option_checks.h"
-#include "core/output_folder.h"
 #include "api/files.h"
 
 namespace chutelab::app {
@@ -33,10 +33,7 @@ int run_synthesize(const SynthesizeCli& o) {
   opt.outliers = o.outliers;
   opt.allow_out_of_range = o.out_of_range;
   // Checked before any work (and again, the same way, where the dataset is written).
-  opt.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
-    OutputFolder check(o.out, plan.inputs, "synthesize");
-    return {};
-  };
+  opt.prepare_output = check_output(o.out, "synthesize");
   const api::SynthesizeResult r = api::synthesize(opt);
   api::write_dataset(o.out, r.files, r.source.dir, "synthesize");
   std::cout << fmt::format("synthetic dataset: {}\n", o.out);

@@ -5,9 +5,9 @@
 
 #include "api/synthesize_logs.h"
 #include "app/commands.h"
+#include "app/output_hook.h"
 #include "app/option_checks.h"
 #include "core/option_check.h"
-#include "core/output_folder.h"
 #include "api/files.h"
 
 namespace chutelab::app {
@@ -25,10 +25,7 @@ int run_synthesize_logs(const SynthesizeLogsCli& o) {
   opt.sensor = o.sensor;
   opt.dem_series = o.dem_series;
   opt.seed = o.seed;
-  opt.prepare_output = [&](const api::OutputPlan& plan) -> std::filesystem::path {
-    OutputFolder check(o.out, plan.inputs, "synthesize-logs");
-    return {};
-  };
+  opt.prepare_output = check_output(o.out, "synthesize-logs");
   const api::SynthesizeLogsResult r = api::synthesize_logs(opt);
   api::write_dataset(o.out, r.files, r.source.dir, "synthesize-logs");
   std::cout << fmt::format("dataset of logs: {} ({} conditions)\n", o.out, r.truth.size());

@@ -5,6 +5,7 @@
 
 #include "api/validate.h"
 #include "app/commands.h"
+#include "app/output_hook.h"
 #include "app/dem_options.h"
 #include "app/flag_names.h"
 #include "app/validate_console.h"
@@ -58,15 +59,15 @@ int run_validate(const ValidateCli& o) {
   // Every file is staged and --out changes only at the end, all at once (core/output_folder.h);
   // placed once every input is read and before any model runs, so a bad --out costs no DEM run.
   std::optional<OutputFolder> out;
-  opt.prepare_output = [&](const api::OutputPlan& plan) -> fs::path {
-    check_junit_path(o, plan);
-    out.emplace(o.out, plan.inputs, "validate");
-    for (const auto& f : plan.files) out->check_entry(f, false);
-    for (const auto& f : plan.folders) out->check_entry(f, true);
-    if (!plan.model_folder) return {};
-    out->check_entry("dem", true);
+  const api::PrepareOutput place = place_output(out, o.out, "validate", [](OutputFolder& f, const api::OutputPlan& plan) {
+    if (!plan.model_folder) return fs::path();
+    f.check_entry("dem", true);
     // "dem" in --models: per-condition series, side views and VTK go under OUT/dem/.
-    return out->staging() / "dem";
+    return f.staging() / "dem";
+  });
+  opt.prepare_output = [&o, place](const api::OutputPlan& plan) {
+    check_junit_path(o, plan);
+    return place(plan);
   };
   const api::ValidateResult r = api::validate(opt);
   // The acceptance judges the models as delivered; the models with effects are reported beside it
