@@ -4,31 +4,68 @@
 #include "core/option_check.h"
 #include "dem/station/settings.h"
 
+#include <stdexcept>
+#include <vector>
+
 namespace chutelab::api {
 namespace {
-// The [dem] settings validate and diagnose set (dem/station/settings.h dem_fields()), by their options.
-constexpr std::string_view kQuality = "quality", kPlateCells = "plate_cells", kSteadyOn = "steady_on";
+namespace st = dem::station;
 
-// A value of one of them, checked by its field; refused as this command's option `key`.
-void check_setting(std::string_view option, const dem::station::DemValue& v, const char* key) {
-  if (const auto p = dem::station::dem_option(option)->problem(v)) throw InputError("", 0, key, *p);
+// The field of each setting DemOptions sets, by its member of RunSettings.
+const st::DemField& field(DemSetting s) {
+  switch (s) {
+    case DemSetting::quality: return st::dem_field(&st::RunSettings::quality);
+    case DemSetting::steady_on: return st::dem_field(&st::RunSettings::steady_all_loads);
+    case DemSetting::plate_cells: return st::dem_field(&st::RunSettings::plate_cells);
+  }
+  throw std::logic_error("no such DEM setting");
 }
-dem::station::DemValue word(const std::string& w) {
-  dem::station::DemValue v;
-  v.word = w;
-  return v;
+constexpr DemSetting kSettings[] = {DemSetting::quality, DemSetting::steady_on, DemSetting::plate_cells};
+
+// A value of a word setting, checked by its field; refused as this command's option `key`.
+void check_word(DemSetting s, const std::string& word, const std::string& key) {
+  if (const auto p = problem(s, word)) throw InputError("", 0, key, *p);
 }
 constexpr options::NumberRule kLiggghtsRanks{"dem.liggghts_ranks", 1.0, 1e6, false, false, true, ""};
 constexpr options::NumberRule kSimulatedTime{"dem.liggghts_time", 0.0, 100.0, false, false, false, "s"};
 }  // namespace
 
+const std::string& key(DemSetting s) {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> k;
+    for (DemSetting x : kSettings) k.push_back("dem." + std::string(field(x).option));
+    return k;
+  }();
+  return keys.at(static_cast<std::size_t>(s));
+}
+
+std::vector<std::string> words(DemSetting s) {
+  std::vector<std::string> w;
+  for (const auto& x : field(s).words()) w.push_back(x.word);
+  return w;
+}
+
+std::optional<std::string> problem(DemSetting s, const std::string& word) {
+  dem::station::DemValue v;
+  v.word = word;
+  return field(s).problem(v);
+}
+
+options::NumberRule rule(DemSetting s) { return field(s).rule(key(s)); }
+
+bool is_dem_setting(std::string_view k) {
+  if (st::dem_option(k)) return true;
+  for (DemSetting x : kSettings)
+    if (key(x) == k) return true;
+  return false;
+}
+
 void check(const DemOptions& o) {
-  namespace st = dem::station;
-  if (!o.quality.empty()) check_setting(kQuality, word(o.quality), "dem.quality");
-  if (!o.signature_quality.empty()) check_setting(kQuality, word(o.signature_quality), "dem.signature_quality");
-  if (!o.steady_on.empty()) check_setting(kSteadyOn, word(o.steady_on), "dem.steady_on");
+  if (!o.quality.empty()) check_word(DemSetting::quality, o.quality, key(DemSetting::quality));
+  if (!o.signature_quality.empty()) check_word(DemSetting::quality, o.signature_quality, "dem.signature_quality");
+  if (!o.steady_on.empty()) check_word(DemSetting::steady_on, o.steady_on, key(DemSetting::steady_on));
   if (o.threads) options::rules::dem_threads.check(static_cast<double>(*o.threads));
-  if (o.plate_cells) st::dem_option(kPlateCells)->rule("dem.plate_cells").check(static_cast<double>(*o.plate_cells));
+  if (o.plate_cells) rule(DemSetting::plate_cells).check(static_cast<double>(*o.plate_cells));
   kLiggghtsRanks.check(static_cast<double>(o.liggghts_ranks));
   kSimulatedTime.check(o.liggghts_time);
   if (o.cache_only && o.no_cache)
@@ -47,10 +84,11 @@ validation::ModelSettings model_settings(const DemOptions& o, const std::filesys
   dc.setup_file = setup ? setup->shown : (dataset_dir / "setup.toml").string();
   if (setup) dc.setup_text = setup->text;
   // validate's --dem-quality, --dem-plate-cells and --dem-steady-on set the [dem] settings of those options.
-  if (!o.quality.empty()) dc.overrides.set(kQuality, o.quality);
+  if (!o.quality.empty()) dc.overrides.set(field(DemSetting::quality).option, o.quality);
   dc.overrides.threads = o.threads;
-  if (o.plate_cells) dc.overrides.set_whole(kPlateCells, static_cast<std::uint64_t>(*o.plate_cells));
-  if (!o.steady_on.empty()) dc.overrides.set(kSteadyOn, o.steady_on);
+  if (o.plate_cells)
+    dc.overrides.set_whole(field(DemSetting::plate_cells).option, static_cast<std::uint64_t>(*o.plate_cells));
+  if (!o.steady_on.empty()) dc.overrides.set(field(DemSetting::steady_on).option, o.steady_on);
   dc.use_cache = !o.no_cache;
   dc.cache_only = o.cache_only;
   dc.ladder = o.ladder;

@@ -6,7 +6,9 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
+#include "core/option_check.h"
 #include "validation/dataset.h"
 #include "validation/models/model_settings.h"
 
@@ -31,6 +33,21 @@ struct DemOptions {
 
 // Throws InputError naming the option's key for a value out of its range, before any work.
 void check(const DemOptions& o);
+
+// The [dem] settings DemOptions sets, as the front ends offer them: their keys are "dem." + the
+// setting's option ("dem.quality": --dem-quality, dem_quality=), their words and ranges those of the
+// [dem] table (dem/station/settings.h dem_fields()), which declares each setting once.
+enum class DemSetting { quality, steady_on, plate_cells };
+const std::string& key(DemSetting s);
+// The words setting `s` accepts (quality, steady_on), and why `word` is refused, in the table's
+// words (nullopt: accepted).
+std::vector<std::string> words(DemSetting s);
+std::optional<std::string> problem(DemSetting s, const std::string& word);
+// A number setting's range (plate_cells) as the rule of its option key(s).
+options::NumberRule rule(DemSetting s);
+// Whether `key` is an option of a [dem] setting: one of simulate's (the setting's option,
+// "dt_fraction") or of DemOptions (key(DemSetting)).
+bool is_dem_setting(std::string_view key);
 
 // The models' settings for a dataset folder (its setup.toml's [dem] table); the DEM's per-condition
 // files (series, side views, VTK) go to `output_dir` when it is not empty. Checks `o` first.

@@ -2,18 +2,28 @@
 
 #include <filesystem>
 
+#include "app/flag_names.h"
 #include "app/option_checks.h"
 #include "core/progress.h"
 
 namespace chutelab::app {
 namespace {
-// As the [dem] table and dem/station/settings.cpp's check() allow them.
-constexpr options::NumberRule kPlateCells{"", 0.0, 400.0, false, false, true, ""};
 constexpr options::NumberRule kSimulatedTime{"", 0.0, 100.0, true, false, false, "s"};
+
+// The words a [dem] setting accepts, as its field in the [dem] table declares them.
+CLI::Validator accepts(api::DemSetting s) {
+  const std::vector<std::string> w = api::words(s);
+  std::string set;
+  for (const auto& x : w) set += (set.empty() ? "{" : ",") + x;
+  return CLI::Validator([s](std::string& v) { return api::problem(s, v).value_or(std::string()); }, set + "}",
+                        "dem-setting");
+}
+// The flag of a [dem] setting validate and diagnose take.
+std::string flag(api::DemSetting s) { return flag_for(api::key(s)); }
 }  // namespace
 
 void add_dem_options(CLI::App& cmd, DemCli& o) {
-  cmd.add_option("--dem-quality", o.quality,
+  cmd.add_option(flag(api::DemSetting::quality), o.quality,
                  "DEM quality: quick (default; seconds to minutes per condition), standard (the dataset's "
                  "particles), paper");
   with_rule(cmd.add_option("--dem-threads", o.threads, "OpenMP threads of the DEM (default: one per idle core)"),
@@ -32,20 +42,20 @@ void add_dem_options(CLI::App& cmd, DemCli& o) {
                  "flight, the belt's adhesion) continues the steady state of the same run without them instead of "
                  "filling the station again; off (default): every run starts from an empty station")
       ->check(CLI::IsMember({"on", "off"}));
-  cmd.add_option("--dem-steady-on", o.steady_on,
+  cmd.add_option(flag(api::DemSetting::steady_on), o.steady_on,
                  "the plate loads each DEM run's steady window is judged on: normal (R_n, as the LIGGGHTS rig did; "
                  "the default unless the dataset's [dem] steady_on says otherwise) or all (R_n, R_s and the moment: "
                  "the build-up on the plate settles later, and runs take longer; bench/WINDOW.md)")
-      ->check(CLI::IsMember({"normal", "all"}));
+      ->check(accepts(api::DemSetting::steady_on));
   cmd.add_option("--signature-quality", o.signature_quality,
                  "quality of the DEM's own effect-signature runs in diagnose (default: the --dem-quality)")
-      ->check(CLI::IsMember({"quick", "standard", "paper"}));
+      ->check(accepts(api::DemSetting::quality));
   cmd.add_flag("--dem-cache-only", o.cache_only,
                "never run the DEM: every run must be in the cache (recorded acceptance cases; exit 2 otherwise)");
-  with_rule(cmd.add_option("--dem-plate-cells", o.plate_cells,
+  with_rule(cmd.add_option(flag(api::DemSetting::plate_cells), o.plate_cells,
                            "rows of cells down the generated plate for the DEM's pressure and wear maps (0: two "
                            "triangles)"),
-            kPlateCells);
+            api::rule(api::DemSetting::plate_cells));
   with_rule(cmd.add_option("--liggghts-ranks", o.liggghts_ranks,
                            "MPI ranks of each LIGGGHTS run (mpirun -n K liggghts; default 1)"),
             options::NumberRule{"", 1.0, 1e6, false, false, true, ""});

@@ -1,5 +1,7 @@
 #include "app/flag_names.h"
 
+#include "api/dem_options.h"
+
 #include <algorithm>
 #include <array>
 #include <utility>
@@ -20,21 +22,20 @@ constexpr auto kRenamed = std::to_array<std::pair<std::string_view, std::string_
     {"pairs", "--no-pairs"},
     {"allow_out_of_range", "--allow-out-of-range"},
     {"dem.cache_only", "--dem-cache-only"},
-    {"dem.plate_cells", "--dem-plate-cells"},
     {"dem.ladder", "--dem-ladder"},
     {"dem.restart", "--dem-restart"},
-    {"dem.steady_on", "--dem-steady-on"},
 });
 
-// The options' keys that are spelt by the plain rule. Only these are options: a field such as
-// "plate_top_mm" (a column) or "dem.map_cell_mm" (a TOML key) is shown as it is.
+// The options' keys that are spelt by the plain rule besides those of the [dem] settings
+// (api::is_dem_setting: simulate's "dt_fraction", validate's "dem.steady_on"). Only these are
+// options: a field such as "plate_top_mm" (a column) or "dem.map_cell_mm" (a TOML key) is shown as
+// it is. "seed", "quality" and "shape" are also options of synthesize, calibrate and sensitivity.
 constexpr auto kPlain = std::to_array<std::string_view>({
     "models", "effect", "input", "dataset", "setup", "condition", "out", "tolerances", "studies", "junit",
     "mapping", "seed", "noise_scale", "noise_factor", "outliers", "alpha", "self_check", "jobs", "threads",
-    "dem.threads", "dem.quality", "dem.cache", "diagnose", "add_missing", "accept_with_effects", "belt_speed", "mass_flow",
+    "dem.threads", "dem.cache", "diagnose", "add_missing", "accept_with_effects", "belt_speed", "mass_flow",
     "plate_distance", "plate_top", "stream_thickness", "pulley_diameter", "belt_width", "bulk_density", "sweep", "svg", "dxf", "points", "format", "quality",
-    "contact", "shape", "diameter_mm", "shear_modulus_scale", "dt_fraction", "max_time", "steady_on", "vtk_every",
-    "plate_cells", "map_cell_mm", "no_cache", "rolling", "density", "target_bulk_density",
+    "shape", "vtk_every", "no_cache", "rolling", "density", "target_bulk_density",
     "target_pile_height", "sizes", "only", "limit", "truth", "sensor", "dem_series"});
 
 // Options whose errors a model run places at the condition it was running (conditions.csv:2): their
@@ -53,7 +54,7 @@ std::string plain_flag(std::string_view key) {
 std::string flag_for(std::string_view key) {
   for (const auto& [k, flag] : kRenamed)
     if (k == key) return std::string(flag);
-  if (std::find(kPlain.begin(), kPlain.end(), key) != kPlain.end()) return plain_flag(key);
+  if (std::find(kPlain.begin(), kPlain.end(), key) != kPlain.end() || api::is_dem_setting(key)) return plain_flag(key);
   // simulate's wear inputs, "wear.KEY": one flag per [dem.wear] key (dem/station/settings.h).
   if (key.rfind("wear.", 0) == 0 && key.size() > 5) return plain_flag(key.substr(5));
   return std::string(key);

@@ -154,7 +154,7 @@ std::vector<DemField> make_fields() {
   using S = RunSettings;
   auto field = [](std::string_view key, std::string_view option, DemKind kind, std::string_view unit, double to_si,
                   double lo, double hi, bool lo_open, bool hi_open, std::string_view help) {
-    DemField f{key, option, kind, unit, to_si, lo, hi, lo_open, hi_open, {}, help, {}, {}};
+    DemField f{key, option, kind, unit, to_si, lo, hi, lo_open, hi_open, {}, help, {}, {}, {}};
     return f;
   };
   auto num = [&](std::string_view key, std::string_view option, std::string_view unit, double to_si, double lo,
@@ -170,13 +170,14 @@ std::vector<DemField> make_fields() {
     DemField f = field(key, option, DemKind::word, "", 1.0, 0.0, 0.0, false, false, help);
     f.words = std::move(words);
     f.set = std::move(set);
-    f.flag_member = flag_member;
+    if (flag_member) f.member = flag_member;
     return f;
   };
   std::vector<DemField> v;
   DemField quality = word("quality", "quality", "the preset the other settings go on top of (dem.md)",
                           words_of({Quality::quick, Quality::standard, Quality::paper}),
                           [](S& s, const DemValue& x) { s.quality = *parse_quality(x.word); });
+  quality.member = &S::quality;
   quality.selects_preset = true;
   v.push_back(quality);
   DemField d = num("particle_diameter_mm", "diameter_mm", "mm", 1e-3, 0.0, 200.0, true, true,
@@ -187,18 +188,23 @@ std::vector<DemField> make_fields() {
                   "factor on E and G of particles and walls", &S::shear_modulus_scale));
   v.push_back(num("dt_fraction", "dt_fraction", "", 1.0, 0.0, 0.5, true, false,
                   "time step as a fraction of the Hertz collision time", &S::dt_fraction));
-  v.push_back(word("contact", "contact", "contact law (dem.md)",
-                   [] {
-                     std::vector<DemWord> w;
-                     for (int i = 0; const auto law = NormalLaw::at(i); ++i) w.push_back({std::string(law->key()), ""});
-                     return w;
-                   },
-                   [](S& s, const DemValue& x) { s.contact = *parse_contact(x.word); }));
-  v.push_back(word("shape", "shape", "particle shape: spheres, or the reference study's two-sphere pellet (Fig. 4c)",
-                   words_of({ParticleShape::sphere, ParticleShape::clump}),
-                   [](S& s, const DemValue& x) { s.particle_shape = *parse_shape(x.word); }));
+  DemField contact = word("contact", "contact", "contact law (dem.md)",
+                          [] {
+                            std::vector<DemWord> w;
+                            for (int i = 0; const auto law = NormalLaw::at(i); ++i) w.push_back({std::string(law->key()), ""});
+                            return w;
+                          },
+                          [](S& s, const DemValue& x) { s.contact = *parse_contact(x.word); });
+  contact.member = &S::contact;
+  v.push_back(contact);
+  DemField shape = word("shape", "shape", "particle shape: spheres, or the reference study's two-sphere pellet (Fig. 4c)",
+                        words_of({ParticleShape::sphere, ParticleShape::clump}),
+                        [](S& s, const DemValue& x) { s.particle_shape = *parse_shape(x.word); });
+  shape.member = &S::particle_shape;
+  v.push_back(shape);
   DemField seed = field("seed", "seed", DemKind::whole, "", 1.0, 0.0, kAny, false, false, "seed of the particle feed");
   seed.set = [](S& s, const DemValue& x) { s.seed = x.whole; };
+  seed.member = &S::seed;
   seed.kept = true;
   v.push_back(seed);
   DemField max_time = num("max_time_s", "max_time", "s", 1.0, 0.0, 100.0, true, false,
@@ -273,7 +279,7 @@ std::vector<DemField> make_fields() {
                          "rows of cells down the generated plate for the pressure and wear maps");
   cells.zero_means = "the plate as two triangles";
   cells.set = [](S& s, const DemValue& x) { s.plate_cells = static_cast<int>(x.whole); };
-  cells.whole_member = &S::plate_cells;
+  cells.member = &S::plate_cells;
   v.push_back(cells);
   DemField map = num("map_cell_mm", "map_cell_mm", "mm", 1e-3, 1.0, 1000.0, false, false,
                      "cell size of the plate's pressure and wear maps (the contacts are binned on the face; the plate "
@@ -282,17 +288,6 @@ std::vector<DemField> make_fields() {
   map.zero_means = "the plate's own triangles";
   v.push_back(map);
   return v;
-}
-
-// How check() and the overrides name a field: by its option, else by its [dem] key.
-std::string shown_name(const DemField& f) {
-  return f.option.empty() ? "dem." + std::string(f.key) : std::string(f.option);
-}
-
-const DemField& field_of(double RunSettings::*m) {
-  for (const auto& f : dem_fields())
-    if (f.member == m) return f;
-  throw std::logic_error("no [dem] field for this member");
 }
 
 std::string quoted_words(const std::vector<DemWord>& w) {
@@ -342,12 +337,9 @@ const DemField& dem_field(std::string_view key) {
   throw std::logic_error("no [dem] key " + std::string(key));
 }
 
-std::string field_name(double RunSettings::*member) { return shown_name(field_of(member)); }
-
-std::string field_name(bool RunSettings::*flag) {
-  for (const auto& f : dem_fields())
-    if (f.flag_member == flag) return shown_name(f);
-  throw std::logic_error("no [dem] field for this flag");
+// How check() and the overrides name a field: by its option, else by its [dem] key.
+std::string field_name(const DemField& f) {
+  return f.option.empty() ? "dem." + std::string(f.key) : std::string(f.option);
 }
 
 const DemField* dem_option(std::string_view option) {
@@ -603,21 +595,21 @@ void check(const RunSettings& s) {
   // Every plain number of the table, in case code (a study's variant, a ladder) set it.
   for (const auto& f : dem_fields()) {
     DemValue v;
-    if (f.member) {
-      if ((f.nan_unset && std::isnan(s.*f.member)) || (f.zero_in_settings && s.*f.member == 0.0)) continue;
-      v.number = s.*f.member / f.to_si;
-    } else if (f.whole_member) {
-      if (s.*f.whole_member < 0) need(false, shown_name(f), "must be " + f.range_text());
-      v.whole = static_cast<std::uint64_t>(s.*f.whole_member);
+    if (const auto m = f.member_of<double>()) {
+      if ((f.nan_unset && std::isnan(s.*m)) || (f.zero_in_settings && s.*m == 0.0)) continue;
+      v.number = s.*m / f.to_si;
+    } else if (const auto w = f.member_of<int>()) {
+      if (s.*w < 0) need(false, field_name(f), "must be " + f.range_text());
+      v.whole = static_cast<std::uint64_t>(s.*w);
     } else {
       continue;
     }
-    if (const auto p = f.problem(v)) need(false, shown_name(f), *p);
+    if (const auto p = f.problem(v)) need(false, field_name(f), *p);
   }
   need(s.threads >= 0 && s.threads <= 256, "threads", "must be between 0 (all) and 256");
-  need(s.min_window < s.max_time, shown_name(field_of(&RunSettings::min_window)),
+  need(s.min_window < s.max_time, field_name(&RunSettings::min_window),
        fmt::format("steady window {} s must be shorter than the simulated time {} s", s.min_window, s.max_time));
-  need(s.insert_depth > 0.0, shown_name(field_of(&RunSettings::insert_low)), "the insertion face must lie above the belt");
+  need(s.insert_depth > 0.0, field_name(&RunSettings::insert_low), "the insertion face must lie above the belt");
   need(s.sample_interval > 0.0 && s.snapshot_interval >= s.sample_interval, "sample_interval",
        "snapshots must not be more frequent than force samples");
 }

@@ -7,8 +7,10 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "core/option_check.h"
@@ -205,9 +207,18 @@ struct DemField {
   std::string_view help;
   std::function<std::vector<DemWord>()> words;           // DemKind::word: the accepted words
   std::function<void(RunSettings&, const DemValue&)> set;  // numbers already in SI
-  double RunSettings::*member = nullptr;  // a plain number of RunSettings, which check() checks again
-  int RunSettings::*whole_member = nullptr;  // the same for a whole number
-  bool RunSettings::*flag_member = nullptr;  // the flag two words set
+  // The member of RunSettings the setting sets (none: it sets a derived value). A plain number
+  // (double, in SI) or a whole number (int) is checked again by check(); a flag is set by two words.
+  using Member = std::variant<std::monostate, double RunSettings::*, int RunSettings::*, bool RunSettings::*,
+                              std::uint64_t RunSettings::*, Quality RunSettings::*, ContactLaw RunSettings::*,
+                              ParticleShape RunSettings::*>;
+  Member member;
+  // The member if it is of type T, else nullptr.
+  template <class T>
+  T RunSettings::*member_of() const {
+    const auto* m = std::get_if<T RunSettings::*>(&member);
+    return m ? *m : nullptr;
+  }
   bool nan_unset = false;        // NaN in `member` means not given (nothing to check)
   bool zero_in_settings = false; // 0 in `member` means the dataset's value (a preset's; no input)
   std::string_view above = {};   // must lie above this key's value when both are given
@@ -226,9 +237,20 @@ struct DemField {
 const std::vector<DemField>& dem_fields();
 // The field of [dem] key `key` (throws std::logic_error when there is none: a caller's mistake).
 const DemField& dem_field(std::string_view key);
-// How messages name the field of a plain number of RunSettings: its option, else "dem." + its key.
-std::string field_name(double RunSettings::*member);
-std::string field_name(bool RunSettings::*flag);
+// The (first) field that sets `member`: code names a setting by its member, never by its key
+// (throws std::logic_error when no field sets it: a caller's mistake).
+template <class T>
+const DemField& dem_field(T RunSettings::*member) {
+  for (const auto& f : dem_fields())
+    if (f.member_of<T>() == member) return f;
+  throw std::logic_error("no [dem] field sets this member of RunSettings");
+}
+// How messages name a setting: its option, else "dem." + its key.
+std::string field_name(const DemField& f);
+template <class T>
+std::string field_name(T RunSettings::*member) {
+  return field_name(dem_field(member));
+}
 // The field an override names by `option`; nullptr when none does.
 const DemField* dem_option(std::string_view option);
 

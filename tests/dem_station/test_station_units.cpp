@@ -588,8 +588,14 @@ BOOST_AUTO_TEST_CASE(every_dem_field_is_read_checked_and_overridable) {
       BOOST_TEST(at->line == 3);
       RunSettings s = preset(Quality::standard);
       apply(t, s);
-      if (f.member) BOOST_TEST((s.*f.member) == value.number * f.to_si);
-      if (f.whole_member) BOOST_TEST((s.*f.whole_member) == static_cast<int>(value.whole));
+      if (const auto m = f.member_of<double>()) BOOST_TEST((s.*m) == value.number * f.to_si);
+      if (const auto m = f.member_of<int>()) BOOST_TEST((s.*m) == static_cast<int>(value.whole));
+      if (const auto m = f.member_of<std::uint64_t>()) BOOST_TEST((s.*m) == value.whole);
+      // Code names the setting by its member and finds this field (or the first that sets it).
+      if (!std::holds_alternative<std::monostate>(f.member))
+        BOOST_TEST(std::visit([](auto m) { if constexpr (std::is_same_v<decltype(m), std::monostate>) return std::string_view();
+                                           else return dem_field(m).key; }, f.member) ==
+                   (f.key == "feed.face_length_mm" ? std::string_view("feed_length_mm") : f.key));
       // Refused: a word not in the list, a number past an end of the range, a text for a number.
       std::vector<std::string> bad = {f.kind == DemKind::word ? "\"no-such-word\"" : "\"text\""};
       if (f.kind != DemKind::word && f.hi < 1e300) bad.push_back(fmt::format("{:.17g}", f.hi * 2 + 1));
