@@ -9,6 +9,22 @@
 #include "validation/strength_fit.h"
 
 namespace chutelab::api {
+namespace {
+
+// An effect applied, in the report's words. What the report says of a registered effect (a
+// corrected record and the measurement that checks it) is looked up by the effect's own name: a
+// record at one condition (NAME@CONDITION) is no registered name and is said as physics.
+reports::EffectDescription describe(const effects::EffectInfo& e, double value, std::optional<double> uncertainty,
+                                    bool fitted) {
+  reports::EffectDescription d{e.name, e.parameter, e.unit, e.physics, e.source, value, uncertainty, fitted};
+  if (const auto* registered = effects::find(e.name)) {
+    d.record = registered->kind == effects::EffectInfo::Kind::record;
+    d.check = registered->check;
+  }
+  return d;
+}
+
+}  // namespace
 
 std::vector<EffectEntry> effect_library() {
   std::vector<EffectEntry> out;
@@ -89,8 +105,7 @@ AppliedEffects resolve_effects(const std::vector<std::string>& args, const valid
   out.effects = effects::instantiate(fixed);
   for (const auto& s : fixed) {
     out.labels.push_back(fmt::format("{}={}", s.info->name, *s.value));
-    described.push_back({s.info->name, s.info->parameter, s.info->unit, s.info->physics, s.info->source,
-                         *s.value, std::nullopt, false});
+    described.push_back(describe(*s.info, *s.value, std::nullopt, false));
   }
   if (to_fit.empty()) return out;
 
@@ -106,8 +121,7 @@ AppliedEffects resolve_effects(const std::vector<std::string>& args, const valid
   for (std::size_t i = 0; i < fx.size(); ++i) {
     out.effects.push_back(fx[i]->make(fit.estimate[i]));
     out.labels.push_back(fmt::format("{}={:.4g} (fitted)", fx[i]->name, fit.estimate[i]));
-    described.push_back({fx[i]->name, fx[i]->parameter, fx[i]->unit, fx[i]->physics, fx[i]->source,
-                         fit.estimate[i], fit.uncertainty[i], true});
+    described.push_back(describe(*fx[i], fit.estimate[i], fit.uncertainty[i], true));
   }
   out.notes.push_back(fmt::format(
       "Fitted on this dataset ({} values with uncertainties): chi^2 {:.1f} -> {:.1f}.", misfit.size(),
@@ -125,8 +139,7 @@ AppliedEffects diagnosed_effects(const validation::DiagnosisResult& diagnosis, c
     if (std::find(skip.begin(), skip.end(), e->name) != skip.end()) continue;
     out.effects.push_back(e->make(best->estimate[i]));
     out.labels.push_back(fmt::format("{}={:.4g} (fitted)", e->name, best->estimate[i]));
-    described.push_back({e->name, e->parameter, e->unit, e->physics, e->source, best->estimate[i],
-                         best->uncertainty[i], true});
+    described.push_back(describe(*e, best->estimate[i], best->uncertainty[i], true));
   }
   if (out.effects.empty()) return out;
   out.notes.push_back(fmt::format(

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "analytical/streamline_path.h"
+#include "api/design_drawing.h"
 #include "api/effects.h"
 #include "api/record_check.h"
 #include "core/input_error.h"
@@ -153,14 +154,14 @@ std::string EstimateResult::svg() const {
   QuantityValues korzen;
   for (const auto& [m, v] : models)
     if (m == "korzen") korzen = v;
-  return reports::standalone_svg(reports::design_svg(analysis, korzen));
+  return reports::standalone_svg(reports::design_svg(design_drawing(analysis), korzen));
 }
 
 std::vector<Eigen::Vector2d> EstimateResult::path(analytical::Streamline which) const {
   return analytical::streamline_path(analysis, which);
 }
 
-std::string EstimateResult::dxf() const { return reports::design_dxf(analysis); }
+std::string EstimateResult::dxf() const { return reports::design_dxf(design_drawing(analysis)); }
 
 EstimateResult estimate(const EstimateOptions& o) {
   check(o);

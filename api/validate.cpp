@@ -12,6 +12,7 @@
 #include "core/message.h"
 #include "core/option_check.h"
 #include "core/rig_needs.h"
+#include "effects/registry.h"
 #include "reports/report.h"
 #include "studies/sensitivity.h"
 #include "validation/dataset_output.h"
@@ -58,6 +59,9 @@ reports::ReportInput ValidateResult::report() const {
   in.with_effects = with_effects ? &*with_effects : nullptr;
   in.effects = effects;
   in.diagnosis = diagnosis ? &*diagnosis : nullptr;
+  if (const auto* best = diagnosis ? diagnosis->best() : nullptr)
+    for (const auto& nm : best->effects)
+      if (const auto* info = effects::find(nm)) in.candidate_physics[nm] = info->physics;
   in.findings = &findings;
   in.notes = notes;
   in.studies = &studies;

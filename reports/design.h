@@ -3,20 +3,64 @@
 // Korzen readout) and a sweep chart (impact points and plate forces against one input). The same
 // code draws `estimate --svg` on the terminal and the designer's page in the browser (compiled to
 // WebAssembly), so the two cannot disagree.
+#include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "analytical/transfer_station.h"
+#include <Eigen/Core>
+
 #include "core/quantity.h"
+#include "core/rig.h"
 
 namespace chutelab::reports {
 
+// The four streamlines drawn, in the order of the analytical chain's (analytical/transfer_station.h).
+enum class Streamline { lower, upper, cema_centroid, korzen_centroid };
+inline constexpr std::array<Streamline, 4> kAllStreamlines = {
+    Streamline::lower, Streamline::upper, Streamline::cema_centroid, Streamline::korzen_centroid};
+
+// A design as the drawings take it: the station and what the estimate computed for it (the
+// drawings compute no physics; api/design_drawing.h fills this from the analytical chain). SI, the
+// DESIGN.md frame (origin at the pulley centre, x towards the plate, y up).
+struct DesignDrawing {
+  struct Line {
+    std::vector<Eigen::Vector2d> path;  // m: round the pulley and in flight (analytical/streamline_path.h)
+    Eigen::Vector2d release = Eigen::Vector2d::Zero();  // m, where it leaves the pulley
+    bool high_speed = false;            // Booth: left at the tangent point
+    double release_ratio = 0.0;         // K = V^2 / (g r)
+    struct Hit {
+      Eigen::Vector2d point = Eigen::Vector2d::Zero();  // m
+      double alpha = 0.0;               // rad below the horizontal
+      bool on_plate = false;
+    };
+    std::optional<Hit> hit;             // absent when it never reaches the plate line
+  };
+  // The analytical impact zone (analytical/impact_zone.h).
+  struct Zone {
+    double top_along = 0.0, bottom_along = 0.0;  // m below the plate's top edge
+    double top_y = 0.0, bottom_y = 0.0;          // m
+    double width = 0.0;                          // m
+    double mean_pressure = 0.0, mean_shear_stress = 0.0;  // Pa
+    bool top_clipped = false, bottom_clipped = false;
+  };
+  Station station;
+  double load_height = 0.0;             // h_b, m
+  double load_contact_width = 0.0;      // m, the load's width on the belt
+  bool thickness_from_continuity = false;
+  std::array<Line, 4> lines;            // by Streamline
+  Zone zone;
+  bool stationary_flow = false;         // Korzen's Eq 3
+  std::string shear_equation;           // "Eq 6" or "Eq 7"
+  double plate_friction = 0.0;          // mu_pw as the plate acts
+  const Line& line(Streamline s) const { return lines[static_cast<std::size_t>(s)]; }
+};
+
 // `korzen` is what the Korzen model reports for this design (measurement effects applied), shown
-// beside the drawing; the drawing itself is the physical stream of `a`.
-std::string design_svg(const analytical::TransferAnalysis& a, const QuantityValues& korzen,
-                       std::string_view id = "design");
+// beside the drawing; the drawing itself is the physical stream of `d`.
+std::string design_svg(const DesignDrawing& d, const QuantityValues& korzen, std::string_view id = "design");
 
 struct SweepSeries {
   std::string label;                     // plain text, e.g. "CEMA centroid (booth-cema)"

@@ -3,13 +3,9 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "analytical/impact_zone.h"
-#include "analytical/streamline_path.h"
 
 namespace chutelab::reports {
 namespace {
-
-using analytical::Streamline;
 
 // A group: its code on one line, its value on the next (DXF's whole grammar).
 void group(std::string& o, int code, std::string_view value) { o += fmt::format("{:>3}\n{}\n", code, value); }
@@ -33,11 +29,11 @@ std::string dxf_layer(Streamline s) {
   return "STREAMLINE";
 }
 
-std::string design_dxf(const analytical::TransferAnalysis& a) {
-  const auto& st = a.station;
+std::string design_dxf(const DesignDrawing& d) {
+  const auto& st = d.station;
   std::vector<Layer> layers = {{"PULLEY", 8}, {"BELT", 7}, {"PLATE", 7}, {"IMPACT_ZONE", 30}};
   const int colours[] = {1, 5, 3, 6};  // lower red, upper blue, CEMA green, Korzen magenta (as drawn)
-  for (Streamline s : analytical::kAllStreamlines) layers.push_back({dxf_layer(s), colours[static_cast<int>(s)]});
+  for (Streamline s : kAllStreamlines) layers.push_back({dxf_layer(s), colours[static_cast<int>(s)]});
 
   std::string o;
   group(o, 999, fmt::format("chutelab design {}: millimetres, origin at the head pulley's centre, x towards the plate, y up",
@@ -98,9 +94,9 @@ std::string design_dxf(const analytical::TransferAnalysis& a) {
   const Eigen::Vector2d top(st.plate_distance * 1e3, st.plate_top * 1e3);
   const Eigen::Vector2d down(std::sin(st.plate.angle), -std::cos(st.plate.angle));
   line("PLATE", top, top + st.plate.height * 1e3 * down);
-  const analytical::ImpactZone zone = analytical::impact_zone(a);
+  const auto& zone = d.zone;
   line("IMPACT_ZONE", top + zone.top_along * 1e3 * down, top + zone.bottom_along * 1e3 * down);
-  for (Streamline s : analytical::kAllStreamlines) {
+  for (Streamline s : kAllStreamlines) {
     group(o, 0, "POLYLINE");
     group(o, 8, dxf_layer(s));
     group(o, 66, "1");
@@ -108,7 +104,7 @@ std::string design_dxf(const analytical::TransferAnalysis& a) {
     number(o, 20, 0.0);
     number(o, 30, 0.0);
     group(o, 70, "0");
-    for (const auto& p : analytical::streamline_path(a, s)) {
+    for (const auto& p : d.line(s).path) {
       group(o, 0, "VERTEX");
       group(o, 8, dxf_layer(s));
       number(o, 10, p.x() * 1e3);

@@ -6,13 +6,13 @@
 // analytical/streamline_path.h (the numbers of `estimate --format json`, written in full precision).
 #include <string>
 
-#include "analytical/transfer_station.h"
+#include "reports/design.h"
 
 namespace chutelab::reports {
 
-std::string design_dxf(const analytical::TransferAnalysis& a);
+std::string design_dxf(const DesignDrawing& d);
 
 // The DXF layer of a streamline ("STREAMLINE_UPPER", ...).
-std::string dxf_layer(analytical::Streamline s);
+std::string dxf_layer(Streamline s);
 
 }  // namespace chutelab::reports

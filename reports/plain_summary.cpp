@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include "core/message.h"
-#include "effects/registry.h"
 
 namespace chutelab::reports {
 namespace {
@@ -56,18 +55,16 @@ std::string short_effects(const std::vector<EffectDescription>& effects) {
   return join_words(s);
 }
 
-// Every effect added is a corrected record (effects/registry.h, Kind::record), not physics.
+// Every effect added is a corrected record, not physics.
 bool all_records(const std::vector<EffectDescription>& effects) {
-  return !effects.empty() && std::all_of(effects.begin(), effects.end(), [](const EffectDescription& e) {
-    const auto* info = effects::find(e.name);
-    return info && info->kind == effects::EffectInfo::Kind::record;
-  });
+  return !effects.empty() &&
+         std::all_of(effects.begin(), effects.end(), [](const EffectDescription& e) { return e.record; });
 }
 
 std::string record_checks(const std::vector<EffectDescription>& effects) {
   std::vector<std::string> s;
   for (const auto& e : effects)
-    if (const auto* info = effects::find(e.name); info && !info->check.empty()) s.push_back(info->check);
+    if (!e.check.empty()) s.push_back(e.check);
   return join_words(s);
 }
 

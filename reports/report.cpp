@@ -10,7 +10,6 @@
 #include <map>
 #include <stdexcept>
 
-#include "effects/registry.h"
 #include "reports/common.h"
 #include "reports/plain_summary.h"
 #include "reports/studies.h"
@@ -293,7 +292,8 @@ void what_is_missing(Doc& d, const Context& c) {
                                   [&](const EffectDescription& x) { return x.name == nm; });
       if (e == c.in.effects.end()) {
         std::string body = fit;
-        if (const auto* info = effects::find(nm); info && !info->physics.empty()) body += " " + info->physics;
+        if (const auto p = c.in.candidate_physics.find(nm); p != c.in.candidate_physics.end() && !p->second.empty())
+          body += " " + p->second;
         d.definition(nm, body + " To see the models with it: " + validate_command(c.in, fit_flags, fmt::format("{}", fmt::join(best->effects, "-"))) + ".");
         continue;
       }

@@ -1,6 +1,7 @@
 #pragma once
 // The validation report as Markdown and as one self-contained HTML page (inline SVG, no network).
 // The report knows no physics: it draws what the harness and the diagnosis give it.
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -14,11 +15,15 @@
 
 namespace chutelab::reports {
 
+// An effect added, in the words of the effect registry (effects/registry.h), which the caller
+// looks up: the report reads no registry.
 struct EffectDescription {
   std::string name, parameter, unit, physics, source;
   double value = 0.0;                 // boundary unit
   std::optional<double> uncertainty;  // when fitted
   bool fitted = false;
+  bool record = false;                // a corrected record of the rig, not physics (EffectInfo::Kind::record)
+  std::string check = {};             // the measurement that confirms it ("" = none named)
 };
 
 struct StudySection;  // reports/studies.h
@@ -28,6 +33,9 @@ struct ReportInput {
   const validation::ValidationResult* baseline = nullptr;   // required: models as they are
   const validation::ValidationResult* with_effects = nullptr;  // optional: after adding effects
   std::vector<EffectDescription> effects;                   // what with_effects added
+  // The registry's physics paragraph of each effect the diagnosis recommends and with_effects does
+  // not add, by name (absent: none said).
+  std::map<std::string, std::string> candidate_physics;
   const validation::DiagnosisResult* diagnosis = nullptr;   // optional: "What is missing"
   const std::vector<validation::ReferenceFinding>* findings = nullptr;  // optional: the reference study's findings checked
   std::vector<std::string> notes;                           // provenance of numbers, warnings
