@@ -184,7 +184,8 @@ class World {
   std::span<const std::int32_t> held_between(std::size_t lo, std::size_t hi) const {
     const auto a = std::lower_bound(sources_.held.begin(), sources_.held.end(), static_cast<std::int32_t>(lo));
     const auto b = std::lower_bound(a, sources_.held.end(), static_cast<std::int32_t>(hi));
-    return {a, b};
+    // Pointer and length: the designer's WebAssembly build (its libc++) has no iterator-pair span.
+    return {sources_.held.data() + (a - sources_.held.begin()), static_cast<std::size_t>(b - a)};
   }
   // Contact detection (dem/contact_detection.cpp): whether the lists must be rebuilt, and the rebuild.
   bool needs_rebuild() const;

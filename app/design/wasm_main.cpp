@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <sstream>
+#include <string_view>
 
 #include "app/commands.h"
 #include "app/flag_names.h"
@@ -17,6 +18,12 @@
 #include "core/rig.h"
 #include "effects/registry.h"
 #include "validation/dataset.h"
+
+// The page runs no DEM and takes none of its options: no key it names is a [dem] setting. (The
+// native build has the [dem] table itself, api/dem_options.cpp, which the page does not link.)
+namespace chutelab::api {
+bool is_dem_setting(std::string_view) { return false; }
+}  // namespace chutelab::api
 
 namespace chutelab::app {
 // The bundled rig, packed into the module's file system at build time (em++ --embed-file).
