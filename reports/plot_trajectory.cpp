@@ -151,288 +151,387 @@ void draw_plate_strip(Svg& svg, const Frame& sf, const Context& c, const validat
   }
 }
 
-}  // namespace
-
-std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id,
-                            double legend_width) {
-  // Styles: one dash per curve name, one colour per model.
+// What every panel shares: a dash per curve name, a colour per model (Context), who predicts an
+// impact point, which boundaries are measured, and one colour scale for every point cloud.
+struct GridStyle {
   std::vector<std::string> curve_names;
   std::vector<std::pair<std::string, std::string>> model_curves;  // (model, curve) as they occur
+  std::vector<std::string> impact_models;
+  std::vector<Boundary> boundaries;
+  bool any_impact_measured = false;
+  ValueScale vs;
+  std::string cloud_name;
+  std::string dash(const std::string& curve) const {
+    const auto i = static_cast<std::size_t>(std::find(curve_names.begin(), curve_names.end(), curve) -
+                                            curve_names.begin());
+    return std::string(kDashes[i % kDashes.size()]);
+  }
+};
+
+void collect_curves(GridStyle& g, const validation::ValidationResult& r) {
   for (const auto& m : r.models)
     for (const auto& p : r.predictions)
       if (p.model == m)
         for (const auto& cv : p.prediction.curves) {
-          if (std::find(curve_names.begin(), curve_names.end(), cv.name) == curve_names.end())
-            curve_names.push_back(cv.name);
-          if (std::find(model_curves.begin(), model_curves.end(), std::pair{m, cv.name}) == model_curves.end())
-            model_curves.emplace_back(m, cv.name);
+          if (std::find(g.curve_names.begin(), g.curve_names.end(), cv.name) == g.curve_names.end())
+            g.curve_names.push_back(cv.name);
+          if (std::find(g.model_curves.begin(), g.model_curves.end(), std::pair{m, cv.name}) == g.model_curves.end())
+            g.model_curves.emplace_back(m, cv.name);
         }
-  auto dash = [&](const std::string& curve) {
-    const auto i = static_cast<std::size_t>(std::find(curve_names.begin(), curve_names.end(), curve) -
-                                            curve_names.begin());
-    return std::string(kDashes[i % kDashes.size()]);
-  };
-  std::vector<std::string> impact_models;
+}
+
+void collect_impacts(GridStyle& g, const Context& c, const validation::ValidationResult& r) {
   for (const auto& m : r.models)
     for (const auto& p : r.predictions)
       if (p.model == m && p.prediction.values[Quantity::impact_point_y]) {
-        impact_models.push_back(m);
+        g.impact_models.push_back(m);
         break;
       }
-  std::vector<Boundary> boundaries;
   for (Boundary b : kAllBoundaries)
     for (const auto& pt : c.in.dataset->trajectory)
       if (pt.boundary == b) {
-        boundaries.push_back(b);
+        g.boundaries.push_back(b);
         break;
       }
-  bool any_impact_measured = false;
   for (const auto& row : c.conditions)
-    any_impact_measured = any_impact_measured || find_measurement(*c.in.dataset, row.name, Quantity::impact_point_y);
+    g.any_impact_measured = g.any_impact_measured || find_measurement(*c.in.dataset, row.name, Quantity::impact_point_y);
+}
 
-  // One colour scale for every point cloud of every panel.
-  ValueScale vs;
-  std::string cloud_name;
+// One colour scale for every point cloud of every panel.
+void cloud_scale(GridStyle& g, const validation::ValidationResult& r) {
   bool first_value = true;
   for (const auto& p : r.predictions)
     for (const auto& cv : p.prediction.curves)
       if (cv.kind == validation::Curve::Kind::points && cv.value.size() == cv.points.size() && !cv.value.empty()) {
         const auto [lo, hi] = std::minmax_element(cv.value.begin(), cv.value.end());
-        vs.lo = first_value ? *lo : std::min(vs.lo, *lo);
-        vs.hi = first_value ? *hi : std::max(vs.hi, *hi);
-        vs.label = cv.value_label;
-        cloud_name = fmt::format("{}: {}", p.model, cv.name);
+        g.vs.lo = first_value ? *lo : std::min(g.vs.lo, *lo);
+        g.vs.hi = first_value ? *hi : std::max(g.vs.hi, *hi);
+        g.vs.label = cv.value_label;
+        g.cloud_name = fmt::format("{}: {}", p.model, cv.name);
         first_value = false;
       }
-  auto is_cloud = [&](const std::string& model, const std::string& curve) {
-    for (const auto& p : r.predictions)
-      if (p.model == model)
-        for (const auto& cv : p.prediction.curves)
-          if (cv.name == curve) return cv.kind == validation::Curve::Kind::points;
-    return false;
-  };
+}
 
+GridStyle grid_style(const Context& c, const validation::ValidationResult& r) {
+  GridStyle g;
+  collect_curves(g, r);
+  collect_impacts(g, c, r);
+  cloud_scale(g, r);
+  return g;
+}
+
+bool is_cloud(const validation::ValidationResult& r, const std::string& model, const std::string& curve) {
+  for (const auto& p : r.predictions)
+    if (p.model == model)
+      for (const auto& cv : p.prediction.curves)
+        if (cv.name == curve) return cv.kind == validation::Curve::Kind::points;
+  return false;
+}
+
+std::vector<LegendEntry> grid_legend(const Context& c, const validation::ValidationResult& r, const GridStyle& g) {
   std::vector<LegendEntry> legend;
-  for (const auto& [m, cv] : model_curves) {
-    if (is_cloud(m, cv))
+  for (const auto& [m, cv] : g.model_curves) {
+    if (is_cloud(r, m, cv))
       legend.push_back({LegendEntry::Kind::marker, fmt::format("{}: {} (coloured by {})", m, cv,
-                                                               vs.valid() ? vs.label : "model"),
-                        vs.valid() ? std::string(kRamp[kRamp.size() / 2]) : c.colour(m), "", Shape::circle, true});
+                                                               g.vs.valid() ? g.vs.label : "model"),
+                        g.vs.valid() ? std::string(kRamp[kRamp.size() / 2]) : c.colour(m), "", Shape::circle, true});
     else
-      legend.push_back({LegendEntry::Kind::line, fmt::format("{}: {}", m, cv), c.colour(m), dash(cv)});
+      legend.push_back({LegendEntry::Kind::line, fmt::format("{}: {}", m, cv), c.colour(m), g.dash(cv)});
   }
-  for (Boundary b : boundaries)
+  for (Boundary b : g.boundaries)
     legend.push_back({LegendEntry::Kind::marker, fmt::format("measured {} boundary", name(b)),
                       std::string(kMeasuredColour), "", boundary_shape(b), true});
-  if (any_impact_measured)
+  if (g.any_impact_measured)
     legend.push_back({LegendEntry::Kind::marker, "measured impact point", std::string(kMeasuredColour), "",
                       Shape::diamond, true});
-  for (const auto& m : impact_models)
+  for (const auto& m : g.impact_models)
     legend.push_back({LegendEntry::Kind::marker, fmt::format("{}: impact point", m), c.colour(m), "",
                       Shape::diamond, false});
   legend.push_back({LegendEntry::Kind::line, "impact plate", "#555", ""});
   legend.push_back({LegendEntry::Kind::box, "head pulley", "#d9d9d9"});
+  return legend;
+}
 
-  std::string o = fmt::format("<figure class=\"traj-figure\" id=\"{}\">\n", esc(id));
-  {
-    const double W = legend_width;
-    const double lh = legend_height(W - 20, legend);
-    const double bar = vs.valid() ? 22.0 : 0.0;
-    Svg leg(W, lh + 30.0 + bar, "plot traj-legend", fmt::format("{}-legend", id), "Legend of the stream pictures");
-    leg.title("Stream trajectories per condition: x, y from the head-pulley centre (mm)");
-    leg.legend(10.0, 26.0, W - 20, legend);
-    if (vs.valid()) draw_colour_bar(leg, 10.0, 26.0 + lh + 4.0, vs, cloud_name);
-    o += leg.finish();
+std::string legend_svg(const GridStyle& g, const std::vector<LegendEntry>& legend, std::string_view id,
+                       double legend_width) {
+  const double W = legend_width;
+  const double lh = legend_height(W - 20, legend);
+  const double bar = g.vs.valid() ? 22.0 : 0.0;
+  Svg leg(W, lh + 30.0 + bar, "plot traj-legend", fmt::format("{}-legend", id), "Legend of the stream pictures");
+  leg.title("Stream trajectories per condition: x, y from the head-pulley centre (mm)");
+  leg.legend(10.0, 26.0, W - 20, legend);
+  if (g.vs.valid()) draw_colour_bar(leg, 10.0, 26.0 + lh + 4.0, g.vs, g.cloud_name);
+  return leg.finish();
+}
+
+// What one panel shows besides the models' curves: the measured stream points (a boundary
+// measured at thousands of x values thinned), the measured and predicted impact points, and where
+// each streamline meets the plate.
+struct PanelData {
+  std::vector<const validation::TrajectoryPoint*> points;
+  std::size_t measured_here = 0;  // measured points of the condition, before thinning
+  bool thinned = false;
+  const validation::Measurement* meas_y = nullptr;
+  std::vector<std::pair<std::string, double>> model_impacts;  // mm
+  std::vector<PlateHit> hits;
+};
+
+// A boundary measured at thousands of x values is drawn thinned, evenly along x (kDrawnPerBoundary
+// markers, first and last included): a marker per point would make a report of hundreds of MB.
+void thin_points(std::vector<const validation::TrajectoryPoint*>& points) {
+  std::map<Boundary, std::size_t> per_boundary;
+  for (const auto* pt : points) ++per_boundary[pt->boundary];
+  if (std::none_of(per_boundary.begin(), per_boundary.end(),
+                   [](const auto& b) { return b.second > kDrawnPerBoundary; }))
+    return;
+  std::stable_sort(points.begin(), points.end(), [](const auto* a, const auto* b) {
+    return a->boundary != b->boundary ? a->boundary < b->boundary : a->x < b->x;
+  });
+  std::vector<const validation::TrajectoryPoint*> thinned;
+  for (std::size_t i = 0; i < points.size();) {
+    const std::size_t n = per_boundary[points[i]->boundary];
+    const std::size_t keep = std::min(n, kDrawnPerBoundary);
+    for (std::size_t k = 0; k < keep; ++k) thinned.push_back(points[i + (keep > 1 ? k * (n - 1) / (keep - 1) : 0)]);
+    i += n;
   }
-  o += "<div class=\"traj-grid\">\n";
+  points = std::move(thinned);
+}
 
-  std::size_t panel = 0;
-  for (const auto& row : c.conditions) {
-    const std::string pid = fmt::format("{}-{}", id, panel++);
-    const Station* s = row.station;
-    std::vector<const validation::TrajectoryPoint*> points;
-    for (const auto& pt : c.in.dataset->trajectory)
-      if (pt.condition == row.name) points.push_back(&pt);
-    // A boundary measured at thousands of x values is drawn thinned, evenly along x (kDrawnPerBoundary
-    // markers, first and last included): a marker per point would make a report of hundreds of MB.
-    std::size_t measured_here = points.size();
-    std::map<Boundary, std::size_t> per_boundary;
-    for (const auto* pt : points) ++per_boundary[pt->boundary];
-    if (std::any_of(per_boundary.begin(), per_boundary.end(),
-                    [](const auto& b) { return b.second > kDrawnPerBoundary; })) {
-      std::stable_sort(points.begin(), points.end(), [](const auto* a, const auto* b) {
-        return a->boundary != b->boundary ? a->boundary < b->boundary : a->x < b->x;
-      });
-      std::vector<const validation::TrajectoryPoint*> thinned;
-      for (std::size_t i = 0; i < points.size();) {
-        const std::size_t n = per_boundary[points[i]->boundary];
-        const std::size_t keep = std::min(n, kDrawnPerBoundary);
-        for (std::size_t k = 0; k < keep; ++k) thinned.push_back(points[i + (keep > 1 ? k * (n - 1) / (keep - 1) : 0)]);
-        i += n;
+PanelData panel_data(const Context& c, const validation::ValidationResult& r, const GridStyle& g,
+                     const ConditionRow& row) {
+  PanelData d;
+  for (const auto& pt : c.in.dataset->trajectory)
+    if (pt.condition == row.name) d.points.push_back(&pt);
+  d.measured_here = d.points.size();
+  thin_points(d.points);
+  d.thinned = d.points.size() < d.measured_here;
+  d.meas_y = find_measurement(*c.in.dataset, row.name, Quantity::impact_point_y);
+  for (const auto& m : g.impact_models)
+    if (const auto* p = r.prediction(row.name, m); p && p->prediction.values[Quantity::impact_point_y])
+      d.model_impacts.emplace_back(m, *p->prediction.values[Quantity::impact_point_y] * 1e3);
+  if (!row.station) return d;
+  for (const auto& m : r.models)
+    if (const auto* p = r.prediction(row.name, m))
+      for (const auto& cv : p->prediction.curves) {
+        if (cv.points.empty() || cv.kind == validation::Curve::Kind::points) continue;
+        const auto& e = cv.points.back();
+        if (std::abs(e.x() * 1e3 - face_x(*row.station, e.y()) * 1e3) < 5.0) d.hits.push_back({m, cv.name, e.y() * 1e3});
       }
-      points = std::move(thinned);
-    }
-    const bool thinned = points.size() < measured_here;
-    const auto* meas_y = find_measurement(*c.in.dataset, row.name, Quantity::impact_point_y);
+  return d;
+}
 
-    if (!s) {
-      Svg svg(300, 80, "plot trajectory-panel", pid, fmt::format("Stream picture of {}", row.name));
-      svg.title(shorten(row.name, 40));
-      svg.text(150, 50, "no geometry for this condition in the dataset", "middle", "font-size=\"12\"");
-      o += svg.finish();
-      continue;
-    }
+// One panel's frame: the rig in mm at equal aspect (one mm the same pixels along x and y), and the
+// plate strip beside it.
+struct PanelView {
+  double Rb = 0.0, Z = 0.0, T = 0.0, Hp = 0.0, plate_bottom = 0.0;  // mm
+  double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0, k = 0.0;            // extent (mm), px per mm
+  Frame f, sf;
+  bool strip = false;
+  double W = 0.0, H = 0.0;
+  Scale X, Y;
+};
 
-    // Data extent in mm. Vertically from above the plate's top edge to a bit below the lowest
-    // impact point (the plate goes on much further down; that is not the interesting part).
-    const double Rb = s->belt.belt_radius() * 1e3;
-    const double Z = s->plate_distance * 1e3, T = s->plate_top * 1e3, Hp = s->plate.height * 1e3;
-    const double plate_bottom = T - Hp * std::cos(s->plate.angle);
-    double top = std::max(T, Rb), low = 1e300;
-    auto note_low = [&](double y) {
-      if (std::isfinite(y) && y >= plate_bottom - 1e-9) low = std::min(low, y);
-    };
-    if (meas_y) note_low(meas_y->value * 1e3 - meas_y->uncertainty.value_or(0.0) * 1e3);
-    std::vector<std::pair<std::string, double>> model_impacts;
-    for (const auto& m : impact_models)
-      if (const auto* p = r.prediction(row.name, m); p && p->prediction.values[Quantity::impact_point_y]) {
-        const double y = *p->prediction.values[Quantity::impact_point_y] * 1e3;
-        model_impacts.emplace_back(m, y);
-        note_low(y);
-      }
-    for (const auto* pt : points) {
-      note_low(pt->y * 1e3 - pt->uncertainty.value_or(0.0) * 1e3);
-      top = std::max(top, pt->y * 1e3 + pt->uncertainty.value_or(0.0) * 1e3);
-    }
-    // Where a streamline meets the plate counts too (the lower one hits below the impact point).
-    std::vector<PlateHit> hits;
-    for (const auto& m : r.models)
-      if (const auto* p = r.prediction(row.name, m))
-        for (const auto& cv : p->prediction.curves) {
-          if (cv.points.empty() || cv.kind == validation::Curve::Kind::points) continue;
-          const auto& e = cv.points.back();
-          if (std::abs(e.x() * 1e3 - face_x(*s, e.y()) * 1e3) < 5.0) {
-            note_low(e.y() * 1e3);
-            hits.push_back({m, cv.name, e.y() * 1e3});
-          }
+// Vertically from above the plate's top edge to a bit below the lowest impact point (the plate
+// goes on much further down; that is not the interesting part), and where a streamline meets the
+// plate (the lower one hits below the impact point).
+std::pair<double, double> vertical_extent(const validation::ValidationResult& r, const ConditionRow& row,
+                                          const PanelData& d, const PanelView& v) {
+  double top = std::max(v.T, v.Rb), low = 1e300;
+  auto note_low = [&](double y) {
+    if (std::isfinite(y) && y >= v.plate_bottom - 1e-9) low = std::min(low, y);
+  };
+  if (d.meas_y) note_low(d.meas_y->value * 1e3 - d.meas_y->uncertainty.value_or(0.0) * 1e3);
+  for (const auto& [m, y] : d.model_impacts) note_low(y);
+  for (const auto* pt : d.points) {
+    note_low(pt->y * 1e3 - pt->uncertainty.value_or(0.0) * 1e3);
+    top = std::max(top, pt->y * 1e3 + pt->uncertainty.value_or(0.0) * 1e3);
+  }
+  for (const auto& h : d.hits) note_low(h.y);
+  for (const auto& m : r.models)
+    if (const auto* p = r.prediction(row.name, m))
+      for (const auto& cv : p->prediction.curves)
+        if (!cv.points.empty() && cv.kind != validation::Curve::Kind::points)
           for (const auto& q : cv.points) top = std::max(top, q.y() * 1e3);
-        }
-    if (low > 1e299) low = std::max(plate_bottom, -Rb);  // nothing to show below: the pulley
-    const double span_y0 = top - low;
-    const double pad_y = std::max(10.0, 0.08 * span_y0);
-    double y0 = low - pad_y, y1 = top + pad_y;
-    // Rightmost: the plate face over the shown height (a tilted plate reaches further down there).
-    double right = std::max(Z, face_x(*s, std::max(y0, plate_bottom) / 1e3) * 1e3);
-    for (const auto* pt : points) right = std::max(right, pt->x * 1e3);
-    const double span_x0 = right + Rb;
-    const double pad_x = std::max(10.0, 0.05 * span_x0);
-    double x0 = -Rb - pad_x, x1 = right + pad_x;
+  if (low > 1e299) low = std::max(v.plate_bottom, -v.Rb);  // nothing to show below: the pulley
+  return {low, top};
+}
 
-    // Equal aspect: one mm is the same number of pixels along x and y.
-    const double max_w = 300.0, max_h = 460.0, min_h = 170.0;
-    double k = std::min(max_w / (x1 - x0), max_h / (y1 - y0));
-    if ((y1 - y0) * k < min_h) {  // a flat picture: show more below rather than squash it
-      y0 = y1 - min_h / k;
-    }
-    const double pw = (x1 - x0) * k, ph = (y1 - y0) * k;
-    Frame f{60.0, 30.0, pw, ph};
-    // Beside the picture, the plate face magnified: at the rig's scale the impact points of the
-    // models and the measurement sit within a few pixels of each other.
-    const bool strip = meas_y || !model_impacts.empty() || !hits.empty();
-    const Frame sf{f.right() + 26.0, f.top, 56.0, f.height};
-    const double W = (strip ? sf.right() + 74.0 : f.right() + 14.0), H = f.bottom() + 44.0;
-    Svg svg(W, H, "plot trajectory-panel", pid, fmt::format("Stream picture of {}", row.name));
-    svg.title(shorten(fmt::format("{} — {}, {}", row.name, row.speed_label(), row.flow_label()),
-                      static_cast<std::size_t>(std::max(20.0, (W - 20.0) / 8.5))));
-    const Scale X{x0, x1, f.left, f.right()}, Y{y0, y1, f.bottom(), f.top};
-    // Same tick step on both axes (equal aspect, equal grid squares).
-    Ticks xt = inner_ticks(x0, x1, 6);
-    Ticks yt = xt;
-    yt.values.clear();
-    for (long i = static_cast<long>(std::ceil(y0 / xt.step)); i * xt.step <= y1 + 1e-9; ++i)
-      yt.values.push_back(static_cast<double>(i) * xt.step);
-    if (yt.values.size() < 3) {  // a short y range: finer ticks there
-      yt = inner_ticks(y0, y1, 4);
-    }
-    svg.axes(f, X, xt, Y, yt, "x (mm)", "y (mm)");
-    const std::string clip = svg.clip(f);
-    svg.raw(fmt::format("<g clip-path=\"url(#{})\">\n", clip));
-
-    // Head pulley and the belt running onto it (tangent at the top, along the belt's incline).
-    const double inc = s->belt.incline;
-    svg.raw(fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"#d9d9d9\" stroke=\"#888\"><title>head "
-                        "pulley, belt radius {:.1f} mm</title></circle>\n",
-                        px(X(0)), px(Y(0)), px(Rb * k), Rb));
-    svg.line(X(-Rb * std::sin(inc) - 2000 * std::cos(inc)), Y(Rb * std::cos(inc) - 2000 * std::sin(inc)),
-             X(-Rb * std::sin(inc)), Y(Rb * std::cos(inc)), "stroke=\"#888\" stroke-width=\"2\"");
-    // Plate: its face from the top edge down its height.
-    svg.raw(fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#555\" stroke-width=\"4\" "
-                        "stroke-linecap=\"butt\"><title>impact plate: Z = {:.1f} mm, top {:.1f} mm, height "
-                        "{:.1f} mm, angle {:.1f} deg</title></line>\n",
-                        px(X(Z)), px(Y(T)), px(X(Z + Hp * std::sin(s->plate.angle))), px(Y(plate_bottom)), Z, T,
-                        Hp, s->plate.angle * 180.0 / M_PI));
-
-    for (const auto& m : r.models)  // clouds under the lines
-      if (const auto* p = r.prediction(row.name, m))
-        for (const auto& cv : p->prediction.curves)
-          if (cv.kind == validation::Curve::Kind::points)
-            draw_cloud(svg, cv, X, Y, vs, c.colour(m),
-                       fmt::format("{}: {} ({} shown{})", m, cv.name, cv.points.size(),
-                                   vs.valid() ? fmt::format(", colour: {}", vs.label) : ""));
-    for (const auto& m : r.models)
-      if (const auto* p = r.prediction(row.name, m))
-        for (const auto& cv : p->prediction.curves) {
-          if (cv.kind == validation::Curve::Kind::points) continue;
-          std::vector<std::pair<double, double>> pts;
-          for (const auto& q : cv.points) pts.emplace_back(X(q.x() * 1e3), Y(q.y() * 1e3));
-          const std::string d = dash(cv.name);
-          svg.raw(fmt::format("<g class=\"curve\"><title>{}: {}</title>\n", esc(m), esc(cv.name)));
-          svg.polyline(pts, fmt::format("stroke=\"{}\" stroke-width=\"1.8\"{}", c.colour(m),
-                                        d.empty() ? "" : fmt::format(" stroke-dasharray=\"{}\"", d)));
-          svg.raw("</g>\n");
-        }
-
-    for (const auto* pt : points) {
-      const double px_ = X(pt->x * 1e3), py = Y(pt->y * 1e3);
-      std::string tip = fmt::format("measured {} boundary at x = {:.1f} mm: y = {:.1f}", name(pt->boundary),
-                                    pt->x * 1e3, pt->y * 1e3);
-
-      if (pt->uncertainty) {
-        const double u = *pt->uncertainty * 1e3;
-        tip += fmt::format(" ± {:.1f}", u);
-        if (u * k > 2.0) {
-          svg.line(px_, Y(pt->y * 1e3 + u), px_, Y(pt->y * 1e3 - u), "stroke=\"#111\" stroke-width=\"1\"");
-          svg.line(px_ - 3, Y(pt->y * 1e3 + u), px_ + 3, Y(pt->y * 1e3 + u), "stroke=\"#111\"");
-          svg.line(px_ - 3, Y(pt->y * 1e3 - u), px_ + 3, Y(pt->y * 1e3 - u), "stroke=\"#111\"");
-        }
-      }
-      if (thinned)
-        tip += fmt::format(" mm ({} of the condition's {} measured points drawn; all in trajectory.csv)", points.size(),
-                           measured_here);
-      else
-        tip += " mm";
-      svg.marker(boundary_shape(pt->boundary), px_, py, 7, kMeasuredColour, true, tip);
-    }
-    // Impact points on the plate face: models hollow and larger, measured filled on top.
-    for (const auto& [m, y] : model_impacts) {
-      std::string tip = fmt::format("{}: impact point y_R = {:.1f} mm", m, y);
-      if (meas_y) tip += fmt::format(" (error {:+.1f} mm)", y - meas_y->value * 1e3);
-      svg.marker(Shape::diamond, X(face_x(*s, y / 1e3) * 1e3), Y(y), 13, c.colour(m), false, tip);
-    }
-    if (meas_y) {
-      const double y = meas_y->value * 1e3, xx = X(face_x(*s, meas_y->value) * 1e3);
-      std::string tip = fmt::format("measured impact point y_R = {:.1f}", y);
-      if (meas_y->uncertainty) {
-        const double u = *meas_y->uncertainty * 1e3;
-        tip += fmt::format(" ± {:.1f}", u);
-        if (u * k > 2.0) svg.line(xx, Y(y + u), xx, Y(y - u), "stroke=\"#111\" stroke-width=\"1.2\"");
-      }
-      svg.marker(Shape::diamond, xx, Y(y), 8, kMeasuredColour, true, tip + " mm");
-    }
-    svg.raw("</g>\n");
-    if (strip) draw_plate_strip(svg, sf, c, meas_y, model_impacts, hits, [&](const std::string& n) { return dash(n); });
-    o += svg.finish();
+PanelView panel_view(const validation::ValidationResult& r, const ConditionRow& row, const PanelData& d) {
+  const Station& s = *row.station;
+  PanelView v;
+  v.Rb = s.belt.belt_radius() * 1e3;
+  v.Z = s.plate_distance * 1e3, v.T = s.plate_top * 1e3, v.Hp = s.plate.height * 1e3;
+  v.plate_bottom = v.T - v.Hp * std::cos(s.plate.angle);
+  const auto [low, top] = vertical_extent(r, row, d, v);
+  const double span_y0 = top - low;
+  const double pad_y = std::max(10.0, 0.08 * span_y0);
+  v.y0 = low - pad_y, v.y1 = top + pad_y;
+  // Rightmost: the plate face over the shown height (a tilted plate reaches further down there).
+  double right = std::max(v.Z, face_x(s, std::max(v.y0, v.plate_bottom) / 1e3) * 1e3);
+  for (const auto* pt : d.points) right = std::max(right, pt->x * 1e3);
+  const double span_x0 = right + v.Rb;
+  const double pad_x = std::max(10.0, 0.05 * span_x0);
+  v.x0 = -v.Rb - pad_x, v.x1 = right + pad_x;
+  const double max_w = 300.0, max_h = 460.0, min_h = 170.0;
+  v.k = std::min(max_w / (v.x1 - v.x0), max_h / (v.y1 - v.y0));
+  if ((v.y1 - v.y0) * v.k < min_h) {  // a flat picture: show more below rather than squash it
+    v.y0 = v.y1 - min_h / v.k;
   }
+  const double pw = (v.x1 - v.x0) * v.k, ph = (v.y1 - v.y0) * v.k;
+  v.f = Frame{60.0, 30.0, pw, ph};
+  // Beside the picture, the plate face magnified: at the rig's scale the impact points of the
+  // models and the measurement sit within a few pixels of each other.
+  v.strip = d.meas_y || !d.model_impacts.empty() || !d.hits.empty();
+  v.sf = Frame{v.f.right() + 26.0, v.f.top, 56.0, v.f.height};
+  v.W = (v.strip ? v.sf.right() + 74.0 : v.f.right() + 14.0), v.H = v.f.bottom() + 44.0;
+  v.X = Scale{v.x0, v.x1, v.f.left, v.f.right()};
+  v.Y = Scale{v.y0, v.y1, v.f.bottom(), v.f.top};
+  return v;
+}
+
+// Same tick step on both axes (equal aspect, equal grid squares).
+void draw_axes(Svg& svg, const PanelView& v) {
+  Ticks xt = inner_ticks(v.x0, v.x1, 6);
+  Ticks yt = xt;
+  yt.values.clear();
+  for (long i = static_cast<long>(std::ceil(v.y0 / xt.step)); i * xt.step <= v.y1 + 1e-9; ++i)
+    yt.values.push_back(static_cast<double>(i) * xt.step);
+  if (yt.values.size() < 3) {  // a short y range: finer ticks there
+    yt = inner_ticks(v.y0, v.y1, 4);
+  }
+  svg.axes(v.f, v.X, xt, v.Y, yt, "x (mm)", "y (mm)");
+}
+
+// Head pulley and the belt running onto it (tangent at the top, along the belt's incline), and the
+// plate's face from the top edge down its height.
+void draw_rig(Svg& svg, const PanelView& v, const Station& s) {
+  const auto& X = v.X;
+  const auto& Y = v.Y;
+  const double Rb = v.Rb;
+  const double inc = s.belt.incline;
+  svg.raw(fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"#d9d9d9\" stroke=\"#888\"><title>head "
+                      "pulley, belt radius {:.1f} mm</title></circle>\n",
+                      px(X(0)), px(Y(0)), px(Rb * v.k), Rb));
+  svg.line(X(-Rb * std::sin(inc) - 2000 * std::cos(inc)), Y(Rb * std::cos(inc) - 2000 * std::sin(inc)),
+           X(-Rb * std::sin(inc)), Y(Rb * std::cos(inc)), "stroke=\"#888\" stroke-width=\"2\"");
+  svg.raw(fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#555\" stroke-width=\"4\" "
+                      "stroke-linecap=\"butt\"><title>impact plate: Z = {:.1f} mm, top {:.1f} mm, height "
+                      "{:.1f} mm, angle {:.1f} deg</title></line>\n",
+                      px(X(v.Z)), px(Y(v.T)), px(X(v.Z + v.Hp * std::sin(s.plate.angle))), px(Y(v.plate_bottom)), v.Z,
+                      v.T, v.Hp, s.plate.angle * 180.0 / M_PI));
+}
+
+// Each model's point clouds, under its lines.
+void draw_model_curves(Svg& svg, const PanelView& v, const Context& c, const validation::ValidationResult& r,
+                       const GridStyle& g, const ConditionRow& row) {
+  for (const auto& m : r.models)  // clouds under the lines
+    if (const auto* p = r.prediction(row.name, m))
+      for (const auto& cv : p->prediction.curves)
+        if (cv.kind == validation::Curve::Kind::points)
+          draw_cloud(svg, cv, v.X, v.Y, g.vs, c.colour(m),
+                     fmt::format("{}: {} ({} shown{})", m, cv.name, cv.points.size(),
+                                 g.vs.valid() ? fmt::format(", colour: {}", g.vs.label) : ""));
+  for (const auto& m : r.models)
+    if (const auto* p = r.prediction(row.name, m))
+      for (const auto& cv : p->prediction.curves) {
+        if (cv.kind == validation::Curve::Kind::points) continue;
+        std::vector<std::pair<double, double>> pts;
+        for (const auto& q : cv.points) pts.emplace_back(v.X(q.x() * 1e3), v.Y(q.y() * 1e3));
+        const std::string d = g.dash(cv.name);
+        svg.raw(fmt::format("<g class=\"curve\"><title>{}: {}</title>\n", esc(m), esc(cv.name)));
+        svg.polyline(pts, fmt::format("stroke=\"{}\" stroke-width=\"1.8\"{}", c.colour(m),
+                                      d.empty() ? "" : fmt::format(" stroke-dasharray=\"{}\"", d)));
+        svg.raw("</g>\n");
+      }
+}
+
+void draw_measured_points(Svg& svg, const PanelView& v, const PanelData& d) {
+  const auto& X = v.X;
+  const auto& Y = v.Y;
+  for (const auto* pt : d.points) {
+    const double px_ = X(pt->x * 1e3), py = Y(pt->y * 1e3);
+    std::string tip = fmt::format("measured {} boundary at x = {:.1f} mm: y = {:.1f}", name(pt->boundary),
+                                  pt->x * 1e3, pt->y * 1e3);
+
+    if (pt->uncertainty) {
+      const double u = *pt->uncertainty * 1e3;
+      tip += fmt::format(" ± {:.1f}", u);
+      if (u * v.k > 2.0) {
+        svg.line(px_, Y(pt->y * 1e3 + u), px_, Y(pt->y * 1e3 - u), "stroke=\"#111\" stroke-width=\"1\"");
+        svg.line(px_ - 3, Y(pt->y * 1e3 + u), px_ + 3, Y(pt->y * 1e3 + u), "stroke=\"#111\"");
+        svg.line(px_ - 3, Y(pt->y * 1e3 - u), px_ + 3, Y(pt->y * 1e3 - u), "stroke=\"#111\"");
+      }
+    }
+    if (d.thinned)
+      tip += fmt::format(" mm ({} of the condition's {} measured points drawn; all in trajectory.csv)", d.points.size(),
+                         d.measured_here);
+    else
+      tip += " mm";
+    svg.marker(boundary_shape(pt->boundary), px_, py, 7, kMeasuredColour, true, tip);
+  }
+}
+
+// Impact points on the plate face: models hollow and larger, measured filled on top.
+void draw_impact_points(Svg& svg, const PanelView& v, const Context& c, const PanelData& d, const Station& s) {
+  const auto& X = v.X;
+  const auto& Y = v.Y;
+  for (const auto& [m, y] : d.model_impacts) {
+    std::string tip = fmt::format("{}: impact point y_R = {:.1f} mm", m, y);
+    if (d.meas_y) tip += fmt::format(" (error {:+.1f} mm)", y - d.meas_y->value * 1e3);
+    svg.marker(Shape::diamond, X(face_x(s, y / 1e3) * 1e3), Y(y), 13, c.colour(m), false, tip);
+  }
+  if (const auto* meas_y = d.meas_y) {
+    const double y = meas_y->value * 1e3, xx = X(face_x(s, meas_y->value) * 1e3);
+    std::string tip = fmt::format("measured impact point y_R = {:.1f}", y);
+    if (meas_y->uncertainty) {
+      const double u = *meas_y->uncertainty * 1e3;
+      tip += fmt::format(" ± {:.1f}", u);
+      if (u * v.k > 2.0) svg.line(xx, Y(y + u), xx, Y(y - u), "stroke=\"#111\" stroke-width=\"1.2\"");
+    }
+    svg.marker(Shape::diamond, xx, Y(y), 8, kMeasuredColour, true, tip + " mm");
+  }
+}
+
+std::string missing_geometry_panel(const ConditionRow& row, const std::string& pid) {
+  Svg svg(300, 80, "plot trajectory-panel", pid, fmt::format("Stream picture of {}", row.name));
+  svg.title(shorten(row.name, 40));
+  svg.text(150, 50, "no geometry for this condition in the dataset", "middle", "font-size=\"12\"");
+  return svg.finish();
+}
+
+// One condition's picture: the rig, the models' clouds and curves, the measured points and the
+// impact points, clipped to the frame; the plate strip beside it.
+std::string panel_svg(const Context& c, const validation::ValidationResult& r, const GridStyle& g,
+                      const ConditionRow& row, const std::string& pid) {
+  const PanelData d = panel_data(c, r, g, row);
+  if (!row.station) return missing_geometry_panel(row, pid);
+  const Station& s = *row.station;
+  const PanelView v = panel_view(r, row, d);
+  Svg svg(v.W, v.H, "plot trajectory-panel", pid, fmt::format("Stream picture of {}", row.name));
+  svg.title(shorten(fmt::format("{} — {}, {}", row.name, row.speed_label(), row.flow_label()),
+                    static_cast<std::size_t>(std::max(20.0, (v.W - 20.0) / 8.5))));
+  draw_axes(svg, v);
+  const std::string clip = svg.clip(v.f);
+  svg.raw(fmt::format("<g clip-path=\"url(#{})\">\n", clip));
+  draw_rig(svg, v, s);
+  draw_model_curves(svg, v, c, r, g, row);
+  draw_measured_points(svg, v, d);
+  draw_impact_points(svg, v, c, d, s);
+  svg.raw("</g>\n");
+  if (v.strip) draw_plate_strip(svg, v.sf, c, d.meas_y, d.model_impacts, d.hits, [&](const std::string& n) { return g.dash(n); });
+  return svg.finish();
+}
+
+}  // namespace
+
+std::string trajectory_grid(const Context& c, const validation::ValidationResult& r, std::string_view id,
+                            double legend_width) {
+  const GridStyle g = grid_style(c, r);
+  std::string o = fmt::format("<figure class=\"traj-figure\" id=\"{}\">\n", esc(id));
+  o += legend_svg(g, grid_legend(c, r, g), id, legend_width);
+  o += "<div class=\"traj-grid\">\n";
+  std::size_t panel = 0;
+  for (const auto& row : c.conditions) o += panel_svg(c, r, g, row, fmt::format("{}-{}", id, panel++));
   o += "</div>\n</figure>\n";
   return o;
 }
