@@ -12,6 +12,7 @@
 #include "validation/campaign_runs.h"
 #include "validation/harness.h"
 #include "validation/parallel_runs.h"
+#include "validation/response_pooling.h"
 #include "validation/models/external_model.h"
 
 namespace chutelab::validation {
@@ -144,15 +145,11 @@ void PredictionSource::predict_condition(std::size_t c, const analytical::Effect
       for (Quantity q : kAllQuantities)
         if (p.values[q])
           for (std::size_t i = 0; i < fx.size(); ++i)
-            if (auto d = shifts[i].value(*this, c, k, *fx[i], [q](const ModelPrediction& mp) { return mp.values[q]; }))
-              *p.values[q] += *d;
+            if (auto d = shifts[i].value(*this, c, k, *fx[i], Value{q, 0})) *p.values[q] += *d;
       for (std::size_t t = 0; t < p.trajectory.size(); ++t)
         if (p.trajectory[t])
           for (std::size_t i = 0; i < fx.size(); ++i)
-            if (auto d = shifts[i].value(*this, c, k, *fx[i], [t](const ModelPrediction& mp) {
-                  return t < mp.trajectory.size() ? mp.trajectory[t] : std::nullopt;
-                }))
-              *p.trajectory[t] += *d;
+            if (auto d = shifts[i].value(*this, c, k, *fx[i], Value{std::nullopt, t})) *p.trajectory[t] += *d;
       same[k] = {st.condition, models_[k]->name(), std::move(p)};
     }
   }
@@ -255,29 +252,103 @@ PredictionSource::Shift PredictionSource::shift_of(std::size_t c, const effects:
   return sh;
 }
 
-std::optional<double> PredictionSource::Shift::value(
-    const PredictionSource& src, std::size_t c, std::size_t k, const effects::EffectInfo& e,
-    const std::function<std::optional<double>(const ModelPrediction&)>& pick) const {
-  if (!active) return 0.0;
-  // The cheap models' shift: the first of them (registry order) that predicts the value.
-  auto cheap = [&](const std::vector<ModelPrediction>& with) -> std::optional<double> {
-    for (std::size_t j = 0; j < src.signature_.size(); ++j) {
-      const auto b = pick(src.cheap_base(c, src.signature_[j]));
-      if (!b) continue;
-      const auto w = pick(with[j]);
-      if (!w) return std::nullopt;
-      return *w - *b;
-    }
-    return std::nullopt;
+std::optional<double> PredictionSource::Value::of(const ModelPrediction& mp) const {
+  if (q) return mp.values[*q];
+  return query < mp.trajectory.size() ? mp.trajectory[query] : std::nullopt;
+}
+
+std::optional<double> PredictionSource::Value::sd_of(const ModelPrediction& mp) const {
+  if (q) return mp.uncertainty[*q];
+  return query < mp.trajectory_uncertainty.size() ? mp.trajectory_uncertainty[query] : std::nullopt;
+}
+
+namespace {
+
+// The cheap models' shift of one value: the first of them (registry order) that predicts it.
+std::optional<double> cheap_shift(std::span<const ModelPrediction* const> base, std::span<const ModelPrediction> with,
+                                  const std::function<std::optional<double>(const ModelPrediction&)>& pick) {
+  for (std::size_t j = 0; j < base.size() && j < with.size(); ++j) {
+    const auto b = pick(*base[j]);
+    if (!b) continue;
+    const auto w = pick(with[j]);
+    if (!w) return std::nullopt;
+    return *w - *b;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+const PredictionSource::OwnResponse& PredictionSource::own_response(std::size_t k, const effects::EffectInfo& e) const {
+  const auto key = std::make_pair(k, e.name);
+  if (auto it = own_response_cache_.find(key); it != own_response_cache_.end()) return it->second;
+  const std::size_t n = d_->stations.size();
+  OwnResponse out;
+  out.values.resize(n);
+  out.trajectory.resize(n);
+  // Each condition's own difference, its sd and the cheap models' response at the probe strength.
+  struct Entry {
+    std::size_t c;
+    Value v;
+    double own, sd;
+    std::optional<double> shape;
   };
+  std::map<std::optional<Quantity>, std::vector<Entry>> pools;  // per quantity; every trajectory point in one
+  analytical::EffectList at_p = fixed_;
+  at_p.push_back(e.make(probe_strength(e)));
+  for (std::size_t c = 0; c < n; ++c) {
+    const ModelPrediction &base = signature_base(c, k), &probe = expensive_probe(c, k, e);
+    std::vector<const ModelPrediction*> cheap_base_c;
+    std::vector<ModelPrediction> cheap_probe_c;
+    for (const auto& m : signature_) {
+      cheap_base_c.push_back(&cheap_base(c, m));
+      try {
+        cheap_probe_c.push_back(m->predict(d_->stations[c], at_p, {queries_[c], false}));
+      } catch (const InputError&) {
+        cheap_probe_c.push_back({});
+      }
+    }
+    auto add = [&](const Value& v) {
+      const auto b = v.of(base), p = v.of(probe);
+      if (!b || !p) return;
+      const double sd = std::hypot(v.sd_of(base).value_or(0.0), v.sd_of(probe).value_or(0.0));
+      pools[v.q].push_back({c, v, *p - *b, sd, cheap_shift(cheap_base_c, cheap_probe_c, [&v](const ModelPrediction& mp) { return v.of(mp); })});
+    };
+    for (Quantity q : kAllQuantities) add(Value{q, 0});
+    out.trajectory[c].assign(base.trajectory.size(), std::nullopt);
+    for (std::size_t t = 0; t < base.trajectory.size(); ++t) add(Value{std::nullopt, t});
+  }
+  for (const auto& [q, entries] : pools) {
+    std::vector<double> own, sd;
+    std::vector<std::optional<double>> shape;
+    for (const auto& x : entries) own.push_back(x.own), sd.push_back(x.sd), shape.push_back(x.shape);
+    const PooledResponse r = pool_responses(own, sd, shape);
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const Entry& x = entries[i];
+      if (q) out.values[x.c][*q] = r.response[i];
+      else out.trajectory[x.c][x.v.query] = r.response[i];
+    }
+  }
+  return own_response_cache_.emplace(key, std::move(out)).first->second;
+}
+
+std::optional<double> PredictionSource::Shift::value(const PredictionSource& src, std::size_t c, std::size_t k,
+                                                     const effects::EffectInfo& e, const Value& v) const {
+  if (!active) return 0.0;
+  const auto pick = [&v](const ModelPrediction& mp) { return v.of(mp); };
+  std::vector<const ModelPrediction*> bases;
+  for (const auto& m : src.signature_) bases.push_back(&src.cheap_base(c, m));
+  auto cheap = [&](const std::vector<ModelPrediction>& with) { return cheap_shift(bases, with, pick); };
   switch (src.signature(e)) {
     case Signature::none: return 0.0;
     case Signature::cheap_models: return cheap(cheap_at_s);
     case Signature::own_runs: break;
   }
+  const OwnResponse& own = src.own_response(k, e);
+  const std::optional<double> response =
+      v.q ? own.values[c][*v.q] : v.query < own.trajectory[c].size() ? own.trajectory[c][v.query] : std::nullopt;
+  if (!response) return cheap(cheap_at_s);
   const auto base = pick(src.signature_base(c, k));
-  const auto probe = pick(src.expensive_probe(c, k, e));
-  if (!base || !probe) return cheap(cheap_at_s);
   // The model's own response at the probe strength, carried to s along the shape of the cheap
   // models' response (their nonlinearity in s), or linearly where they do not respond.
   const double sp = src.probe_strength(e);
@@ -290,7 +361,7 @@ std::optional<double> PredictionSource::Shift::value(
     // within a few times the linear carry.
     if (std::abs(r) <= 4.0 * std::abs(linear) + 0.5) ratio = r;
   }
-  return (*probe - *base) * ratio;
+  return *response * ratio;
 }
 
 PredictionSource::Signature PredictionSource::signature(const effects::EffectInfo& e) const {

@@ -109,14 +109,28 @@ class PredictionSource {
   RunPart run_part(std::span<const effects::EffectInfo* const> fx, std::span<const double> strengths) const;
   const ModelPrediction& exact_run(std::size_t condition, std::size_t model, std::span<const effects::EffectInfo* const> fx,
                                    std::span<const double> strengths) const;
+  // One value of a prediction: a quantity, or (no quantity) the trajectory query `query`.
+  struct Value {
+    std::optional<Quantity> q;
+    std::size_t query = 0;
+    std::optional<double> of(const ModelPrediction& mp) const;
+    std::optional<double> sd_of(const ModelPrediction& mp) const;  // its statistical sd
+  };
+  // An expensive model's own response to an effect at its probe strength, per condition, each read
+  // together with the other conditions' (validation/response_pooling.h); absent where the probe or
+  // its base has no value.
+  struct OwnResponse {
+    std::vector<QuantityValues> values;                          // per condition
+    std::vector<std::vector<std::optional<double>>> trajectory;  // per condition, per query
+  };
+  const OwnResponse& own_response(std::size_t model, const effects::EffectInfo& e) const;
   // One candidate effect's shift of the expensive models at one condition and strength.
   struct Shift {
     bool active = false;  // false: the effect is neutral at this strength
     double strength = 0.0;
     std::vector<ModelPrediction> cheap_at_s, cheap_at_probe;  // per signature model, raw
     std::optional<double> value(const PredictionSource& src, std::size_t condition, std::size_t model,
-                                const effects::EffectInfo& e,
-                                const std::function<std::optional<double>(const ModelPrediction&)>& pick) const;
+                                const effects::EffectInfo& e, const Value& v) const;
   };
   Shift shift_of(std::size_t condition, const effects::EffectInfo& e, double strength) const;
 
@@ -137,6 +151,7 @@ class PredictionSource {
   mutable std::map<std::pair<std::size_t, std::string>, std::optional<ModelPrediction>> cheap_cache_;
   // Probe runs of expensive models: (condition, model, effect name).
   mutable std::map<std::tuple<std::size_t, std::size_t, std::string>, std::optional<ModelPrediction>> probe_cache_;
+  mutable std::map<std::pair<std::size_t, std::string>, OwnResponse> own_response_cache_;
   mutable std::map<std::string, Signature> signature_cache_;
   mutable std::map<std::string, double> probe_strength_cache_;
   mutable std::map<std::pair<std::size_t, std::size_t>, std::optional<ModelPrediction>> signature_base_cache_;
