@@ -296,8 +296,16 @@ const PredictionSource::OwnResponse& PredictionSource::own_response(std::size_t 
   std::map<std::optional<Quantity>, std::vector<Entry>> pools;  // per quantity; every trajectory point in one
   analytical::EffectList at_p = fixed_;
   at_p.push_back(e.make(probe_strength(e)));
+  out.failed.assign(n, false);
   for (std::size_t c = 0; c < n; ++c) {
-    const ModelPrediction &base = signature_base(c, k), &probe = expensive_probe(c, k, e);
+    const ModelPrediction* probe_c = nullptr;
+    try {
+      probe_c = &expensive_probe(c, k, e);
+    } catch (const InputError&) {
+      out.failed[c] = true;  // that condition's problem: it surfaces where that condition is predicted
+      continue;
+    }
+    const ModelPrediction &base = signature_base(c, k), &probe = *probe_c;
     std::vector<const ModelPrediction*> cheap_base_c;
     std::vector<ModelPrediction> cheap_probe_c;
     for (const auto& m : signature_) {
@@ -345,6 +353,7 @@ std::optional<double> PredictionSource::Shift::value(const PredictionSource& src
     case Signature::own_runs: break;
   }
   const OwnResponse& own = src.own_response(k, e);
+  if (own.failed[c]) (void)src.expensive_probe(c, k, e);  // fails as the run does
   const std::optional<double> response =
       v.q ? own.values[c][*v.q] : v.query < own.trajectory[c].size() ? own.trajectory[c][v.query] : std::nullopt;
   if (!response) return cheap(cheap_at_s);

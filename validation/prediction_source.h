@@ -122,6 +122,7 @@ class PredictionSource {
   struct OwnResponse {
     std::vector<QuantityValues> values;                          // per condition
     std::vector<std::vector<std::optional<double>>> trajectory;  // per condition, per query
+    std::vector<bool> failed;  // per condition: the probe run has no answer there
   };
   const OwnResponse& own_response(std::size_t model, const effects::EffectInfo& e) const;
   // One candidate effect's shift of the expensive models at one condition and strength.
