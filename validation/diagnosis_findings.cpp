@@ -549,6 +549,22 @@ void condition_twins(DiagnosisResult& out, const Stage& s, const EffectFit& best
 
 }  // namespace
 
+namespace {
+
+// Two fits' chi^2 as made alike: where the expensive model was re-run for real at one's strength and
+// the other has only its signature, the first one's chi^2 from its signature. A profiled real run
+// against a signature's linear response favours whichever got the runs, whatever the data say: a
+// belt-speed record that fits a DEM-made slip as well as the slip does was not said beside it.
+// A measurement effect on the expensive model is exact already (its chi^2 is a real run's).
+std::pair<double, double> chi2_alike(const EffectFit& a, const EffectFit& b) {
+  auto signature_only = [](const EffectFit& f) { return f.signature == "own runs" || f.signature == "analytical only"; };
+  if (a.chi2_from_signatures && !b.chi2_from_signatures && signature_only(b)) return {*a.chi2_from_signatures, b.chi2_after};
+  if (b.chi2_from_signatures && !a.chi2_from_signatures && signature_only(a)) return {a.chi2_after, *b.chi2_from_signatures};
+  return {a.chi2_after, b.chi2_after};
+}
+
+}  // namespace
+
 void ties_of(DiagnosisResult& out, const Stage& s, const std::vector<double>& r0) {
   const EffectFit* best = out.best();
   if (best) condition_twins(out, s, *best, r0);
@@ -565,10 +581,11 @@ void ties_of(DiagnosisResult& out, const Stage& s, const std::vector<double>& r0
     for (const auto& f : out.singles) {
       if (&f == top || (best && std::count(best->effects.begin(), best->effects.end(), f.effects[0]))) continue;
       if (!f.significant) continue;
-      const bool tie = named.size() == 1 && f.chi2_after - top->chi2_after < s.opt.tie_margin_bic;
+      const auto [chi2_top, chi2_f] = chi2_alike(*top, f);
+      const bool tie = named.size() == 1 && chi2_f - chi2_top < s.opt.tie_margin_bic;
       // Proportional: the data cannot tell them apart, whatever the ranking.
       const bool proportional = std::abs(cosine(d_top, fitted_change(s.m, f, r0))) >= s.opt.proportional_cosine &&
-                                f.chi2_after - top->chi2_after <= std::max(4.0, 0.05 * top->chi2_after);
+                                chi2_f - chi2_top <= std::max(4.0, 0.05 * chi2_top);
       if (!tie && !proportional) continue;
       auto d = discriminators(s.m, *top, f, proportional);
       if (d.empty()) d.push_back({top->label(), f.label(), "", "", "", "", 0, 0, 0, false});
