@@ -549,21 +549,12 @@ void condition_twins(DiagnosisResult& out, const Stage& s, const EffectFit& best
 
 }  // namespace
 
-namespace {
-
-// Two fits' chi^2 as made alike: where the expensive model was re-run for real at one's strength and
-// the other has only its signature, the first one's chi^2 from its signature. A profiled real run
-// against a signature's linear response favours whichever got the runs, whatever the data say: a
-// belt-speed record that fits a DEM-made slip as well as the slip does was not said beside it.
-// A measurement effect on the expensive model is exact already (its chi^2 is a real run's).
 std::pair<double, double> chi2_alike(const EffectFit& a, const EffectFit& b) {
   auto signature_only = [](const EffectFit& f) { return f.signature == "own runs" || f.signature == "analytical only"; };
   if (a.chi2_from_signatures && !b.chi2_from_signatures && signature_only(b)) return {*a.chi2_from_signatures, b.chi2_after};
   if (b.chi2_from_signatures && !a.chi2_from_signatures && signature_only(a)) return {a.chi2_after, *b.chi2_from_signatures};
   return {a.chi2_after, b.chi2_after};
 }
-
-}  // namespace
 
 void ties_of(DiagnosisResult& out, const Stage& s, const std::vector<double>& r0) {
   const EffectFit* best = out.best();

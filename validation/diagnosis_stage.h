@@ -183,5 +183,11 @@ std::vector<Discriminator> discriminators(const Misfit& m, const EffectFit& a, c
 // The causes these data cannot tell from the named ones: about as good, or moving every reading in
 // proportion; and records at one condition beside a named one.
 void ties_of(DiagnosisResult& out, const Stage& s, const std::vector<double>& r0);
+// Two fits' chi^2 as made alike: where the expensive model was re-run for real at one's strength and
+// the other has only its signature, the first one's chi^2 from its signature. A profiled real run
+// against a signature's linear response favours whichever got the runs, whatever the data say: a
+// belt-speed record that fits a DEM-made slip as well as the slip does was not said beside it.
+// A measurement effect on the expensive model is exact already (its chi^2 is a real run's).
+std::pair<double, double> chi2_alike(const EffectFit& a, const EffectFit& b);
 
 }  // namespace chutelab::validation::detail

@@ -6,6 +6,7 @@
 
 #include "validation/dataset.h"
 #include "validation/diagnosis.h"
+#include "validation/diagnosis_stage.h"
 #include "validation/synthesize.h"
 #include "effects/registry.h"
 #include "../cli/cli_runner.h"
@@ -300,4 +301,32 @@ BOOST_AUTO_TEST_CASE(an_unsteady_baseline_window_is_a_caveat) {
                                [&](const std::string& c) { return c.find("still moved through") != std::string::npos; });
   BOOST_TEST_REQUIRE((it != r.caveats.end()));
   BOOST_TEST(it->find(first + " (R_s)") != std::string::npos, *it);
+}
+
+// Twins on an expensive baseline are compared as their fits were made: the named cause's profiled
+// real-run chi^2 (which a signature's linear carry cannot reach) is not set against a rival's
+// signature chi^2; its own signature chi^2 is. A measurement effect is exact on the real runs.
+BOOST_AUTO_TEST_CASE(twins_are_compared_as_their_fits_were_made) {
+  EffectFit named, rival, measurement, confirmed_rival;
+  named.signature = rival.signature = confirmed_rival.signature = "own runs";
+  measurement.signature = "exact (measurement)";
+  named.chi2_after = 49.2;             // profiled real runs
+  named.chi2_from_signatures = 61.0;   // its signature's fit
+  rival.chi2_after = 62.0;             // signature only: within the tie margin of 61, not of 49.2
+  measurement.chi2_after = 50.1;       // exact: against the real 49.2
+  confirmed_rival.chi2_after = 50.5;
+  confirmed_rival.chi2_from_signatures = 70.0;
+  using detail::chi2_alike;
+  BOOST_TEST(chi2_alike(named, rival).first == 61.0);
+  BOOST_TEST(chi2_alike(named, rival).second == 62.0);
+  BOOST_TEST(chi2_alike(rival, named).first == 62.0);
+  BOOST_TEST(chi2_alike(rival, named).second == 61.0);
+  BOOST_TEST(chi2_alike(named, measurement).first == 49.2);
+  BOOST_TEST(chi2_alike(named, confirmed_rival).first == 49.2);
+  BOOST_TEST(chi2_alike(named, confirmed_rival).second == 50.5);
+  // On the analytical tier nothing was re-run: the chi^2 values as they are.
+  EffectFit a, b;
+  a.chi2_after = 10.0, b.chi2_after = 11.0;
+  BOOST_TEST(chi2_alike(a, b).first == 10.0);
+  BOOST_TEST(chi2_alike(a, b).second == 11.0);
 }
