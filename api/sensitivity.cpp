@@ -108,7 +108,7 @@ std::vector<campaign::Job> variant_jobs(const std::vector<SensitivityVariant>& v
     st::RunSettings s = base;
     const auto law = st::parse_contact(v.contact);
     if (!law)
-      throw InputError("", 0, "contact", fmt::format("unknown contact law '{}' (known: {})", v.contact, dem::NormalLaw::keys()));
+      throw InputError("", 0, st::field_name(&st::RunSettings::contact), fmt::format("unknown contact law '{}' (known: {})", v.contact, dem::NormalLaw::keys()));
     s.contact = *law;
     s.particle_diameter = v.diameter;
     s.particle_shape = v.shape == "clump" ? st::ParticleShape::clump : st::ParticleShape::sphere;
@@ -144,7 +144,7 @@ void check(const SensitivityOptions& o) {
   if (o.threads) options::rules::threads.check(static_cast<double>(*o.threads));
   options::NumberRule{"jobs", 0.0, 256.0, false, false, true, ""}.check(static_cast<double>(o.jobs));
   st::SettingsOverrides ov;
-  ov.set("quality", o.quality).check();
+  ov.set(st::dem_field(&st::RunSettings::quality).option, o.quality).check();
 }
 
 std::vector<OutputFile> SensitivityResult::files() const {
@@ -160,7 +160,7 @@ SensitivityResult sensitivity(const SensitivityOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   check(o);
   const fs::path dir = o.dataset.empty() ? o.default_dataset : o.dataset;
-  const fs::path setup_file = dir / "setup.toml";
+  const validation::DatasetFile setup_file = validation::read_setup_file(dir / "setup.toml");
   const Setup setup = validation::read_setup(setup_file);
   const auto stations = validation::read_conditions(dir / "conditions.csv", setup);
   if (o.prepare_output) {  // before minutes of DEM runs
@@ -171,10 +171,10 @@ SensitivityResult sensitivity(const SensitivityOptions& o) {
   }
   const Station* station = &validation::condition_row(stations, o.condition, dir / "conditions.csv", "condition");
   st::SettingsOverrides ov;
-  ov.set("quality", o.quality).check();
+  ov.set(st::dem_field(&st::RunSettings::quality).option, o.quality).check();
   ov.threads = o.threads.value_or(1);
-  if (o.seed) ov.set_whole("seed", *o.seed);
-  const st::DemTable table = st::read_dem_table(setup_file.string());
+  if (o.seed) ov.set_whole(st::dem_field(&st::RunSettings::seed).option, *o.seed);
+  const st::DemTable table = st::read_dem_table(setup_file.shown, &setup_file.text);
   const st::RunSettings base = st::resolve(table, ov);
   const double base_d = base.particle_diameter > 0.0 ? base.particle_diameter : station->material.particle_diameter;
 

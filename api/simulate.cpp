@@ -53,13 +53,14 @@ SimulateResult simulate(const SimulateOptions& o) {
   SimulateResult res;
   const fs::path dir = o.dataset.empty() ? o.default_dataset : o.dataset;
   const fs::path setup_file = dir / "setup.toml";
-  res.setup = validation::read_setup(setup_file);
+  const validation::DatasetFile setup = validation::read_setup_file(setup_file);
+  res.setup = validation::read_setup(setup);
   const auto stations = validation::read_conditions(dir / "conditions.csv", res.setup);
   res.station = validation::condition_row(stations, o.condition, dir / "conditions.csv", "condition");
   require_dem_keys(res.station, setup_file.string());
   check_records(o.effects, {}, {res.station});
 
-  const st::DemTable table = st::read_dem_table(setup_file.string());
+  const st::DemTable table = st::read_dem_table(setup.shown, &setup.text);
   res.settings = st::resolve(table, o.settings);
   const auto fx = validation::dem_effect_inputs(res.station, effects::instantiate(effect_settings(o)));
   res.effect_notes = fx.notes;

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "api/calibrate.h"
+#include "api/dem_options.h"
 #include "api/diagnose.h"
 #include "api/effects.h"
 #include "api/estimate.h"
@@ -48,24 +49,29 @@ using namespace chutelab;
 
 namespace {
 
+// Whether `key` is a [dem] setting validate and diagnose take here as a keyword: only the quality.
+bool dem_keyword(std::string_view key) { return key == api::key(api::DemSetting::quality); }
+
 // The library names an input by a neutral key ("dem.threads", core/input_error.h); here it is the
 // keyword of the package's function (dem_threads). Keys that are no keyword here (a column, a TOML
 // key, an option the package does not have) are shown as they are.
 std::string python_keyword(std::string_view key) {
   static const std::pair<std::string_view, std::string_view> renamed[] = {
-      {"effect", "effects"}, {"input", "inputs"}, {"dem.quality", "dem_quality"}, {"dem.threads", "dem_threads"},
+      {"effect", "effects"}, {"input", "inputs"}, {"dem.threads", "dem_threads"},
       {"dem.cache", "dem_cache"}, {"dem.no_cache", "no_dem_cache"}, {"shape", "shapes"}, {"sizes", "sizes_mm"},
       {"sphere_diameter", "sphere_diameter_mm"}, {"clump_diameter", "clump_diameter_mm"},
       {"target_pile_height", "target_pile_height_mm"}};
   for (const auto& [k, word] : renamed)
     if (k == key) return std::string(word);
+  // The [dem] settings validate and diagnose take (api/dem_options.h): "dem.quality" is dem_quality.
+  if (dem_keyword(key)) return "dem_" + std::string(key.substr(4));
   return std::string(key);
 }
 
 // Inside a message another input is named as it is typed here: "use dataset=".
 std::string python_mention(std::string_view key) {
   static const std::string_view keywords[] = {"dataset", "setup", "condition", "effect", "models", "tolerances",
-                                              "seed", "noise_scale", "out", "alpha", "dem.quality", "dem.threads",
+                                              "seed", "noise_scale", "out", "alpha", "dem.threads",
                                               "dem.cache", "dem.no_cache", "self_check", "belt_speed", "mass_flow",
                                               "plate_distance", "plate_top", "stream_thickness", "pulley_diameter",
                                               "belt_width", "bulk_density", "diagnose", "input",
@@ -74,6 +80,7 @@ std::string python_mention(std::string_view key) {
                                               "clump_diameter", "target_bulk_density", "target_pile_height"};
   for (const auto k : keywords)
     if (k == key) return python_keyword(key) + "=";
+  if (dem_keyword(key)) return python_keyword(key) + "=";
   return std::string(key);
 }
 
@@ -844,7 +851,7 @@ py::dict sensitivity_numbers(const Sensitized& s) {
     steady.push_back(o.steady);
   }
   Table t;
-  t.text("variant", key), t.text("label", label), t.text("group", group), t.real("diameter_mm", d);
+  t.text("variant", key), t.text("label", label), t.text("group", group), t.real(studies::variant_columns().diameter, d);
   t.real("normal_force_N", rn), t.real("normal_force_se_N", rn_se), t.real("shear_force_N", rs);
   t.real("shear_force_se_N", rs_se), t.real("resultant_force_N", r), t.real("resultant_force_se_N", r_se);
   t.real("resultant_force_sd_N", sd_r), t.real("change_percent", change), t.real("change_se_percent", change_se);

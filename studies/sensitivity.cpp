@@ -10,6 +10,7 @@
 
 #include "core/input_error.h"
 #include "core/number.h"
+#include "dem/station/settings.h"
 #include "validation/csv_table.h"
 #include "validation/output_files.h"
 
@@ -45,6 +46,15 @@ std::string modulus_text(double scale) {
 }
 
 }  // namespace
+
+const VariantColumns& variant_columns() {
+  namespace st = dem::station;
+  static const VariantColumns c{std::string(st::dem_field(&st::RunSettings::contact).option),
+                                std::string(st::dem_field(&st::RunSettings::particle_shape).option),
+                                std::string(st::dem_field(&st::RunSettings::particle_diameter).option),
+                                std::string(st::dem_field(&st::RunSettings::dt_fraction).option)};
+  return c;
+}
 
 std::string mm_text(double m) { return fmt::format("{:g}", std::round(m * 1e4) / 10.0); }
 
@@ -236,8 +246,9 @@ void evaluate(SensitivityStudy& s) {
 
 SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
   using validation::CsvTable;
+  const VariantColumns& vc = variant_columns();
   const CsvTable t = CsvTable::read(
-      file, {"variant", "group", "contact", "shape", "diameter_mm", "dt_s", "dt_fraction", "collision_time_s",
+      file, {"variant", "group", vc.contact, vc.shape, vc.diameter, "dt_s", vc.dt_fraction, "collision_time_s",
              "modulus_scale", "normal_force_N", "normal_force_se_N", "shear_force_N", "shear_force_se_N",
              "resultant_force_N", "resultant_force_se_N", "fluctuation_normal_N", "fluctuation_shear_N",
              "fluctuation_resultant_N", "simulated_s", "steps", "peak_particles", "steady", "condition",
@@ -293,15 +304,15 @@ SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
                                    "particle size)", g));
     if ((&r == &first) != (v.group == VariantGroup::base))
       throw InputError(f, r.line, "group", "the first row, and only it, must be the base run");
-    v.contact = t.text(r, col("contact"));
-    v.shape = t.text(r, col("shape"));
-    v.dt_fraction = num(r, "dt_fraction");
+    v.contact = t.text(r, col(vc.contact));
+    v.shape = t.text(r, col(vc.shape));
+    v.dt_fraction = num(r, vc.dt_fraction);
     v.rayleigh_fraction = number_or(r, "rayleigh_fraction", v.rayleigh_fraction);
     v.modulus_scale = num(r, "modulus_scale");
     VariantOutcome& o = row.outcome;
-    o.diameter = num(r, "diameter_mm") * 1e-3;
+    o.diameter = num(r, vc.diameter) * 1e-3;
     v.diameter = o.diameter;
-    if (!(o.diameter > 0.0)) throw InputError(f, r.line, "diameter_mm", "must be > 0");
+    if (!(o.diameter > 0.0)) throw InputError(f, r.line, vc.diameter, "must be > 0");
     o.dt = num(r, "dt_s");
     o.collision_time = num(r, "collision_time_s");
     auto se = [&](std::string_view c) { return t.optional_number(r, col(c)).value_or(0.0); };
@@ -348,8 +359,9 @@ SensitivityStudy read_sensitivity_csv(const std::filesystem::path& file) {
 }
 
 std::string sensitivity_csv(const SensitivityStudy& s) {
-  std::string out =
-      "variant,group,contact,shape,diameter_mm,dt_s,dt_fraction,collision_time_s,modulus_scale,"
+  const VariantColumns& vc = variant_columns();
+  std::string out = fmt::format("variant,group,{},{},{},dt_s,{},collision_time_s,modulus_scale,", vc.contact, vc.shape,
+                                vc.diameter, vc.dt_fraction) +
       "normal_force_N,normal_force_se_N,shear_force_N,shear_force_se_N,resultant_force_N,resultant_force_se_N,"
       "fluctuation_normal_N,fluctuation_shear_N,fluctuation_resultant_N,change_resultant_pct,change_se_pct,"
       "simulated_s,steps,peak_particles,steady,condition,belt_speed_mps,mass_flow_tph,quality,"

@@ -115,6 +115,14 @@ void evaluate(SensitivityStudy& s);
 // evidence names the study's dataset, and says so when it is not `validated` (the report's dataset).
 validation::ReferenceFinding sensitivity_finding(const SensitivityStudy* study, std::string_view validated = {});
 
+// The columns of sensitivity.csv that hold a variant's settings: the options of those [dem]
+// settings (dem/station/settings.h), "contact", "shape", "diameter_mm" (the particle diameter as
+// run) and "dt_fraction".
+struct VariantColumns {
+  std::string contact, shape, diameter, dt_fraction;
+};
+const VariantColumns& variant_columns();
+
 // A diameter (m) as the study names it: in mm to 0.1 mm, "13.6"; the variants' keys and every
 // output use it, so that one size has one name.
 std::string mm_text(double m);

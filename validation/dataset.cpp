@@ -246,6 +246,14 @@ Setup read_setup(const fs::path& path, InputUncertainties* uncertainty) {
   return setup_from(path.string(), nullptr, uncertainty);
 }
 
+Setup read_setup(const DatasetFile& setup, InputUncertainties* uncertainty) {
+  return setup_from(setup.shown, &setup, uncertainty);
+}
+
+DatasetFile read_setup_file(const fs::path& file) {
+  return DatasetFile{file.string(), read_text_file(file.string(), kTomlMaxBytes)};
+}
+
 namespace {
 // The fastest belts run ~15 m/s, the largest carry ~40 000 t/h.
 constexpr std::array<OperatingLimit, 5> kOperatingLimits = {{

@@ -111,6 +111,10 @@ enum class MeasurementsRequired { no, yes };
 // `uncertainty`, when given, receives the [uncertainty] table (rig and material keys, and the
 // setup-wide defaults of the operating inputs); an unknown key there is an error.
 Setup read_setup(const std::filesystem::path& file, InputUncertainties* uncertainty = nullptr);
+// The same from setup.toml as read once (read_setup_file), which the DEM's [dem] table is then read
+// from too (dem/station/settings.h read_dem_table), not from the folder again.
+Setup read_setup(const DatasetFile& setup, InputUncertainties* uncertainty = nullptr);
+DatasetFile read_setup_file(const std::filesystem::path& file);
 Dataset read_dataset(const std::filesystem::path& dir,
                      MeasurementsRequired need = MeasurementsRequired::yes);
 // The same from files already in memory (`files` by name, as read_dataset keeps them in

@@ -52,12 +52,18 @@ std::string ident(const std::string& s) {
   return o;
 }
 
+// The setup.toml key of the [dem] setting of `m`, "dem.KEY".
+template <class T>
+std::string dem_key(T station::RunSettings::*m) {
+  return "dem." + std::string(station::dem_field(m).key);
+}
+
 // What the deck cannot write, refused before anything is written.
 void check_scene(const station::Scene& sc, const station::RunSettings& s) {
   if (sc.shape != station::ParticleShape::sphere)
-    throw InputError("", 0, "dem.shape", "the LIGGGHTS engine runs spheres only (no clumps)");
+    throw InputError("", 0, dem_key(&station::RunSettings::particle_shape), "the LIGGGHTS engine runs spheres only (no clumps)");
   if (s.contact.liggghts().empty())
-    throw InputError("", 0, "dem.contact",
+    throw InputError("", 0, dem_key(&station::RunSettings::contact),
                      fmt::format("the LIGGGHTS engine has no counterpart of the {} contact law", s.contact.title()));
   const World& w = *sc.world;
   const MaterialTable& mt = w.materials();
