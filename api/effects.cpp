@@ -17,7 +17,8 @@ namespace {
 reports::EffectDescription describe(const effects::EffectInfo& e, double value, std::optional<double> uncertainty,
                                     bool fitted) {
   reports::EffectDescription d{e.name, e.parameter, e.unit, e.physics, e.source, value, uncertainty, fitted};
-  if (const auto* registered = effects::find(e.name)) {
+  // A record at one condition (NAME@CONDITION) is that record: its kind and check are the record's.
+  if (const auto* registered = effects::find_candidate(e.name)) {
     d.record = registered->kind == effects::EffectInfo::Kind::record;
     d.check = registered->check;
   }

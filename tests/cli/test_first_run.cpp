@@ -166,6 +166,22 @@ BOOST_AUTO_TEST_CASE(the_diagnosis_verdict_carries_no_statistics) {
   BOOST_TEST(read_file(out / "diagnosis.md").find("How sure is this? chi^2 ") != std::string::npos);
 }
 
+// A record wrong at one condition (NAME@CONDITION) is that record: the summary says to correct it
+// and how to check it, as for the record rig-wide, not to add it as physics.
+BOOST_AUTO_TEST_CASE(a_record_at_one_condition_is_said_as_a_record) {
+  const fs::path dir = fresh_dir("first-run-record-at");
+  const std::string grima = std::string(CHUTELAB_SOURCE_DIR) + "/datasets/grima2010";
+  BOOST_REQUIRE(run_chutelab("synthesize --dataset '" + grima + "' --effect belt_speed@V4-41=15 --seed 5 --out '" +
+                             (dir / "ds").string() + "'").exit_code == 0);
+  const auto r = run_chutelab("validate --dataset '" + (dir / "ds").string() + "' --add-missing --quiet --out '" +
+                              (dir / "out").string() + "'");
+  BOOST_REQUIRE(r.exit_code == 0);
+  const std::string md = read_file(dir / "out" / "report.md");
+  BOOST_TEST(md.find("Correcting the recorded belt speed@V4-41") != std::string::npos, md.substr(0, 2000));
+  BOOST_TEST(md.find("a tachometer on the belt") != std::string::npos);
+  BOOST_TEST(md.find("Adding belt speed@V4-41") == std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(an_effect_the_data_do_not_point_to_gets_a_note) {
   const fs::path out = fresh_dir("first-run-wrong");
   const auto r = run_chutelab("validate --dataset '" + kHidden + "' --effect belt_slip=fit --quiet --out '" +
