@@ -262,22 +262,17 @@ std::optional<double> PredictionSource::Value::sd_of(const ModelPrediction& mp) 
   return query < mp.trajectory_uncertainty.size() ? mp.trajectory_uncertainty[query] : std::nullopt;
 }
 
-namespace {
-
-// The cheap models' shift of one value: the first of them (registry order) that predicts it.
-std::optional<double> cheap_shift(std::span<const ModelPrediction* const> base, std::span<const ModelPrediction> with,
-                                  const std::function<std::optional<double>(const ModelPrediction&)>& pick) {
-  for (std::size_t j = 0; j < base.size() && j < with.size(); ++j) {
-    const auto b = pick(*base[j]);
+std::optional<double> PredictionSource::cheap_shift(std::size_t c, std::span<const ModelPrediction> with,
+                                                    const Value& v) const {
+  for (std::size_t j = 0; j < signature_.size() && j < with.size(); ++j) {
+    const auto b = v.of(cheap_base(c, signature_[j]));
     if (!b) continue;
-    const auto w = pick(with[j]);
+    const auto w = v.of(with[j]);
     if (!w) return std::nullopt;
     return *w - *b;
   }
   return std::nullopt;
 }
-
-}  // namespace
 
 const PredictionSource::OwnResponse& PredictionSource::own_response(std::size_t k, const effects::EffectInfo& e) const {
   const auto key = std::make_pair(k, e.name);
@@ -306,10 +301,8 @@ const PredictionSource::OwnResponse& PredictionSource::own_response(std::size_t 
       continue;
     }
     const ModelPrediction &base = signature_base(c, k), &probe = *probe_c;
-    std::vector<const ModelPrediction*> cheap_base_c;
     std::vector<ModelPrediction> cheap_probe_c;
     for (const auto& m : signature_) {
-      cheap_base_c.push_back(&cheap_base(c, m));
       try {
         cheap_probe_c.push_back(m->predict(d_->stations[c], at_p, {queries_[c], false}));
       } catch (const InputError&) {
@@ -320,7 +313,7 @@ const PredictionSource::OwnResponse& PredictionSource::own_response(std::size_t 
       const auto b = v.of(base), p = v.of(probe);
       if (!b || !p) return;
       const double sd = std::hypot(v.sd_of(base).value_or(0.0), v.sd_of(probe).value_or(0.0));
-      pools[v.q].push_back({c, v, *p - *b, sd, cheap_shift(cheap_base_c, cheap_probe_c, [&v](const ModelPrediction& mp) { return v.of(mp); })});
+      pools[v.q].push_back({c, v, *p - *b, sd, cheap_shift(c, cheap_probe_c, v)});
     };
     for (Quantity q : kAllQuantities) add(Value{q, 0});
     out.trajectory[c].assign(base.trajectory.size(), std::nullopt);
@@ -343,10 +336,7 @@ const PredictionSource::OwnResponse& PredictionSource::own_response(std::size_t 
 std::optional<double> PredictionSource::Shift::value(const PredictionSource& src, std::size_t c, std::size_t k,
                                                      const effects::EffectInfo& e, const Value& v) const {
   if (!active) return 0.0;
-  const auto pick = [&v](const ModelPrediction& mp) { return v.of(mp); };
-  std::vector<const ModelPrediction*> bases;
-  for (const auto& m : src.signature_) bases.push_back(&src.cheap_base(c, m));
-  auto cheap = [&](const std::vector<ModelPrediction>& with) { return cheap_shift(bases, with, pick); };
+  auto cheap = [&](const std::vector<ModelPrediction>& with) { return src.cheap_shift(c, with, v); };
   switch (src.signature(e)) {
     case Signature::none: return 0.0;
     case Signature::cheap_models: return cheap(cheap_at_s);
@@ -357,7 +347,7 @@ std::optional<double> PredictionSource::Shift::value(const PredictionSource& src
   const std::optional<double> response =
       v.q ? own.values[c][*v.q] : v.query < own.trajectory[c].size() ? own.trajectory[c][v.query] : std::nullopt;
   if (!response) return cheap(cheap_at_s);
-  const auto base = pick(src.signature_base(c, k));
+  const auto base = v.of(src.signature_base(c, k));
   // The model's own response at the probe strength, carried to s along the shape of the cheap
   // models' response (their nonlinearity in s), or linearly where they do not respond.
   const double sp = src.probe_strength(e);

@@ -125,6 +125,9 @@ class PredictionSource {
     std::vector<bool> failed;  // per condition: the probe run has no answer there
   };
   const OwnResponse& own_response(std::size_t model, const effects::EffectInfo& e) const;
+  // The cheap models' shift of one value at a condition (`with`: their predictions there, one per
+  // signature model): the first of them (registry order) that predicts it.
+  std::optional<double> cheap_shift(std::size_t condition, std::span<const ModelPrediction> with, const Value& v) const;
   // One candidate effect's shift of the expensive models at one condition and strength.
   struct Shift {
     bool active = false;  // false: the effect is neutral at this strength
