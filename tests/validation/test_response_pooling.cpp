@@ -1,14 +1,8 @@
 // validation/response_pooling.h: an expensive model's noisy own responses read together.
 #include <boost/test/unit_test.hpp>
-#include <atomic>
 #include <cmath>
 
-#include "effects/registry.h"
-#include "validation/dataset.h"
-#include "validation/diagnosis.h"
 #include "validation/response_pooling.h"
-#include "validation/synthesize.h"
-#include "../cli/cli_runner.h"
 
 using namespace chutelab;
 using namespace chutelab::validation;
@@ -83,76 +77,3 @@ BOOST_AUTO_TEST_CASE(a_response_without_a_shape_among_shaped_ones_is_kept) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
-
-namespace {
-
-// An expensive stand-in that represents mass_flow_bias itself (its response doubles the analytical
-// one, as in test_expensive_baseline.cpp) and states a standard error for its forces, as a DEM
-// mean does. Its signature-quality probe of the flow at one condition catches a fluctuation: the
-// forces there read 60 % high, with a standard error to match. Read alone, that one difference
-// drags the fitted flow bias; read with the others, it does not.
-class FluctuatingProbeModel final : public Model {
- public:
-  FluctuatingProbeModel(std::string fluctuating, std::atomic<int>& calls)
-      : inner_(make_model("korzen")), fluctuating_(std::move(fluctuating)), calls_(calls) {}
-  std::string name() const override { return "own"; }
-  std::string description() const override { return "expensive stand-in with one noisy probe"; }
-  bool expensive() const override { return true; }
-  bool represents(const Station&, const analytical::EffectList& fixed, const analytical::EffectList& with) const override {
-    return with.size() > fixed.size() && with.back()->name() == "mass_flow_bias";
-  }
-  ModelPrediction predict(const Station& st, const analytical::EffectList& fx, const PredictRequest& req) const override {
-    ++calls_;
-    analytical::OperatingPoint op{st.belt_speed, st.mass_flow};
-    for (const auto& e : fx) e->adjust_operating_point(op);
-    Station s = st;
-    s.mass_flow = st.mass_flow + 2.0 * (op.mass_flow - st.mass_flow);
-    auto p = inner_->predict(s, {}, req);
-    p.values[Quantity::impact_point_y].reset();
-    p.values[Quantity::impact_velocity].reset();
-    const bool noisy_probe = req.signature && !fx.empty() && st.condition == fluctuating_;
-    for (Quantity q : {Quantity::normal_force, Quantity::shear_force, Quantity::resultant_force})
-      if (p.values[q]) {
-        if (noisy_probe) *p.values[q] *= 1.6;
-        p.uncertainty[q] = (noisy_probe ? 0.4 : 0.01) * std::abs(*p.values[q]);
-      }
-    return p;
-  }
-
- private:
-  ModelPtr inner_;
-  std::string fluctuating_;
-  std::atomic<int>& calls_;
-};
-
-}  // namespace
-
-BOOST_AUTO_TEST_CASE(one_noisy_probe_does_not_drag_the_signature_fit) {
-  const auto rig = read_dataset(CHUTELAB_SOURCE_DIR "/datasets/liggghts-rig", MeasurementsRequired::no);
-  std::atomic<int> calls{0};
-  // The data: the stand-in without its fluctuation (a condition name that does not exist).
-  auto clean = std::make_shared<FluctuatingProbeModel>("none", calls);
-  SynthesizeOptions so;
-  so.effects = {chutelab::effects::find("mass_flow_bias")->make(-0.06)};
-  so.seed = 6193;
-  so.noise_scale = 0.3;
-  const auto dir = test::fresh_dir("noisy-probe");
-  write_outputs(dir, synthesize(rig, {clean}, so), {}, "synthesize");
-  const auto d = read_dataset(dir);
-  auto noisy = std::make_shared<FluctuatingProbeModel>(d.stations.front().condition, calls);
-  DiagnoseOptions opt;
-  opt.pairs = false;
-  opt.confirm = 0;  // the signatures' fit itself is under test
-  opt.profile_runs = 0;
-  const auto r = diagnose(d, {noisy}, opt);
-  bool seen = false;
-  for (const auto& s : r.singles)
-    if (s.label() == "mass_flow_bias") {
-      seen = true;
-      // Without the pooling the fluctuating probe's forces (a 60 % jump read as the flow's doing at
-      // that condition) pull the estimate to -0.0362 +- 0.0007 (33 sd from the truth); with it,
-      // -0.0598 +- 0.0010.
-      BOOST_TEST(std::abs(s.estimate[0] - -0.06) < 3.0 * s.uncertainty[0] + 0.002, s.estimate[0] << " +- " << s.uncertainty[0]);
-    }
-  BOOST_TEST(seen);
-}
