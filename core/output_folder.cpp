@@ -1,7 +1,5 @@
 #include "core/output_folder.h"
 
-#include <atomic>
-
 #include <unistd.h>
 #ifndef __EMSCRIPTEN__
 #include <fcntl.h>
@@ -18,10 +16,6 @@
 #include <map>
 #include <set>
 #include <mutex>
-#include <thread>
-#ifndef __EMSCRIPTEN__
-#include <pthread.h>
-#endif
 
 #include "core/input_error.h"
 #include "core/message.h"
@@ -33,15 +27,6 @@ namespace chutelab {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::mutex& registry_mutex() {
-  static std::mutex m;
-  return m;
-}
-std::vector<fs::path>& registry() {
-  static std::vector<fs::path> r;
-  return r;
-}
 
 bool inside(const fs::path& p, const fs::path& dir) {
   auto pi = p.begin();
@@ -77,111 +62,6 @@ fs::path resolved_path(const fs::path& p, std::string_view field) {
   fs::path r = fs::weakly_canonical(fs::absolute(p, ec), ec);
   if (ec) throw InputError(p.string(), 0, std::string(field), fmt::format("cannot resolve the path: {}", ec.message()));
   return r;
-}
-
-void register_temporary(const fs::path& p) {
-  std::lock_guard lock(registry_mutex());
-  registry().push_back(p);
-}
-
-void unregister_temporary(const fs::path& p) {
-  std::lock_guard lock(registry_mutex());
-  auto& r = registry();
-  for (auto it = r.begin(); it != r.end(); ++it)
-    if (*it == p) {
-      r.erase(it);
-      return;
-    }
-}
-
-namespace {
-std::atomic<bool>& interrupts_quiet() {
-  static std::atomic<bool> quiet{false};
-  return quiet;
-}
-
-#ifndef __EMSCRIPTEN__
-// Every signal whose default action ends the process and that a process may catch. SIGKILL and
-// SIGSTOP cannot be caught; a crash (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT) is a bug whose state
-// cannot be trusted: their staging folders, like SIGKILL's, are swept by the next run
-// (sweep_dead_staging()).
-constexpr int kCleanupSignals[] = {SIGHUP,  SIGINT,  SIGQUIT, SIGTERM, SIGALRM, SIGVTALRM, SIGPROF,
-                                   SIGXCPU, SIGXFSZ, SIGUSR1, SIGUSR2, SIGPIPE, SIGIO,     SIGPWR,
-#ifdef SIGSTKFLT
-                                   SIGSTKFLT,
-#endif
-};
-
-int& wake_fd() {
-  static int fd = -1;
-  return fd;
-}
-
-// The handler only says which signal came (write(2) is async-signal-safe); the thread below, which
-// may use the file system freely, does the cleanup. A handler rather than a blocked mask: masks are
-// inherited by the programs chutelab starts (LIGGGHTS, mpirun), handlers are reset by exec.
-extern "C" void on_cleanup_signal(int sig) {
-  const int saved = errno;
-  const auto b = static_cast<unsigned char>(sig);
-  [[maybe_unused]] const auto n = ::write(wake_fd(), &b, 1);
-  errno = saved;
-}
-
-const char* signal_message(int sig) {
-  switch (sig) {
-    case SIGINT: return "\nchutelab: interrupted; nothing was written\n";
-    case SIGTERM: return "\nchutelab: terminated; nothing was written\n";
-    case SIGHUP: return "\nchutelab: terminated by SIGHUP (terminal closed); nothing was written\n";
-    case SIGQUIT: return "\nchutelab: terminated by SIGQUIT; nothing was written\n";
-    case SIGALRM: return "\nchutelab: terminated by SIGALRM; nothing was written\n";
-    case SIGXCPU: return "\nchutelab: terminated by SIGXCPU (CPU time limit); nothing was written\n";
-    case SIGXFSZ: return "\nchutelab: terminated by SIGXFSZ (file size limit); nothing was written\n";
-    case SIGPIPE: return nullptr;  // the reader of the output went away: silent, as every Unix tool
-    default: return "\nchutelab: terminated by a signal; nothing was written\n";
-  }
-}
-#endif
-}  // namespace
-
-void quiet_interrupts() { interrupts_quiet() = true; }
-
-void install_interrupt_cleanup() {
-#ifndef __EMSCRIPTEN__  // the designer's page has no signals and no threads
-  static std::once_flag once;
-  std::call_once(once, [] {
-    int fds[2];
-    if (::pipe2(fds, O_CLOEXEC) != 0) return;
-    wake_fd() = fds[1];
-    std::thread([rd = fds[0]] {
-      unsigned char b = 0;
-      while (::read(rd, &b, 1) != 1) {
-      }
-      const int sig = b;
-      // Holding the lock also waits for a commit in progress to finish: --out is then complete.
-      std::lock_guard lock(registry_mutex());
-      std::error_code ec;
-      // The other threads go on until _exit: one may be adding a file to a folder being removed
-      // (remove_all then fails with "not empty"), so each is removed until it is gone, a few times.
-      // What a thread still adds after that is swept by the next run (sweep_dead_staging()).
-      for (const auto& p : registry())
-        for (int attempt = 0; attempt < 5 && fs::exists(fs::symlink_status(p, ec)); ++attempt) fs::remove_all(p, ec);
-      const char* msg = signal_message(sig);
-      if (msg && !interrupts_quiet()) [[maybe_unused]] const auto n = ::write(2, msg, std::char_traits<char>::length(msg));
-      ::_exit(128 + sig);
-    }).detach();
-    for (int sig : kCleanupSignals) {
-      struct sigaction old {};
-      // A signal the parent ignores (SIGINT of a background job in a script, SIGHUP under nohup)
-      // stays ignored.
-      if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
-      struct sigaction sa {};
-      sa.sa_handler = on_cleanup_signal;
-      sigemptyset(&sa.sa_mask);
-      sa.sa_flags = SA_RESTART;
-      sigaction(sig, &sa, nullptr);
-    }
-  });
-#endif
 }
 
 namespace {
@@ -465,15 +345,137 @@ void OutputFolder::write_file(const fs::path& file, std::string_view flag, std::
   named_.push_back(std::move(n));
 }
 
+// commit()'s plan: the staged files, what moves where, what goes aside and what the record forgets.
+struct OutputFolder::CommitPlan {
+  // A move: the staged file `from` to `dest`, named by `flag` in messages.
+  struct Move {
+    fs::path from, dest;
+    std::string flag;
+  };
+  std::vector<std::string> files;  // the staged files of --out, by their path relative to it, sorted
+  std::set<std::string> staged;
+  std::set<std::string> needed_folders;  // every folder a staged file lies in
+  OutputManifest manifest;
+  fs::path record_path;
+  std::vector<Move> moves;
+  std::vector<std::pair<fs::path, std::string>> aside;  // files to move aside (replaced or removed), their flag
+  std::vector<std::string> removed, kept, dropped, stale_folders;
+  std::vector<fs::path> backups_beside;  // backups kept beside their file (another file system)
+  std::vector<std::string> made;         // folders of --out this run made, relative to it
+};
+
+namespace {
+
+#ifndef __EMSCRIPTEN__
+// One commit at a time into one folder: two commands finishing together would each write a record
+// without the other's files (which then count as the user's: refused later, never removed).
+class FolderLock {
+ public:
+  // Nothing locked when dir is empty.
+  explicit FolderLock(const fs::path& dir)
+      : fd_(dir.empty() ? -1 : ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+    if (fd_ >= 0) [[maybe_unused]] const int locked = ::flock(fd_, LOCK_EX);
+  }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  ~FolderLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+ private:
+  int fd_ = -1;
+};
+#endif
+
+// What commit() did, undone in reverse order when a later step fails.
+class Undo {
+ public:
+  Undo(const fs::path& out, bool created) : out_(out), created_(created) {}
+  void moved_aside(const fs::path& from, const fs::path& backup) { done_.push_back({Step::moved_aside, from, backup}); }
+  void placed(const fs::path& p) { done_.push_back({Step::placed, p, {}}); }
+  void made_folder(const fs::path& p) { done_.push_back({Step::made_folder, p, {}}); }
+  // Undoes everything and throws the error of `where`.
+  [[noreturn]] void fail(const fs::path& where, const std::string& flag, const std::string& why) {
+    roll_back();
+    throw InputError(where.string(), 0, flag, fmt::format("cannot write: {}", why));
+  }
+
+ private:
+  struct Step {
+    enum { moved_aside, placed, made_folder } what;
+    fs::path a, b;
+  };
+  void roll_back() {
+    std::error_code e2;
+    for (auto it = done_.rbegin(); it != done_.rend(); ++it) {
+      switch (it->what) {
+        case Step::moved_aside: fs::rename(it->b, it->a, e2); break;  // backup -> where it was
+        case Step::placed: fs::remove(it->a, e2); break;
+        case Step::made_folder: fs::remove(it->a, e2); break;
+      }
+    }
+    if (created_) fs::remove(out_, e2);
+  }
+  fs::path out_;
+  bool created_;
+  std::vector<Step> done_;
+};
+
+// The record of --out, through a staged file.
+std::error_code write_record(const fs::path& staging, const OutputManifest& m, const fs::path& record_path) {
+  const fs::path next = staging / ".manifest";
+  std::ofstream f(next, std::ios::binary | std::ios::trunc);
+  const std::string text = m.text();
+  f.write(text.data(), static_cast<std::streamsize>(text.size()));
+  f.close();
+  if (!f) return std::make_error_code(std::errc::no_space_on_device);
+  return move_file(next, record_path);
+}
+
+}  // namespace
+
 void OutputFolder::commit() {
   if (!writer_ || staging_.empty()) {  // another rank's, or nothing named
     committed_ = true;
     return;
   }
+  CommitPlan plan;
+  plan.files = staged_files();
+  plan.staged = {plan.files.begin(), plan.files.end()};
+  for (const auto& f : plan.files)
+    for (auto& p : parents_of(f)) plan.needed_folders.insert(std::move(p));
+#ifndef __EMSCRIPTEN__
   std::error_code ec;
-  // The staged files of --out, by their path relative to it.
+  const FolderLock lock_folder(folder_ && fs::is_directory(out_, ec) ? out_ : fs::path());
+#endif
+  plan.manifest = folder_ ? OutputManifest::read(out_) : OutputManifest{};
+  plan.record_path = out_ / OutputManifest::kFileName;
+  // Check every file before moving any, so that nothing is half-replaced by a foreseeable problem.
+  plan_staged_files(plan);
+  plan_earlier_files(plan);
+  check_datasets_whole(plan);
+  if (folder_ && kind_of(plan.record_path) == Kind::folder)
+    throw InputError(plan.record_path.string(), 0, flag_,
+                     "is a folder where chutelab keeps the record of what it wrote here; move it away");
+  plan_named_files(plan);
+
+  {
+    std::lock_guard lock(temporaries_mutex());  // an interrupt waits until every output is whole again
+    place(plan);
+    committed_ = true;
+    std::error_code ignored;
+    for (const auto& b : plan.backups_beside) fs::remove(b, ignored);
+    remove_stale_folders(plan);
+    say_removed_and_kept(plan);
+    fs::remove_all(staging_, ignored);
+  }
+  unregister_temporary(staging_);
+}
+
+std::vector<std::string> OutputFolder::staged_files() const {
   std::vector<std::string> files;
   if (folder_) {
+    std::error_code ec;
     for (auto it = fs::recursive_directory_iterator(staging_, ec); !ec && it != fs::recursive_directory_iterator();
          it.increment(ec)) {
       const fs::path rel = it->path().lexically_relative(staging_);
@@ -486,34 +488,12 @@ void OutputFolder::commit() {
     if (ec) throw InputError(staging_.string(), 0, flag_, fmt::format("cannot list the staged files: {}", ec.message()));
   }
   std::sort(files.begin(), files.end());
-  const std::set<std::string> staged(files.begin(), files.end());
-  std::set<std::string> needed_folders;  // every folder a staged file lies in
-  for (const auto& f : files)
-    for (auto& p : parents_of(f)) needed_folders.insert(std::move(p));
+  return files;
+}
 
-#ifndef __EMSCRIPTEN__
-  // One commit at a time into one folder: two commands finishing together would each write a record
-  // without the other's files (which then count as the user's: refused later, never removed).
-  int folder_fd = folder_ && fs::is_directory(out_, ec) ? ::open(out_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC) : -1;
-  if (folder_fd >= 0) [[maybe_unused]] const int locked = ::flock(folder_fd, LOCK_EX);
-  struct CloseFd {
-    int& fd;
-    ~CloseFd() {
-      if (fd >= 0) ::close(fd);
-    }
-  } close_folder{folder_fd};
-#endif
-  OutputManifest m = folder_ ? OutputManifest::read(out_) : OutputManifest{};
-
-  // A move: the staged file `from` to `dest`, named by `flag` in messages.
-  struct Move {
-    fs::path from, dest;
-    std::string flag;
-  };
-  std::vector<Move> moves;
-  std::vector<std::pair<fs::path, std::string>> aside;  // files to move aside (replaced or removed), their flag
-  // Check every file before moving any, so that nothing is half-replaced by a foreseeable problem.
-  for (const auto& f : files) {
+// Each staged file to its place in --out, what is there moved aside.
+void OutputFolder::plan_staged_files(CommitPlan& plan) const {
+  for (const auto& f : plan.files) {
     const fs::path dest = out_ / f;
     check_not_input(dest, false);
     for (const auto& p : parents_of(f)) {
@@ -522,32 +502,35 @@ void OutputFolder::commit() {
       if (k != Kind::folder)
         throw InputError((out_ / p).string(), 0, flag_, "is a file where chutelab writes a folder; move it away");
     }
-    if (const std::string why = not_ours(dest, f, m); !why.empty()) throw InputError(dest.string(), 0, flag_, why);
-    if (kind_of(dest) != Kind::none) aside.emplace_back(dest, flag_);
-    moves.push_back({staging_ / f, dest, flag_});
+    if (const std::string why = not_ours(dest, f, plan.manifest); !why.empty())
+      throw InputError(dest.string(), 0, flag_, why);
+    if (kind_of(dest) != Kind::none) plan.aside.emplace_back(dest, flag_);
+    plan.moves.push_back({staging_ / f, dest, flag_});
   }
-  // What an earlier run of this command wrote and this run does not write describes another run: it
-  // goes with the rest of that run (moved aside like a replaced file, so a failure puts it back).
-  // A file changed since it was written is the user's now: kept, and no longer in the record.
-  std::vector<std::string> removed, kept, dropped, stale_folders;
-  for (const auto& [rel, r] : m.records) {
-    if (staged.count(rel)) continue;
+}
+
+// What an earlier run of this command wrote and this run does not write describes another run: it
+// goes with the rest of that run (moved aside like a replaced file, so a failure puts it back).
+// A file changed since it was written is the user's now: kept, and no longer in the record.
+void OutputFolder::plan_earlier_files(CommitPlan& plan) const {
+  for (const auto& [rel, r] : plan.manifest.records) {
+    if (plan.staged.count(rel)) continue;
     const fs::path dest = out_ / rel;
     bool plain_path = true;  // never through a link or a file (a record cannot reach outside --out)
     for (const auto& p : parents_of(rel)) plain_path = plain_path && kind_of(out_ / p) == Kind::folder;
     const Kind k = kind_of(dest);
     if (!plain_path || k == Kind::none || (r.folder && k != Kind::folder)) {
-      dropped.push_back(rel);
+      plan.dropped.push_back(rel);
       continue;
     }
     if (r.command != command_ && std::find(taken_.begin(), taken_.end(), r.command) == taken_.end()) continue;
     if (r.folder) {
-      if (!needed_folders.count(rel)) stale_folders.push_back(rel);
+      if (!plan.needed_folders.count(rel)) plan.stale_folders.push_back(rel);
       continue;
     }
     if (!OutputManifest::intact(dest, r)) {
-      kept.push_back(rel);
-      dropped.push_back(rel);
+      plan.kept.push_back(rel);
+      plan.dropped.push_back(rel);
       continue;
     }
     try {
@@ -555,57 +538,61 @@ void OutputFolder::commit() {
     } catch (const InputError&) {
       continue;
     }
-    aside.emplace_back(dest, flag_);
-    removed.push_back(rel);
+    plan.aside.emplace_back(dest, flag_);
+    plan.removed.push_back(rel);
   }
-  // A dataset's file this run does not write would be read as part of the new dataset (in a folder
-  // of them, such as logs/, every file).
-  const std::set<std::string> going(removed.begin(), removed.end());
+}
+
+// A dataset's file this run does not write would be read as part of the new dataset (in a folder
+// of them, such as logs/, every file).
+void OutputFolder::check_datasets_whole(const CommitPlan& plan) const {
+  const std::set<std::string> going(plan.removed.begin(), plan.removed.end());
   for (const auto& name : together_) {
     std::vector<std::string> there;
     if (kind_of(out_ / name) == Kind::folder) {
+      std::error_code ec;
       for (auto it = fs::recursive_directory_iterator(out_ / name, ec); !ec && it != fs::recursive_directory_iterator();
            it.increment(ec))
         if (!it->is_directory()) there.push_back(it->path().lexically_relative(out_).generic_string());
-      ec.clear();
     } else if (kind_of(out_ / name) != Kind::none) {
       there.push_back(name);
     }
-    const auto foreign = std::find_if(there.begin(), there.end(),
-                                      [&](const std::string& n) { return !staged.count(n) && !going.count(n); });
+    const auto foreign = std::find_if(there.begin(), there.end(), [&](const std::string& n) {
+      return !plan.staged.count(n) && !going.count(n);
+    });
     if (foreign == there.end()) continue;
     const std::string n = *foreign;
     const fs::path dest = out_ / n;
-    const auto it = m.records.find(n);
-    const bool changed = std::find(kept.begin(), kept.end(), n) != kept.end();
+    const auto it = plan.manifest.records.find(n);
+    const bool changed = std::find(plan.kept.begin(), plan.kept.end(), n) != plan.kept.end();
     throw InputError(dest.string(), 0, flag_,
                      fmt::format("{}, and it would be read as part of what {} writes here; move it away or choose "
                                  "another folder",
                                  changed ? std::string("was changed since chutelab wrote it")
-                                 : it == m.records.end() || it->second.folder
+                                 : it == plan.manifest.records.end() || it->second.folder
                                      ? std::string("chutelab did not write it")
                                      : fmt::format("chutelab {} wrote it", it->second.command),
                                  command_));
   }
-  const fs::path record_path = out_ / OutputManifest::kFileName;
-  if (folder_ && kind_of(record_path) == Kind::folder)
-    throw InputError(record_path.string(), 0, flag_,
-                     "is a folder where chutelab keeps the record of what it wrote here; move it away");
-  // Files the user named: never one --out writes or keeps its record in, never a folder, their
-  // folders made as needed.
+}
+
+// Files the user named: never one --out writes or keeps its record in, never a folder, their
+// folders made as needed.
+void OutputFolder::plan_named_files(CommitPlan& plan) const {
   for (const auto& n : named_) {
     if (folder_) {
-      for (const auto& f : files)
+      for (const auto& f : plan.files)
         if (resolved_path(out_ / f, n.flag) == n.resolved)
           throw InputError(n.dest.string(), 0, n.flag, fmt::format("is {}, which --out gets from this run; "
                                                                    "choose another file", (out_ / f).string()));
-      for (const auto& [rel, r] : m.records)
+      for (const auto& [rel, r] : plan.manifest.records)
         if (resolved_path(out_ / rel, n.flag) == n.resolved)
           throw InputError(n.dest.string(), 0, n.flag,
                            fmt::format("is {}, a file chutelab keeps in --out; choose another file", (out_ / rel).string()));
-      if (resolved_path(record_path, n.flag) == n.resolved)
+      if (resolved_path(plan.record_path, n.flag) == n.resolved)
         throw InputError(n.dest.string(), 0, n.flag, "is the record chutelab keeps in --out; choose another file");
     }
+    std::error_code ec;
     fs::path up = n.dest.parent_path();
     for (; !up.empty() && kind_of(up) == Kind::none; up = up.parent_path())
       if (up == up.parent_path()) break;
@@ -613,12 +600,15 @@ void OutputFolder::commit() {
       throw InputError(up.string(), 0, n.flag, "is a file where a folder is needed for this file");
     const Kind k = kind_of(n.dest);
     if (k == Kind::folder) throw InputError(n.dest.string(), 0, n.flag, "is a folder; give a file name");
-    if (k != Kind::none) aside.emplace_back(n.dest, n.flag);
-    moves.push_back({n.staged, n.dest, n.flag});
+    if (k != Kind::none) plan.aside.emplace_back(n.dest, n.flag);
+    plan.moves.push_back({n.staged, n.dest, n.flag});
   }
-  ec.clear();
+}
 
-  std::lock_guard lock(registry_mutex());  // an interrupt waits until every output is whole again
+// Moves the replaced files aside and the staged ones into place, then writes the record: all or
+// none (a failure puts back what was there).
+void OutputFolder::place(CommitPlan& plan) {
+  std::error_code ec;
   const bool created = folder_ && !fs::exists(out_);
   if (folder_) {
     fs::create_directories(out_, ec);
@@ -627,30 +617,9 @@ void OutputFolder::commit() {
   const fs::path replaced = staging_ / ".replaced";
   fs::create_directory(replaced, ec);
   ec.clear();
-  // What was done, undone in reverse order when a later step fails.
-  struct Step {
-    enum { moved_aside, placed, made_folder } what;
-    fs::path a, b;
-  };
-  std::vector<Step> done;
-  std::vector<fs::path> backups_beside;  // backups kept beside their file (another file system)
-  auto roll_back = [&] {
-    std::error_code e2;
-    for (auto it = done.rbegin(); it != done.rend(); ++it) {
-      switch (it->what) {
-        case Step::moved_aside: fs::rename(it->b, it->a, e2); break;  // backup -> where it was
-        case Step::placed: fs::remove(it->a, e2); break;
-        case Step::made_folder: fs::remove(it->a, e2); break;
-      }
-    }
-    if (created) fs::remove(out_, e2);
-  };
-  auto fail = [&](const fs::path& where, const std::string& flag, const std::string& why) {
-    roll_back();
-    throw InputError(where.string(), 0, flag, fmt::format("cannot write: {}", why));
-  };
-  for (std::size_t k = 0; k < aside.size(); ++k) {
-    const auto& [dest, flag] = aside[k];
+  Undo undo(out_, created);
+  for (std::size_t k = 0; k < plan.aside.size(); ++k) {
+    const auto& [dest, flag] = plan.aside[k];
     // Into the staging folder when it is on the same file system, else beside the file.
     fs::path backup = replaced / std::to_string(k);
     fs::rename(dest, backup, ec);
@@ -658,68 +627,65 @@ void OutputFolder::commit() {
       ec.clear();
       backup = beside(dest, "replaced");
       fs::rename(dest, backup, ec);
-      if (!ec) backups_beside.push_back(backup);
+      if (!ec) plan.backups_beside.push_back(backup);
     }
-    if (ec) fail(dest, flag, ec.message());
-    done.push_back({Step::moved_aside, dest, backup});
+    if (ec) undo.fail(dest, flag, ec.message());
+    undo.moved_aside(dest, backup);
   }
-  std::vector<std::string> made;
-  for (const auto& mv : moves) {
+  for (const auto& mv : plan.moves) {
     for (const auto& dir : missing_folders(mv.dest.parent_path())) {
       fs::create_directory(dir, ec);
-      if (ec) fail(dir, mv.flag, ec.message());
-      done.push_back({Step::made_folder, dir, {}});
+      if (ec) undo.fail(dir, mv.flag, ec.message());
+      undo.made_folder(dir);
       if (folder_ && mv.flag == flag_ && inside(dir, out_) && dir != out_)
-        made.push_back(dir.lexically_relative(out_).generic_string());
+        plan.made.push_back(dir.lexically_relative(out_).generic_string());
     }
     ec = move_file(mv.from, mv.dest);
-    if (ec) fail(mv.dest, mv.flag, ec.message());
-    done.push_back({Step::placed, mv.dest, {}});
+    if (ec) undo.fail(mv.dest, mv.flag, ec.message());
+    undo.placed(mv.dest);
   }
   // The record: last, so that a process killed before it leaves files unrecorded (refused later,
   // never removed) rather than records of files that are not there.
-  auto write_record = [&]() -> std::error_code {
-    const fs::path next = staging_ / ".manifest";
-    std::ofstream f(next, std::ios::binary | std::ios::trunc);
-    const std::string text = m.text();
-    f.write(text.data(), static_cast<std::streamsize>(text.size()));
-    f.close();
-    if (!f) return std::make_error_code(std::errc::no_space_on_device);
-    return move_file(next, record_path);
-  };
   if (folder_) {
-    for (const auto& rel : removed) m.records.erase(rel);
-    for (const auto& rel : dropped) m.records.erase(rel);
-    for (const auto& f : files) m.records[f] = OutputManifest::of_file(out_ / f, command_);
-    for (const auto& p : made) {
+    OutputManifest& m = plan.manifest;
+    for (const auto& rel : plan.removed) m.records.erase(rel);
+    for (const auto& rel : plan.dropped) m.records.erase(rel);
+    for (const auto& f : plan.files) m.records[f] = OutputManifest::of_file(out_ / f, command_);
+    for (const auto& p : plan.made) {
       OutputRecord r;
       r.command = command_;
       r.folder = true;
       m.records[p] = r;
     }
-    if ((ec = write_record())) fail(record_path, flag_, ec.message());
+    if ((ec = write_record(staging_, m, plan.record_path))) undo.fail(plan.record_path, flag_, ec.message());
   }
-  committed_ = true;
-  for (const auto& b : backups_beside) fs::remove(b, ec);
-  // Folders this command made and no longer uses, once empty (a user's file inside keeps one), and
-  // the record again without them.
-  std::sort(stale_folders.begin(), stale_folders.end(), [](const std::string& a, const std::string& b) {
+}
+
+// Folders this command made and no longer uses, once empty (a user's file inside keeps one), and
+// the record again without them.
+void OutputFolder::remove_stale_folders(CommitPlan& plan) {
+  std::sort(plan.stale_folders.begin(), plan.stale_folders.end(), [](const std::string& a, const std::string& b) {
     return a.size() > b.size();  // the deepest first
   });
   bool emptied = false;
-  for (const auto& rel : stale_folders) {
+  std::error_code ec;
+  for (const auto& rel : plan.stale_folders) {
     if (fs::remove(out_ / rel, ec)) {
-      m.records.erase(rel);
+      plan.manifest.records.erase(rel);
       emptied = true;
     }
     ec.clear();
   }
-  if (emptied) ec = write_record();  // a failure here leaves records of folders that are gone: dropped next time
-  if (!removed.empty()) {
+  // A failure here leaves records of folders that are gone: dropped next time.
+  if (emptied) (void)write_record(staging_, plan.manifest, plan.record_path);
+}
+
+void OutputFolder::say_removed_and_kept(const CommitPlan& plan) const {
+  if (!plan.removed.empty()) {
     // Said by the top entries of --out: "dem/ (12 files)" rather than every file under it.
     std::vector<std::string> said;
     std::map<std::string, int> under;
-    for (const auto& rel : removed) {
+    for (const auto& rel : plan.removed) {
       const auto slash = rel.find('/');
       if (slash == std::string::npos) said.push_back(rel);
       else if (under[rel.substr(0, slash)]++ == 0) said.push_back(rel.substr(0, slash) + "/");
@@ -732,18 +698,11 @@ void OutputFolder::commit() {
                                       out_.string(), command_, fmt::join(said, ", ")))
               << "\n";
   }
-  for (const auto& rel : kept)
+  for (const auto& rel : plan.kept)
     std::cerr << one_line(fmt::format("chutelab: kept {}: an earlier {} wrote it, but it was changed since, so it is "
                                       "left as it is",
                                       (out_ / rel).string(), command_))
               << "\n";
-  fs::remove_all(staging_, ec);
-  auto& r = registry();
-  for (auto it = r.begin(); it != r.end(); ++it)
-    if (*it == staging_) {
-      r.erase(it);
-      break;
-    }
 }
 
 }  // namespace chutelab

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "core/output_manifest.h"
+#include "core/temporaries.h"
 
 namespace chutelab {
 
@@ -81,6 +82,17 @@ class OutputFolder {
   void check_not_input(const std::filesystem::path& dest, bool is_dir) const;
   const OutputManifest& manifest() const;
   void open_staging(const std::filesystem::path& dir, bool inside, const std::string& flag);
+  // commit()'s steps (output_folder.cpp): what is to be moved, checked before anything moves, then
+  // placed all or none, then tidied and said.
+  struct CommitPlan;
+  std::vector<std::string> staged_files() const;
+  void plan_staged_files(CommitPlan& plan) const;
+  void plan_earlier_files(CommitPlan& plan) const;
+  void check_datasets_whole(const CommitPlan& plan) const;
+  void plan_named_files(CommitPlan& plan) const;
+  void place(CommitPlan& plan);
+  void remove_stale_folders(CommitPlan& plan);
+  void say_removed_and_kept(const CommitPlan& plan) const;
   std::filesystem::path out_, staging_;
   bool folder_ = true;  // false: no --out, only named files
   std::vector<Named> named_;
@@ -101,18 +113,5 @@ void sweep_dead_staging(const std::filesystem::path& out);
 // The same path test used by OutputFolder, for commands that must refuse before doing work:
 // weakly canonical, symlinks resolved; a symlink loop or unreadable path is an InputError naming it.
 std::filesystem::path resolved_path(const std::filesystem::path& p, std::string_view field);
-
-// Temporary paths removed when a signal ends the process (install_interrupt_cleanup()).
-void register_temporary(const std::filesystem::path& p);
-void unregister_temporary(const std::filesystem::path& p);
-// Catches every signal that would end the process and can be caught (SIGHUP, SIGINT, SIGQUIT,
-// SIGTERM, SIGALRM, SIGXCPU, SIGPIPE, ...; call before any thread starts) and handles it on a thread
-// of its own: removes the registered temporaries, says so on stderr, exits 128 + the signal's number
-// (130 for SIGINT, 143 for SIGTERM). SIGKILL's leftovers are swept by the next run (above).
-void install_interrupt_cleanup();
-// The command has said in its one line why it ends: a signal from now on still removes the
-// temporaries and exits, but adds no second line. (Under mpirun, the launcher kills the ranks still
-// finishing once one rank has exited with the same error.)
-void quiet_interrupts();
 
 }  // namespace chutelab
