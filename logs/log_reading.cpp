@@ -71,46 +71,62 @@ double mean_in(const std::vector<double>& t, const std::vector<double>& v, const
   return x.empty() ? 0.0 : m / static_cast<double>(x.size());
 }
 
-}  // namespace
-
-ConditionReading read_condition(const Log& log, const Layout& layout, const std::string& condition,
-                                std::optional<double> recorded_speed, std::optional<double> recorded_flow) {
-  ConditionReading r;
-  r.condition = condition;
-  r.file = log.file;
-  r.dt = log.dt;
-  const auto& t = log.t;
-  const std::size_t ns = t.size();
-  // Each channel in its output unit with the layout's zero.
+// Each channel in its output unit with the layout's zero.
+std::vector<std::vector<double>> scaled_channels(const Log& log, const Layout& layout) {
+  const std::size_t ns = log.t.size();
   std::vector<std::vector<double>> x(layout.channels.size(), std::vector<double>(ns));
   for (std::size_t i = 0; i < layout.channels.size(); ++i) {
     const Channel& c = layout.channels[i];
     for (std::size_t k = 0; k < ns; ++k) x[i][k] = c.gain * (log.raw[i][k] - c.zero);
   }
-  std::vector<std::size_t> pidx;
-  for (std::size_t i = 0; i < layout.channels.size(); ++i)
-    if (plate(layout.channels[i].role)) pidx.push_back(i);
-  const Role load_role = layout.has(Role::normal) ? Role::normal : Role::shear;
-  std::vector<double> load(ns, 0.0);
-  for (std::size_t i : pidx)
-    if (layout.channels[i].role == load_role)
-      for (std::size_t k = 0; k < ns; ++k) load[k] += x[i][k];
-  r.segments = find_segments(t, load);
-  for (const auto& w : r.segments.warnings) r.warnings.push_back(w);
-  const LogSegments& sg = r.segments;
-  if (!sg.loaded || !sg.window.ok()) return r;
-  const Span win = sg.window;
-  const double tc = win.centre();
+  return x;
+}
 
-  // The zeros: tares before and after, a line between their centres.
+// The plate's channels and its load: R_n, or R_s without normal cells.
+struct PlateLoad {
+  std::vector<std::size_t> idx;  // the plate's channels in the layout
+  Role load_role = Role::normal;
+  std::vector<double> load;  // the load's series as logged
+};
+
+PlateLoad plate_load(const Layout& layout, const std::vector<std::vector<double>>& x, std::size_t ns) {
+  PlateLoad p;
+  for (std::size_t i = 0; i < layout.channels.size(); ++i)
+    if (plate(layout.channels[i].role)) p.idx.push_back(i);
+  p.load_role = layout.has(Role::normal) ? Role::normal : Role::shear;
+  p.load.assign(ns, 0.0);
+  for (std::size_t i : p.idx)
+    if (layout.channels[i].role == p.load_role)
+      for (std::size_t k = 0; k < ns; ++k) p.load[k] += x[i][k];
+  return p;
+}
+
+// The plate channels with their zeros taken off, and what the zeros leave in the uncertainty.
+struct Zeroed {
+  std::vector<std::vector<double>> y;  // zero-corrected plate channels
+  std::vector<double> u_zero_at_c, dof_zero;
+  double t_b = 0.0, t_a = 0.0;        // the tares' centres
+  double zsum_b = 0.0, zsum_a = 0.0;  // the load's zero at them
+};
+
+// The zeros: tares before and after, a line between their centres. Adds each channel's zero and
+// its warnings to r.
+Zeroed take_zeros(const std::vector<double>& t, const Layout& layout, const PlateLoad& cells,
+                  const std::vector<std::vector<double>>& x, ConditionReading& r) {
+  const LogSegments& sg = r.segments;
+  const std::size_t ns = t.size(), np = cells.idx.size();
+  const double tc = sg.window.centre();
   const bool zb = sg.before.ok(), za = sg.after.ok();
-  const double t_b = zb ? sg.before.centre() : tc, t_a = za ? sg.after.centre() : tc;
-  std::vector<std::vector<double>> y(pidx.size());  // zero-corrected plate channels
-  std::vector<double> u_zero_at_c(pidx.size(), 0.0), dof_zero(pidx.size(), kInfiniteDof);
-  double zsum_b = 0.0, zsum_a = 0.0;
-  for (std::size_t j = 0; j < pidx.size(); ++j) {
-    const Channel& c = layout.channels[pidx[j]];
-    const auto& xi = x[pidx[j]];
+  Zeroed out;
+  out.t_b = zb ? sg.before.centre() : tc;
+  out.t_a = za ? sg.after.centre() : tc;
+  const double t_b = out.t_b, t_a = out.t_a;
+  out.y.resize(np);
+  out.u_zero_at_c.assign(np, 0.0);
+  out.dof_zero.assign(np, kInfiniteDof);
+  for (std::size_t j = 0; j < np; ++j) {
+    const Channel& c = layout.channels[cells.idx[j]];
+    const auto& xi = x[cells.idx[j]];
     ChannelZero z;
     z.column = c.column;
     CorrelatedMean mb, ma;
@@ -138,13 +154,13 @@ ConditionReading read_condition(const Log& log, const Layout& layout, const std:
       return z.before + (z.after - z.before) * (s - t_b) / span;
     };
     const double a = (okb && oka && span > 0.0) ? std::clamp((tc - t_b) / span, 0.0, 1.0) : 0.0;
-    u_zero_at_c[j] = (okb && oka) ? std::hypot((1.0 - a) * z.u_before, a * z.u_after) : z.u_before;
-    dof_zero[j] = okb && oka ? z.dof : (okb ? mb.dof : (oka ? ma.dof : kInfiniteDof));
-    y[j].resize(ns);
-    for (std::size_t k = 0; k < ns; ++k) y[j][k] = xi[k] - zero_at(t[k]);
-    if (c.role == load_role) {
-      zsum_b += zero_at(t_b);
-      zsum_a += zero_at(t_a);
+    out.u_zero_at_c[j] = (okb && oka) ? std::hypot((1.0 - a) * z.u_before, a * z.u_after) : z.u_before;
+    out.dof_zero[j] = okb && oka ? z.dof : (okb ? mb.dof : (oka ? ma.dof : kInfiniteDof));
+    out.y[j].resize(ns);
+    for (std::size_t k = 0; k < ns; ++k) out.y[j][k] = xi[k] - zero_at(t[k]);
+    if (c.role == cells.load_role) {
+      out.zsum_b += zero_at(t_b);
+      out.zsum_a += zero_at(t_a);
     }
     if (z.from_layout)
       r.warnings.push_back(fmt::format("{}: no unloaded part to take its zero from; the layout's zero is used, unchecked",
@@ -155,112 +171,144 @@ ConditionReading read_condition(const Log& log, const Layout& layout, const std:
           c.column, z.drift, z.u_drift, t_b, t_a));
     r.zeros.push_back(z);
   }
+  return out;
+}
 
-  // The channels' window means and the quantities' gradients with respect to them.
-  std::vector<double> m(pidx.size());
-  for (std::size_t j = 0; j < pidx.size(); ++j) m[j] = mean_in(t, y[j], win);
-  const PlateQuantities pq = plate_quantities(layout, pidx);
-  const std::vector<double> f0 = pq.f(m);
-  std::vector<std::vector<double>> grad(f0.size(), std::vector<double>(pidx.size()));
-  for (std::size_t j = 0; j < pidx.size(); ++j) {
-    const double h = std::max(1e-6, 1e-6 * std::abs(m[j]));
-    std::vector<double> mp = m, mm = m;
+// The channels' window means, the quantities there, their gradients with respect to the means, and
+// each quantity's series linearised about them.
+struct Linearised {
+  std::vector<double> m;
+  PlateQuantities pq;
+  std::vector<double> f0;
+  std::vector<std::vector<double>> grad;    // [quantity][channel]
+  std::vector<std::vector<double>> series;  // [quantity][sample]
+};
+
+Linearised linearise(const std::vector<double>& t, const Layout& layout, const PlateLoad& cells, const Zeroed& zeroed,
+                     const Span& win) {
+  const std::size_t ns = t.size(), np = cells.idx.size();
+  Linearised l;
+  l.m.resize(np);
+  for (std::size_t j = 0; j < np; ++j) l.m[j] = mean_in(t, zeroed.y[j], win);
+  l.pq = plate_quantities(layout, cells.idx);
+  l.f0 = l.pq.f(l.m);
+  l.grad.assign(l.f0.size(), std::vector<double>(np));
+  for (std::size_t j = 0; j < np; ++j) {
+    const double h = std::max(1e-6, 1e-6 * std::abs(l.m[j]));
+    std::vector<double> mp = l.m, mm = l.m;
     mp[j] += h;
     mm[j] -= h;
-    const auto fp = pq.f(mp), fm = pq.f(mm);
-    for (std::size_t q = 0; q < f0.size(); ++q) grad[q][j] = (fp[q] - fm[q]) / (2.0 * h);
+    const auto fp = l.pq.f(mp), fm = l.pq.f(mm);
+    for (std::size_t q = 0; q < l.f0.size(); ++q) l.grad[q][j] = (fp[q] - fm[q]) / (2.0 * h);
   }
-
-  // Each quantity's linearised series.
-  std::vector<std::vector<double>> series(f0.size(), std::vector<double>(ns));
-  for (std::size_t q = 0; q < f0.size(); ++q)
+  l.series.assign(l.f0.size(), std::vector<double>(ns));
+  for (std::size_t q = 0; q < l.f0.size(); ++q)
     for (std::size_t k = 0; k < ns; ++k) {
-      double v = f0[q];
-      for (std::size_t j = 0; j < pidx.size(); ++j) v += grad[q][j] * (y[j][k] - m[j]);
-      series[q][k] = v;
+      double v = l.f0[q];
+      for (std::size_t j = 0; j < np; ++j) v += l.grad[q][j] * (zeroed.y[j][k] - l.m[j]);
+      l.series[q][k] = v;
     }
-  // Creep is judged on the plate's load (R_n, or R_s without normal cells), where it stands
-  // clearest above the noise; the cells are taken to creep alike, by the same fraction of their
-  // load a second, so a creep found there corrects every force by that fraction and leaves the
-  // impact point (a ratio of forces) as it is.
-  const Quantity load_q = load_role == Role::normal ? Quantity::normal_force : Quantity::shear_force;
-  double kappa = 0.0, u_kappa = 0.0, kappa_dof = kInfiniteDof;
-  bool creep = false;
-  const double lever = tc - sg.load_start;
-  for (std::size_t q = 0; q < f0.size(); ++q) {
-    if (pq.names[q] != load_q) continue;
-    const CorrelatedMean st = correlated_mean(t, series[q], win.start, win.end);
-    if (st.blocks >= 3 && std::isfinite(st.se_slope) && st.se_slope > 0.0 && f0[q] != 0.0) {
-      creep = std::abs(st.slope) > t_quantile(kFlagAlpha, st.slope_dof) * st.se_slope;
+  return l;
+}
+
+// The load's creep: a fraction of the load at its start per second.
+struct Creep {
+  bool found = false;
+  double kappa = 0.0, u_kappa = 0.0, dof = kInfiniteDof;
+  double lever = 0.0;  // from the load's start to the window's centre, s
+};
+
+// Creep is judged on the plate's load (R_n, or R_s without normal cells), where it stands
+// clearest above the noise; the cells are taken to creep alike, by the same fraction of their
+// load a second, so a creep found there corrects every force by that fraction and leaves the
+// impact point (a ratio of forces) as it is.
+Creep find_creep(const std::vector<double>& t, const PlateLoad& cells, const Linearised& l, const LogSegments& sg) {
+  const Span& win = sg.window;
+  const Quantity load_q = cells.load_role == Role::normal ? Quantity::normal_force : Quantity::shear_force;
+  Creep c;
+  c.lever = win.centre() - sg.load_start;
+  for (std::size_t q = 0; q < l.f0.size(); ++q) {
+    if (l.pq.names[q] != load_q) continue;
+    const CorrelatedMean st = correlated_mean(t, l.series[q], win.start, win.end);
+    if (st.blocks >= 3 && std::isfinite(st.se_slope) && st.se_slope > 0.0 && l.f0[q] != 0.0) {
+      c.found = std::abs(st.slope) > t_quantile(kFlagAlpha, st.slope_dof) * st.se_slope;
       // The fraction per second relative to the load at its start.
-      const double at_start = f0[q] - st.slope * lever;
-      kappa = st.slope / at_start;
-      u_kappa = st.se_slope / std::abs(at_start);
-      kappa_dof = st.slope_dof;
+      const double at_start = l.f0[q] - st.slope * c.lever;
+      c.kappa = st.slope / at_start;
+      c.u_kappa = st.se_slope / std::abs(at_start);
+      c.dof = st.slope_dof;
     }
   }
+  return c;
+}
 
-  for (std::size_t q = 0; q < f0.size(); ++q) {
-    QuantityReading qr;
-    qr.quantity = pq.names[q];
-    qr.stats = correlated_mean(t, series[q], win.start, win.end);
-    qr.value = f0[q];
-    std::vector<UncertaintyPart> parts;
-    double scatter = qr.stats.se, scatter_dof_used = qr.stats.dof;
-    if (qr.stats.blocks >= 3 && std::isfinite(qr.stats.se_slope)) {
-      qr.creep_change = qr.stats.slope * win.length();
-      qr.creep_u = qr.stats.se_slope * win.length();
-    }
-    const bool force = qr.quantity != Quantity::impact_point_y;
-    if (creep && force) {
-      qr.creep = true;
-      const CorrelatedMean d = correlated_mean(t, series[q], win.start, win.end, true);
-      // value = at_start (1 + kappa lever): the load at its start is value / (1 + kappa lever).
-      const double at_start = qr.value / (1.0 + kappa * lever);
-      qr.creep_correction = at_start - qr.value;
-      qr.value = at_start;
-      scatter = d.se;
-      scatter_dof_used = d.dof;
-      parts.push_back({"creep", std::abs(at_start) * u_kappa * lever, kappa_dof});
-      r.warnings.push_back(fmt::format(
-          "{}: creeps by {:+.4g} ± {:.2g} {} over the window ({:.1f}-{:.1f} s, {:+.2f} % a second of the load); "
-          "corrected back to the load's start at {:.1f} s ({:+.4g} {})",
-          name(qr.quantity), qr.creep_change * info(qr.quantity).to_boundary, qr.creep_u * info(qr.quantity).to_boundary,
-          info(qr.quantity).unit, win.start, win.end, 100.0 * kappa, sg.load_start,
-          qr.creep_correction * info(qr.quantity).to_boundary, info(qr.quantity).unit));
-    }
-    parts.insert(parts.begin(), {"scatter", std::isfinite(scatter) ? scatter : 0.0, scatter_dof_used});
-    double u_zero2 = 0.0, s4 = 0.0, u_cal2 = 0.0, u_res2 = 0.0;
-    for (std::size_t j = 0; j < pidx.size(); ++j) {
-      const Channel& c = layout.channels[pidx[j]];
-      const double zj = grad[q][j] * u_zero_at_c[j];
-      u_zero2 += zj * zj;
-      if (std::isfinite(dof_zero[j]) && dof_zero[j] > 0.0) s4 += std::pow(zj, 4) / dof_zero[j];
-      const double cj = grad[q][j] * m[j] * c.gain_u;
-      u_cal2 += cj * cj;
-      // The logger's step: rectangular, averaged down over the independent samples only when the
-      // noise is larger than the step (otherwise every sample rounds alike).
-      const double step = std::abs(c.gain) * c.resolution / std::sqrt(12.0);
-      const double sd_j = qr.stats.sd;  // the quantity's scatter stands in for the channel's
-      const double rj = grad[q][j] * step / ((sd_j > std::abs(c.gain) * c.resolution) ? std::sqrt(qr.stats.n_eff) : 1.0);
-      u_res2 += rj * rj;
-    }
-    if (u_zero2 > 0.0) parts.push_back({"zero", std::sqrt(u_zero2), s4 > 0.0 ? u_zero2 * u_zero2 / s4 : kInfiniteDof});
-    if (u_cal2 > 0.0) parts.push_back({"calibration", std::sqrt(u_cal2), kInfiniteDof});
-    if (u_res2 > 0.0) parts.push_back({"resolution", std::sqrt(u_res2), kInfiniteDof});
-    qr.budget = combine(parts);
-    if (qr.budget.too_short)
-      r.warnings.push_back(fmt::format(
-          "{}: the log is too short to say its own uncertainty: {:.1f} effective degrees of freedom ({} batches of {:.2f} s, "
-          "{:.1f} independent samples); u widened x{:.2f} to {:.3g} {}",
-          name(qr.quantity), qr.budget.dof, qr.stats.blocks, qr.stats.block, qr.stats.n_eff, qr.budget.widening,
-          qr.budget.u * info(qr.quantity).to_boundary, info(qr.quantity).unit));
-    if (qr.quantity == (load_role == Role::normal ? Quantity::normal_force : Quantity::shear_force))
-      r.trend_slope = qr.stats.slope;
-    r.quantities.push_back(std::move(qr));
+// Quantity q's reading: its value (corrected for creep) and its uncertainty budget (scatter, creep,
+// zero, calibration, resolution). Adds its warnings to r.
+QuantityReading read_quantity(std::size_t q, const std::vector<double>& t, const Layout& layout, const PlateLoad& cells,
+                              const Zeroed& zeroed, const Linearised& l, const Creep& creep, ConditionReading& r) {
+  const Span& win = r.segments.window;
+  QuantityReading qr;
+  qr.quantity = l.pq.names[q];
+  qr.stats = correlated_mean(t, l.series[q], win.start, win.end);
+  qr.value = l.f0[q];
+  std::vector<UncertaintyPart> parts;
+  double scatter = qr.stats.se, scatter_dof_used = qr.stats.dof;
+  if (qr.stats.blocks >= 3 && std::isfinite(qr.stats.se_slope)) {
+    qr.creep_change = qr.stats.slope * win.length();
+    qr.creep_u = qr.stats.se_slope * win.length();
   }
+  const bool force = qr.quantity != Quantity::impact_point_y;
+  if (creep.found && force) {
+    qr.creep = true;
+    const CorrelatedMean d = correlated_mean(t, l.series[q], win.start, win.end, true);
+    // value = at_start (1 + kappa lever): the load at its start is value / (1 + kappa lever).
+    const double at_start = qr.value / (1.0 + creep.kappa * creep.lever);
+    qr.creep_correction = at_start - qr.value;
+    qr.value = at_start;
+    scatter = d.se;
+    scatter_dof_used = d.dof;
+    parts.push_back({"creep", std::abs(at_start) * creep.u_kappa * creep.lever, creep.dof});
+    r.warnings.push_back(fmt::format(
+        "{}: creeps by {:+.4g} ± {:.2g} {} over the window ({:.1f}-{:.1f} s, {:+.2f} % a second of the load); "
+        "corrected back to the load's start at {:.1f} s ({:+.4g} {})",
+        name(qr.quantity), qr.creep_change * info(qr.quantity).to_boundary, qr.creep_u * info(qr.quantity).to_boundary,
+        info(qr.quantity).unit, win.start, win.end, 100.0 * creep.kappa, r.segments.load_start,
+        qr.creep_correction * info(qr.quantity).to_boundary, info(qr.quantity).unit));
+  }
+  parts.insert(parts.begin(), {"scatter", std::isfinite(scatter) ? scatter : 0.0, scatter_dof_used});
+  double u_zero2 = 0.0, s4 = 0.0, u_cal2 = 0.0, u_res2 = 0.0;
+  for (std::size_t j = 0; j < cells.idx.size(); ++j) {
+    const Channel& c = layout.channels[cells.idx[j]];
+    const double zj = l.grad[q][j] * zeroed.u_zero_at_c[j];
+    u_zero2 += zj * zj;
+    if (std::isfinite(zeroed.dof_zero[j]) && zeroed.dof_zero[j] > 0.0) s4 += std::pow(zj, 4) / zeroed.dof_zero[j];
+    const double cj = l.grad[q][j] * l.m[j] * c.gain_u;
+    u_cal2 += cj * cj;
+    // The logger's step: rectangular, averaged down over the independent samples only when the
+    // noise is larger than the step (otherwise every sample rounds alike).
+    const double step = std::abs(c.gain) * c.resolution / std::sqrt(12.0);
+    const double sd_j = qr.stats.sd;  // the quantity's scatter stands in for the channel's
+    const double rj = l.grad[q][j] * step / ((sd_j > std::abs(c.gain) * c.resolution) ? std::sqrt(qr.stats.n_eff) : 1.0);
+    u_res2 += rj * rj;
+  }
+  if (u_zero2 > 0.0) parts.push_back({"zero", std::sqrt(u_zero2), s4 > 0.0 ? u_zero2 * u_zero2 / s4 : kInfiniteDof});
+  if (u_cal2 > 0.0) parts.push_back({"calibration", std::sqrt(u_cal2), kInfiniteDof});
+  if (u_res2 > 0.0) parts.push_back({"resolution", std::sqrt(u_res2), kInfiniteDof});
+  qr.budget = combine(parts);
+  if (qr.budget.too_short)
+    r.warnings.push_back(fmt::format(
+        "{}: the log is too short to say its own uncertainty: {:.1f} effective degrees of freedom ({} batches of {:.2f} s, "
+        "{:.1f} independent samples); u widened x{:.2f} to {:.3g} {}",
+        name(qr.quantity), qr.budget.dof, qr.stats.blocks, qr.stats.block, qr.stats.n_eff, qr.budget.widening,
+        qr.budget.u * info(qr.quantity).to_boundary, info(qr.quantity).unit));
+  return qr;
+}
 
-  // The belt's own channels against the record.
+// The belt's own channels against the record: added to r.checks, a warning when they disagree.
+void check_operating_channels(const std::vector<double>& t, const Layout& layout, const std::vector<std::vector<double>>& x,
+                              std::optional<double> recorded_speed, std::optional<double> recorded_flow,
+                              ConditionReading& r) {
+  const Span& win = r.segments.window;
   for (std::size_t i = 0; i < layout.channels.size(); ++i) {
     const Channel& c = layout.channels[i];
     if (plate(c.role)) continue;
@@ -286,17 +334,44 @@ ConditionReading read_condition(const Log& log, const Layout& layout, const std:
           ck.logged * shown_scale, ck.u * shown_scale, unit(c.role), 100.0 * ck.relative()));
     r.checks.push_back(ck);
   }
+}
+
+}  // namespace
+
+ConditionReading read_condition(const Log& log, const Layout& layout, const std::string& condition,
+                                std::optional<double> recorded_speed, std::optional<double> recorded_flow) {
+  ConditionReading r;
+  r.condition = condition;
+  r.file = log.file;
+  r.dt = log.dt;
+  const auto& t = log.t;
+  const auto x = scaled_channels(log, layout);
+  const PlateLoad cells = plate_load(layout, x, t.size());
+  r.segments = find_segments(t, cells.load);
+  for (const auto& w : r.segments.warnings) r.warnings.push_back(w);
+  if (!r.segments.loaded || !r.segments.window.ok()) return r;
+
+  const Zeroed zeroed = take_zeros(t, layout, cells, x, r);
+  const Linearised l = linearise(t, layout, cells, zeroed, r.segments.window);
+  const Creep creep = find_creep(t, cells, l, r.segments);
+  const Quantity load_q = cells.load_role == Role::normal ? Quantity::normal_force : Quantity::shear_force;
+  for (std::size_t q = 0; q < l.f0.size(); ++q) {
+    QuantityReading qr = read_quantity(q, t, layout, cells, zeroed, l, creep, r);
+    if (qr.quantity == load_q) r.trend_slope = qr.stats.slope;
+    r.quantities.push_back(std::move(qr));
+  }
+  check_operating_channels(t, layout, x, recorded_speed, recorded_flow, r);
 
   // The chart: the load as logged, thinned to about 600 points.
-  const std::size_t stride = std::max<std::size_t>(1, ns / 600);
-  for (std::size_t k = 0; k < ns; k += stride) {
+  const std::size_t stride = std::max<std::size_t>(1, t.size() / 600);
+  for (std::size_t k = 0; k < t.size(); k += stride) {
     r.chart_t.push_back(t[k]);
-    r.chart_load.push_back(load[k]);
+    r.chart_load.push_back(cells.load[k]);
   }
-  r.zero_t0 = t_b;
-  r.zero_t1 = t_a;
-  r.zero_v0 = zsum_b;
-  r.zero_v1 = zsum_a;
+  r.zero_t0 = zeroed.t_b;
+  r.zero_t1 = zeroed.t_a;
+  r.zero_v0 = zeroed.zsum_b;
+  r.zero_v1 = zeroed.zsum_a;
   return r;
 }
 
