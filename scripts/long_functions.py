@@ -2,11 +2,11 @@
 """Lists the functions and source files of chutelab's library code that are too long (issue 52's
 "no function over 150 lines, no library source file over 800 lines").
 
-Usage: scripts/long_functions.py [--functions N] [--files N] [--check] [DIR ...]
+Usage: scripts/long_functions.py [--functions N] [--files N] [--check] [DIR|FILE ...]
   --functions N  report function bodies longer than N lines (default 150)
   --files N      report .cpp/.h files longer than N lines (default 800)
   --check        exit 1 when anything is reported (a check for CI or a test)
-  DIR            folders to scan (default: the library folders, tests/ and bench/ excluded)
+  DIR            folders or files to scan (default: the library folders; tests/ and bench/ are not)
 
 A function's length is counted from the line of its opening brace to the line of its closing brace,
 as an editor shows it. The scan is lexical, not a C++ parser: comments, strings and character
@@ -120,7 +120,8 @@ def main():
     args = parser.parse_args()
     long_functions, long_files = [], []
     for d in args.dirs:
-        for path in sorted((ROOT / d).rglob("*")):
+        top = ROOT / d
+        for path in [top] if top.is_file() else sorted(top.rglob("*")):
             if path.suffix not in SOURCE or not path.is_file():
                 continue
             rel = path.relative_to(ROOT)

@@ -355,11 +355,10 @@ std::vector<DigitisedCurve> read_digitised(const fs::path& file) {
   return ext == ".json" ? read_wpd_json(file) : read_wpd_csv(file);
 }
 
-DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
-                                 const std::vector<DigitisedCurve>& curves) {
-  const std::string mfile = mapping_path.string();
-  toml::table doc = read_toml_file(mfile, "mapping");
-  static const toml::table empty;
+namespace {
+
+// The mapping's top level: only source, [defaults] and [[curve]]. Returns [defaults] (null if none).
+const toml::table* checked_top_level(const std::string& mfile, toml::table& doc) {
   const toml::table* defaults = doc["defaults"].as_table();
   Mapping top(mfile, doc, "", nullptr);
   for (const auto& [k, n] : doc)
@@ -371,25 +370,233 @@ DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
     Mapping(mfile, *defaults, "defaults", nullptr)
         .only({"x_unit", "y_unit", "uncertainty", "uncertainty_px", "x_offset_mm", "y_offset_mm",
                "match_tolerance"});
-  const toml::array* list = doc["curve"].as_array();
-  if (!list || list->empty()) throw InputError(mfile, 0, "curve", "no [[curve]] tables: nothing to import");
+  return defaults;
+}
 
-  DigitisedImport out;
-  if (auto s = doc["source"].value<std::string>()) out.source = *s;
-
-  // Curves by name; a name twice in the inputs would make the mapping ambiguous.
+// Curves by name; a name twice in the inputs would make the mapping ambiguous.
+std::map<std::string, const DigitisedCurve*> curves_by_name(const std::vector<DigitisedCurve>& curves) {
   std::map<std::string, const DigitisedCurve*> by_name;
   for (const auto& c : curves)
     if (auto [it, fresh] = by_name.emplace(c.name, &c); !fresh)
       throw InputError(c.where.file, c.where.line, c.name,
                        fmt::format("a second curve named '{}' (first in {}:{})", c.name, it->second->where.file,
                                    it->second->where.line));
+  return by_name;
+}
 
-  std::set<std::pair<std::string, Quantity>> have_q;
-  for (const auto& m : d.measurements) have_q.insert({m.condition, m.quantity});
-  std::set<std::tuple<std::string, Boundary, double>> have_t;
-  for (const auto& p : d.trajectory) have_t.insert({p.condition, p.boundary, p.x});
-  std::set<std::string> used;
+// What the dataset and the curves mapped so far hold, so that nothing is given twice.
+struct Taken {
+  std::set<std::pair<std::string, Quantity>> quantities;
+  std::set<std::tuple<std::string, Boundary, double>> trajectory;
+  std::set<std::string> curves;  // the names of the curves mapped
+};
+
+// One [[curve]] table with its digitised curve and its digitising uncertainty.
+struct MappedCurve {
+  const toml::table& table;
+  const Mapping& m;
+  const DigitisedCurve& curve;
+  std::string name;
+  std::optional<double> u_given, u_px;
+  // One standard deviation of a digitised y in y_unit; both kinds given add in quadrature.
+  double uncertainty_at(double y) const {
+    const double a = u_given.value_or(0.0), b = u_px ? curve.pixel->y_units(y, *u_px) : 0.0;
+    return std::sqrt(a * a + b * b);
+  }
+};
+
+const std::string& known_condition(const Dataset& d, const Mapping& m, std::string_view key, const std::string& c) {
+  if (!d.station(c)) m.fail(key, fmt::format("condition '{}' is not in conditions.csv", c));
+  return c;
+}
+
+// The curve table k names, and its uncertainty.
+MappedCurve mapped_curve(const std::string& mfile, const toml::table& ct, std::size_t k, const Mapping& m,
+                         const std::map<std::string, const DigitisedCurve*>& by_name, Taken& taken) {
+  const auto name = m.text("name");
+  if (!name) m.fail("name", "is required: the curve's dataset name in the digitiser's export");
+  const auto it = by_name.find(*name);
+  if (it == by_name.end()) {
+    std::vector<std::string> known;
+    for (const auto& [n, c] : by_name) known.push_back("'" + n + "'");
+    m.fail("name", fmt::format("no curve named '{}' in the inputs (found: {})", *name, fmt::join(known, ", ")));
+  }
+  if (!taken.curves.insert(*name).second) m.fail("name", fmt::format("curve '{}' is mapped twice", *name));
+  const DigitisedCurve& curve = *it->second;
+  if (curve.points.empty()) m.fail("name", fmt::format("curve '{}' has no points", *name));
+  // A curve that states its own uncertainty (either kind) replaces the defaults' (both kinds):
+  // mixing one from [defaults] with another from the curve would add a different figure's.
+  const bool own_u = ct.contains("uncertainty") || ct.contains("uncertainty_px");
+  const Mapping own(mfile, ct, fmt::format("curve[{}]", k), nullptr);
+  const Mapping& um = own_u ? own : m;
+  MappedCurve c{ct, m, curve, *name, um.number("uncertainty"), um.number("uncertainty_px")};
+  if (!c.u_given && !c.u_px)
+    m.fail("uncertainty", "is required: the digitising uncertainty (one standard deviation of y, in y_unit, "
+                          "0 = unknown; or uncertainty_px in pixels)");
+  if (c.u_given && *c.u_given < 0.0) m.fail("uncertainty", "cannot be negative");
+  if (c.u_px && *c.u_px < 0.0) m.fail("uncertainty_px", "cannot be negative");
+  if (c.u_px && !curve.pixel)
+    m.fail("uncertainty_px", fmt::format("curve '{}' has no pixel calibration (only a project JSON on XY axes "
+                                         "has one); give uncertainty in y_unit",
+                                         *name));
+  return c;
+}
+
+// A stream boundary's curve: its points into trajectory.csv.
+void map_trajectory_curve(const Dataset& d, const MappedCurve& c, Taken& taken, DigitisedImport& out) {
+  const Mapping& m = c.m;
+  for (const char* key : {"condition_by", "conditions", "match_tolerance"})
+    if (c.table.contains(key)) m.fail(key, "applies to quantity curves only");
+  const auto cond = m.text("condition");
+  if (!cond) m.fail("condition", "is required for a stream boundary");
+  known_condition(d, m, "condition", *cond);
+  const auto b = parse_boundary(*m.text("boundary"));
+  if (!b) m.fail("boundary", fmt::format("unknown boundary '{}' (upper, lower, centre)", *m.text("boundary")));
+  const Unit& ux = m.unit("x_unit", Dimension::length);
+  const Unit& uy = m.unit("y_unit", Dimension::length);
+  const double x0 = m.number("x_offset_mm").value_or(0.0) * units::mm;
+  const double y0 = m.number("y_offset_mm").value_or(0.0) * units::mm;
+  for (const auto& p : c.curve.points) {
+    TrajectoryPoint t;
+    t.condition = *cond;
+    t.boundary = *b;
+    // Rounded as trajectory.csv will hold it, so that duplicates are found as the reader finds them.
+    t.x = std::round((p.x * ux.to_si + x0) * 1e9) / 1e9;
+    t.y = p.y * uy.to_si + y0;
+    if (const double u = c.uncertainty_at(p.y); u > 0.0) t.uncertainty = u * uy.to_si;
+    t.where = p.where;
+    if (!taken.trajectory.insert({t.condition, t.boundary, t.x}).second)
+      throw InputError(p.where.file, p.where.line, p.field,
+                       fmt::format("a second {} point of '{}' at x = {} mm", chutelab::name(*b), *cond, t.x * 1e3));
+    out.trajectory.push_back(t);
+  }
+  out.summary.push_back(fmt::format("{} ({}:{}): {} points -> trajectory {} {}", c.name, c.curve.where.file,
+                                    c.curve.where.line, c.curve.points.size(), *cond, chutelab::name(*b)));
+}
+
+// The condition whose condition_by column is each point's x (among the listed conditions, or all).
+std::vector<std::string> conditions_by_column(const Dataset& d, const MappedCurve& c) {
+  const Mapping& m = c.m;
+  const auto by = m.text("condition_by");
+  if (!by) m.fail("condition_by", "is required: which conditions.csv column the x axis is (or condition = ...)");
+  const ConditionColumn* col = nullptr;
+  for (const auto& cc : condition_columns())
+    if (cc.name == *by) col = &cc;
+  if (!col) {
+    std::vector<std::string> known;
+    for (const auto& cc : condition_columns()) known.emplace_back(cc.name);
+    m.fail("condition_by", fmt::format("'{}' is not a column a figure's x axis can be (use {})", *by,
+                                       fmt::join(known, ", ")));
+  }
+  const Unit& ux = m.unit("x_unit", col->dimension);
+  std::vector<const Station*> candidates;
+  if (const toml::node* cl = m.node("conditions")) {
+    const toml::array* a = cl->as_array();
+    if (!a) m.fail("conditions", "must be a list of condition names");
+    for (const auto& e : *a) {
+      const auto s = e.value<std::string>();
+      if (!s) m.fail("conditions", "must be a list of condition names");
+      candidates.push_back(d.station(known_condition(d, m, "conditions", *s)));
+    }
+  } else {
+    for (const auto& s : d.stations) candidates.push_back(&s);
+  }
+  const auto tol = m.number("match_tolerance");
+  if (tol && !(*tol > 0.0)) m.fail("match_tolerance", "must be positive");
+  std::vector<std::string> cond_of(c.curve.points.size());
+  for (std::size_t i = 0; i < c.curve.points.size(); ++i) {
+    const auto& p = c.curve.points[i];
+    const double x = p.x * ux.to_si * col->to_boundary;  // in the column's unit
+    std::vector<std::pair<double, const Station*>> near;
+    for (const Station* s : candidates) {
+      const auto v = col->value(*s);
+      if (!v) continue;
+      const double vb = *v * col->to_boundary;
+      const double limit = tol ? *tol : 0.05 * std::abs(vb);
+      if (std::abs(x - vb) <= limit) near.emplace_back(std::abs(x - vb), s);
+    }
+    if (near.empty())
+      throw InputError(p.where.file, p.where.line, p.field,
+                       fmt::format("x = {} {} is no condition's {} (within {})", p.x, ux.name, col->name,
+                                   tol ? fmt::format("{}", *tol) : std::string("5 %")));
+    if (near.size() > 1) {
+      std::vector<std::string> names;
+      for (const auto& [dist, s] : near) names.push_back(s->condition);
+      throw InputError(p.where.file, p.where.line, p.field,
+                       fmt::format("x = {} {} matches {} by {}: list the curve's conditions in the mapping",
+                                   p.x, ux.name, fmt::join(names, " and "), col->name));
+    }
+    cond_of[i] = near.front().second->condition;
+  }
+  return cond_of;
+}
+
+// A quantity's curve: its points into measurements.csv, each at its condition.
+void map_quantity_curve(const Dataset& d, const MappedCurve& c, Taken& taken, DigitisedImport& out) {
+  const Mapping& m = c.m;
+  for (const char* key : {"x_offset_mm", "y_offset_mm"})
+    if (c.table.contains(key)) m.fail(key, "applies to stream boundaries only");
+  const auto q = parse_quantity(*m.text("quantity"));
+  if (!q) {
+    std::vector<std::string> known;
+    for (Quantity x : kAllQuantities) known.emplace_back(chutelab::name(x));
+    m.fail("quantity", fmt::format("unknown quantity '{}' (known: {})", *m.text("quantity"), fmt::join(known, ", ")));
+  }
+  const Unit& uy = m.unit("y_unit", quantity_dimension(*q));
+  const double to_b = info(*q).to_boundary;
+  // Which condition each point is.
+  std::vector<std::string> cond_of;
+  if (const auto one = m.text("condition")) {
+    for (const char* key : {"condition_by", "conditions"})
+      if (c.table.contains(key)) m.fail(key, "give condition (one point) or condition_by, not both");
+    if (c.curve.points.size() != 1)
+      m.fail("condition", fmt::format("curve '{}' has {} points; one condition takes one point (use condition_by)",
+                                      c.name, c.curve.points.size()));
+    cond_of = {known_condition(d, m, "condition", *one)};
+  } else {
+    cond_of = conditions_by_column(d, c);
+  }
+  std::vector<std::string> got;
+  for (std::size_t i = 0; i < c.curve.points.size(); ++i) {
+    const auto& p = c.curve.points[i];
+    Measurement meas;
+    meas.condition = cond_of[i];
+    meas.quantity = *q;
+    meas.value = p.y * uy.to_si;
+    if (const double u = c.uncertainty_at(p.y); u > 0.0) meas.uncertainty = u * uy.to_si;
+    meas.where = p.where;
+    if (info(*q).magnitude && meas.value < 0.0)
+      throw InputError(p.where.file, p.where.line, p.field,
+                       fmt::format("{} is a magnitude and cannot be negative, got {} {}", chutelab::name(*q), p.y,
+                                   uy.name));
+    if (!taken.quantities.insert({meas.condition, meas.quantity}).second)
+      throw InputError(p.where.file, p.where.line, p.field,
+                       fmt::format("{} of condition '{}' is already in the dataset or another curve",
+                                   chutelab::name(*q), meas.condition));
+    got.push_back(fmt::format("{} {:.4g}", meas.condition, meas.value * to_b));
+    out.measurements.push_back(meas);
+  }
+  out.summary.push_back(fmt::format("{} ({}:{}): {} points -> {}: {}", c.name, c.curve.where.file, c.curve.where.line,
+                                    c.curve.points.size(), chutelab::name(*q), fmt::join(got, ", ")));
+}
+
+}  // namespace
+
+DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
+                                 const std::vector<DigitisedCurve>& curves) {
+  const std::string mfile = mapping_path.string();
+  toml::table doc = read_toml_file(mfile, "mapping");
+  static const toml::table empty;
+  const toml::table* defaults = checked_top_level(mfile, doc);
+  const toml::array* list = doc["curve"].as_array();
+  if (!list || list->empty()) throw InputError(mfile, 0, "curve", "no [[curve]] tables: nothing to import");
+
+  DigitisedImport out;
+  if (auto s = doc["source"].value<std::string>()) out.source = *s;
+  const auto by_name = curves_by_name(curves);
+  Taken taken;
+  for (const auto& m : d.measurements) taken.quantities.insert({m.condition, m.quantity});
+  for (const auto& p : d.trajectory) taken.trajectory.insert({p.condition, p.boundary, p.x});
 
   for (std::size_t k = 0; k < list->size(); ++k) {
     const toml::table* ct = (*list)[k].as_table();
@@ -398,174 +605,16 @@ DigitisedImport import_digitised(const Dataset& d, const fs::path& mapping_path,
     m.only({"name", "condition", "boundary", "quantity", "x_unit", "y_unit", "uncertainty", "uncertainty_px",
             "x_offset_mm",
             "y_offset_mm", "condition_by", "conditions", "match_tolerance"});
-    const auto name = m.text("name");
-    if (!name) m.fail("name", "is required: the curve's dataset name in the digitiser's export");
-    const auto it = by_name.find(*name);
-    if (it == by_name.end()) {
-      std::vector<std::string> known;
-      for (const auto& [n, c] : by_name) known.push_back("'" + n + "'");
-      m.fail("name", fmt::format("no curve named '{}' in the inputs (found: {})", *name, fmt::join(known, ", ")));
-    }
-    if (!used.insert(*name).second) m.fail("name", fmt::format("curve '{}' is mapped twice", *name));
-    const DigitisedCurve& curve = *it->second;
-    if (curve.points.empty()) m.fail("name", fmt::format("curve '{}' has no points", *name));
-    auto known_condition = [&](std::string_view key, const std::string& c) {
-      if (!d.station(c)) m.fail(key, fmt::format("condition '{}' is not in conditions.csv", c));
-      return c;
-    };
-    // A curve that states its own uncertainty (either kind) replaces the defaults' (both kinds):
-    // mixing one from [defaults] with another from the curve would add a different figure's.
-    const bool own_u = ct->contains("uncertainty") || ct->contains("uncertainty_px");
-    const Mapping own(mfile, *ct, fmt::format("curve[{}]", k), nullptr);
-    const Mapping& um = own_u ? own : m;
-    const auto u_given = um.number("uncertainty");
-    const auto u_px = um.number("uncertainty_px");
-    if (!u_given && !u_px)
-      m.fail("uncertainty", "is required: the digitising uncertainty (one standard deviation of y, in y_unit, "
-                            "0 = unknown; or uncertainty_px in pixels)");
-    if (u_given && *u_given < 0.0) m.fail("uncertainty", "cannot be negative");
-    if (u_px && *u_px < 0.0) m.fail("uncertainty_px", "cannot be negative");
-    if (u_px && !curve.pixel)
-      m.fail("uncertainty_px", fmt::format("curve '{}' has no pixel calibration (only a project JSON on XY axes "
-                                           "has one); give uncertainty in y_unit",
-                                           *name));
-    // One standard deviation of a digitised y in y_unit; both kinds given add in quadrature.
-    auto uncertainty_at = [&](double y) {
-      const double a = u_given.value_or(0.0), b = u_px ? curve.pixel->y_units(y, *u_px) : 0.0;
-      return std::sqrt(a * a + b * b);
-    };
+    const MappedCurve c = mapped_curve(mfile, *ct, k, m, by_name, taken);
     const bool is_trajectory = ct->contains("boundary");
     if (is_trajectory == ct->contains("quantity"))
       m.fail(is_trajectory ? "quantity" : "boundary",
              "give either boundary (a stream limit, trajectory.csv) or quantity (measurements.csv)");
-
-    if (is_trajectory) {
-      for (const char* key : {"condition_by", "conditions", "match_tolerance"})
-        if (ct->contains(key)) m.fail(key, "applies to quantity curves only");
-      const auto cond = m.text("condition");
-      if (!cond) m.fail("condition", "is required for a stream boundary");
-      known_condition("condition", *cond);
-      const auto b = parse_boundary(*m.text("boundary"));
-      if (!b) m.fail("boundary", fmt::format("unknown boundary '{}' (upper, lower, centre)", *m.text("boundary")));
-      const Unit& ux = m.unit("x_unit", Dimension::length);
-      const Unit& uy = m.unit("y_unit", Dimension::length);
-      const double x0 = m.number("x_offset_mm").value_or(0.0) * units::mm;
-      const double y0 = m.number("y_offset_mm").value_or(0.0) * units::mm;
-      for (const auto& p : curve.points) {
-        TrajectoryPoint t;
-        t.condition = *cond;
-        t.boundary = *b;
-        // Rounded as trajectory.csv will hold it, so that duplicates are found as the reader finds them.
-        t.x = std::round((p.x * ux.to_si + x0) * 1e9) / 1e9;
-        t.y = p.y * uy.to_si + y0;
-        if (const double u = uncertainty_at(p.y); u > 0.0) t.uncertainty = u * uy.to_si;
-        t.where = p.where;
-        if (!have_t.insert({t.condition, t.boundary, t.x}).second)
-          throw InputError(p.where.file, p.where.line, p.field,
-                           fmt::format("a second {} point of '{}' at x = {} mm", chutelab::name(*b), *cond, t.x * 1e3));
-        out.trajectory.push_back(t);
-      }
-      out.summary.push_back(fmt::format("{} ({}:{}): {} points -> trajectory {} {}", *name, curve.where.file,
-                                        curve.where.line, curve.points.size(), *cond, chutelab::name(*b)));
-      continue;
-    }
-
-    for (const char* key : {"x_offset_mm", "y_offset_mm"})
-      if (ct->contains(key)) m.fail(key, "applies to stream boundaries only");
-    const auto q = parse_quantity(*m.text("quantity"));
-    if (!q) {
-      std::vector<std::string> known;
-      for (Quantity x : kAllQuantities) known.emplace_back(chutelab::name(x));
-      m.fail("quantity", fmt::format("unknown quantity '{}' (known: {})", *m.text("quantity"), fmt::join(known, ", ")));
-    }
-    const Unit& uy = m.unit("y_unit", quantity_dimension(*q));
-    const double to_b = info(*q).to_boundary;
-    // Which condition each point is.
-    std::vector<std::string> cond_of(curve.points.size());
-    if (const auto one = m.text("condition")) {
-      for (const char* key : {"condition_by", "conditions"})
-        if (ct->contains(key)) m.fail(key, "give condition (one point) or condition_by, not both");
-      if (curve.points.size() != 1)
-        m.fail("condition", fmt::format("curve '{}' has {} points; one condition takes one point (use condition_by)",
-                                        *name, curve.points.size()));
-      cond_of[0] = known_condition("condition", *one);
-    } else {
-      const auto by = m.text("condition_by");
-      if (!by) m.fail("condition_by", "is required: which conditions.csv column the x axis is (or condition = ...)");
-      const ConditionColumn* col = nullptr;
-      for (const auto& c : condition_columns())
-        if (c.name == *by) col = &c;
-      if (!col) {
-        std::vector<std::string> known;
-        for (const auto& c : condition_columns()) known.emplace_back(c.name);
-        m.fail("condition_by", fmt::format("'{}' is not a column a figure's x axis can be (use {})", *by,
-                                           fmt::join(known, ", ")));
-      }
-      const Unit& ux = m.unit("x_unit", col->dimension);
-      std::vector<const Station*> candidates;
-      if (const toml::node* cl = m.node("conditions")) {
-        const toml::array* a = cl->as_array();
-        if (!a) m.fail("conditions", "must be a list of condition names");
-        for (const auto& e : *a) {
-          const auto s = e.value<std::string>();
-          if (!s) m.fail("conditions", "must be a list of condition names");
-          candidates.push_back(d.station(known_condition("conditions", *s)));
-        }
-      } else {
-        for (const auto& s : d.stations) candidates.push_back(&s);
-      }
-      const auto tol = m.number("match_tolerance");
-      if (tol && !(*tol > 0.0)) m.fail("match_tolerance", "must be positive");
-      for (std::size_t i = 0; i < curve.points.size(); ++i) {
-        const auto& p = curve.points[i];
-        const double x = p.x * ux.to_si * col->to_boundary;  // in the column's unit
-        std::vector<std::pair<double, const Station*>> near;
-        for (const Station* s : candidates) {
-          const auto v = col->value(*s);
-          if (!v) continue;
-          const double vb = *v * col->to_boundary;
-          const double limit = tol ? *tol : 0.05 * std::abs(vb);
-          if (std::abs(x - vb) <= limit) near.emplace_back(std::abs(x - vb), s);
-        }
-        if (near.empty())
-          throw InputError(p.where.file, p.where.line, p.field,
-                           fmt::format("x = {} {} is no condition's {} (within {})", p.x, ux.name, col->name,
-                                       tol ? fmt::format("{}", *tol) : std::string("5 %")));
-        if (near.size() > 1) {
-          std::vector<std::string> names;
-          for (const auto& [dist, s] : near) names.push_back(s->condition);
-          throw InputError(p.where.file, p.where.line, p.field,
-                           fmt::format("x = {} {} matches {} by {}: list the curve's conditions in the mapping",
-                                       p.x, ux.name, fmt::join(names, " and "), col->name));
-        }
-        cond_of[i] = near.front().second->condition;
-      }
-    }
-    std::vector<std::string> got;
-    for (std::size_t i = 0; i < curve.points.size(); ++i) {
-      const auto& p = curve.points[i];
-      Measurement meas;
-      meas.condition = cond_of[i];
-      meas.quantity = *q;
-      meas.value = p.y * uy.to_si;
-      if (const double u = uncertainty_at(p.y); u > 0.0) meas.uncertainty = u * uy.to_si;
-      meas.where = p.where;
-      if (info(*q).magnitude && meas.value < 0.0)
-        throw InputError(p.where.file, p.where.line, p.field,
-                         fmt::format("{} is a magnitude and cannot be negative, got {} {}", chutelab::name(*q), p.y,
-                                     uy.name));
-      if (!have_q.insert({meas.condition, meas.quantity}).second)
-        throw InputError(p.where.file, p.where.line, p.field,
-                         fmt::format("{} of condition '{}' is already in the dataset or another curve",
-                                     chutelab::name(*q), meas.condition));
-      got.push_back(fmt::format("{} {:.4g}", meas.condition, meas.value * to_b));
-      out.measurements.push_back(meas);
-    }
-    out.summary.push_back(fmt::format("{} ({}:{}): {} points -> {}: {}", *name, curve.where.file, curve.where.line,
-                                      curve.points.size(), chutelab::name(*q), fmt::join(got, ", ")));
+    if (is_trajectory) map_trajectory_curve(d, c, taken, out);
+    else map_quantity_curve(d, c, taken, out);
   }
   for (const auto& c : curves)
-    if (!used.count(c.name)) out.unmapped.push_back(c.name);
+    if (!taken.curves.count(c.name)) out.unmapped.push_back(c.name);
   return out;
 }
 
