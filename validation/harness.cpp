@@ -227,32 +227,30 @@ void check_tolerance(Comparison& c, const Tolerances& tol) {
   }
 }
 
-}  // namespace
+// Where each (condition, model)'s prediction is in ValidationResult::predictions.
+using PredictionIndex = std::map<std::pair<std::string, std::string>, std::size_t>;
 
-ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
-                          const ValidateOptions& options) {
-  ValidationResult r;
-  r.dataset_folder = folder_name(d.dir);
-  r.dataset_name = d.setup.name.empty() ? r.dataset_folder : d.setup.name;
-  for (const auto& m : models) r.models.push_back(m->name());
-  r.effects = options.effect_labels;
-
-  check_external_models(models, d);  // before anything runs: a bad condition name is bad input
-  // The expensive models' runs first, as one campaign (spread over MPI ranks or --jobs threads);
-  // the loop below then finds each one done.
+// The expensive models' runs first, as one campaign (spread over MPI ranks or --jobs threads);
+// predict_conditions() then finds each one done.
+void run_expensive_models(const Dataset& d, const std::vector<ModelPtr>& models, const ValidateOptions& options) {
   std::vector<ModelRun> runs;
   for (std::size_t i = 0; i < d.stations.size(); ++i)
     for (const auto& m : models)
       if (m->expensive())
         runs.push_back({m, d.stations[i], analytical::acting_at(options.effects, d.stations[i]), d.station_lines[i].file, d.station_lines[i].line});
   run_models(runs, {"validate", options.jobs, {}});
+}
 
+// Every model's prediction at every condition, into r.predictions, with its input uncertainty and
+// the measurement-stage effects applied.
+PredictionIndex predict_conditions(const Dataset& d, const std::vector<ModelPtr>& models, const ValidateOptions& options,
+                                   ValidationResult& r) {
   // Every look-up below is by index or hash, once per row: validate stays linear in the dataset.
   std::unordered_map<std::string, std::vector<TrajectoryQuery>> queries_of;
   for (const auto& p : d.trajectory) queries_of[p.condition].push_back({p.boundary, p.x});
   std::unordered_map<std::string, std::vector<PlateQuery>> plate_of;
   for (const auto& p : d.plate_map) plate_of[p.condition].push_back({p.quantity, p.y, p.z});
-  std::map<std::pair<std::string, std::string>, std::size_t> prediction_at;
+  PredictionIndex prediction_at;
   const bool progress = !options.quiet && d.stations.size() >= 2000;
   for (std::size_t i = 0; i < d.stations.size(); ++i) {
     const Station& st = d.stations[i];
@@ -287,7 +285,12 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
     }
     apply_measurement_effects(effects, std::span(r.predictions).subspan(first, models.size()));
   }
+  return prediction_at;
+}
 
+// The measured quantities (measurements.csv) against each model.
+void compare_measurements(const Dataset& d, const std::vector<ModelPtr>& models, const PredictionIndex& prediction_at,
+                          ValidationResult& r) {
   for (const auto& meas : d.measurements)
     for (const auto& m : models) {
       const ConditionResult* cr = &r.predictions[prediction_at.at({meas.condition, m->name()})];
@@ -305,6 +308,11 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       c.u_input = cr->prediction.input_uncertainty[meas.quantity];
       r.comparisons.push_back(std::move(c));
     }
+}
+
+// The stream boundaries (trajectory.csv) against each model.
+void compare_trajectory(const Dataset& d, const std::vector<ModelPtr>& models, const PredictionIndex& prediction_at,
+                        ValidationResult& r) {
   for (const auto& m : models) {
     std::map<std::string, std::size_t> next;  // query index per condition, in dataset order
     for (const auto& pt : d.trajectory) {
@@ -327,8 +335,11 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       r.comparisons.push_back(std::move(c));
     }
   }
+}
 
-  // Plate-map points (pressure film, wear surveys), compared like the other measurements.
+// Plate-map points (pressure film, wear surveys), compared like the other measurements.
+void compare_plate_map(const Dataset& d, const std::vector<ModelPtr>& models, const PredictionIndex& prediction_at,
+                       ValidationResult& r) {
   for (const auto& m : models) {
     std::map<std::string, std::size_t> next;
     for (const auto& pt : d.plate_map) {
@@ -349,27 +360,29 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       r.comparisons.push_back(std::move(c));
     }
   }
+}
 
-  if (options.tolerances) {
-    const Tolerances& tol = *options.tolerances;
-    r.acceptance_checked = true;
-    std::set<Tolerances::Key> used;
-    for (auto& c : r.comparisons) {
-      check_tolerance(c, tol);
-      if (c.verdict.checked) used.insert(*tol.find_key(c.model, c.quantity));
-      if (c.verdict.checked && !c.verdict.passed) r.acceptance_failed = true;
-    }
-    if (tol.empty())
-      r.acceptance_problems.push_back(fmt::format("{}: no limit in the file, so acceptance checked nothing", tol.file()));
-    for (const auto& [key, line] : tol.entries())
-      if (!used.count(key))
-        r.acceptance_problems.push_back(fmt::format(
-            "{}:{}: {}.{}: this limit checked no value (no model run here predicts {} for a measured value; the models: {})",
-            tol.file(), line, key.first, key.second, key.second, fmt::join(r.models, ", ")));
-    if (!r.acceptance_problems.empty()) r.acceptance_failed = true;
+// Each comparison against the acceptance limits; a limit that checked nothing is a problem too.
+void check_acceptance(const Tolerances& tol, ValidationResult& r) {
+  r.acceptance_checked = true;
+  std::set<Tolerances::Key> used;
+  for (auto& c : r.comparisons) {
+    check_tolerance(c, tol);
+    if (c.verdict.checked) used.insert(*tol.find_key(c.model, c.quantity));
+    if (c.verdict.checked && !c.verdict.passed) r.acceptance_failed = true;
   }
+  if (tol.empty())
+    r.acceptance_problems.push_back(fmt::format("{}: no limit in the file, so acceptance checked nothing", tol.file()));
+  for (const auto& [key, line] : tol.entries())
+    if (!used.count(key))
+      r.acceptance_problems.push_back(fmt::format(
+          "{}:{}: {}.{}: this limit checked no value (no model run here predicts {} for a measured value; the models: {})",
+          tol.file(), line, key.first, key.second, key.second, fmt::join(r.models, ", ")));
+  if (!r.acceptance_problems.empty()) r.acceptance_failed = true;
+}
 
-  // Summary per model and quantity, in model order and the vocabulary's order.
+// Summary per model and quantity, in model order and the vocabulary's order.
+void summarise(ValidationResult& r) {
   std::vector<std::string> quantities;
   for (Quantity q : kAllQuantities) quantities.emplace_back(name(q));
   for (Boundary b : kAllBoundaries) quantities.push_back(trajectory_quantity(b));
@@ -404,6 +417,26 @@ ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
       if (checked) s.within_tolerance = ok;
       r.summary.push_back(s);
     }
+}
+
+}  // namespace
+
+ValidationResult validate(const Dataset& d, const std::vector<ModelPtr>& models,
+                          const ValidateOptions& options) {
+  ValidationResult r;
+  r.dataset_folder = folder_name(d.dir);
+  r.dataset_name = d.setup.name.empty() ? r.dataset_folder : d.setup.name;
+  for (const auto& m : models) r.models.push_back(m->name());
+  r.effects = options.effect_labels;
+
+  check_external_models(models, d);  // before anything runs: a bad condition name is bad input
+  run_expensive_models(d, models, options);
+  const PredictionIndex prediction_at = predict_conditions(d, models, options, r);
+  compare_measurements(d, models, prediction_at, r);
+  compare_trajectory(d, models, prediction_at, r);
+  compare_plate_map(d, models, prediction_at, r);
+  if (options.tolerances) check_acceptance(*options.tolerances, r);
+  summarise(r);
   return r;
 }
 
