@@ -23,6 +23,14 @@
 
 namespace chutelab::api {
 
+// The study and its words under the library's names: a front end reaches them through api/, never
+// through studies/ or dem/ (the house's door, docs/DESIGN.md). A row's grain and motion are said by
+// name(), found beside their types.
+using CalibrationContext = studies::CalibrationContext;
+using CalibrationStudy = dem::rigs::CalibrationStudy;
+using studies::grain_label;
+using studies::calibration_findings;
+
 // Errors name the keys "dataset", "quality", "rolling", "density", "shape", "sphere_diameter",
 // "clump_diameter", "target_bulk_density", "target_pile_height", "threads", "seed" and "jobs".
 struct CalibrateOptions {

@@ -22,6 +22,15 @@
 
 namespace chutelab::api {
 
+// The diagnosis, its self-check and their words under the library's names: a front end reaches
+// them through api/, never through validation/.
+using DiagnosisResult = validation::DiagnosisResult;
+using EffectFit = validation::EffectFit;
+using Verdict = validation::Verdict;
+using SelfCheckResult = validation::SelfCheckResult;
+using validation::diagnosis_markdown;
+using validation::self_check_markdown;
+
 // Errors name the keys "dataset", "models", "alpha", "jobs", "self_check", "input" and the DEM's "dem.*".
 struct DiagnoseOptions {
   std::filesystem::path dataset;

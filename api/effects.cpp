@@ -27,14 +27,6 @@ reports::EffectDescription describe(const effects::EffectInfo& e, double value, 
 
 }  // namespace
 
-std::vector<EffectEntry> effect_library() {
-  std::vector<EffectEntry> out;
-  for (const auto& e : effects::library())
-    out.push_back({e.name, e.parameter, e.unit, e.stage, e.kind == effects::EffectInfo::Kind::record, e.neutral,
-                   e.lower, e.upper, e.typical, e.physics, e.source});
-  return out;
-}
-
 std::vector<validation::ModelPtr> in_registry_order(const std::vector<validation::ModelPtr>& models) {
   const auto order = validation::model_names();
   auto pos = [&](const validation::ModelPtr& m) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "api/effect_library.h"
 #include "reports/report.h"
 #include "validation/diagnosis.h"
 #include "validation/dataset.h"
@@ -49,15 +50,6 @@ AppliedEffects diagnosed_effects(const validation::DiagnosisResult& diagnosis,
 std::vector<std::string> effects_and_inputs(const std::vector<std::string>& effects,
                                             const std::vector<std::string>& inputs, bool allow_fit = true,
                                             bool outside_range = false);
-
-// One entry of the effect library (effects/registry.h) as the front ends list it.
-struct EffectEntry {
-  std::string name, parameter, unit, stage;  // unit: the strength's at the boundary ("" = none)
-  bool record = false;                       // a recorded input that may be wrong, else physics
-  double neutral = 0.0, lower = 0.0, upper = 0.0, typical = 0.0;
-  std::string physics, source;
-};
-std::vector<EffectEntry> effect_library();
 
 // Models in registry order (where they overlap, fits take each quantity from the first).
 std::vector<validation::ModelPtr> in_registry_order(const std::vector<validation::ModelPtr>& models);

@@ -25,6 +25,10 @@ struct Dataset;
 
 namespace chutelab::api {
 
+// The stream's lines under the library's names (each said by name(), found beside its type).
+using Streamline = analytical::Streamline;
+using analytical::kAllStreamlines;
+
 // What to estimate. Boundary units (m/s, t/h, mm), as a conditions.csv row. Errors name the keys
 // "dataset", "setup", "condition", "belt_speed", "mass_flow", "plate_distance", "plate_top",
 // "stream_thickness", "pulley_diameter", "belt_width", "bulk_density", "effect".

@@ -1,6 +1,7 @@
 #include "api/files.h"
 
 #include "logs/dataset_logs.h"
+#include "validation/csv_table.h"
 #include "validation/dataset_fields.h"
 #include "validation/dataset_output.h"
 #include "validation/dataset_reference.h"
@@ -29,6 +30,13 @@ std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& di
 void write_files(const std::filesystem::path& out, const std::vector<OutputFile>& files,
                  const std::vector<std::filesystem::path>& inputs, std::string_view command) {
   validation::write_outputs(out, files, inputs, command);
+}
+
+CsvCells csv_cells(std::string_view text, const std::string& file) {
+  const validation::CsvTable t = validation::CsvTable::parse(text, file);
+  CsvCells out{t.header(), {}};
+  for (const auto& r : t.rows()) out.rows.push_back(r.cells);
+  return out;
 }
 
 void write_dataset_skeleton(const std::filesystem::path& out, const std::filesystem::path& example) {

@@ -13,6 +13,11 @@
 
 namespace chutelab::api {
 
+// A dataset as read, and its files as kept in memory (name -> shown name, text, unread), under the
+// library's names: a front end reaches them through api/, never through validation/.
+using Dataset = validation::Dataset;
+using DatasetTexts = validation::DatasetTexts;
+
 // A dataset folder; with measurements_required, one without measurements is bad input.
 validation::Dataset read_dataset(const std::filesystem::path& dir, bool measurements_required);
 // The same from its files in memory (validation::Dataset::sources); `dir` is the folder they stand
@@ -28,6 +33,14 @@ std::vector<std::filesystem::path> dataset_files(const std::filesystem::path& di
 // of `inputs`, recorded as `command`'s.
 void write_files(const std::filesystem::path& out, const std::vector<OutputFile>& files,
                  const std::vector<std::filesystem::path>& inputs, std::string_view command);
+// A CSV text's header and rows of cells, as chutelab's reader splits them (quotes, the writer's
+// apostrophe before a formula character, trimmed edges); `file` names it in errors.
+struct CsvCells {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+};
+CsvCells csv_cells(std::string_view text, const std::string& file);
+
 // A new dataset to fill with a rig's numbers, as the folder `out`: setup.toml, five conditions,
 // placeholder measurements and README.md, every line commented, the rig of the dataset `example`.
 void write_dataset_skeleton(const std::filesystem::path& out, const std::filesystem::path& example);

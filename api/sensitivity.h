@@ -21,6 +21,14 @@
 
 namespace chutelab::api {
 
+// The study and its words under the library's names: a front end reaches them through api/, never
+// through studies/ (the house's door, docs/DESIGN.md). A variant's group is said by name(), found
+// beside its type.
+using SensitivityStudy = studies::SensitivityStudy;
+using SensitivityVariant = studies::SensitivityVariant;
+using studies::variant_columns;
+using studies::run_notes;
+
 // Errors name the keys "dataset", "condition", "quality", "only", "sizes", "limit", "threads",
 // "seed" and "jobs".
 struct SensitivityOptions {

@@ -15,6 +15,22 @@
 
 namespace chutelab::api {
 
+// The DEM run's settings, result and its figures under the library's names: a front end reaches
+// them through api/, never through dem/ (the house's door, docs/DESIGN.md).
+using DemField = dem::station::DemField;
+using DemKind = dem::station::DemKind;
+using DemValue = dem::station::DemValue;
+using SettingsOverrides = dem::station::SettingsOverrides;
+using RunSettings = dem::station::RunSettings;
+using StationResult = dem::station::StationResult;
+using PlateMap = dem::station::PlateMap;
+using MeanWithError = dem::station::Estimate;  // a steady mean and its standard error
+using dem::station::dem_fields;
+using dem::station::wear_fields;
+using dem::station::peak_pressure_y;
+using dem::station::pressure_centre_y;
+using dem::station::window_drifts;
+
 // Errors name the keys "dataset", "condition", the options of the [dem] settings
 // (dem::station::dem_fields()), "threads", "wear.KEY", "effect", "vtk_every".
 struct SimulateOptions {

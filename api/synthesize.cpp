@@ -1,6 +1,7 @@
 #include "api/synthesize.h"
 
 #include "api/effects.h"
+#include "api/files.h"
 #include "api/record_check.h"
 #include "core/option_check.h"
 #include "logs/dataset_logs.h"
@@ -53,6 +54,21 @@ SynthesizeResult synthesize(validation::Dataset source, const SynthesizeOptions&
     if (auto m = validation::make_model(n); !m->expensive()) models.push_back(m);
   res.files = validation::synthesize(res.source, models, opt);
   return res;
+}
+
+}  // namespace chutelab::api
+
+namespace chutelab::api {
+
+validation::Dataset synthesized_dataset(const SynthesizeResult& r, const std::filesystem::path& out) {
+  if (!out.empty()) {
+    write_dataset(out, r.files, r.source.dir, "synthesize");
+    return validation::read_dataset(out);
+  }
+  validation::DatasetTexts files;
+  for (const auto& [name, text] : r.files)
+    if (name.ends_with(".csv") || name.ends_with(".toml")) files[name] = {name, text};
+  return validation::read_dataset(files, {}, validation::MeasurementsRequired::yes);
 }
 
 }  // namespace chutelab::api

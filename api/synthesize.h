@@ -33,12 +33,18 @@ void check(const SynthesizeOptions& o);
 struct SynthesizeResult {
   validation::Dataset source;     // the dataset the rig and conditions came from
   // The synthetic dataset's files (setup.toml, conditions.csv, measurements.csv, README.md, ...):
-  // write them with validation::write_dataset(out, files, source.dir, "synthesize"), which refuses the source.
+  // write them with write_dataset(out, files, source.dir, "synthesize") (api/files.h), which refuses
+  // the source, or take them as a dataset with synthesized_dataset.
   std::vector<validation::OutputFile> files;
 };
 
 SynthesizeResult synthesize(const SynthesizeOptions& o);
 // The same from a dataset already read (o.dataset is not used).
 SynthesizeResult synthesize(validation::Dataset source, const SynthesizeOptions& o);
+
+// The synthetic dataset as a dataset: written to the folder `out` (as write_dataset does) and read
+// back from there, so that it is the folder's; with `out` empty, read from its files in memory (it
+// then has no folder).
+validation::Dataset synthesized_dataset(const SynthesizeResult& r, const std::filesystem::path& out);
 
 }  // namespace chutelab::api

@@ -30,6 +30,13 @@
 
 namespace chutelab::api {
 
+// A validation's tables and the tolerances judged against, under the library's names: a front end
+// reaches them through api/, never through validation/.
+using ValidationResult = validation::ValidationResult;
+using Tolerances = validation::Tolerances;
+using Tolerance = validation::Tolerance;
+using validation::model_names;  // every model a models list may name, in registry order
+
 // Errors name the keys "dataset", "models", "effect", "input", "tolerances", "studies", "diagnose",
 // "add_missing", "accept_with_effects", "jobs" and the DEM's "dem.*".
 //

@@ -61,7 +61,7 @@ int run_calibrate(const CalibrateCli& o) {
   opt.progress = true;
   std::optional<OutputFolder> out;
   opt.prepare_output = place_output(out, o.out, "calibrate");  // --out checked before minutes of slump tests
-  opt.planned = [&](const studies::CalibrationContext& ctx, int count) {
+  opt.planned = [&](const api::CalibrationContext& ctx, int count) {
     std::cout << fmt::format("calibrate: {} slump tests ({} quality) on {} ({})\n", count, ctx.quality,
                              one_line(ctx.setup.name, 80), ctx.dataset)
               << std::flush;
@@ -73,7 +73,7 @@ int run_calibrate(const CalibrateCli& o) {
     const auto& r = study.rows[static_cast<std::size_t>(k)];
     std::cout << fmt::format("[{:>2}/{}] {:<16} mu_r {:<5g} rho_s {:<5g}: bulk {:4.0f} kg/m^3, pile {:5.1f} mm, "
                              "repose {:4.1f} deg, {} grains ({:.1f} s)\n",
-                             k + 1, count, studies::grain_label(study, r.shape), r.rolling_friction, r.solid_density,
+                             k + 1, count, api::grain_label(study, r.shape), r.rolling_friction, r.solid_density,
                              r.slump.bulk_density, r.slump.pile_height * 1e3, r.slump.repose_angle_deg,
                              r.slump.particles, r.slump.wall_seconds)
               << std::flush;
@@ -92,7 +92,7 @@ int run_calibrate(const CalibrateCli& o) {
     const auto& b = study.rows[static_cast<std::size_t>(study.closest)];
     std::cout << fmt::format("closest to the target: {} mu_r = {:g}, rho_s = {:g} kg/m^3 (bulk {:.0f} kg/m^3, pile {:.1f} mm; "
                              "{:.1f} % from the target)\n",
-                             studies::grain_label(study, b.shape), b.rolling_friction, b.solid_density,
+                             api::grain_label(study, b.shape), b.rolling_friction, b.solid_density,
                              b.slump.bulk_density, b.slump.pile_height * 1e3, 100.0 * b.distance);
   }
   std::cout << fmt::format("{:.0f} s; written: {}\n", study.wall_seconds,

@@ -8,10 +8,10 @@
 #include "app/commands.h"
 #include "app/design/page.h"
 #include "api/estimate_output.h"
+#include "api/files.h"
+#include "api/setup.h"
 #include "core/input_error.h"
 #include "core/units.h"
-#include "validation/dataset.h"
-#include "api/files.h"
 
 namespace chutelab::app {
 using api::json_number;
@@ -35,9 +35,9 @@ std::string condition_inputs(const DesignOptions& o, const std::filesystem::path
   if (!o.setup_file.empty())
     throw InputError("", 0, "--condition", "--condition picks a row of a dataset's conditions.csv; use --dataset");
   const auto dir = o.dataset.empty() ? default_dataset() : std::filesystem::path(o.dataset);
-  const Setup setup = validation::read_setup(setup_path);
-  const auto rows = validation::read_conditions(dir / "conditions.csv", setup);
-  const Station* st = &validation::condition_row(rows, o.condition, dir / "conditions.csv", "--condition");
+  const Setup setup = api::read_setup(setup_path);
+  const Station row = api::read_condition(dir, setup, o.condition, "--condition");
+  const Station* st = &row;
   std::string js = fmt::format("{{\"name\": {}, \"belt_speed\": {}, \"mass_flow\": {}, \"plate_distance\": {}, \"plate_top\": {}, "
                                "\"stream_thickness\": {}",
                                json_string(st->condition), json_number(st->belt_speed), json_number(st->mass_flow / units::tph),
@@ -69,7 +69,7 @@ int run_design(const DesignOptions& o) {
   const fs::path setup = !o.setup_file.empty() ? fs::path(o.setup_file)
                          : !o.dataset.empty()  ? fs::path(o.dataset) / "setup.toml"
                                                : default_dataset() / "setup.toml";
-  validation::read_setup(setup);
+  api::read_setup(setup);
   std::string literal = json_string(slurp(setup));
   for (std::size_t at = literal.find("</"); at != std::string::npos; at = literal.find("</", at + 3))
     literal.replace(at, 2, "<\\/");  // a "</script>" inside the TOML must not end the page's script

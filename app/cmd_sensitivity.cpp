@@ -48,15 +48,15 @@ int run_sensitivity(const SensitivityCli& o) {
   opt.progress = true;
   std::optional<OutputFolder> out;
   opt.prepare_output = place_output(out, o.out, "sensitivity");  // --out checked before minutes of DEM runs
-  opt.planned = [&](const studies::SensitivityStudy& study, const std::vector<studies::SensitivityVariant>& variants) {
+  opt.planned = [&](const api::SensitivityStudy& study, const std::vector<api::SensitivityVariant>& variants) {
     std::cout << fmt::format("sensitivity: {} DEM runs of {} / {} ({} quality), base {}\n", variants.size(),
                              one_line(study.dataset_name, 80), one_line(study.condition, 80), study.quality,
                              variants[0].label);
-    for (const auto& n : studies::run_notes(study)) std::cout << "note: " << n << "\n";
+    for (const auto& n : api::run_notes(study)) std::cout << "note: " << n << "\n";
     std::cout << std::flush;
   };
   const api::SensitivityResult res = api::sensitivity(opt);
-  const studies::SensitivityStudy& study = res.study;
+  const api::SensitivityStudy& study = res.study;
   for (std::size_t k = 0; k < study.rows.size(); ++k) {
     const auto& v = study.rows[k].variant;
     const auto& r = study.rows[k].outcome;

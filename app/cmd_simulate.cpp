@@ -14,7 +14,6 @@
 #include "core/input_error.h"
 #include "core/message.h"
 #include "core/output_folder.h"
-#include "dem/station/run.h"
 
 namespace chutelab::app {
 namespace {
@@ -23,35 +22,33 @@ namespace {
 // frames, a few MB).
 constexpr double kSeriesEvery = 0.05;
 
-namespace st = dem::station;
-
 struct SimulateCli {
   std::string dataset, condition, out;
   std::optional<double> vtk_every;
-  st::SettingsOverrides settings;  // the [dem] settings' flags, --threads and the wear inputs' flags
+  api::SettingsOverrides settings;  // the [dem] settings' flags, --threads and the wear inputs' flags
   std::vector<std::string> effects;
   bool no_cache = false;
 };
 
 // The flag of one [dem] setting: its option's flag (flag_for), its help and unit from the table, its
 // range as the rule of the value typed; it sets the setting in `into`.
-void add_setting_flag(CLI::App& cmd, const st::DemField& f, st::SettingsOverrides& into) {
+void add_setting_flag(CLI::App& cmd, const api::DemField& f, api::SettingsOverrides& into) {
   const std::string option(f.option);
   std::string help = fmt::format("{}{}", f.help, f.unit.empty() ? "" : ", " + std::string(f.unit));
   if (!f.zero_means.empty()) help += fmt::format(" (0: {})", f.zero_means);
-  if (f.kind == st::DemKind::word) help += ": " + f.range_text();
+  if (f.kind == api::DemKind::word) help += ": " + f.range_text();
   help += fmt::format("; [dem] {}", f.key);
-  if (f.kind == st::DemKind::word) {
+  if (f.kind == api::DemKind::word) {
     cmd.add_option_function<std::string>(flag_for(option), [&into, option](const std::string& w) { into.set(option, w); }, help)
         ->check(CLI::Validator(
             [&f](std::string& w) -> std::string {
-              st::DemValue v;
+              api::DemValue v;
               v.word = w;
               const auto p = f.problem(v);
               return p ? *p : std::string();
             },
             "", "dem-setting"));
-  } else if (f.kind == st::DemKind::whole) {
+  } else if (f.kind == api::DemKind::whole) {
     with_rule(cmd.add_option_function<std::uint64_t>(flag_for(option),
                                                       [&into, option](std::uint64_t v) { into.set_whole(option, v); }, help),
               f.rule(""));
@@ -61,7 +58,7 @@ void add_setting_flag(CLI::App& cmd, const st::DemField& f, st::SettingsOverride
   }
 }
 
-std::string row(const char* label, const st::Estimate& e, double scale, const char* unit, int digits) {
+std::string row(const char* label, const api::MeanWithError& e, double scale, const char* unit, int digits) {
   if (!e.ok()) return fmt::format("  {:<34} {:>10}\n", label, "-");
   const std::string se = std::isfinite(e.se) ? fmt::format(" ± {:.{}f}", e.se * scale, digits) : std::string();
   return fmt::format("  {:<34} {:>10.{}f}{} {}\n", label, e.value * scale, digits, se, unit);
@@ -93,8 +90,8 @@ int run_simulate(const SimulateCli& o) {
   }
   const Setup& setup = res.setup;
   const Station* station = &res.station;
-  const st::RunSettings& settings = res.settings;
-  const st::StationResult& r = res.run;
+  const api::RunSettings& settings = res.settings;
+  const api::StationResult& r = res.run;
   std::cout << fmt::format("DEM run of {} / {} ({} quality, {:.1f} mm {}s, dt {:.3g} s)\n", one_line(setup.name, 80),
                            one_line(station->condition, 80),
                            r.quality, r.diameter * 1e3, r.shape == "clump" ? "two-sphere clump" : "sphere", r.dt);
@@ -118,7 +115,7 @@ int run_simulate(const SimulateCli& o) {
   std::cout << fmt::format("mass: inserted {:.3f} kg = discharged {:.3f} + escaped {:.3f} + in the rig {:.3f} kg\n",
                            r.inserted, r.discharged, r.escaped, r.in_domain);
   if (!r.maps.empty() && !r.maps.front().cells.empty()) {
-    const st::PlateMap& m = r.maps.front();
+    const api::PlateMap& m = r.maps.front();
     double peak_p = 0.0, peak_w = 0.0, wear_sum = 0.0, area = 0.0, normal = 0.0;
     for (const auto& c : m.cells) {
       normal += c.pressure() * c.area;
@@ -131,11 +128,11 @@ int run_simulate(const SimulateCli& o) {
     std::cout << fmt::format(
         "plate map ({} triangles, {:.2f} s): peak pressure {:.3g} kPa at y = {:.1f} mm (profile across the plate), centre of "
         "pressure y = {:.1f} mm, peak wear {:.3g} µm/h, mean {:.3g} µm/h, normal load of the map {:.3f} N\n",
-        m.cells.size(), m.duration, peak_p * 1e-3, st::peak_pressure_y(m) * 1e3, st::pressure_centre_y(m) * 1e3,
+        m.cells.size(), m.duration, peak_p * 1e-3, api::peak_pressure_y(m) * 1e3, api::pressure_centre_y(m) * 1e3,
         peak_w * 3.6e9, area > 0.0 ? wear_sum / area * 3.6e9 : 0.0, normal);
   }
   for (const auto& n : r.notes) std::cout << "note: " << n << "\n";
-  for (const auto& d : st::window_drifts(r)) std::cout << "note: " << d.note << "\n";
+  for (const auto& d : api::window_drifts(r)) std::cout << "note: " << d.note << "\n";
   for (const auto& n : res.effect_notes) std::cout << "note: " << n << "\n";
   if (!o.out.empty()) std::cout << fmt::format("files: {}\n", o.out);
   return kExitOk;
@@ -153,7 +150,7 @@ void add_simulate(CLI::App& app, Action& action) {
   add_quiet_option(*cmd);
   // One flag per [dem] setting with an option (dem/station/settings.h dem_fields()), checked here, by
   // the flag as typed, before the dataset is read; it beats the dataset's [dem] table.
-  for (const auto& f : st::dem_fields())
+  for (const auto& f : api::dem_fields())
     if (!f.option.empty()) add_setting_flag(*cmd, f, o->settings);
   with_rule(cmd->add_option("--threads", o->settings.threads, "OpenMP threads (results do not depend on it)"),
             options::rules::threads);
@@ -168,7 +165,7 @@ void add_simulate(CLI::App& app, Action& action) {
                                         kSeriesEvery)),
             options::NumberRule{"", 0.0, 100.0, true, false, false, "s"});
   cmd->add_flag("--no-cache", o->no_cache, "do not store the result in the DEM cache");
-  for (const auto& f : st::wear_fields()) {
+  for (const auto& f : api::wear_fields()) {
     std::string flag = std::string("--") + f.key;
     for (auto& ch : flag) ch = ch == '_' ? '-' : ch;
     const std::string key = f.key;

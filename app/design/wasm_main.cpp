@@ -11,13 +11,13 @@
 #include "app/commands.h"
 #include "app/flag_names.h"
 #include "app/option_checks.h"
+#include "api/effect_library.h"
 #include "api/estimate_output.h"
+#include "api/setup.h"
 #include "core/csv_field.h"
 #include "core/input_error.h"
 #include "core/message.h"
 #include "core/rig.h"
-#include "effects/registry.h"
-#include "validation/dataset.h"
 
 // The page runs no DEM and takes none of its options: no key it names is a [dem] setting. (The
 // native build has the [dem] table itself, api/dem_options.cpp, which the page does not link.)
@@ -98,23 +98,23 @@ std::string rig_fields_json() {
   return o + "]";
 }
 
-// The bounds every operating input is checked against (validation::check_operating_input).
+// The bounds every operating input is checked against (api::operating_limits).
 std::string operating_limits_json() {
   std::string o = "{";
-  for (const auto& l : validation::operating_limits())
+  for (const auto& l : api::operating_limits())
     o += fmt::format("{}{}: {{\"min\": {}, \"min_open\": {}, \"max\": {}}}", o.size() > 1 ? ", " : "",
-                     api::json_string(std::string(l.column)), api::json_number(l.min), l.min_open ? "true" : "false",
+                     api::json_string(l.column), api::json_number(l.min), l.min_open ? "true" : "false",
                      api::json_number(l.max));
   return o + "}";
 }
 
 std::string effects_json() {
   std::string o = "[";
-  for (const auto& e : effects::library()) {
+  for (const auto& e : api::effect_library()) {
     // A designer changes an input itself; a recorded input's error is for measured data. The load
     // cells' records stay listed as measurement effects, so that the page can say why it ignores
     // one in an address.
-    if (e.kind == effects::EffectInfo::Kind::record && e.stage != "measurement") continue;
+    if (e.record && e.stage != "measurement") continue;
     o += fmt::format("{}{{\"name\": {}, \"parameter\": {}, \"unit\": {}, \"stage\": {}, \"physics\": {}, \"neutral\": {}, "
                      "\"lower\": {}, \"upper\": {}, \"typical\": {}}}",
                      o.size() > 1 ? "," : "", api::json_string(e.name), api::json_string(e.parameter),
@@ -129,7 +129,7 @@ std::string effects_json() {
 // comes back as {"error": "..."} with the reader's message.
 std::string setup_json(const std::string& path) {
   try {
-    Setup s = validation::read_setup(path);
+    Setup s = api::read_setup(path);
     std::string o = fmt::format("{{\"name\": {}, \"source\": {}, \"values\": {{", api::json_string(s.name),
                                 api::json_string(s.source));
     bool first = true;
