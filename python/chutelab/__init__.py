@@ -23,16 +23,17 @@ keyword of the argument, or the file's column).
 """
 
 import json as _json
-import math as _math
 import os as _os
 import tempfile as _tempfile
 from collections.abc import Mapping as _Mapping
-from typing import Any, Dict, Iterable, Iterator, List, Optional, Sequence, Union
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Union
 
 from types import MappingProxyType as _MappingProxy
 
 from ._tables import table as _table, np as _np
 from ._types import Quantity, Strength
+from ._args import (EffectsArg, _effect_args, _flag, _model_list, _new, _options, _path, _real, _reals, _refuse,
+                    _seed_like, _text, _texts, _whole)
 from . import _chutelab
 from . import _edits
 
@@ -48,7 +49,6 @@ __all__ = ["estimate", "sweep", "read_dataset", "validate", "diagnose", "synthes
 PathLike = Union[str, _os.PathLike]
 # A table: a pandas DataFrame, or a NumPy record array (same columns) without pandas.
 TABLE = "pandas.DataFrame | numpy.recarray"
-EffectsArg = Union[None, str, Sequence[str], _Mapping]
 
 _here = _os.path.dirname(_os.path.abspath(__file__))
 DATASETS: str = (_os.path.join(_here, "datasets") if _os.path.isdir(_os.path.join(_here, "datasets"))
@@ -58,139 +58,6 @@ or the checkout's datasets/ when the package is used from the build folder."""
 
 DEFAULT_DATASET: str = _os.path.join(DATASETS, "grima2010")
 """The bundled rig (datasets/grima2010) that estimate() and synthesize() use by default."""
-
-
-# ---- arguments: the right type, or InputError naming the keyword ---------------------------------
-
-def _refuse(field: str, problem: str) -> Exception:
-    """An InputError as the library raises them (file "", line 0, the keyword as field)."""
-    e = InputError(f"{field}: {problem}")
-    e.file, e.line, e.field, e.problem = "", 0, field, problem
-    return e
-
-
-def _flag(field, value) -> bool:
-    """A yes/no keyword takes True or False, not "no" (which bool() would read as True)."""
-    if not isinstance(value, (bool, _np.bool_)):
-        raise _refuse(field, f"must be True or False, got {value!r}")
-    return bool(value)
-
-
-def _real(field, value, optional=False):
-    """A number keyword takes a real number (int, float, NumPy scalar), not a text or a bool; the
-    library then checks that it is finite and in range."""
-    if value is None and optional:
-        return None
-    if isinstance(value, (bool, _np.bool_, str, bytes)) or not hasattr(value, "__float__"):
-        raise _refuse(field, f"must be a number, got {value!r}")
-    try:
-        return float(value)
-    except (TypeError, ValueError, OverflowError):
-        raise _refuse(field, f"must be a number, got {value!r}") from None
-
-
-def _whole(field, value, optional=False):
-    """A count keyword takes a whole number: 2 or 2.0, not 1.5, "2" or True."""
-    if value is None and optional:
-        return None
-    f = None
-    if not isinstance(value, (bool, _np.bool_, str, bytes)) and hasattr(value, "__float__"):
-        try:
-            f = float(value)
-        except (TypeError, ValueError, OverflowError):
-            f = None
-    if f is None or not _math.isfinite(f) or f != int(f):
-        raise _refuse(field, f"must be a whole number, got {value!r}")
-    return int(f)
-
-
-def _seed_like(field, value):
-    """seed and self_check go to the library's own check (whole, in range, exact for huge ints)."""
-    if isinstance(value, (str, bytes, bool, _np.bool_)) or not (hasattr(value, "__index__") or
-                                                                  hasattr(value, "__float__")):
-        raise _refuse(field, f"must be a whole number, got {value!r}")
-    return value
-
-
-def _text(field, value) -> str:
-    """A text keyword (a quality, a condition) takes a str; None is the default."""
-    if value is None:
-        return ""
-    if not isinstance(value, str):
-        raise _refuse(field, f"must be a text, got {value!r}")
-    return value
-
-
-def _path(field, value, optional=True) -> str:
-    """A file or folder keyword takes a str or a path (pathlib.Path); None is "not given"."""
-    if value is None and optional:
-        return ""
-    if isinstance(value, (str, _os.PathLike)):
-        p = _os.fspath(value)
-        if isinstance(p, str):
-            return p
-    raise _refuse(field, f"must be a path (str or pathlib.Path), got {value!r}")
-
-
-def _reals(field, values) -> List[float]:
-    """A list keyword of numbers takes one number or a sequence of them (not a text)."""
-    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
-        return [_real(field, values)]
-    return [_real(field, v) for v in values]
-
-
-def _texts(field, values) -> List[str]:
-    """A list keyword of names takes one str or a sequence of str."""
-    if isinstance(values, str):
-        return [values]
-    if not hasattr(values, "__iter__") or isinstance(values, bytes):
-        raise _refuse(field, f"must be a text or a list of texts, got {values!r}")
-    out = []
-    for v in values:
-        if not isinstance(v, str):
-            raise _refuse(field, f"must be a text or a list of texts, got {values!r}")
-        out.append(v)
-    return out
-
-
-def _effect_args(effects: EffectsArg, key: str = "effects") -> List[str]:
-    """{"air_drag": 0.7, "belt_slip": "fit"}, ["air_drag=0.7"], "air_drag=fit" or None -> the
-    library's NAME=VALUE strings; errors name `key`."""
-    if effects is None:
-        return []
-    if isinstance(effects, str):
-        return [effects]
-    if isinstance(effects, _Mapping):
-        out = []
-        for name, value in effects.items():
-            if not isinstance(name, str):
-                raise _refuse(key, f"names an effect by {name!r}; use its name as a text")
-            if isinstance(value, str):
-                out.append(f"{name}={value}")
-            else:
-                out.append(f"{name}={_real(key, value)!r}")
-        return out
-    if isinstance(effects, Iterable):
-        items = list(effects)
-        if all(isinstance(e, str) for e in items):
-            return items
-    raise _refuse(key, f"must be {{name: value or \"fit\"}} or a list of \"name=value\", got {effects!r}")
-
-
-def _model_list(models) -> List[str]:
-    """"korzen,booth-cema" or a list of names; an empty item is passed on for the library to refuse."""
-    if isinstance(models, str):
-        return models.split(",") if models else []
-    if isinstance(models, Iterable):
-        items = list(models)
-        if all(isinstance(m, str) for m in items):
-            return items
-    raise _refuse("models", f"must be model names (a list of texts), got {models!r}")
-
-
-def _new(cls):
-    """An instance made by this module's functions (the classes have no public constructor)."""
-    return cls.__new__(cls)
 
 
 # ---- estimate ------------------------------------------------------------------------------------
@@ -262,19 +129,21 @@ class Estimate(_Mapping):
                 f"plate_distance_mm={v['plate_distance_mm']!r}, normal_force_N={v['normal_force_N']!r})")
 
 
-def _estimate_args(belt_speed, mass_flow, plate_distance, plate_top, stream_thickness, pulley_diameter,
-                   belt_width, bulk_density, dataset, setup, condition, effects, head=tuple) -> tuple:
-    """estimate()'s keywords checked and in the module's order, after head(): sweep()'s own keyword,
-    checked once the dataset is read."""
+def _estimate_options(options, belt_speed, mass_flow, plate_distance, plate_top, stream_thickness, pulley_diameter,
+                      belt_width, bulk_density, dataset, setup, condition, effects, head=dict):
+    """estimate()'s keywords checked and set on the module's `options` (EstimateOptions, or
+    SweepOptions with head(): sweep()'s own keyword, checked once the dataset is read)."""
     read = _dataset(dataset, measurements_required=False) if isinstance(dataset, Dataset) else None
-    return (*head(), _real("belt_speed", belt_speed, True), _real("mass_flow", mass_flow, True),
-            _real("plate_distance", plate_distance, True), _real("plate_top", plate_top, True),
-            _real("stream_thickness", stream_thickness, True),
-            _real("pulley_diameter", pulley_diameter, True), _real("belt_width", belt_width, True),
-            _real("bulk_density", bulk_density, True),
-            "" if read is not None else _path("dataset", dataset),
-            _path("setup", setup), _text("condition", condition), _effect_args(effects),
-            DEFAULT_DATASET, read)
+    return _options(options, **head(), belt_speed=_real("belt_speed", belt_speed, True),
+                    mass_flow=_real("mass_flow", mass_flow, True),
+                    plate_distance=_real("plate_distance", plate_distance, True),
+                    plate_top=_real("plate_top", plate_top, True),
+                    stream_thickness=_real("stream_thickness", stream_thickness, True),
+                    pulley_diameter=_real("pulley_diameter", pulley_diameter, True),
+                    belt_width=_real("belt_width", belt_width, True), bulk_density=_real("bulk_density", bulk_density, True),
+                    dataset="" if read is not None else _path("dataset", dataset), setup=_path("setup", setup),
+                    condition=_text("condition", condition), effects=_effect_args(effects),
+                    default_dataset=DEFAULT_DATASET, dataset_read=read)
 
 
 def estimate(belt_speed: Optional[float] = None, mass_flow: Optional[float] = None,
@@ -292,9 +161,9 @@ def estimate(belt_speed: Optional[float] = None, mass_flow: Optional[float] = No
     condition starts from a row of the dataset's conditions.csv, the numbers given replace its
     values; effects as {"air_drag": 0.5}. Returns an Estimate (see help(chutelab.Estimate)).
     Raises InputError naming the keyword for a missing, impossible or mistyped value."""
-    core = _chutelab.estimate(*_estimate_args(belt_speed, mass_flow, plate_distance, plate_top, stream_thickness,
-                                              pulley_diameter, belt_width, bulk_density, dataset, setup, condition,
-                                              effects))
+    core = _chutelab.estimate(_estimate_options(_chutelab.EstimateOptions(), belt_speed, mass_flow, plate_distance,
+                                                plate_top, stream_thickness, pulley_diameter, belt_width,
+                                                bulk_density, dataset, setup, condition, effects))
     return Estimate._make(core)
 
 
@@ -351,9 +220,10 @@ def sweep(sweep: str, belt_speed: Optional[float] = None, mass_flow: Optional[fl
     (its strength). The other keywords are estimate()'s. A point with no answer (the stream misses
     the plate, the belt is overfilled) is a row with its note; InputError when no point has one.
     Returns a Sweep (see help(chutelab.Sweep))."""
-    core = _chutelab.sweep(*_estimate_args(belt_speed, mass_flow, plate_distance, plate_top, stream_thickness,
-                                           pulley_diameter, belt_width, bulk_density, dataset, setup, condition,
-                                           effects, head=lambda: (_text("sweep", sweep),)))
+    core = _chutelab.sweep(_estimate_options(_chutelab.SweepOptions(), belt_speed, mass_flow, plate_distance,
+                                             plate_top, stream_thickness, pulley_diameter, belt_width, bulk_density,
+                                             dataset, setup, condition, effects,
+                                             head=lambda: {"sweep": _text("sweep", sweep)}))
     return Sweep._make(core)
 
 
@@ -766,14 +636,15 @@ def calibrate(dataset: Optional[PathLike] = None, *, quality: str = "quick",
     target_pile_height_mm; target=False marks no combination. incline=False skips the inclined-plane
     rig. threads: OpenMP threads per run; jobs: runs side by side (0: one per idle core); the numbers
     do not depend on either. Returns a Calibration (see help(chutelab.Calibration))."""
-    core = _chutelab.calibrate(_path("dataset", dataset) or DEFAULT_DATASET, _text("quality", quality),
-                               _reals("rolling", rolling), _reals("density", density), _texts("shapes", shapes),
-                               _real("sphere_diameter_mm", sphere_diameter_mm),
-                               _real("clump_diameter_mm", clump_diameter_mm), _flag("target", target),
-                               _real("target_bulk_density", target_bulk_density, True),
-                               _real("target_pile_height_mm", target_pile_height_mm, True),
-                               _flag("incline", incline), _whole("threads", threads), _seed_like("seed", seed),
-                               _whole("jobs", jobs))
+    core = _chutelab.calibrate(_options(
+        _chutelab.CalibrateOptions(), dataset=_path("dataset", dataset) or DEFAULT_DATASET,
+        quality=_text("quality", quality), rolling=_reals("rolling", rolling), density=_reals("density", density),
+        shapes=_texts("shapes", shapes), sphere_diameter_mm=_real("sphere_diameter_mm", sphere_diameter_mm),
+        clump_diameter_mm=_real("clump_diameter_mm", clump_diameter_mm), target=_flag("target", target),
+        target_bulk_density=_real("target_bulk_density", target_bulk_density, True),
+        target_pile_height_mm=_real("target_pile_height_mm", target_pile_height_mm, True),
+        incline=_flag("incline", incline), threads=_whole("threads", threads), seed=_seed_like("seed", seed),
+        jobs=_whole("jobs", jobs)))
     return Calibration._make(core)
 
 
@@ -830,11 +701,13 @@ def sensitivity(dataset: Optional[PathLike] = None, condition: str = "V3-41", *,
     quality). limit: "changes little" means |change of mean R| <= limit %. threads: OpenMP threads
     per run (default 1); jobs: runs side by side (0: one per idle core); the numbers do not depend
     on either. Returns a Sensitivity (see help(chutelab.Sensitivity))."""
-    core = _chutelab.sensitivity(_path("dataset", dataset) or DEFAULT_DATASET, _text("condition", condition),
-                                 _text("quality", quality), [] if only is None else _texts("only", only),
-                                 [] if sizes_mm is None else _reals("sizes_mm", sizes_mm),
-                                 _whole("threads", threads, True), None if seed is None else _seed_like("seed", seed),
-                                 _real("limit", limit), _whole("jobs", jobs))
+    core = _chutelab.sensitivity(_options(
+        _chutelab.SensitivityOptions(), dataset=_path("dataset", dataset) or DEFAULT_DATASET,
+        condition=_text("condition", condition), quality=_text("quality", quality),
+        only=[] if only is None else _texts("only", only),
+        sizes_mm=[] if sizes_mm is None else _reals("sizes_mm", sizes_mm), threads=_whole("threads", threads, True),
+        seed=None if seed is None else _seed_like("seed", seed), limit=_real("limit", limit),
+        jobs=_whole("jobs", jobs)))
     return Sensitivity._make(core)
 
 
